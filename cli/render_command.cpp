@@ -1,0 +1,149 @@
+#include "cli/render_command.h"
+
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+
+#include "cli/progress_bar.h"
+#include "image/exr_io.h"
+#include "image/png_preview.h"
+#include "renderer/integrators/frame_renderer.h"
+#include "renderer/scene/scene_loader.h"
+
+namespace pathfarm {
+namespace {
+
+struct RenderOptions {
+  std::string scene;
+  std::string frames;
+  std::string resolution;
+  std::optional<int> spp, maxDepth;
+  std::string out;
+  int threads = 0;
+  int tileSize = 32;
+  bool png = false;
+  float exposure = 1;
+};
+
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// "A:B" (inclusive) or "A".
+std::pair<int64_t, int64_t> parseFrames(const std::string& text) {
+  const auto colon = text.find(':');
+  try {
+    size_t used = 0;
+    const int64_t first = std::stoll(text.substr(0, colon), &used);
+    if (used != (colon == std::string::npos ? text.size() : colon)) throw std::invalid_argument(text);
+    int64_t last = first;
+    if (colon != std::string::npos) {
+      const std::string tail = text.substr(colon + 1);
+      last = std::stoll(tail, &used);
+      if (used != tail.size()) throw std::invalid_argument(text);
+    }
+    if (first < 0 || last < first) throw std::invalid_argument(text);
+    return {first, last};
+  } catch (const std::logic_error&) {
+    throw UsageError("--frames \"" + text + "\": expected FIRST:LAST with 0 <= FIRST <= LAST");
+  }
+}
+
+// "WxH".
+std::pair<int, int> parseResolution(const std::string& text) {
+  int width = 0, height = 0;
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%dx%d%c", &width, &height, &tail) != 2 || width < 1 || height < 1 ||
+      width > 16384 || height > 16384)
+    throw UsageError("--res \"" + text + "\": expected WIDTHxHEIGHT, each from 1 to 16384");
+  return {width, height};
+}
+
+std::string frameName(int64_t frame, const char* extension) {
+  char name[64];
+  std::snprintf(name, sizeof name, "frame_%04lld.%s", static_cast<long long>(frame), extension);
+  return name;
+}
+
+int runRender(const RenderOptions& options) {
+  Scene scene;
+  RenderSettings settings;
+  std::pair<int64_t, int64_t> frames;
+  try {
+    scene = loadScene(options.scene);
+    settings = RenderSettings::defaultsOf(scene);
+    frames = options.frames.empty() ? std::pair<int64_t, int64_t>{scene.defaults.frameStart, scene.defaults.frameEnd}
+                                    : parseFrames(options.frames);
+    if (!options.resolution.empty()) std::tie(settings.width, settings.height) = parseResolution(options.resolution);
+  } catch (const SceneError& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  } catch (const UsageError& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  }
+  if (options.spp) settings.spp = *options.spp;
+  if (options.maxDepth) settings.maxDepth = *options.maxDepth;
+  settings.threads = options.threads;
+  settings.tileSize = options.tileSize;
+
+  const std::filesystem::path out(options.out);
+  std::error_code error;
+  std::filesystem::create_directories(out, error);
+  if (error) {
+    spdlog::error("{}: cannot create the output folder: {}", out.string(), error.message());
+    return 1;
+  }
+  spdlog::info("rendering {} frames {}..{} at {}x{}, {} spp, max depth {}", options.scene, frames.first,
+               frames.second, settings.width, settings.height, settings.spp, settings.maxDepth);
+  try {
+    const FrameRenderer renderer(scene, settings);
+    for (int64_t frame = frames.first; frame <= frames.second; ++frame) {
+      RenderStats stats;
+      FrameImage image;
+      {
+        ProgressBar bar("frame " + std::to_string(frame));
+        image = renderer.render(frame, [&](size_t done, size_t total) { bar.update(done, total); }, &stats);
+      }
+      const auto exr = out / frameName(frame, "exr");
+      writeExr(exr, image);
+      if (options.png) writePngPreview(out / frameName(frame, "png"), image, options.exposure);
+      spdlog::info("frame {}: {:.2f} s, {:.2f} M samples/s, {:.2f} M rays/s -> {}", frame, stats.seconds,
+                   stats.samples / stats.seconds * 1e-6,
+                   (stats.rays.closestHit + stats.rays.shadow) / stats.seconds * 1e-6, exr.string());
+      if (stats.nonFiniteSamples > 0)
+        spdlog::warn("frame {}: dropped {} non-finite samples of {}", frame, stats.nonFiniteSamples, stats.samples);
+    }
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return 1;
+  }
+  spdlog::info("EXR frames{} in {}", options.png ? " and PNG previews" : "", out.string());
+  return 0;
+}
+
+}  // namespace
+
+std::function<int()> addRenderCommand(CLI::App& app) {
+  auto options = std::make_shared<RenderOptions>();
+  CLI::App* render = app.add_subcommand("render", "render frames of a scene to multi-layer EXR files");
+  render->add_option("scene", options->scene, "scene file (JSON, see docs/scene-format.md)")->required();
+  render->add_option("--frames", options->frames, "inclusive frame range A:B, or A (default: the scene's)");
+  render->add_option("--spp", options->spp, "samples per pixel (default: the scene's)")->check(CLI::Range(1, 1 << 20));
+  render->add_option("--res", options->resolution, "resolution WxH (default: the scene's)");
+  render->add_option("--max-depth", options->maxDepth, "maximum scattering events per path")
+      ->check(CLI::Range(0, 1024));
+  render->add_option("--out", options->out, "output folder for frame_NNNN.exr")->required();
+  render->add_option("--threads", options->threads, "worker threads (0: every core)")->check(CLI::Range(0, 1024));
+  render->add_option("--tile", options->tileSize, "tile size in pixels")->check(CLI::Range(1, 4096));
+  render->add_flag("--png", options->png, "also write frame_NNNN.png previews (sRGB)");
+  render->add_option("--exposure", options->exposure, "exposure multiplier of the PNG previews")
+      ->check(CLI::Range(1e-6, 1e6));
+  return [options] { return runRender(*options); };
+}
+
+}  // namespace pathfarm

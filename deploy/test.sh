@@ -1,0 +1,7 @@
+#!/usr/bin/env bash
+# Installs dependencies, builds, and runs every test (what CI runs).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+./deploy/setup.sh
+BUILD_DIR=${PATHFARM_BUILD_DIR:-build}
+ctest --test-dir "$BUILD_DIR" --output-on-failure --parallel "$(nproc)" --timeout 600

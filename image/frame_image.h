@@ -1,0 +1,40 @@
+#pragma once
+// A frame as pathfarm moves it around: named float channels of one resolution, in the
+// order they were added, plus string attributes. Channel names follow the data
+// contract: beauty in "R","G","B", other buffers "<layer>.<buffer>.<channel>" or, for
+// frame-wide buffers, "<buffer>.<channel>".
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace pathfarm {
+
+class FrameImage {
+ public:
+  FrameImage() = default;
+  FrameImage(int width, int height) : width_(width), height_(height) {}
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  size_t pixelCount() const { return static_cast<size_t>(width_) * static_cast<size_t>(height_); }
+
+  // Adds a zero-filled channel (or returns the existing one).
+  std::vector<float>& addChannel(const std::string& name);
+  bool hasChannel(const std::string& name) const;
+  // Throws std::out_of_range naming the missing channel.
+  const std::vector<float>& channel(const std::string& name) const;
+  std::vector<float>& channel(const std::string& name);
+  const std::vector<std::string>& channelNames() const { return names_; }
+
+  std::map<std::string, std::string>& attributes() { return attributes_; }
+  const std::map<std::string, std::string>& attributes() const { return attributes_; }
+
+ private:
+  int width_ = 0, height_ = 0;
+  std::vector<std::string> names_;
+  std::map<std::string, std::vector<float>> planes_;
+  std::map<std::string, std::string> attributes_;
+};
+
+}  // namespace pathfarm

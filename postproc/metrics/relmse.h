@@ -1,0 +1,16 @@
+#pragma once
+// Error metrics against a reference (DESIGN.md's data contract).
+#include <string>
+#include <vector>
+
+#include "image/frame_image.h"
+
+namespace pathfarm {
+
+// Relative MSE: the mean over pixels and channels of (x - ref)^2 / (ref^2 + 0.01).
+double relMse(const std::vector<float>& image, const std::vector<float>& reference);
+// relMSE over the named channels of two frames of equal size (default: the beauty).
+double relMse(const FrameImage& image, const FrameImage& reference,
+              const std::vector<std::string>& channels = {"R", "G", "B"});
+
+}  // namespace pathfarm

@@ -1,0 +1,208 @@
+#include "renderer/accel/frame_geometry.h"
+
+#include <embree3/rtcore_quaternion.h>
+
+#include <limits>
+
+namespace pathfarm {
+namespace {
+
+constexpr unsigned kInvalid = RTC_INVALID_GEOMETRY_ID;
+
+RTCQuaternionDecomposition decomposition(const Trs& trs) {
+  RTCQuaternionDecomposition qd;
+  rtcInitQuaternionDecomposition(&qd);
+  rtcQuaternionDecompositionSetScale(&qd, trs.scale.x, trs.scale.y, trs.scale.z);
+  rtcQuaternionDecompositionSetQuaternion(&qd, trs.rotation.w, trs.rotation.x, trs.rotation.y,
+                                          trs.rotation.z);
+  rtcQuaternionDecompositionSetTranslation(&qd, trs.translation.x, trs.translation.y,
+                                           trs.translation.z);
+  return qd;
+}
+
+// Embree interpolates between uniformly spaced time steps; two are exact while the motion
+// over the shutter is one keyframe segment, more approximate a shutter that spans keys.
+unsigned timeStepsFor(const AnimatedTrs& animation, double open, double close) {
+  if (close <= open) return 1;
+  return animation.hasKeyInside(open, close) ? 17 : 2;
+}
+
+Vec2f sphereUv(Vec3f n) {
+  const float phi = std::atan2(n.y, n.x);
+  return {(phi < 0 ? phi + 2 * kPi : phi) / (2 * kPi), std::acos(std::clamp(n.z, -1.0f, 1.0f)) * kInvPi};
+}
+
+}  // namespace
+
+FrameGeometry::FrameGeometry(const ShotGeometry& shot, int64_t frame)
+    : shot_(shot), frame_(frame), objectInstance_(shot.scene().objects.size(), kInvalid) {
+  const Scene& scene = shot.scene();
+  bool anyAnimated = false;
+  for (size_t i = 0; i < scene.objects.size(); ++i) anyAnimated |= shot.shape(static_cast<int>(i)).animated;
+  if (!anyAnimated) {
+    top_ = shot.staticScene();  // nothing moves: trace the static BVH directly
+    return;
+  }
+  RTCDevice device = shot.device().get();
+  top_ = rtcNewScene(device);
+  ownsTop_ = true;
+  rtcSetSceneBuildQuality(top_, RTC_BUILD_QUALITY_LOW);  // a handful of instances, rebuilt per frame
+  auto attach = [&](RTCScene child, int object) {
+    RTCGeometry instance = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(instance, child);
+    if (object < 0) {
+      const float identity[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+      rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, identity);
+    } else {
+      const AnimatedTrs& animation = scene.objects[static_cast<size_t>(object)].transform;
+      const double open = scene.timeAt(frame, 0), close = scene.timeAt(frame, 1);
+      const unsigned steps = timeStepsFor(animation, open, close);
+      rtcSetGeometryTimeStepCount(instance, steps);
+      for (unsigned s = 0; s < steps; ++s) {
+        const double t = steps == 1 ? open : open + (close - open) * s / (steps - 1);
+        const RTCQuaternionDecomposition qd = decomposition(animation.at(t));
+        rtcSetGeometryTransformQuaternion(instance, s, &qd);
+      }
+    }
+    rtcCommitGeometry(instance);
+    const unsigned id = rtcAttachGeometry(top_, instance);
+    rtcReleaseGeometry(instance);
+    instanceObject_.resize(id + 1, -1);
+    instanceObject_[id] = object;
+    if (object >= 0) objectInstance_[static_cast<size_t>(object)] = id;
+  };
+  if (shot.staticScene()) attach(shot.staticScene(), -1);
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    if (RTCScene child = shot.objectScene(static_cast<int>(i))) attach(child, static_cast<int>(i));
+  }
+  rtcCommitScene(top_);
+  shot.device().check("placing the animated objects of a frame");
+}
+
+FrameGeometry::~FrameGeometry() {
+  if (ownsTop_) rtcReleaseScene(top_);
+}
+
+Transform FrameGeometry::shapeToWorld(int object, float time) const {
+  const unsigned id = objectInstance_[static_cast<size_t>(object)];
+  if (id == kInvalid) return {};
+  std::array<float, 12> m;
+  rtcGetGeometryTransform(rtcGetGeometry(top_, id), time, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, m.data());
+  return Transform::fromMatrix(m);
+}
+
+bool FrameGeometry::intersect(const Ray& ray, float time, SurfaceHit& hit) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh;
+  rh.ray.org_x = ray.origin.x;
+  rh.ray.org_y = ray.origin.y;
+  rh.ray.org_z = ray.origin.z;
+  rh.ray.dir_x = ray.direction.x;
+  rh.ray.dir_y = ray.direction.y;
+  rh.ray.dir_z = ray.direction.z;
+  rh.ray.tnear = 0;
+  rh.ray.tfar = std::numeric_limits<float>::infinity();
+  rh.ray.time = time;
+  rh.ray.mask = 0xffffffffu;
+  rh.ray.id = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = kInvalid;
+  rh.hit.instID[0] = kInvalid;
+  rtcIntersect1(top_, &context, &rh);
+  if (rh.hit.geomID == kInvalid) return false;
+  const unsigned instance = rh.hit.instID[0];
+  const int animated = instance == kInvalid ? -1 : instanceObject_[instance];
+  const int object = animated >= 0 ? animated : shot_.staticObject(rh.hit.geomID);
+  hit = makeHit(ray, rh.ray.tfar, object, rh.hit.primID, rh.hit.u, rh.hit.v, time);
+  return true;
+}
+
+bool FrameGeometry::occluded(Vec3f origin, Vec3f direction, float maxDistance, float time) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay ray;
+  ray.org_x = origin.x;
+  ray.org_y = origin.y;
+  ray.org_z = origin.z;
+  ray.dir_x = direction.x;
+  ray.dir_y = direction.y;
+  ray.dir_z = direction.z;
+  ray.tnear = 0;
+  ray.tfar = maxDistance;
+  ray.time = time;
+  ray.mask = 0xffffffffu;
+  ray.id = 0;
+  ray.flags = 0;
+  rtcOccluded1(top_, &context, &ray);
+  return ray.tfar < 0;  // Embree sets tfar to -inf on a hit
+}
+
+SurfaceHit FrameGeometry::makeHit(const Ray& ray, float distance, int object, unsigned primitive,
+                                  float u, float v, float time) const {
+  const PreparedShape& shape = shot_.shape(object);
+  const Transform toWorld = shapeToWorld(object, time);
+  SurfaceHit hit;
+  hit.distance = distance;
+  hit.object = object;
+  hit.primitive = primitive;
+  if (shape.type == ShapeType::Sphere) {
+    // Re-project onto the sphere: the analytic point is more precise than o + t d.
+    const Vec3f local = toWorld.inversePoint(ray.origin + ray.direction * distance) - shape.center;
+    const Vec3f n = normalize(local);
+    hit.position = toWorld.point(shape.center + n * shape.radius);
+    hit.geometricNormal = normalize(toWorld.normal(n));
+    hit.shadingNormal = hit.geometricNormal;
+    hit.uv = sphereUv(n);
+    return hit;
+  }
+  const TriangleMesh& mesh = *shape.mesh;
+  const uint32_t i0 = mesh.indices[3 * primitive], i1 = mesh.indices[3 * primitive + 1],
+                 i2 = mesh.indices[3 * primitive + 2];
+  const float w = 1 - u - v;
+  const Vec3f p0 = mesh.positions[i0], p1 = mesh.positions[i1], p2 = mesh.positions[i2];
+  hit.position = toWorld.point(p0 * w + p1 * u + p2 * v);
+  hit.geometricNormal = normalize(toWorld.normal(cross(p1 - p0, p2 - p0)));
+  hit.shadingNormal = hit.geometricNormal;
+  if (!mesh.normals.empty()) {
+    const Vec3f n = mesh.normals[i0] * w + mesh.normals[i1] * u + mesh.normals[i2] * v;
+    if (dot(n, n) > 0) hit.shadingNormal = normalize(toWorld.normal(n));
+  }
+  if (!mesh.uvs.empty()) {
+    const Vec2f a = mesh.uvs[i0], b = mesh.uvs[i1], c = mesh.uvs[i2];
+    hit.uv = {a.x * w + b.x * u + c.x * v, a.y * w + b.y * u + c.y * v};
+  } else {
+    hit.uv = {u, v};
+  }
+  return hit;
+}
+
+Bounds3 FrameGeometry::bounds() const {
+  RTCBounds b;
+  rtcGetSceneBounds(top_, &b);
+  return {{b.lower_x, b.lower_y, b.lower_z}, {b.upper_x, b.upper_y, b.upper_z}};
+}
+
+bool FrameGeometry::connects(const SurfaceHit& from, Vec3f target, float time) const {
+  // Aim from the offset origin, and stop short of the target's own surface.
+  const Vec3f origin = offsetRayOrigin(from, target - from.position);
+  const Vec3f toTarget = target - origin;
+  const float distance = length(toTarget);
+  const float reach = distance - surfaceEpsilon(target);
+  return reach <= 0 || !occluded(origin, toTarget / distance, reach, time);
+}
+
+bool FrameGeometry::escapes(const SurfaceHit& from, Vec3f direction, float time) const {
+  return !occluded(offsetRayOrigin(from, direction), direction, std::numeric_limits<float>::infinity(), time);
+}
+
+float surfaceEpsilon(Vec3f p) {
+  return 1e-4f * (1 + std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}));
+}
+
+Vec3f offsetRayOrigin(const SurfaceHit& hit, Vec3f direction) {
+  const float epsilon = surfaceEpsilon(hit.position);
+  return hit.position + hit.geometricNormal * (dot(direction, hit.geometricNormal) > 0 ? epsilon : -epsilon);
+}
+
+}  // namespace pathfarm

@@ -1,0 +1,133 @@
+#include "renderer/integrators/frame_renderer.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+
+#include "renderer/accel/shot_geometry.h"
+
+namespace pathfarm {
+
+RenderSettings RenderSettings::defaultsOf(const Scene& scene) {
+  RenderSettings settings;
+  settings.width = scene.defaults.width;
+  settings.height = scene.defaults.height;
+  settings.spp = scene.defaults.spp;
+  settings.maxDepth = scene.defaults.maxDepth;
+  return settings;
+}
+
+struct FrameRenderer::Shot {
+  EmbreeDevice device;
+  ShotGeometry geometry;
+  LightSampler lights;
+
+  explicit Shot(const Scene& scene) : geometry(scene, device), lights(geometry) {}
+};
+
+FrameRenderer::FrameRenderer(const Scene& scene, RenderSettings settings)
+    : scene_(scene), settings_(settings), shot_(std::make_unique<Shot>(scene)) {}
+
+FrameRenderer::~FrameRenderer() = default;
+
+namespace {
+
+struct TileCounters {
+  uint64_t samples = 0, nonFinite = 0;
+  RayCounts rays;
+};
+
+}  // namespace
+
+FrameImage FrameRenderer::render(int64_t frame, const ProgressCallback& progress, RenderStats* stats) const {
+  const auto start = std::chrono::steady_clock::now();
+  const FrameGeometry geometry(shot_->geometry, frame);
+  const PathTracer tracer(geometry, shot_->lights, {settings_.maxDepth});
+  const Camera camera(scene_.camera, settings_.width, settings_.height);
+
+  const int width = settings_.width, height = settings_.height, tile = settings_.tileSize;
+  FrameImage image(width, height);
+  float* channels[6];
+  const char* names[6] = {"R", "G", "B", "variance.R", "variance.G", "variance.B"};
+  for (int c = 0; c < 6; ++c) channels[c] = image.addChannel(names[c]).data();
+
+  const int tilesX = (width + tile - 1) / tile, tilesY = (height + tile - 1) / tile;
+  const size_t tileCount = static_cast<size_t>(tilesX) * static_cast<size_t>(tilesY);
+  std::atomic<size_t> tilesDone{0};
+  tbb::enumerable_thread_specific<TileCounters> counters;
+
+  auto renderTile = [&](size_t index) {
+    TileCounters& local = counters.local();
+    const int x0 = static_cast<int>(index % static_cast<size_t>(tilesX)) * tile;
+    const int y0 = static_cast<int>(index / static_cast<size_t>(tilesX)) * tile;
+    for (int y = y0; y < std::min(y0 + tile, height); ++y) {
+      for (int x = x0; x < std::min(x0 + tile, width); ++x) {
+        double sum[3] = {0, 0, 0}, sumSquares[3] = {0, 0, 0};
+        int accepted = 0;
+        for (int s = 0; s < settings_.spp; ++s) {
+          SampleStream stream({scene_.seed, frame, x, y, static_cast<uint32_t>(s)});
+          // Fixed order of the first dimensions: pixel position, shutter time, lens.
+          const Vec2f jitter = stream.next2D();
+          const float time = stream.next1D();
+          const Vec2f lens = stream.next2D();
+          const Ray ray = camera.generateRay({static_cast<float>(x) + jitter.x, static_cast<float>(y) + jitter.y},
+                                             lens, scene_.timeAt(frame, time));
+          const Rgb L = tracer.radiance(ray, time, stream, local.rays);
+          ++local.samples;
+          if (!L.isFinite()) {
+            ++local.nonFinite;
+            continue;
+          }
+          ++accepted;
+          for (int c = 0; c < 3; ++c) {
+            sum[c] += L[c];
+            sumSquares[c] += static_cast<double>(L[c]) * L[c];
+          }
+        }
+        const size_t pixel = static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
+        for (int c = 0; c < 3; ++c) {
+          const double mean = accepted > 0 ? sum[c] / accepted : 0.0;
+          // Variance of the pixel mean: the samples' unbiased variance over their count.
+          const double variance = accepted > 1
+                                      ? std::max(0.0, sumSquares[c] - accepted * mean * mean) /
+                                            (static_cast<double>(accepted - 1) * accepted)
+                                      : 0.0;
+          channels[c][pixel] = static_cast<float>(mean);
+          channels[3 + c][pixel] = static_cast<float>(variance);
+        }
+      }
+    }
+    const size_t done = ++tilesDone;
+    if (progress) progress(done, tileCount);
+  };
+
+  tbb::task_arena arena(settings_.threads > 0 ? settings_.threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, tileCount, 1), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t i = r.begin(); i != r.end(); ++i) renderTile(i);
+    });
+  });
+
+  RenderStats total;
+  for (const TileCounters& c : counters) {
+    total.samples += c.samples;
+    total.nonFiniteSamples += c.nonFinite;
+    total.rays.closestHit += c.rays.closestHit;
+    total.rays.shadow += c.rays.shadow;
+  }
+  total.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  auto& attributes = image.attributes();
+  attributes["pathfarm.scene"] = scene_.file.filename().string();
+  attributes["pathfarm.frame"] = std::to_string(frame);
+  attributes["pathfarm.spp"] = std::to_string(settings_.spp);
+  attributes["pathfarm.max_depth"] = std::to_string(settings_.maxDepth);
+  attributes["pathfarm.seed"] = std::to_string(scene_.seed);
+  attributes["pathfarm.nonfinite_samples"] = std::to_string(total.nonFiniteSamples);
+  if (stats) *stats = total;
+  return image;
+}
+
+}  // namespace pathfarm

@@ -1,0 +1,55 @@
+#pragma once
+// Renders frames of a scene: builds the shot's geometry once, then per frame places the
+// animated objects, splits the image into tiles and renders them in parallel with TBB.
+// Each pixel's samples are independent streams (sample_stream.h) accumulated in a
+// fixed order, so the result is the same bits for any thread count and tile size.
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+
+#include "image/frame_image.h"
+#include "renderer/integrators/path_tracer.h"
+#include "renderer/scene/scene.h"
+
+namespace pathfarm {
+
+struct RenderSettings {
+  int width = 320, height = 240;
+  int spp = 16;
+  int maxDepth = 8;
+  int tileSize = 32;
+  int threads = 0;  // 0: every core
+
+  static RenderSettings defaultsOf(const Scene& scene);
+};
+
+struct RenderStats {
+  uint64_t samples = 0;
+  uint64_t nonFiniteSamples = 0;  // dropped, never written
+  RayCounts rays;
+  double seconds = 0;
+};
+
+// Called from worker threads as tiles finish: (tiles done, tiles in all).
+using ProgressCallback = std::function<void(size_t, size_t)>;
+
+class FrameRenderer {
+ public:
+  FrameRenderer(const Scene& scene, RenderSettings settings);
+  ~FrameRenderer();
+
+  // The frame's beauty in R, G, B and the variance of each pixel's mean in variance.R/G/B.
+  FrameImage render(int64_t frame, const ProgressCallback& progress = {}, RenderStats* stats = nullptr) const;
+
+  const Scene& scene() const { return scene_; }
+  const RenderSettings& settings() const { return settings_; }
+
+ private:
+  struct Shot;
+  const Scene& scene_;
+  RenderSettings settings_;
+  std::unique_ptr<Shot> shot_;
+};
+
+}  // namespace pathfarm

@@ -1,0 +1,109 @@
+#include "renderer/integrators/path_tracer.h"
+
+#include "renderer/materials/bsdf.h"
+#include "renderer/math/frame.h"
+#include "renderer/math/sampling.h"
+
+namespace pathfarm {
+namespace {
+
+Rgb albedoAt(const Scene& scene, const Material& material, Vec2f uv) {
+  if (material.reflectanceTexture < 0) return material.reflectance;
+  return scene.textures[static_cast<size_t>(material.reflectanceTexture)].lookup(uv);
+}
+
+bool isTransmissive(MaterialType type) {
+  return type == MaterialType::Dielectric || type == MaterialType::RoughDielectric;
+}
+
+// The uniform numbers one bounce consumes, drawn together so every bounce uses the same
+// number of dimensions whatever happens in it.
+struct BounceSamples {
+  float light;
+  Vec2f lightPoint;
+  float lobe;
+  Vec2f direction;
+  float roulette;
+
+  explicit BounceSamples(SampleStream& s)
+      : light(s.next1D()), lightPoint(s.next2D()), lobe(s.next1D()), direction(s.next2D()),
+        roulette(s.next1D()) {}
+};
+
+}  // namespace
+
+Rgb PathTracer::radiance(Ray ray, float time, SampleStream& stream, RayCounts& counts) const {
+  const Scene& scene = geometry_.shot().scene();
+  Rgb result, throughput(1.0f);
+  bool specularBounce = true;  // the camera "sees" emitters with full weight
+  float previousPdf = 0;
+  Vec3f previousPosition;
+
+  for (int depth = 0;; ++depth) {
+    SurfaceHit hit;
+    ++counts.closestHit;
+    if (!geometry_.intersect(ray, time, hit)) {
+      if (!scene.environment.isBlack()) {
+        const float weight = specularBounce ? 1 : powerHeuristic(previousPdf, lights_.environmentPdf());
+        result += throughput * scene.environment * weight;
+      }
+      break;
+    }
+    const SceneObject& object = scene.objects[static_cast<size_t>(hit.object)];
+    if (object.isEmitter() && dot(ray.direction, hit.geometricNormal) < 0) {
+      const float weight = specularBounce
+                               ? 1
+                               : powerHeuristic(previousPdf, lights_.pdf(geometry_, previousPosition, hit, time));
+      result += throughput * object.emission * weight;
+    }
+    if (depth >= settings_.maxDepth) break;
+
+    const BounceSamples u(stream);
+    const Material& material = scene.materials[static_cast<size_t>(object.material)];
+    // Opaque surfaces are two-sided: shade the side the ray arrived on. Dielectrics keep
+    // the outward normal so that the BSDF knows whether the ray is inside.
+    Vec3f normal = hit.shadingNormal;
+    if (!isTransmissive(material.type) && dot(ray.direction, hit.geometricNormal) > 0) {
+      normal = -normal;
+      hit.geometricNormal = -hit.geometricNormal;
+    }
+    const Frame frame = Frame::fromNormal(normal);
+    const Vec3f wo = frame.toLocal(-ray.direction);
+    const Bsdf bsdf(material, albedoAt(scene, material, hit.uv), scene.roughnessThreshold);
+
+    if (bsdf.hasNonDeltaLobe() && !lights_.empty()) {
+      if (const auto light = lights_.sample(geometry_, hit.position, time, u.light, u.lightPoint)) {
+        const Vec3f wi = frame.toLocal(light->direction);
+        const Rgb f = bsdf.eval(wo, wi);
+        if (!f.isBlack()) {
+          ++counts.shadow;
+          const bool visible = std::isinf(light->distance)
+                                   ? geometry_.escapes(hit, light->direction, time)
+                                   : geometry_.connects(hit, hit.position + light->direction * light->distance, time);
+          if (visible) {
+            const float weight = powerHeuristic(light->pdf, bsdf.pdf(wo, wi));
+            result += throughput * f * light->radiance * (weight / light->pdf);
+          }
+        }
+      }
+    }
+
+    const auto scattered = bsdf.sample(wo, u.lobe, u.direction);
+    if (!scattered || scattered->weight.isBlack()) break;
+    throughput *= scattered->weight;
+    specularBounce = scattered->delta;
+    previousPdf = scattered->pdf;
+    previousPosition = hit.position;
+    const Vec3f direction = normalize(frame.toWorld(scattered->wi));
+    ray = {offsetRayOrigin(hit, direction), direction};
+
+    if (depth + 1 >= settings_.rouletteDepth) {
+      const float survive = std::min(1.0f, throughput.maxComponent());
+      if (u.roulette >= survive) break;
+      throughput *= 1.0f / survive;
+    }
+  }
+  return result;
+}
+
+}  // namespace pathfarm

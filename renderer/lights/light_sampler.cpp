@@ -1,0 +1,168 @@
+#include "renderer/lights/light_sampler.h"
+
+#include <algorithm>
+#include <limits>
+
+#include "renderer/math/sampling.h"
+
+namespace pathfarm {
+namespace {
+
+float triangleArea(Vec3f a, Vec3f b, Vec3f c) { return 0.5f * length(cross(b - a, c - a)); }
+
+// Cumulative triangle areas of a prepared shape.
+std::vector<float> triangleCdf(const TriangleMesh& mesh) {
+  std::vector<float> cdf;
+  float total = 0;
+  for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+    total += triangleArea(mesh.positions[mesh.indices[3 * t]], mesh.positions[mesh.indices[3 * t + 1]],
+                          mesh.positions[mesh.indices[3 * t + 2]]);
+    cdf.push_back(total);
+  }
+  return cdf;
+}
+
+// Surface area in world space at the start of the shot, for choosing among emitters.
+float worldArea(const SceneObject& object, const PreparedShape& shape) {
+  const Transform toWorld = shape.animated ? object.transform.transformAt(0) : Transform();
+  if (shape.type == ShapeType::Sphere) {
+    const float r = shape.radius * length(toWorld.vector({1, 0, 0}));
+    return 4 * kPi * r * r;
+  }
+  float area = 0;
+  const TriangleMesh& m = *shape.mesh;
+  for (size_t t = 0; t < m.triangleCount(); ++t) {
+    area += triangleArea(toWorld.point(m.positions[m.indices[3 * t]]),
+                         toWorld.point(m.positions[m.indices[3 * t + 1]]),
+                         toWorld.point(m.positions[m.indices[3 * t + 2]]));
+  }
+  return area;
+}
+
+// Radius of a sphere around every static shape, for the environment's share of power.
+float sceneRadius(const ShotGeometry& shot) {
+  RTCScene scene = shot.staticScene();
+  if (!scene) return 1;
+  RTCBounds b;
+  rtcGetSceneBounds(scene, &b);
+  const Vec3f extent{b.upper_x - b.lower_x, b.upper_y - b.lower_y, b.upper_z - b.lower_z};
+  return std::max(0.5f * length(extent), 1e-3f);
+}
+
+}  // namespace
+
+LightSampler::LightSampler(const ShotGeometry& shot)
+    : shot_(shot), emitterOfObject_(shot.scene().objects.size(), -1) {
+  const Scene& scene = shot.scene();
+  std::vector<float> power;
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    const SceneObject& object = scene.objects[i];
+    if (!object.isEmitter()) continue;
+    const PreparedShape& shape = shot.shape(static_cast<int>(i));
+    Emitter emitter{static_cast<int>(i), 0, {}};
+    if (shape.type != ShapeType::Sphere) emitter.triangleCdf = triangleCdf(*shape.mesh);
+    emitterOfObject_[i] = static_cast<int>(emitters_.size());
+    emitters_.push_back(std::move(emitter));
+    power.push_back(object.emission.luminance() * kPi * worldArea(object, shape));
+  }
+  if (!scene.environment.isBlack()) {
+    // Power an environment pours onto the scene's bounding sphere's cross-section.
+    const float r = sceneRadius(shot);
+    power.push_back(scene.environment.luminance() * kPi * kPi * r * r);
+  }
+  float total = 0;
+  for (float p : power) total += p;
+  float running = 0;
+  for (size_t i = 0; i < power.size(); ++i) {
+    running += power[i];
+    const float probability = total > 0 ? power[i] / total : 0;
+    if (i < emitters_.size()) {
+      emitters_[i].probability = probability;
+      emitterCdf_.push_back(total > 0 ? running / total : 0);
+    } else {
+      environmentProbability_ = probability;
+    }
+  }
+}
+
+float LightSampler::environmentPdf() const { return environmentProbability_ * kUniformSpherePdf; }
+
+float LightSampler::pointDensity(const FrameGeometry& frame, const Emitter& emitter,
+                                 uint32_t triangle, float time) const {
+  const PreparedShape& shape = shot_.shape(emitter.object);
+  const Transform toWorld = frame.shapeToWorld(emitter.object, time);
+  if (shape.type == ShapeType::Sphere) {
+    const float r = shape.radius * length(toWorld.vector({1, 0, 0}));
+    return 1.0f / (4 * kPi * r * r);
+  }
+  // The triangle is chosen by its prepared-space area, then a point uniformly on its
+  // world-space image: exact even when the transform scales unevenly.
+  const TriangleMesh& m = *shape.mesh;
+  const float before = triangle == 0 ? 0 : emitter.triangleCdf[triangle - 1];
+  const float choice = (emitter.triangleCdf[triangle] - before) / emitter.triangleCdf.back();
+  const float area = triangleArea(toWorld.point(m.positions[m.indices[3 * triangle]]),
+                                  toWorld.point(m.positions[m.indices[3 * triangle + 1]]),
+                                  toWorld.point(m.positions[m.indices[3 * triangle + 2]]));
+  return area > 0 ? choice / area : 0;
+}
+
+std::optional<LightSample> LightSampler::sample(const FrameGeometry& frame, Vec3f from, float time,
+                                                float uLight, Vec2f uPoint) const {
+  const Scene& scene = shot_.scene();
+  const auto chosen = std::upper_bound(emitterCdf_.begin(), emitterCdf_.end(), uLight);
+  if (chosen == emitterCdf_.end()) {
+    if (environmentProbability_ == 0) return std::nullopt;
+    return LightSample{sampleUniformSphere(uPoint), std::numeric_limits<float>::infinity(),
+                       scene.environment, environmentPdf()};
+  }
+  const Emitter& emitter = emitters_[static_cast<size_t>(chosen - emitterCdf_.begin())];
+  const PreparedShape& shape = shot_.shape(emitter.object);
+  const Transform toWorld = frame.shapeToWorld(emitter.object, time);
+
+  Vec3f point, normal;
+  uint32_t triangle = 0;
+  if (shape.type == ShapeType::Sphere) {
+    const Vec3f n = sampleUniformSphere(uPoint);
+    point = toWorld.point(shape.center + n * shape.radius);
+    normal = normalize(toWorld.normal(n));
+  } else {
+    // Reuse what is left of uLight inside the chosen emitter's interval to pick a triangle.
+    const float low = chosen == emitterCdf_.begin() ? 0 : *(chosen - 1);
+    const float u = std::min((uLight - low) / emitter.probability, 0x1.fffffep-1f) *
+                    emitter.triangleCdf.back();
+    triangle = static_cast<uint32_t>(
+        std::min<size_t>(std::upper_bound(emitter.triangleCdf.begin(), emitter.triangleCdf.end(), u) -
+                             emitter.triangleCdf.begin(),
+                         emitter.triangleCdf.size() - 1));
+    const TriangleMesh& m = *shape.mesh;
+    const Vec3f p0 = toWorld.point(m.positions[m.indices[3 * triangle]]);
+    const Vec3f p1 = toWorld.point(m.positions[m.indices[3 * triangle + 1]]);
+    const Vec3f p2 = toWorld.point(m.positions[m.indices[3 * triangle + 2]]);
+    const Vec2f b = sampleUniformTriangle(uPoint);
+    point = p0 * (1 - b.x - b.y) + p1 * b.x + p2 * b.y;
+    normal = normalize(cross(p1 - p0, p2 - p0));
+  }
+  const Vec3f toLight = point - from;
+  const float distance = length(toLight);
+  if (distance <= 0) return std::nullopt;
+  const Vec3f direction = toLight / distance;
+  const float cosLight = -dot(normal, direction);
+  if (cosLight <= 0) return std::nullopt;  // the back of an emitter is dark
+  const float pdf = emitter.probability * pointDensity(frame, emitter, triangle, time) * distance *
+                    distance / cosLight;
+  if (!(pdf > 0) || !std::isfinite(pdf)) return std::nullopt;
+  return LightSample{direction, distance, scene.objects[static_cast<size_t>(emitter.object)].emission, pdf};
+}
+
+float LightSampler::pdf(const FrameGeometry& frame, Vec3f from, const SurfaceHit& hit, float time) const {
+  const int index = emitterOfObject_[static_cast<size_t>(hit.object)];
+  if (index < 0) return 0;
+  const Emitter& emitter = emitters_[static_cast<size_t>(index)];
+  const Vec3f toLight = hit.position - from;
+  const float distanceSquared = dot(toLight, toLight);
+  const float cosLight = std::abs(dot(hit.geometricNormal, toLight)) / std::sqrt(distanceSquared);
+  if (cosLight <= 0) return 0;
+  return emitter.probability * pointDensity(frame, emitter, hit.primitive, time) * distanceSquared / cosLight;
+}
+
+}  // namespace pathfarm

@@ -1,0 +1,44 @@
+#pragma once
+// Metals: a perfect mirror and a microfacet reflector, both weighted by conductor
+// Fresnel (complex IOR per channel) or, with useSpecularColor, Schlick's approximation.
+#include <optional>
+
+#include "renderer/materials/bsdf.h"
+#include "renderer/materials/microfacet.h"
+
+namespace pathfarm {
+
+class SmoothConductorBsdf {
+ public:
+  static constexpr bool kHasNonDeltaLobe = false;
+
+  explicit SmoothConductorBsdf(const Material& material) : material_(material) {}
+
+  Rgb eval(Vec3f, Vec3f) const { return {}; }
+  float pdf(Vec3f, Vec3f) const { return 0; }
+  std::optional<BsdfSample> sample(Vec3f wo, float uLobe, Vec2f u) const;
+  LobeList lobes() const { return {{{LobeSymbol::R, true}}, 1}; }
+
+ private:
+  const Material& material_;
+};
+
+// Cook-Torrance reflection in the form of Walter et al. 2007, eq. 20.
+class RoughConductorBsdf {
+ public:
+  static constexpr bool kHasNonDeltaLobe = true;
+
+  RoughConductorBsdf(const Material& material, float roughnessThreshold);
+
+  Rgb eval(Vec3f wo, Vec3f wi) const;
+  float pdf(Vec3f wo, Vec3f wi) const;
+  std::optional<BsdfSample> sample(Vec3f wo, float uLobe, Vec2f u) const;
+  LobeList lobes() const { return {{{symbol_, false}}, 1}; }
+
+ private:
+  const Material& material_;
+  MicrofacetDistribution distribution_;
+  LobeSymbol symbol_;
+};
+
+}  // namespace pathfarm

@@ -1,0 +1,25 @@
+#pragma once
+// Lambertian reflection.
+#include <optional>
+
+#include "renderer/materials/bsdf.h"
+
+namespace pathfarm {
+
+class DiffuseBsdf {
+ public:
+  static constexpr bool kHasNonDeltaLobe = true;
+
+  explicit DiffuseBsdf(Rgb albedo) : albedo_(albedo) {}
+
+  Rgb eval(Vec3f wo, Vec3f wi) const;
+  float pdf(Vec3f wo, Vec3f wi) const;
+  // Cosine-weighted hemisphere sampling: the weight is the albedo itself.
+  std::optional<BsdfSample> sample(Vec3f wo, float uLobe, Vec2f u) const;
+  LobeList lobes() const { return {{{LobeSymbol::D, false}}, 1}; }
+
+ private:
+  Rgb albedo_;
+};
+
+}  // namespace pathfarm

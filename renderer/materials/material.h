@@ -1,0 +1,48 @@
+#pragma once
+// A material as the scene describes it: the kind of BSDF and its parameters.
+// Bsdf (bsdf.h) turns it into something that can be evaluated and sampled at a hit.
+#include <string_view>
+
+#include "renderer/math/vecmath.h"
+
+namespace pathfarm {
+
+enum class MaterialType {
+  Diffuse,          // Lambertian
+  Conductor,        // smooth metal: a perfect mirror with conductor Fresnel
+  RoughConductor,   // microfacet metal
+  Dielectric,       // smooth glass: Fresnel-weighted mirror reflection and refraction
+  RoughDielectric,  // microfacet glass (Walter et al. 2007)
+  Plastic,          // smooth dielectric coating over a diffuse base (as in Mitsuba)
+  RoughPlastic,     // microfacet coating over a diffuse base
+};
+
+enum class MicrofacetType { GGX, Beckmann };
+
+struct Material {
+  MaterialType type = MaterialType::Diffuse;
+  // Diffuse albedo (Diffuse, Plastic, RoughPlastic); replaced by the texture when one is set.
+  Rgb reflectance{0.5f};
+  int reflectanceTexture = -1;  // index into Scene::textures, -1 for none
+  // Conductors: complex index of refraction eta + i k per channel, or, when
+  // useSpecularColor is set, Schlick's approximation with specularColor at normal incidence.
+  Rgb eta{0.2f, 0.92f, 1.1f};
+  Rgb k{3.9f, 2.45f, 2.14f};
+  bool useSpecularColor = false;
+  Rgb specularColor{1.0f};
+  // Dielectrics and plastic coatings: interior index of refraction (exterior is 1).
+  float ior = 1.5f;
+  // Rough materials.
+  MicrofacetType distribution = MicrofacetType::GGX;
+  float alpha = 0.1f;
+};
+
+// The papers' vertex symbols (Zimmer et al. 2015): D diffuse, R specular or glossy
+// reflection, T specular or glossy transmission. A glossy lobe counts as R or T only
+// when its roughness is below the scene's threshold (Beckmann alpha < 0.1 by default).
+enum class LobeSymbol : unsigned char { D, R, T };
+
+char lobeSymbolChar(LobeSymbol symbol);
+std::string_view materialTypeName(MaterialType type);
+
+}  // namespace pathfarm

@@ -1,0 +1,45 @@
+#pragma once
+// The renderer's sampling contract: every camera sample draws its uniform numbers from
+// its own stream, seeded only by (scene seed, frame, pixel, sample index). An image is
+// therefore the same bits for any thread count or tile size, and a method can replay a
+// sample's random numbers in another frame (Manzi et al. 2016's temporal shift).
+#include <cstdint>
+
+#include "renderer/math/vecmath.h"
+
+namespace pathfarm {
+
+struct SampleKey {
+  uint64_t sceneSeed = 0;
+  int64_t frame = 0;
+  int32_t x = 0, y = 0;
+  uint32_t sampleIndex = 0;
+};
+
+// PCG32 (O'Neill 2014) with the stream selected by a hash of the key.
+class SampleStream {
+ public:
+  explicit SampleStream(const SampleKey& key);
+
+  float next1D() {
+    // 24 high bits give floats exactly representable and strictly below 1.
+    return static_cast<float>(nextUint() >> 8) * 0x1p-24f;
+  }
+  Vec2f next2D() {
+    const float a = next1D();
+    return {a, next1D()};
+  }
+  uint32_t nextUint() {
+    const uint64_t old = state_;
+    state_ = old * 6364136223846793005ULL + increment_;
+    const auto xorshifted = static_cast<uint32_t>(((old >> 18u) ^ old) >> 27u);
+    const auto rot = static_cast<uint32_t>(old >> 59u);
+    return (xorshifted >> rot) | (xorshifted << ((32 - rot) & 31));
+  }
+
+ private:
+  uint64_t state_ = 0;
+  uint64_t increment_ = 1;
+};
+
+}  // namespace pathfarm

@@ -1,0 +1,36 @@
+#include "renderer/scene/camera.h"
+
+#include "renderer/math/sampling.h"
+
+namespace pathfarm {
+
+Camera::Camera(const CameraDesc& desc, int width, int height)
+    : desc_(desc),
+      animated_(desc.transform.isAnimated()),
+      staticCameraToWorld_(desc.transform.transformAt(0)),
+      tanHalfFov_(std::tan(0.5f * desc.fovDegrees * kPi / 180.0f)),
+      aspect_(static_cast<float>(width) / static_cast<float>(height)),
+      width_(width),
+      height_(height) {}
+
+Transform Camera::cameraToWorld(double seconds) const {
+  return animated_ ? desc_.transform.transformAt(seconds) : staticCameraToWorld_;
+}
+
+Ray Camera::generateRay(Vec2f film, Vec2f lens, double seconds) const {
+  const float sx = (2.0f * film.x / static_cast<float>(width_) - 1.0f) * tanHalfFov_ * aspect_;
+  const float sy = (1.0f - 2.0f * film.y / static_cast<float>(height_)) * tanHalfFov_;
+  Vec3f origin{0, 0, 0};
+  Vec3f direction{sx, sy, -1.0f};
+  if (desc_.apertureRadius > 0) {
+    // Thin lens: every ray through the lens meets the pinhole ray on the focal plane.
+    const Vec3f focus = direction * desc_.focusDistance;
+    const Vec2f disk = sampleUniformDisk(lens);
+    origin = {disk.x * desc_.apertureRadius, disk.y * desc_.apertureRadius, 0};
+    direction = focus - origin;
+  }
+  const Transform toWorld = cameraToWorld(seconds);
+  return {toWorld.point(origin), normalize(toWorld.vector(direction))};
+}
+
+}  // namespace pathfarm

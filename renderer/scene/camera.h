@@ -1,0 +1,40 @@
+#pragma once
+// A perspective camera with an optional thin lens, animated like any object. It looks
+// along -z of its own frame with +y up; the vertical field of view is given.
+#include "renderer/scene/animation.h"
+
+namespace pathfarm {
+
+struct Ray {
+  Vec3f origin;
+  Vec3f direction;  // unit length
+};
+
+struct CameraDesc {
+  AnimatedTrs transform;   // camera to world; the rest rotation already holds the look-at
+  float fovDegrees = 40;   // vertical
+  float apertureRadius = 0;  // 0: a pinhole
+  float focusDistance = 1;
+  // The shutter, as fractions of a frame after the frame's start.
+  float shutterOpen = 0;
+  float shutterClose = 0;
+};
+
+class Camera {
+ public:
+  Camera(const CameraDesc& desc, int width, int height);
+
+  // `film` is a continuous pixel position (x right, y down, pixel (i,j) covers
+  // [i,i+1)x[j,j+1)); `lens` a point in the unit square; `seconds` the ray's time.
+  Ray generateRay(Vec2f film, Vec2f lens, double seconds) const;
+  Transform cameraToWorld(double seconds) const;
+
+ private:
+  const CameraDesc& desc_;
+  bool animated_;
+  Transform staticCameraToWorld_;
+  float tanHalfFov_, aspect_;
+  int width_, height_;
+};
+
+}  // namespace pathfarm

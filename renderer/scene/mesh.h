@@ -1,0 +1,24 @@
+#pragma once
+// An indexed triangle mesh in object space. Normals and uvs are per vertex and optional
+// (empty when the source had none).
+#include <cstdint>
+#include <vector>
+
+#include "renderer/math/vecmath.h"
+
+namespace pathfarm {
+
+struct TriangleMesh {
+  std::vector<Vec3f> positions;
+  std::vector<Vec3f> normals;
+  std::vector<Vec2f> uvs;
+  std::vector<uint32_t> indices;  // three per triangle
+
+  size_t triangleCount() const { return indices.size() / 3; }
+};
+
+// Object-space primitives of the scene format.
+TriangleMesh makeRectangle(float width, float height);  // in the xy plane, normal +z, centered
+TriangleMesh makeBox(Vec3f size);                        // centered, outward normals
+
+}  // namespace pathfarm

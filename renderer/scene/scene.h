@@ -1,0 +1,62 @@
+#pragma once
+// A scene as loaded from its JSON file (docs/scene-format.md): camera, materials,
+// shapes with their animation, emitters and the render defaults.
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "renderer/materials/material.h"
+#include "renderer/scene/animation.h"
+#include "renderer/scene/camera.h"
+#include "renderer/scene/mesh.h"
+#include "renderer/scene/texture.h"
+
+namespace pathfarm {
+
+enum class ShapeType { Sphere, Rectangle, Box, Mesh };
+
+struct SceneObject {
+  std::string name;
+  uint32_t objectId = 0;  // stable across frames and runs; written to the objectid buffers
+  ShapeType type = ShapeType::Mesh;
+  float radius = 1;  // spheres: centered at the object-space origin
+  std::shared_ptr<const TriangleMesh> mesh;  // rectangles, boxes and meshes
+  int material = 0;  // index into Scene::materials
+  Rgb emission;      // radiance emitted from the front side (outward normal); black if none
+  AnimatedTrs transform;  // object to world
+
+  bool isEmitter() const { return !emission.isBlack(); }
+};
+
+struct RenderDefaults {
+  int width = 320, height = 240;
+  int spp = 16;
+  int maxDepth = 8;  // scattering events per path; 1 is direct lighting only
+  int frameStart = 0, frameEnd = 0;
+};
+
+struct Scene {
+  std::filesystem::path file;
+  double fps = 24;
+  uint64_t seed = 0;
+  // Beckmann alpha below which a glossy lobe counts as specular (R/T) rather than D.
+  float roughnessThreshold = 0.1f;
+  CameraDesc camera;
+  std::vector<std::string> materialNames;
+  std::vector<Material> materials;
+  std::vector<ImageTexture> textures;
+  std::vector<SceneObject> objects;
+  Rgb environment;  // constant radiance from every direction; black if none
+  RenderDefaults defaults;
+
+  // The time in seconds of a point `shutterFraction` of the way through frame `frame`'s
+  // shutter interval.
+  double timeAt(int64_t frame, float shutterFraction) const {
+    const float open = camera.shutterOpen, close = camera.shutterClose;
+    return (static_cast<double>(frame) + open + shutterFraction * (close - open)) / fps;
+  }
+};
+
+}  // namespace pathfarm

@@ -1,0 +1,21 @@
+#pragma once
+// The parts of the scene loader, one per kind of JSON block (used by scene_loader.cpp).
+#include <filesystem>
+
+#include "renderer/scene/json_node.h"
+#include "renderer/scene/scene.h"
+
+namespace pathfarm {
+
+// {"translate": [x,y,z], "rotate": ROTATION, "scale": s | [sx,sy,sz]}
+Trs parseTrs(const JsonNode& node);
+// {"axis": [x,y,z], "angle": degrees} or {"quaternion": [w,x,y,z]}
+Quaternion parseRotation(const JsonNode& node);
+// {"translate": [KEY...], "rotate": [KEY...], "scale": [KEY...]}, each key having
+// "time" (seconds) or "frame" (converted with fps) and a value.
+void parseAnimation(const JsonNode& node, double fps, AnimatedTrs& animation);
+
+Material parseMaterial(const JsonNode& node, const std::filesystem::path& folder,
+                       std::vector<ImageTexture>& textures);
+
+}  // namespace pathfarm

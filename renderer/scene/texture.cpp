@@ -1,0 +1,135 @@
+#include "renderer/scene/texture.h"
+
+#include <stb_image.h>
+
+#include <array>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <utility>
+
+namespace pathfarm {
+
+namespace {
+
+// The sRGB electro-optical transfer function (IEC 61966-2-1), evaluated in double.
+double srgbToLinear(double c) {
+  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
+const std::array<float, 256>& srgb8Table() {
+  static const std::array<float, 256> table = [] {
+    std::array<float, 256> t{};
+    for (int i = 0; i < 256; ++i)
+      t[static_cast<size_t>(i)] = static_cast<float>(srgbToLinear(i / 255.0));
+    return t;
+  }();
+  return table;
+}
+
+[[noreturn]] void failLoad(const std::filesystem::path& file) {
+  const char* reason = stbi_failure_reason();
+  throw TextureError(file.string() + ": cannot load image (" +
+                     (reason ? std::string(reason) : std::string("unknown reason")) + ")");
+}
+
+struct StbFree {
+  void operator()(void* p) const { stbi_image_free(p); }
+};
+
+// Wraps i into [0, n).
+int wrap(int i, int n) {
+  const int r = i % n;
+  return r < 0 ? r + n : r;
+}
+
+}  // namespace
+
+ImageTexture::ImageTexture(int width, int height, std::vector<Rgb> texels)
+    : width_(width), height_(height), texels_(std::move(texels)) {
+  if (width <= 0 || height <= 0 ||
+      texels_.size() != static_cast<size_t>(width) * static_cast<size_t>(height)) {
+    throw TextureError("ImageTexture: " + std::to_string(texels_.size()) +
+                       " texels do not make a " + std::to_string(width) + "x" +
+                       std::to_string(height) + " image");
+  }
+}
+
+ImageTexture ImageTexture::load(const std::filesystem::path& file) {
+  const std::string name = file.string();
+  constexpr int kChannels = 3;
+  int w = 0, h = 0, channelsInFile = 0;
+  std::vector<Rgb> texels;
+
+  if (stbi_is_hdr(name.c_str())) {
+    // Radiance HDR and friends hold linear values already.
+    std::unique_ptr<float, StbFree> data(
+        stbi_loadf(name.c_str(), &w, &h, &channelsInFile, kChannels));
+    if (!data) failLoad(file);
+    const size_t n = static_cast<size_t>(w) * static_cast<size_t>(h);
+    texels.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+      const float* p = data.get() + i * kChannels;
+      texels[i] = Rgb(p[0], p[1], p[2]);
+    }
+  } else if (stbi_is_16_bit(name.c_str())) {
+    // 16-bit PNG: keep the extra precision, still sRGB-encoded.
+    std::unique_ptr<stbi_us, StbFree> data(
+        stbi_load_16(name.c_str(), &w, &h, &channelsInFile, kChannels));
+    if (!data) failLoad(file);
+    const size_t n = static_cast<size_t>(w) * static_cast<size_t>(h);
+    texels.resize(n);
+    auto decode = [](stbi_us v) { return static_cast<float>(srgbToLinear(v / 65535.0)); };
+    for (size_t i = 0; i < n; ++i) {
+      const stbi_us* p = data.get() + i * kChannels;
+      texels[i] = Rgb(decode(p[0]), decode(p[1]), decode(p[2]));
+    }
+  } else {
+    std::unique_ptr<stbi_uc, StbFree> data(
+        stbi_load(name.c_str(), &w, &h, &channelsInFile, kChannels));
+    if (!data) failLoad(file);
+    const std::array<float, 256>& table = srgb8Table();
+    const size_t n = static_cast<size_t>(w) * static_cast<size_t>(h);
+    texels.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+      const stbi_uc* p = data.get() + i * kChannels;
+      texels[i] = Rgb(table[p[0]], table[p[1]], table[p[2]]);
+    }
+  }
+  if (w <= 0 || h <= 0) throw TextureError(file.string() + ": image has no pixels");
+  return ImageTexture(w, h, std::move(texels));
+}
+
+Rgb ImageTexture::texel(int x, int y) const {
+  return texels_[static_cast<size_t>(y) * static_cast<size_t>(width_) + static_cast<size_t>(x)];
+}
+
+Rgb ImageTexture::lookup(Vec2f uv) const {
+  // Reduce to [0, 1) first so huge or non-finite coordinates cannot overflow the
+  // integer texel arithmetic below.
+  auto fractional = [](float t) {
+    if (!std::isfinite(t)) return 0.0f;
+    const float f = t - std::floor(t);
+    return f < 1.0f ? f : 0.0f;
+  };
+  const float u = fractional(uv.x);
+  const float v = fractional(uv.y);
+
+  // Texel centers sit at (i + 0.5) / size; row 0 is the top of the image (v = 1).
+  const float s = u * static_cast<float>(width_) - 0.5f;
+  const float t = (1.0f - v) * static_cast<float>(height_) - 0.5f;
+  const float sFloor = std::floor(s);
+  const float tFloor = std::floor(t);
+  const float fs = s - sFloor;
+  const float ft = t - tFloor;
+  const int x0 = wrap(static_cast<int>(sFloor), width_);
+  const int y0 = wrap(static_cast<int>(tFloor), height_);
+  const int x1 = wrap(x0 + 1, width_);
+  const int y1 = wrap(y0 + 1, height_);
+
+  const Rgb top = texel(x0, y0) * (1 - fs) + texel(x1, y0) * fs;
+  const Rgb bottom = texel(x0, y1) * (1 - fs) + texel(x1, y1) * fs;
+  return top * (1 - ft) + bottom * ft;
+}
+
+}  // namespace pathfarm

@@ -1,0 +1,32 @@
+#pragma once
+// An RGB image texture (PNG, JPEG, ... through stb_image), stored as linear floats.
+// 8-bit images are taken as sRGB-encoded; lookups are bilinear with repeat wrapping.
+#include <filesystem>
+#include <stdexcept>
+#include <vector>
+
+#include "renderer/math/vecmath.h"
+
+namespace pathfarm {
+
+class TextureError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class ImageTexture {
+ public:
+  static ImageTexture load(const std::filesystem::path& file);
+  ImageTexture(int width, int height, std::vector<Rgb> texels);
+
+  Rgb lookup(Vec2f uv) const;
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+ private:
+  Rgb texel(int x, int y) const;
+  int width_, height_;
+  std::vector<Rgb> texels_;  // row 0 is the top of the image (v = 1)
+};
+
+}  // namespace pathfarm

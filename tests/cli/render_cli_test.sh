@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# `pathfarm render` as a user runs it: frames and previews written, bad input refused
+# with exit status 2, a clear message, and no output.
+set -u
+pathfarm=$1
+source_dir=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+# A good render: two frames and their previews.
+if ! "$pathfarm" render "$source_dir/scenes/cornell/scene.json" --frames 3:4 --spp 2 --res 24x16 \
+    --out "$work/out" --png > "$work/log" 2>&1; then
+  fail "render failed: $(cat "$work/log")"
+fi
+for f in frame_0003.exr frame_0004.exr frame_0003.png frame_0004.png; do
+  [ -s "$work/out/$f" ] || fail "missing $f"
+done
+[ -e "$work/out/frame_0005.exr" ] && fail "rendered past the last frame"
+ls "$work/out" | grep -q partial && fail "left a partial file behind"
+
+# A bad scene: exit 2, the key path in the message, no output folder.
+cat > "$work/bad.json" <<'JSON'
+{"camera": {"position": [0, 0, 1], "look_at": [0, 0, 0]},
+ "materials": {"glass": {"type": "dielectric"}},
+ "shapes": [{"type": "sphere", "radius": 1, "material": "glas"}]}
+JSON
+"$pathfarm" render "$work/bad.json" --out "$work/bad_out" > "$work/log" 2>&1
+status=$?
+[ "$status" -eq 2 ] || fail "bad scene: exit status $status, expected 2"
+grep -q 'bad.json: shapes\[0\].material: unknown material "glas"' "$work/log" || fail "bad scene message: $(cat "$work/log")"
+[ -e "$work/bad_out" ] && fail "bad scene created its output folder"
+
+# Bad arguments: exit 2 as well.
+for args in "--frames 5:2" "--frames x" "--res 10" "--spp 0"; do
+  # shellcheck disable=SC2086
+  "$pathfarm" render "$source_dir/scenes/cornell/scene.json" $args --out "$work/args_out" > "$work/log" 2>&1
+  status=$?
+  [ "$status" -eq 2 ] || fail "arguments '$args': exit status $status, expected 2"
+done
+[ -e "$work/args_out" ] && fail "bad arguments created the output folder"
+
+"$pathfarm" render "$work/missing.json" --out "$work/x" > "$work/log" 2>&1
+[ $? -eq 2 ] || fail "missing scene file should exit 2"
+grep -q "missing.json: cannot open" "$work/log" || fail "missing scene message: $(cat "$work/log")"
+
+if [ "$failures" -eq 0 ]; then echo "render CLI: all checks passed"; fi
+exit "$failures"

@@ -1,0 +1,100 @@
+// Energy tests: a convex object in a white furnace, and a closed emitting room.
+#include <gtest/gtest.h>
+
+#include "renderer/integrators/frame_renderer.h"
+#include "test_support.h"
+
+namespace pathfarm {
+namespace {
+
+using test_support::MeanEstimate;
+using test_support::meanOverPixels;
+using test_support::sceneFromJson;
+
+// A unit sphere filling the whole view, inside a constant environment of radiance 1.
+std::string furnaceScene(const std::string& material) {
+  return R"({
+    "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0], "fov": 4},
+    "materials": {"m": )" + material + R"(},
+    "environment": {"radiance": 1},
+    "shapes": [{"type": "sphere", "radius": 1, "material": "m"}]
+  })";
+}
+
+MeanEstimate renderMean(const Scene& scene, int spp, int maxDepth, const char* channel = "G") {
+  RenderSettings settings;
+  settings.width = settings.height = 16;
+  settings.spp = spp;
+  settings.maxDepth = maxDepth;
+  const FrameRenderer renderer(scene, settings);
+  return meanOverPixels(renderer.render(0), channel);
+}
+
+TEST(WhiteFurnace, DiffuseSphereRendersItsAlbedo) {
+  for (const float albedo : {0.2f, 0.5f, 0.9f}) {
+    const Scene scene = sceneFromJson(furnaceScene(R"({"type": "diffuse", "reflectance": )" +
+                                                   std::to_string(albedo) + "}"));
+    const auto estimate = renderMean(scene, 64, 8);
+    EXPECT_NEAR(estimate.mean, albedo, 3 * estimate.standardError) << "albedo " << albedo;
+    EXPECT_GT(estimate.standardError, 0);
+  }
+}
+
+TEST(WhiteFurnace, SmoothGlassSphereIsInvisible) {
+  // Fresnel reflection plus refraction lose nothing: every path ends in the environment.
+  const Scene scene = sceneFromJson(furnaceScene(R"({"type": "dielectric", "ior": 1.5})"));
+  const auto estimate = renderMean(scene, 64, 64);
+  EXPECT_NEAR(estimate.mean, 1.0, std::max(3 * estimate.standardError, 1e-4));
+}
+
+TEST(WhiteFurnace, PerfectMirrorReflectsEverything) {
+  const Scene scene = sceneFromJson(furnaceScene(R"({"type": "conductor", "specular_color": 1})"));
+  const auto estimate = renderMean(scene, 4, 8);
+  EXPECT_NEAR(estimate.mean, 1.0, 1e-5);
+}
+
+TEST(WhiteFurnace, RoughMaterialsNeverCreateEnergy) {
+  // Single-scattering microfacet models lose some energy at high roughness, never gain.
+  for (const char* material :
+       {R"({"type": "rough_conductor", "specular_color": 1, "alpha": 0.3})",
+        R"({"type": "rough_conductor", "specular_color": 1, "alpha": 0.3, "distribution": "beckmann"})",
+        R"({"type": "rough_dielectric", "ior": 1.5, "alpha": 0.2})",
+        R"({"type": "plastic", "reflectance": 1, "ior": 1.5})",
+        R"({"type": "rough_plastic", "reflectance": 1, "ior": 1.5, "alpha": 0.2})"}) {
+    const Scene scene = sceneFromJson(furnaceScene(material));
+    const auto estimate = renderMean(scene, 64, 32);
+    EXPECT_LE(estimate.mean, 1.0 + 3 * estimate.standardError) << material;
+    EXPECT_GT(estimate.mean, 0.8) << material;
+  }
+}
+
+// A closed cube of inward-facing emitting diffuse walls (emission Le, albedo rho) seen from
+// inside: radiance is uniform and satisfies L = Le + rho L, so L = Le / (1 - rho) at
+// every pixel. Any energy lost or created along long paths shows.
+TEST(ClosedRoom, RadianceIsEmissionOverOneMinusAlbedo) {
+  for (const float albedo : {0.5f, 0.8f}) {
+    std::string walls;
+    const char* placements[6] = {
+        R"("translate": [0, 0, -1])",
+        R"("translate": [0, 0, 1], "rotate": {"axis": [0, 1, 0], "angle": 180})",
+        R"("translate": [-1, 0, 0], "rotate": {"axis": [0, 1, 0], "angle": 90})",
+        R"("translate": [1, 0, 0], "rotate": {"axis": [0, 1, 0], "angle": -90})",
+        R"("translate": [0, -1, 0], "rotate": {"axis": [1, 0, 0], "angle": -90})",
+        R"("translate": [0, 1, 0], "rotate": {"axis": [1, 0, 0], "angle": 90})"};
+    for (const char* placement : placements) {
+      walls += std::string(walls.empty() ? "" : ",") +
+               R"({"type": "rectangle", "size": [2, 2], "material": "wall", "emission": 1, "transform": {)" +
+               placement + "}}";
+    }
+    const Scene scene = sceneFromJson(R"({
+      "camera": {"position": [0, 0, 0.5], "look_at": [0.3, 0.2, -1], "fov": 90},
+      "materials": {"wall": {"type": "diffuse", "reflectance": )" + std::to_string(albedo) + R"(}},
+      "shapes": [)" + walls + "]}");
+    const auto estimate = renderMean(scene, 64, 1000);
+    const double expected = 1.0 / (1.0 - albedo);
+    EXPECT_NEAR(estimate.mean, expected, 3 * estimate.standardError) << "albedo " << albedo;
+  }
+}
+
+}  // namespace
+}  // namespace pathfarm

@@ -1,0 +1,39 @@
+#pragma once
+// Shared by the tests: scenes from inline JSON, and statistics over rendered pixels.
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "image/frame_image.h"
+#include "renderer/scene/scene_loader.h"
+
+namespace pathfarm::test_support {
+
+inline std::filesystem::path sourceDir() { return PATHFARM_SOURCE_DIR; }
+
+// A scene parsed from text as if it were `folder/scene.json`.
+inline Scene sceneFromJson(const std::string& json,
+                           const std::filesystem::path& folder = std::filesystem::temp_directory_path()) {
+  return parseScene(json, folder / "scene.json");
+}
+
+// The mean of one beauty channel over all pixels and its standard error, from the
+// per-pixel variances of the mean that the renderer writes.
+struct MeanEstimate {
+  double mean = 0;
+  double standardError = 0;
+};
+
+inline MeanEstimate meanOverPixels(const FrameImage& image, const std::string& channel) {
+  const auto& values = image.channel(channel);
+  const auto& variances = image.channel("variance." + channel);
+  double sum = 0, varianceSum = 0;
+  for (size_t i = 0; i < values.size(); ++i) {
+    sum += values[i];
+    varianceSum += variances[i];
+  }
+  const double n = static_cast<double>(values.size());
+  return {sum / n, std::sqrt(varianceSum) / n};
+}
+
+}  // namespace pathfarm::test_support
