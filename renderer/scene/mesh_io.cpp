@@ -42,7 +42,8 @@ std::string quoteText(std::string_view text) {
 std::string readWholeFile(const fs::path& file) {
   std::error_code ec;
   const fs::file_status status = fs::status(file, ec);
-  if (!fs::exists(status)) fail(file, "no such file");
+  if (status.type() == fs::file_type::not_found) fail(file, "no such file");
+  if (ec) fail(file, "cannot access the file (" + ec.message() + ")");
   if (fs::is_directory(status)) fail(file, "is a directory, not a mesh file");
   if (!fs::is_regular_file(status)) fail(file, "is not a regular file");
   const uintmax_t size = fs::file_size(file, ec);
