@@ -1,0 +1,134 @@
+// Wavefront OBJ reader, on top of tinyobjloader.
+#include <tiny_obj_loader.h>
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <unordered_map>
+
+#include "renderer/scene/mesh_io.h"
+#include "renderer/scene/mesh_io_detail.h"
+
+namespace pathfarm {
+
+namespace fs = std::filesystem;
+
+using mesh_io_detail::fail;
+using mesh_io_detail::readWholeFile;
+
+namespace {
+
+struct ObjCorner {
+  int v, n, t;
+  bool operator==(const ObjCorner&) const = default;
+};
+
+struct ObjCornerHash {
+  size_t operator()(const ObjCorner& c) const {
+    uint64_t h = static_cast<uint32_t>(c.v);
+    h = h * 0x9E3779B97F4A7C15ull ^ static_cast<uint32_t>(c.n);
+    h = h * 0x9E3779B97F4A7C15ull ^ static_cast<uint32_t>(c.t);
+    return static_cast<size_t>(h ^ (h >> 29));
+  }
+};
+
+std::string firstLine(const std::string& text) {
+  std::string line = text.substr(0, text.find('\n'));
+  while (!line.empty() && (line.back() == '\r' || line.back() == '.' || line.back() == ' '))
+    line.pop_back();
+  return line.empty() ? std::string("unknown error") : line;
+}
+
+}  // namespace
+
+TriangleMesh loadObj(const fs::path& file) {
+  const std::string text = readWholeFile(file);
+
+  // Parsed from memory with an empty material library: materials are not ours to load
+  // here, and this keeps `mtllib` lines from opening other files.
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = true;
+  config.vertex_color = false;
+  tinyobj::ObjReader reader;
+  if (!reader.ParseFromString(text, std::string(), config)) {
+    fail(file, "malformed OBJ: " + firstLine(reader.Error()));
+  }
+
+  const tinyobj::attrib_t& attrib = reader.GetAttrib();
+  const auto positionCount = static_cast<long long>(attrib.vertices.size() / 3);
+  const auto normalCount = static_cast<long long>(attrib.normals.size() / 3);
+  const auto uvCount = static_cast<long long>(attrib.texcoords.size() / 2);
+
+  // Validate every corner, and find out whether all of them carry normals and uvs.
+  bool allNormals = true, allUvs = true;
+  size_t cornerCount = 0;
+  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+    for (const tinyobj::index_t& idx : shape.mesh.indices) {
+      if (idx.vertex_index < 0) {
+        fail(file, "a face refers to a vertex before the first one (relative index out of range)");
+      }
+      if (idx.vertex_index >= positionCount) {
+        fail(file, "a face refers to vertex " + std::to_string(idx.vertex_index + 1LL) + " of " +
+                       std::to_string(positionCount));
+      }
+      if (idx.normal_index < -1 || idx.normal_index >= normalCount) {
+        fail(file, "a face refers to normal " + std::to_string(idx.normal_index + 1LL) + " of " +
+                       std::to_string(normalCount));
+      }
+      if (idx.texcoord_index < -1 || idx.texcoord_index >= uvCount) {
+        fail(file, "a face refers to texture coordinate " +
+                       std::to_string(idx.texcoord_index + 1LL) + " of " + std::to_string(uvCount));
+      }
+      allNormals = allNormals && idx.normal_index >= 0;
+      allUvs = allUvs && idx.texcoord_index >= 0;
+    }
+    cornerCount += shape.mesh.indices.size();
+  }
+  // tinyobjloader silently drops some faces with bad indices (it only warns).
+  const std::string& warning = reader.Warning();
+  if (warning.find("out of bounds") != std::string::npos ||
+      warning.find("invalid vertex index") != std::string::npos) {
+    fail(file, "a face refers to a vertex that does not exist");
+  }
+  if (cornerCount == 0) fail(file, "no faces");
+
+  TriangleMesh mesh;
+  std::unordered_map<ObjCorner, uint32_t, ObjCornerHash> vertexOf;
+  mesh.indices.reserve(cornerCount);
+  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+    for (const tinyobj::index_t& idx : shape.mesh.indices) {
+      const ObjCorner key{idx.vertex_index, allNormals ? idx.normal_index : -1,
+                          allUvs ? idx.texcoord_index : -1};
+      const auto [it, inserted] =
+          vertexOf.try_emplace(key, static_cast<uint32_t>(mesh.positions.size()));
+      if (inserted) {
+        const auto v = static_cast<size_t>(key.v) * 3;
+        const Vec3f p{attrib.vertices[v], attrib.vertices[v + 1], attrib.vertices[v + 2]};
+        if (!isFinite(p))
+          fail(file, "vertex " + std::to_string(key.v + 1) + " has a non-finite position");
+        mesh.positions.push_back(p);
+        if (allNormals) {
+          const auto n = static_cast<size_t>(key.n) * 3;
+          const Vec3f normal{attrib.normals[n], attrib.normals[n + 1], attrib.normals[n + 2]};
+          if (!isFinite(normal))
+            fail(file, "normal " + std::to_string(key.n + 1) + " is not finite");
+          mesh.normals.push_back(normal);
+        }
+        if (allUvs) {
+          const auto t = static_cast<size_t>(key.t) * 2;
+          const Vec2f uv{attrib.texcoords[t], attrib.texcoords[t + 1]};
+          if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) {
+            fail(file, "texture coordinate " + std::to_string(key.t + 1) + " is not finite");
+          }
+          mesh.uvs.push_back(uv);
+        }
+      }
+      mesh.indices.push_back(it->second);
+    }
+  }
+  if (mesh.indices.size() % 3 != 0) fail(file, "faces could not be triangulated");
+  return mesh;
+}
+
+}  // namespace pathfarm
