@@ -35,7 +35,7 @@ Vec2f sphereUv(Vec3f n) {
 }  // namespace
 
 FrameGeometry::FrameGeometry(const ShotGeometry& shot, int64_t frame)
-    : shot_(shot), frame_(frame), objectInstance_(shot.scene().objects.size(), kInvalid) {
+    : shot_(shot), frame_(frame), timeSteps_(shot.scene().objects.size()) {
   const Scene& scene = shot.scene();
   bool anyAnimated = false;
   for (size_t i = 0; i < scene.objects.size(); ++i) anyAnimated |= shot.shape(static_cast<int>(i)).animated;
@@ -58,9 +58,11 @@ FrameGeometry::FrameGeometry(const ShotGeometry& shot, int64_t frame)
       const double open = scene.timeAt(frame, 0), close = scene.timeAt(frame, 1);
       const unsigned steps = timeStepsFor(animation, open, close);
       rtcSetGeometryTimeStepCount(instance, steps);
+      auto& trs = timeSteps_[static_cast<size_t>(object)];
       for (unsigned s = 0; s < steps; ++s) {
         const double t = steps == 1 ? open : open + (close - open) * s / (steps - 1);
-        const RTCQuaternionDecomposition qd = decomposition(animation.at(t));
+        trs.push_back(animation.at(t));
+        const RTCQuaternionDecomposition qd = decomposition(trs.back());
         rtcSetGeometryTransformQuaternion(instance, s, &qd);
       }
     }
@@ -69,7 +71,6 @@ FrameGeometry::FrameGeometry(const ShotGeometry& shot, int64_t frame)
     rtcReleaseGeometry(instance);
     instanceObject_.resize(id + 1, -1);
     instanceObject_[id] = object;
-    if (object >= 0) objectInstance_[static_cast<size_t>(object)] = id;
   };
   if (shot.staticScene()) attach(shot.staticScene(), -1);
   for (size_t i = 0; i < scene.objects.size(); ++i) {
@@ -84,11 +85,18 @@ FrameGeometry::~FrameGeometry() {
 }
 
 Transform FrameGeometry::shapeToWorld(int object, float time) const {
-  const unsigned id = objectInstance_[static_cast<size_t>(object)];
-  if (id == kInvalid) return {};
-  std::array<float, 12> m;
-  rtcGetGeometryTransform(rtcGetGeometry(top_, id), time, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, m.data());
-  return Transform::fromMatrix(m);
+  const auto& steps = timeSteps_[static_cast<size_t>(object)];
+  if (steps.empty()) return {};
+  if (steps.size() == 1) return Transform::fromTrs(steps[0]);
+  // Embree's quaternion motion blur: linear in translation and scale, slerp in rotation,
+  // between the two time steps around `time`.
+  const float position = std::clamp(time, 0.0f, 1.0f) * static_cast<float>(steps.size() - 1);
+  const size_t i = std::min(static_cast<size_t>(position), steps.size() - 2);
+  const float f = position - static_cast<float>(i);
+  const Trs& a = steps[i];
+  const Trs& b = steps[i + 1];
+  return Transform::fromTrs({lerp(a.translation, b.translation, f), slerp(a.rotation, b.rotation, f),
+                             lerp(a.scale, b.scale, f)});
 }
 
 bool FrameGeometry::intersect(const Ray& ray, float time, SurfaceHit& hit) const {

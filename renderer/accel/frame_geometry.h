@@ -47,7 +47,9 @@ class FrameGeometry {
   RTCScene top_ = nullptr;
   bool ownsTop_ = false;
   std::vector<int> instanceObject_;        // instance id -> animated object, -1 for the static BVH
-  std::vector<unsigned> objectInstance_;   // animated object -> instance id
+  // Per object, its transform at the instance's uniformly spaced time steps (empty for
+  // static objects), interpolated the way Embree does for shading.
+  std::vector<std::vector<Trs>> timeSteps_;
 };
 
 // Moves a ray's origin off the surface it leaves, to the side `direction` points to,

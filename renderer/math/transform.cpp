@@ -53,12 +53,20 @@ Transform Transform::fromMatrix(const Matrix& m) {
 
 Transform Transform::fromTrs(const Trs& trs) {
   const Quaternion& q = trs.rotation;
-  // Columns of the rotation matrix are the rotated basis vectors, scaled.
-  const Vec3f cx = q.rotate({1, 0, 0}) * trs.scale.x;
-  const Vec3f cy = q.rotate({0, 1, 0}) * trs.scale.y;
-  const Vec3f cz = q.rotate({0, 0, 1}) * trs.scale.z;
-  const Vec3f t = trs.translation;
-  return fromMatrix({cx.x, cy.x, cz.x, t.x, cx.y, cy.y, cz.y, t.y, cx.z, cy.z, cz.z, t.z});
+  // Columns of the rotation matrix are the rotated basis vectors.
+  const Vec3f rx = q.rotate({1, 0, 0}), ry = q.rotate({0, 1, 0}), rz = q.rotate({0, 0, 1});
+  const Vec3f s = trs.scale, t = trs.translation;
+  Transform result;
+  result.m_ = {rx.x * s.x, ry.x * s.y, rz.x * s.z, t.x,
+               rx.y * s.x, ry.y * s.y, rz.y * s.z, t.y,
+               rx.z * s.x, ry.z * s.y, rz.z * s.z, t.z};
+  // (T R S)^-1 = S^-1 R^T T^-1: rows of R^T are R's columns, scaled by 1/s.
+  const Vec3f inv{1 / s.x, 1 / s.y, 1 / s.z};
+  const Vec3f r0 = rx * inv.x, r1 = ry * inv.y, r2 = rz * inv.z;
+  result.inv_ = {r0.x, r0.y, r0.z, -dot(r0, t),
+                 r1.x, r1.y, r1.z, -dot(r1, t),
+                 r2.x, r2.y, r2.z, -dot(r2, t)};
+  return result;
 }
 
 Transform Transform::lookAt(Vec3f eye, Vec3f target, Vec3f up) {
