@@ -1,5 +1,7 @@
 #include "renderer/materials/bsdf.h"
 
+#include <type_traits>
+
 #include "renderer/materials/conductor.h"
 #include "renderer/materials/dielectric.h"
 #include "renderer/materials/diffuse.h"
@@ -11,8 +13,8 @@ namespace {
 
 // Builds the lobe implementation of the material on the stack and hands it to `f`. Each
 // implementation offers eval, pdf, sample(wo, uLobe, u), lobes() and kHasNonDeltaLobe with
-// the semantics of Bsdf; the switch compiles to direct (inlinable) calls, no virtual
-// dispatch and no allocation per hit.
+// the semantics of Bsdf. The switch compiles to direct calls: no virtual dispatch and no
+// allocation per hit.
 template <typename F>
 auto visit(const Material& material, Rgb albedo, float roughnessThreshold, F&& f) {
   switch (material.type) {

@@ -37,8 +37,8 @@ std::optional<BsdfSample> SmoothDielectricBsdf::sample(Vec3f wo, float uLobe, Ve
                       LobeSymbol::R, true};
   }
   const Vec3f wi = refract(o.wo, {0, 0, 1}, o.eta, fresnel.cosThetaT);
-  return BsdfSample{flipIf(o.flipped, wi), Rgb(1 / (o.eta * o.eta)), 1 - fresnel.reflectance,
-                    LobeSymbol::T, true};
+  return BsdfSample{flipIf(o.flipped, wi), Rgb(1 / (o.eta * o.eta)), 1 - fresnel.reflectance, LobeSymbol::T,
+                    true};
 }
 
 RoughDielectricBsdf::RoughDielectricBsdf(const Material& material, float roughnessThreshold)
@@ -59,9 +59,11 @@ RoughDielectricBsdf::Term RoughDielectricBsdf::transmission(Vec3f wo, Vec3f wi, 
   const float denom = eta * cosIM + cosOM;
   // d(omega_m) / d(omega_i) for refraction (Walter et al. eq. 17, with wi the sampled side).
   const float jacobian = eta * eta * std::abs(cosIM) / (denom * denom);
-  // Walter et al. eq. 21 times |cos(wi)|; its n_o^2 / n_i^2 radiance factor is the 1 / eta^2.
-  const float value = lobeProbability * distribution_.D(m) * distribution_.G(wo, wi, m) * cosOM *
-                      jacobian / (wo.z * eta * eta);
+  // Walter et al. eq. 21 for radiance times |cos(wi)|:
+  //   (1 - F) D G |wi.m| wo.m / (wo.z (eta wi.m + wo.m)^2),
+  // written through the Jacobian to show the 1 / eta^2 radiance scaling across the interface.
+  const float value = lobeProbability * distribution_.D(m) * distribution_.G(wo, wi, m) * cosOM * jacobian /
+                      (wo.z * eta * eta);
   return {value, lobeProbability * distribution_.normalPdf(wo, m) * jacobian};
 }
 

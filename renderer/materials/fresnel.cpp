@@ -49,7 +49,7 @@ float fresnelDiffuseReflectance(float eta) {
     // 1 - Fdr(eta) = eta^2 (1 - Fdr(1 / eta)), light past the critical angle being reflected.
     return 1 - eta * eta * (1 - fresnelDiffuseReflectance(1 / eta));
   }
-  // The classical closed form of this integral for n > 1 (e.g. Stern 1964, Appl. Opt. 3);
+  // The classical closed form of the hemispherical average of Fresnel reflectance for n > 1;
   // fresnel_test.cpp checks it against quadrature. Double: the terms cancel near n = 1.
   const double n = eta, n2 = n * n, n4 = n2 * n2;
   const double np1 = n + 1, n2p1 = n2 + 1, n4m1 = n4 - 1;

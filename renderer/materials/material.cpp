@@ -11,15 +11,15 @@ char lobeSymbolChar(LobeSymbol symbol) {
   return 'D';
 }
 
-// Mitsuba's plugin names, so scene files and logs read the same as in the papers' setups.
+// The `type` names of the scene format (docs/scene-format.md).
 std::string_view materialTypeName(MaterialType type) {
   switch (type) {
     case MaterialType::Conductor: return "conductor";
-    case MaterialType::RoughConductor: return "roughconductor";
+    case MaterialType::RoughConductor: return "rough_conductor";
     case MaterialType::Dielectric: return "dielectric";
-    case MaterialType::RoughDielectric: return "roughdielectric";
+    case MaterialType::RoughDielectric: return "rough_dielectric";
     case MaterialType::Plastic: return "plastic";
-    case MaterialType::RoughPlastic: return "roughplastic";
+    case MaterialType::RoughPlastic: return "rough_plastic";
     case MaterialType::Diffuse: break;
   }
   return "diffuse";

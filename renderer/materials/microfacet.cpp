@@ -59,7 +59,7 @@ Vec3f MicrofacetDistribution::sampleNormal(Vec3f wo, Vec2f u) const {
   const Vec3f t1 = lensq > 0 ? Vec3f{-v.y, v.x, 0} / std::sqrt(lensq) : Vec3f{1, 0, 0};
   const Vec3f t2 = cross(v, t1);
   // A uniform disk point whose far half is squashed onto the part of the disk the
-  // hemisphere's silhouette leaves visible (Heitz 2018, section 4).
+  // hemisphere's silhouette leaves visible.
   const float r = std::sqrt(u.x);
   const float p1 = r * std::cos(phi);
   const float s = 0.5f * (1 + v.z);

@@ -4,12 +4,12 @@
 //
 // Sampling: GGX draws visible normals (Heitz 2018, "Sampling the GGX Distribution of
 // Visible Normals"), density D_wo(m) = G1(wo, m) max(0, wo.m) D(m) / wo.z, which never
-// proposes a facet wo cannot see and keeps the weights of grazing directions near 1.
+// proposes a facet wo cannot see and bounds a reflection's weight by F G1(wi) <= 1.
 // Beckmann draws m with density D(m) cos(theta_m) (Walter et al. eq. 28), since its
 // visible normals have no closed-form inverse. Callers use sampleNormal and normalPdf
 // together and need not know which one is active.
-#include "renderer/math/vecmath.h"
 #include "renderer/materials/material.h"
+#include "renderer/math/vecmath.h"
 
 namespace pathfarm {
 
@@ -19,8 +19,8 @@ class MicrofacetDistribution {
 
   // Normal distribution D(m); zero for m below the macro surface.
   float D(Vec3f m) const;
-  // Smith's monodirectional shadowing for v seen through a facet with normal m, with the
-  // sidedness test chi+((v.m) / (v.n)) of Walter et al. eq. 7.
+  // Smith's monodirectional shadowing for v seen through a facet with normal m, zero
+  // unless v lies on the same side of m as of the macro surface (Walter et al.'s chi+).
   float G1(Vec3f v, Vec3f m) const;
   // Separable approximation of the bidirectional shadowing-masking (Walter et al. eq. 23).
   float G(Vec3f wo, Vec3f wi, Vec3f m) const { return G1(wo, m) * G1(wi, m); }

@@ -34,9 +34,9 @@ double chiSquareQuantile(int dof, double normalQuantile) {
   return dof * c * c * c;
 }
 
-class Chi2 : public ::testing::TestWithParam<MaterialCase> {};
+class BsdfChi2 : public ::testing::TestWithParam<MaterialCase> {};
 
-TEST_P(Chi2, SampleDistributionMatchesPdf) {
+TEST_P(BsdfChi2, SampleDistributionMatchesPdf) {
   const MaterialCase& c = GetParam();
   const Bsdf bsdf(c.material, c.albedo, kRoughnessThreshold);
   for (const Vec3f wo : testDirections(c.twoSided)) {
@@ -88,7 +88,7 @@ TEST_P(Chi2, SampleDistributionMatchesPdf) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Materials, Chi2, ::testing::ValuesIn(nonDeltaCases()), caseName);
+INSTANTIATE_TEST_SUITE_P(Materials, BsdfChi2, ::testing::ValuesIn(nonDeltaCases()), caseName);
 
 }  // namespace
 }  // namespace pathfarm::bsdftest

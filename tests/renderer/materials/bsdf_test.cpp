@@ -66,11 +66,11 @@ Estimate directionalAlbedo(const Material& m, Rgb albedo, Vec3f wo, int n, uint3
   return {{mean[0], mean[1], mean[2]}, {se[0], se[1], se[2]}};
 }
 
-class NonDeltaMaterial : public ::testing::TestWithParam<MaterialCase> {};
+class BsdfNonDeltaMaterial : public ::testing::TestWithParam<MaterialCase> {};
 
 // (1) Whatever sample() returns for a non-delta lobe must be reproducible by eval and pdf,
 // or MIS weights computed from pdf() would be biased.
-TEST_P(NonDeltaMaterial, SampleWeightIsEvalOverPdf) {
+TEST_P(BsdfNonDeltaMaterial, SampleWeightIsEvalOverPdf) {
   const MaterialCase& c = GetParam();
   const Bsdf bsdf(c.material, c.albedo, kRoughnessThreshold);
   Uniform rng(1);
@@ -94,7 +94,7 @@ TEST_P(NonDeltaMaterial, SampleWeightIsEvalOverPdf) {
 
 // (1) pdf() is a density of the sampling procedure: over the sphere it integrates to the
 // probability that sample() returns a non-delta direction.
-TEST_P(NonDeltaMaterial, PdfIntegratesToNonDeltaSampleProbability) {
+TEST_P(BsdfNonDeltaMaterial, PdfIntegratesToNonDeltaSampleProbability) {
   const MaterialCase& c = GetParam();
   const Bsdf bsdf(c.material, c.albedo, kRoughnessThreshold);
   for (const Vec3f wo : testDirections(c.twoSided)) {
@@ -116,7 +116,7 @@ TEST_P(NonDeltaMaterial, PdfIntegratesToNonDeltaSampleProbability) {
 
 // (3) Reflection is reciprocal: f(wo, wi) = f(wi, wo), i.e. eval / cos(wi) is symmetric.
 // Rough glass refraction obeys the generalized form f(wo, wi) / n(wo)^2 = f(wi, wo) / n(wi)^2.
-TEST_P(NonDeltaMaterial, Reciprocity) {
+TEST_P(BsdfNonDeltaMaterial, Reciprocity) {
   const MaterialCase& c = GetParam();
   const Bsdf bsdf(c.material, c.albedo, kRoughnessThreshold);
   Uniform rng(3);
@@ -130,14 +130,15 @@ TEST_P(NonDeltaMaterial, Reciprocity) {
     for (int ch = 0; ch < 3; ++ch) {
       // The absolute slack covers refraction near the critical angle, where 1 - F is
       // ill-conditioned in float and tiny.
-      ASSERT_TRUE(nearlyEqual(forward[ch], backward[ch], 1e-3f) || std::abs(forward[ch] - backward[ch]) < 1e-5f)
+      ASSERT_TRUE(nearlyEqual(forward[ch], backward[ch], 1e-3f) ||
+                  std::abs(forward[ch] - backward[ch]) < 1e-5f)
           << "wo.z " << wo.z << " wi.z " << wi.z << ": " << forward[ch] << " vs " << backward[ch];
     }
   }
 }
 
 // Never NaN or infinite, whatever the directions and random numbers.
-TEST_P(NonDeltaMaterial, DegenerateInputsStayFinite) {
+TEST_P(BsdfNonDeltaMaterial, DegenerateInputsStayFinite) {
   const MaterialCase& c = GetParam();
   const Bsdf bsdf(c.material, c.albedo, kRoughnessThreshold);
   const Vec3f dirs[] = {{0, 0, 1}, {1, 0, 0}, {0, 0, -1}, {0, 0, 0}, {0.6f, 0.8f, 0}, {1e-7f, 0, 1}};
@@ -159,13 +160,13 @@ TEST_P(NonDeltaMaterial, DegenerateInputsStayFinite) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Materials, NonDeltaMaterial, ::testing::ValuesIn(nonDeltaCases()), caseName);
+INSTANTIATE_TEST_SUITE_P(Materials, BsdfNonDeltaMaterial, ::testing::ValuesIn(nonDeltaCases()), caseName);
 
 // (2) Energy: with white parameters no material reflects (plus transmits, in flux) more
 // than it receives.
-class WhiteMaterial : public ::testing::TestWithParam<MaterialCase> {};
+class BsdfWhiteMaterial : public ::testing::TestWithParam<MaterialCase> {};
 
-TEST_P(WhiteMaterial, DirectionalAlbedoAtMostOne) {
+TEST_P(BsdfWhiteMaterial, DirectionalAlbedoAtMostOne) {
   const MaterialCase& c = GetParam();
   for (const Vec3f wo : testDirections(c.twoSided)) {
     const Estimate e = directionalAlbedo(c.material, c.albedo, wo, 100000, 4);
@@ -185,13 +186,14 @@ std::vector<MaterialCase> whiteCases() {
   cases.push_back({"Dielectric", makeMaterial(MT::Dielectric, MF::GGX, 0), Rgb(1), true});
   for (MaterialCase& c : cases) c.material.useSpecularColor = true;  // Schlick, f0 = 1: white metal
   // The physical gold-like default, still bounded by one.
-  cases.push_back({"RoughConductorComplexIor", makeMaterial(MT::RoughConductor, MF::GGX, 0.3f), Rgb(1), false});
+  cases.push_back(
+      {"RoughConductorComplexIor", makeMaterial(MT::RoughConductor, MF::GGX, 0.3f), Rgb(1), false});
   return cases;
 }
 
-INSTANTIATE_TEST_SUITE_P(Materials, WhiteMaterial, ::testing::ValuesIn(whiteCases()), caseName);
+INSTANTIATE_TEST_SUITE_P(Materials, BsdfWhiteMaterial, ::testing::ValuesIn(whiteCases()), caseName);
 
-TEST(Energy, DiffuseAlbedoIsReflectance) {
+TEST(BsdfEnergy, DiffuseAlbedoIsReflectance) {
   const Rgb rho{0.8f, 0.5f, 0.2f};
   const Estimate e = directionalAlbedo(Material{}, rho, directionFromCos(0.4f), 20000, 5);
   for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(e.mean[ch], rho[ch], 3 * e.stdError[ch] + 1e-5f);
@@ -199,7 +201,7 @@ TEST(Energy, DiffuseAlbedoIsReflectance) {
 
 // Mitsuba's linear plastic model reflects exactly F(wo) + rho (1 - F(wo)); this checks the
 // diffuse normalization by the internal diffuse Fresnel reflectance.
-TEST(Energy, SmoothPlasticAlbedoIsCoatingPlusAttenuatedBase) {
+TEST(BsdfEnergy, SmoothPlasticAlbedoIsCoatingPlusAttenuatedBase) {
   Material m;
   m.type = MaterialType::Plastic;
   const Rgb rho{1.0f, 0.6f, 0.1f};
@@ -218,7 +220,7 @@ TEST(Energy, SmoothPlasticAlbedoIsCoatingPlusAttenuatedBase) {
 
 // A nearly smooth microfacet surface loses almost nothing to shadowing: the microfacet
 // normalization (D, G, the 1/4 Jacobian, and the 1/eta^2 of refraction) is complete.
-TEST(Energy, NearlySmoothMicrofacetsConserveEnergy) {
+TEST(BsdfEnergy, NearlySmoothMicrofacetsConserveEnergy) {
   for (const MicrofacetType distribution : {MicrofacetType::GGX, MicrofacetType::Beckmann}) {
     for (const MaterialType type : {MaterialType::RoughConductor, MaterialType::RoughDielectric}) {
       Material m = makeMaterial(type, distribution, 0.05f);
@@ -232,7 +234,7 @@ TEST(Energy, NearlySmoothMicrofacetsConserveEnergy) {
   }
 }
 
-TEST(Energy, SmoothConductorWithWhiteSpecularColorReflectsEverything) {
+TEST(BsdfEnergy, SmoothConductorWithWhiteSpecularColorReflectsEverything) {
   Material m;
   m.type = MaterialType::Conductor;
   m.useSpecularColor = true;
@@ -251,7 +253,7 @@ TEST(Energy, SmoothConductorWithWhiteSpecularColorReflectsEverything) {
   }
 }
 
-TEST(Energy, SmoothConductorWeightIsConductorFresnel) {
+TEST(BsdfEnergy, SmoothConductorWeightIsConductorFresnel) {
   Material m;
   m.type = MaterialType::Conductor;
   const Bsdf bsdf(m, Rgb(1), kRoughnessThreshold);
@@ -264,7 +266,7 @@ TEST(Energy, SmoothConductorWeightIsConductorFresnel) {
 
 // Smooth glass: reflection is chosen with probability F and refraction with 1 - F; the
 // reflected and transmitted fluxes (undoing the 1/eta^2 radiance scaling) add up to one.
-TEST(Energy, SmoothDielectricReflectancePlusTransmittanceIsOne) {
+TEST(BsdfEnergy, SmoothDielectricReflectancePlusTransmittanceIsOne) {
   Material m;
   m.type = MaterialType::Dielectric;
   m.ior = 1.5f;
@@ -295,7 +297,7 @@ TEST(Energy, SmoothDielectricReflectancePlusTransmittanceIsOne) {
   }
 }
 
-TEST(Energy, SmoothDielectricTotalInternalReflection) {
+TEST(BsdfEnergy, SmoothDielectricTotalInternalReflection) {
   Material m;
   m.type = MaterialType::Dielectric;
   m.ior = 1.5f;
@@ -325,7 +327,7 @@ void expectLobes(const LobeList& list, std::initializer_list<Lobe> expected) {
   }
 }
 
-TEST(Lobes, EachMaterialReportsItsLobes) {
+TEST(BsdfLobes, EachMaterialReportsItsLobes) {
   using MT = MaterialType;
   using S = LobeSymbol;
   expectLobes(lobesOf(MT::Diffuse, 0), {{S::D, false}});
@@ -342,7 +344,7 @@ TEST(Lobes, EachMaterialReportsItsLobes) {
   expectLobes(lobesOf(MT::RoughConductor, 0.3f, 0.5f), {{S::R, false}});
 }
 
-TEST(Lobes, SampledSymbolsMatchTheThreshold) {
+TEST(BsdfLobes, SampledSymbolsMatchTheThreshold) {
   Uniform rng(8);
   for (const float alpha : {0.05f, 0.3f}) {
     const Material m = makeMaterial(MaterialType::RoughDielectric, MicrofacetType::GGX, alpha);
@@ -362,23 +364,29 @@ TEST(Lobes, SampledSymbolsMatchTheThreshold) {
   }
 }
 
-TEST(Lobes, HasNonDeltaLobe) {
+TEST(BsdfLobes, HasNonDeltaLobe) {
   using MT = MaterialType;
   EXPECT_FALSE(Bsdf(makeMaterial(MT::Conductor, MicrofacetType::GGX, 0), Rgb(1), 0.1f).hasNonDeltaLobe());
   EXPECT_FALSE(Bsdf(makeMaterial(MT::Dielectric, MicrofacetType::GGX, 0), Rgb(1), 0.1f).hasNonDeltaLobe());
-  for (const MT type : {MT::Diffuse, MT::RoughConductor, MT::RoughDielectric, MT::Plastic, MT::RoughPlastic}) {
+  for (const MT type :
+       {MT::Diffuse, MT::RoughConductor, MT::RoughDielectric, MT::Plastic, MT::RoughPlastic}) {
     EXPECT_TRUE(Bsdf(makeMaterial(type, MicrofacetType::GGX, 0.2f), Rgb(1), 0.1f).hasNonDeltaLobe())
         << materialTypeName(type);
   }
 }
 
-TEST(Lobes, Names) {
+TEST(BsdfLobes, Names) {
   EXPECT_EQ(lobeSymbolChar(LobeSymbol::D), 'D');
   EXPECT_EQ(lobeSymbolChar(LobeSymbol::R), 'R');
   EXPECT_EQ(lobeSymbolChar(LobeSymbol::T), 'T');
-  EXPECT_EQ(materialTypeName(MaterialType::RoughDielectric), "roughdielectric");
+  // As the scene format spells them.
   EXPECT_EQ(materialTypeName(MaterialType::Diffuse), "diffuse");
+  EXPECT_EQ(materialTypeName(MaterialType::Conductor), "conductor");
+  EXPECT_EQ(materialTypeName(MaterialType::RoughConductor), "rough_conductor");
+  EXPECT_EQ(materialTypeName(MaterialType::Dielectric), "dielectric");
+  EXPECT_EQ(materialTypeName(MaterialType::RoughDielectric), "rough_dielectric");
   EXPECT_EQ(materialTypeName(MaterialType::Plastic), "plastic");
+  EXPECT_EQ(materialTypeName(MaterialType::RoughPlastic), "rough_plastic");
 }
 
 }  // namespace

@@ -1,12 +1,12 @@
 #pragma once
 // Shared pieces of the material tests: a deterministic uniform source, quadrature over the
 // sphere, and the material configurations the statistical tests run on.
+#include <gtest/gtest.h>
+
 #include <cstdint>
 #include <random>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "renderer/materials/bsdf.h"
 
@@ -55,8 +55,10 @@ double integrateCell(const F& f, double t0, double t1, double p0, double p1, dou
                          midpoint(am, a1, bm, b1)};
     const double sum = q[0] + q[1] + q[2] + q[3];
     if (depth == 8 || std::abs(sum - whole) <= tol) return sum;
-    return self(self, a0, am, b0, bm, q[0], tol / 2, depth + 1) + self(self, am, a1, b0, bm, q[1], tol / 2, depth + 1) +
-           self(self, a0, am, bm, b1, q[2], tol / 2, depth + 1) + self(self, am, a1, bm, b1, q[3], tol / 2, depth + 1);
+    return self(self, a0, am, b0, bm, q[0], tol / 2, depth + 1) +
+           self(self, am, a1, b0, bm, q[1], tol / 2, depth + 1) +
+           self(self, a0, am, bm, b1, q[2], tol / 2, depth + 1) +
+           self(self, am, a1, bm, b1, q[3], tol / 2, depth + 1);
   };
   return refine(refine, t0, t1, p0, p1, midpoint(t0, t1, p0, p1), tolerance, 0);
 }
