@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <string>
 
+#include <gtest/gtest.h>
+
 #include "image/frame_image.h"
 #include "renderer/scene/scene_loader.h"
 
@@ -34,6 +36,12 @@ inline MeanEstimate meanOverPixels(const FrameImage& image, const std::string& c
   }
   const double n = static_cast<double>(values.size());
   return {sum / n, std::sqrt(varianceSum) / n};
+}
+
+inline void expectNear(Vec3f a, Vec3f b, float tolerance = 1e-5f) {
+  EXPECT_NEAR(a.x, b.x, tolerance);
+  EXPECT_NEAR(a.y, b.y, tolerance);
+  EXPECT_NEAR(a.z, b.z, tolerance);
 }
 
 }  // namespace pathfarm::test_support

@@ -4,15 +4,12 @@
 
 #include "renderer/math/frame.h"
 #include "renderer/math/transform.h"
+#include "test_support.h"
 
 namespace pathfarm {
 namespace {
 
-void expectNear(Vec3f a, Vec3f b, float tolerance = 1e-5f) {
-  EXPECT_NEAR(a.x, b.x, tolerance);
-  EXPECT_NEAR(a.y, b.y, tolerance);
-  EXPECT_NEAR(a.z, b.z, tolerance);
-}
+using test_support::expectNear;
 
 Trs randomTrs(std::mt19937& random) {
   std::uniform_real_distribution<float> u(-2, 2), positive(0.2f, 3);

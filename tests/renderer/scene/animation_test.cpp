@@ -9,11 +9,7 @@
 namespace pathfarm {
 namespace {
 
-void expectNear(Vec3f a, Vec3f b, float tolerance = 1e-5f) {
-  EXPECT_NEAR(a.x, b.x, tolerance);
-  EXPECT_NEAR(a.y, b.y, tolerance);
-  EXPECT_NEAR(a.z, b.z, tolerance);
-}
+using test_support::expectNear;
 
 TEST(Animation, TracksInterpolateAndHoldOutsideTheirKeys) {
   AnimatedTrs animation(Trs{{9, 9, 9}, {}, {1, 1, 1}});
