@@ -5,44 +5,48 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStdIO.h>
 #include <OpenEXR/ImfStringAttribute.h>
+#include <fcntl.h>
+#include <unistd.h>
 
-#include <system_error>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <sstream>
 
 namespace pathfarm {
 
-void writeExr(const std::filesystem::path& file, const FrameImage& frame) {
-  const std::filesystem::path temporary = file.string() + ".partial";
+std::string encodeExr(const FrameImage& frame) {
   try {
     Imf::Header header(frame.width(), frame.height());
     header.compression() = Imf::ZIP_COMPRESSION;
-    for (const auto& [name, value] : frame.attributes())
-      header.insert(name, Imf::StringAttribute(value));
+    for (const auto& [name, value] : frame.attributes()) header.insert(name, Imf::StringAttribute(value));
     Imf::FrameBuffer buffer;
     for (const std::string& name : frame.channelNames()) {
       header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-      // OpenEXR's Slice takes a non-const pointer but only reads when writing a file.
+      // OpenEXR's Slice takes a non-const pointer but only reads when writing.
       auto* base = const_cast<float*>(frame.channel(name).data());
       buffer.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(base), sizeof(float),
                                      sizeof(float) * static_cast<size_t>(frame.width())));
     }
-    Imf::OutputFile out(temporary.c_str(), header);
-    out.setFrameBuffer(buffer);
-    out.writePixels(frame.height());
+    Imf::StdOSStream stream;
+    {
+      Imf::OutputFile out(stream, header);  // finishes the file when it goes out of scope
+      out.setFrameBuffer(buffer);
+      out.writePixels(frame.height());
+    }
+    return stream.str();
   } catch (const std::exception& e) {
-    std::error_code ignored;
-    std::filesystem::remove(temporary, ignored);
-    throw ExrError(file.string() + ": cannot write EXR: " + e.what());
+    throw ExrError(std::string("cannot encode EXR: ") + e.what());
   }
-  std::error_code error;
-  std::filesystem::rename(temporary, file, error);
-  if (error) throw ExrError(file.string() + ": cannot move the finished EXR into place: " + error.message());
 }
 
-FrameImage readExr(const std::filesystem::path& file) {
-  if (!std::filesystem::exists(file)) throw ExrError(file.string() + ": no such file");
+FrameImage decodeExr(const std::string& bytes, const std::string& label) {
   try {
-    Imf::InputFile in(file.c_str());
+    Imf::StdISStream stream;
+    stream.str(bytes);
+    Imf::InputFile in(stream);
     const Imath::Box2i window = in.header().dataWindow();
     const int width = window.max.x - window.min.x + 1;
     const int height = window.max.y - window.min.y + 1;
@@ -66,8 +70,45 @@ FrameImage readExr(const std::filesystem::path& file) {
     in.readPixels(window.min.y, window.max.y);
     return frame;
   } catch (const std::exception& e) {
-    throw ExrError(file.string() + ": cannot read EXR: " + e.what());
+    throw ExrError(label + ": cannot read EXR: " + e.what());
   }
+}
+
+void writeFileAtomically(const std::filesystem::path& file, const std::string& bytes) {
+  const std::string temporary = file.string() + ".partial";
+  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw ExrError(file.string() + ": cannot write: " + std::strerror(errno));
+  size_t written = 0;
+  while (written < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const std::string reason = std::strerror(errno);
+      ::close(fd);
+      ::unlink(temporary.c_str());
+      throw ExrError(file.string() + ": cannot write: " + reason);
+    }
+    written += static_cast<size_t>(n);
+  }
+  const bool synced = ::fsync(fd) == 0;
+  ::close(fd);
+  if (!synced || ::rename(temporary.c_str(), file.c_str()) != 0) {
+    const std::string reason = std::strerror(errno);
+    ::unlink(temporary.c_str());
+    throw ExrError(file.string() + ": cannot move the finished file into place: " + reason);
+  }
+}
+
+void writeExr(const std::filesystem::path& file, const FrameImage& frame) {
+  writeFileAtomically(file, encodeExr(frame));
+}
+
+FrameImage readExr(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw ExrError(file.string() + ": no such file or not readable");
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return decodeExr(bytes.str(), file.string());
 }
 
 }  // namespace pathfarm

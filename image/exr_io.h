@@ -1,9 +1,11 @@
 #pragma once
 // Multi-layer OpenEXR frames: every channel of a FrameImage as 32-bit float, ZIP
-// compressed, attributes as string header attributes. Writes are atomic (a temporary
-// file renamed into place), so a reader never sees half a frame.
+// compressed, attributes as string header attributes. The same bytes go to files and
+// over the wire (farm chunks). File writes are atomic (a temporary file, fsynced and
+// renamed into place), so a reader never sees half a frame.
 #include <filesystem>
 #include <stdexcept>
+#include <string>
 
 #include "image/frame_image.h"
 
@@ -14,9 +16,15 @@ class ExrError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+std::string encodeExr(const FrameImage& frame);
+// `label` names the bytes' origin (a file, a chunk) in error messages.
+FrameImage decodeExr(const std::string& bytes, const std::string& label);
+
 void writeExr(const std::filesystem::path& file, const FrameImage& frame);
-// Reads every channel as float. A missing, truncated or corrupted file throws ExrError
-// naming the file.
+// A missing, truncated or corrupted file throws ExrError naming the file.
 FrameImage readExr(const std::filesystem::path& file);
+
+// Writes bytes to `file` atomically: temporary file, fsync, rename.
+void writeFileAtomically(const std::filesystem::path& file, const std::string& bytes);
 
 }  // namespace pathfarm

@@ -1,5 +1,7 @@
 #include "image/frame_image.h"
 
+#include <algorithm>
+#include <stdexcept>
 #include <utility>
 
 namespace pathfarm {
@@ -23,6 +25,23 @@ const std::vector<float>& FrameImage::channel(const std::string& name) const {
 
 std::vector<float>& FrameImage::channel(const std::string& name) {
   return const_cast<std::vector<float>&>(std::as_const(*this).channel(name));
+}
+
+void FrameImage::paste(const FrameImage& part, int x0, int y0) {
+  if (x0 < 0 || y0 < 0 || x0 + part.width() > width_ || y0 + part.height() > height_)
+    throw std::invalid_argument("a " + std::to_string(part.width()) + "x" + std::to_string(part.height()) +
+                                " part at (" + std::to_string(x0) + ", " + std::to_string(y0) +
+                                ") does not fit a " + std::to_string(width_) + "x" + std::to_string(height_) +
+                                " frame");
+  for (const std::string& name : part.channelNames()) {
+    const std::vector<float>& source = part.channel(name);
+    std::vector<float>& target = addChannel(name);
+    for (int y = 0; y < part.height(); ++y) {
+      const auto from = source.begin() + static_cast<ptrdiff_t>(y) * part.width();
+      std::copy(from, from + part.width(),
+                target.begin() + (static_cast<ptrdiff_t>(y0 + y) * width_ + x0));
+    }
+  }
 }
 
 }  // namespace pathfarm

@@ -27,6 +27,10 @@ class FrameImage {
   std::vector<float>& channel(const std::string& name);
   const std::vector<std::string>& channelNames() const { return names_; }
 
+  // Copies every channel of `part` into this frame with its corner at (x0, y0), adding
+  // channels this frame lacks; throws std::invalid_argument if it does not fit.
+  void paste(const FrameImage& part, int x0, int y0);
+
   std::map<std::string, std::string>& attributes() { return attributes_; }
   const std::map<std::string, std::string>& attributes() const { return attributes_; }
 

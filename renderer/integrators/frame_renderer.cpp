@@ -5,6 +5,7 @@
 #include <tbb/task_arena.h>
 
 #include <chrono>
+#include <stdexcept>
 
 #include "renderer/accel/shot_geometry.h"
 
@@ -47,7 +48,11 @@ FrameImage FrameRenderer::render(int64_t frame, const ProgressCallback& progress
   const PathTracer tracer(geometry, shot_->lights, {settings_.maxDepth});
   const Camera camera(scene_.camera, settings_.width, settings_.height);
 
-  const int width = settings_.width, height = settings_.height, tile = settings_.tileSize;
+  const PixelWindow window = settings_.window.value_or(PixelWindow{0, 0, settings_.width, settings_.height});
+  if (window.x0 < 0 || window.y0 < 0 || window.x1 > settings_.width || window.y1 > settings_.height ||
+      window.width() <= 0 || window.height() <= 0)
+    throw std::invalid_argument("the pixel window lies outside the frame or is empty");
+  const int width = window.width(), height = window.height(), tile = settings_.tileSize;
   FrameImage image(width, height);
   float* channels[6];
   const char* names[6] = {"R", "G", "B", "variance.R", "variance.G", "variance.B"};
@@ -62,8 +67,9 @@ FrameImage FrameRenderer::render(int64_t frame, const ProgressCallback& progress
     TileCounters& local = counters.local();
     const int x0 = static_cast<int>(index % static_cast<size_t>(tilesX)) * tile;
     const int y0 = static_cast<int>(index / static_cast<size_t>(tilesX)) * tile;
-    for (int y = y0; y < std::min(y0 + tile, height); ++y) {
-      for (int x = x0; x < std::min(x0 + tile, width); ++x) {
+    for (int iy = y0; iy < std::min(y0 + tile, height); ++iy) {
+      for (int ix = x0; ix < std::min(x0 + tile, width); ++ix) {
+        const int x = window.x0 + ix, y = window.y0 + iy;  // frame pixel coordinates
         double sum[3] = {0, 0, 0}, sumSquares[3] = {0, 0, 0};
         int accepted = 0;
         for (int s = 0; s < settings_.spp; ++s) {
@@ -86,7 +92,7 @@ FrameImage FrameRenderer::render(int64_t frame, const ProgressCallback& progress
             sumSquares[c] += static_cast<double>(L[c]) * L[c];
           }
         }
-        const size_t pixel = static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
+        const size_t pixel = static_cast<size_t>(iy) * static_cast<size_t>(width) + static_cast<size_t>(ix);
         for (int c = 0; c < 3; ++c) {
           const double mean = accepted > 0 ? sum[c] / accepted : 0.0;
           // Variance of the pixel mean: the samples' unbiased variance over their count.

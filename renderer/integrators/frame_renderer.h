@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 
 #include "image/frame_image.h"
 #include "renderer/integrators/path_tracer.h"
@@ -14,8 +15,19 @@
 
 namespace pathfarm {
 
+// Pixels [x0, x1) x [y0, y1) of a frame.
+struct PixelWindow {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+
+  int width() const { return x1 - x0; }
+  int height() const { return y1 - y0; }
+};
+
 struct RenderSettings {
   int width = 320, height = 240;
+  // Render only this part of the frame (a farm tile); the image then has the window's
+  // size and its pixels are bit-identical to the same pixels of a whole-frame render.
+  std::optional<PixelWindow> window;
   int spp = 16;
   int maxDepth = 8;
   int tileSize = 32;
@@ -39,7 +51,8 @@ class FrameRenderer {
   FrameRenderer(const Scene& scene, RenderSettings settings);
   ~FrameRenderer();
 
-  // The frame's beauty in R, G, B and the variance of each pixel's mean in variance.R/G/B.
+  // The frame's (or window's) beauty in R, G, B and the variance of each pixel's mean in
+  // variance.R/G/B.
   FrameImage render(int64_t frame, const ProgressCallback& progress = {}, RenderStats* stats = nullptr) const;
 
   const Scene& scene() const { return scene_; }

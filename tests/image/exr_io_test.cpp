@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <random>
 
@@ -61,6 +62,33 @@ TEST(ExrIo, MissingAndTruncatedFilesAreErrorsNamingTheFile) {
     }
   }
   std::filesystem::remove(file);
+}
+
+TEST(ExrIo, BytesInMemoryMatchTheFile) {
+  const FrameImage original = sampleFrame();
+  const auto file = temporaryFile("memory.exr");
+  writeExr(file, original);
+  std::ifstream in(file, std::ios::binary);
+  const std::string onDisk{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  EXPECT_EQ(encodeExr(original), onDisk);
+  EXPECT_EQ(decodeExr(onDisk, "chunk").channel("reflection.normal.Z"), original.channel("reflection.normal.Z"));
+  std::string damaged = onDisk;
+  damaged.resize(damaged.size() / 3);
+  try {
+    decodeExr(damaged, "chunk 1f2e");
+    FAIL() << "damaged bytes were decoded";
+  } catch (const ExrError& e) {
+    EXPECT_NE(std::string(e.what()).find("chunk 1f2e"), std::string::npos);
+  }
+  std::filesystem::remove(file);
+}
+
+TEST(ExrIo, PasteCopiesAPartIntoItsPlace) {
+  FrameImage frame(4, 3), part(2, 2);
+  part.addChannel("R") = {1, 2, 3, 4};
+  frame.paste(part, 2, 1);
+  EXPECT_EQ(frame.channel("R"), (std::vector<float>{0, 0, 0, 0, 0, 0, 1, 2, 0, 0, 3, 4}));
+  EXPECT_THROW(frame.paste(part, 3, 1), std::invalid_argument);
 }
 
 TEST(ExrIo, MissingChannelIsAClearError) {

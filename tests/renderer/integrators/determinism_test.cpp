@@ -42,6 +42,28 @@ TEST(Determinism, ThreadsAndTileSizesGiveIdenticalBytes) {
   std::filesystem::remove_all(folder);
 }
 
+TEST(Determinism, WindowsPastedTogetherEqualTheWholeFrame) {
+  const Scene scene = loadScene(test_support::sourceDir() / "scenes/cornell/scene.json");
+  RenderSettings settings;
+  settings.width = 30;
+  settings.height = 22;
+  settings.spp = 3;
+  const FrameImage whole = FrameRenderer(scene, settings).render(5);
+
+  FrameImage joined(settings.width, settings.height);
+  // Uneven windows, as a farm's edge tiles are.
+  for (const PixelWindow window : {PixelWindow{0, 0, 16, 16}, PixelWindow{16, 0, 30, 16},
+                                   PixelWindow{0, 16, 16, 22}, PixelWindow{16, 16, 30, 22}}) {
+    settings.window = window;
+    joined.paste(FrameRenderer(scene, settings).render(5), window.x0, window.y0);
+  }
+  ASSERT_EQ(joined.channelNames(), whole.channelNames());
+  for (const std::string& name : whole.channelNames()) EXPECT_EQ(joined.channel(name), whole.channel(name)) << name;
+
+  settings.window = PixelWindow{20, 0, 31, 5};  // past the right edge
+  EXPECT_THROW(FrameRenderer(scene, settings).render(5), std::invalid_argument);
+}
+
 TEST(Determinism, DifferentFramesAndSeedsDiffer) {
   Scene scene = loadScene(test_support::sourceDir() / "scenes/cornell/scene.json");
   RenderSettings settings;
