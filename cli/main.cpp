@@ -1,26 +1,32 @@
-// pathfarm: one executable, one subcommand per job (docs in README.md).
+// pathfarm: one executable, one subcommand per job (see README.md).
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
 
-#include "cli/render_command.h"
+#include "cli/command.h"
 
 int main(int argc, char** argv) {
-  CLI::App app{"pathfarm: renders animations with Monte Carlo light transport"};
+  CLI::App app{"pathfarm: renders animations with Monte Carlo light transport on a farm"};
   app.require_subcommand(1);
   bool verbose = false;
   app.add_flag("-v,--verbose", verbose, "log debugging detail");
-  const auto runRender = pathfarm::addRenderCommand(app);
+  std::vector<pathfarm::Command> commands;
+  for (auto add : {pathfarm::addRenderCommand, pathfarm::addFarmProcessCommands, pathfarm::addClientCommands,
+                   pathfarm::addLocalCommand}) {
+    for (pathfarm::Command& command : add(app)) commands.push_back(std::move(command));
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     app.exit(e);
-    return 2;  // usage errors share the exit status of bad input files
+    return pathfarm::kExitBadInput;
   }
   spdlog::set_level(verbose ? spdlog::level::debug : spdlog::level::info);
   spdlog::set_pattern("[%H:%M:%S] %^%l%$ %v");
-  if (app.got_subcommand("render")) return runRender();
-  return 2;
+  for (const pathfarm::Command& command : commands) {
+    if (command.app->parsed()) return command.run();
+  }
+  return pathfarm::kExitBadInput;
 }

@@ -1,4 +1,4 @@
-#include "cli/render_command.h"
+#include "cli/command.h"
 
 #include <spdlog/spdlog.h>
 
@@ -81,10 +81,10 @@ int runRender(const RenderOptions& options) {
     if (!options.resolution.empty()) std::tie(settings.width, settings.height) = parseResolution(options.resolution);
   } catch (const SceneError& e) {
     spdlog::error("{}", e.what());
-    return 2;
+    return kExitBadInput;
   } catch (const UsageError& e) {
     spdlog::error("{}", e.what());
-    return 2;
+    return kExitBadInput;
   }
   if (options.spp) settings.spp = *options.spp;
   if (options.maxDepth) settings.maxDepth = *options.maxDepth;
@@ -96,7 +96,7 @@ int runRender(const RenderOptions& options) {
   std::filesystem::create_directories(out, error);
   if (error) {
     spdlog::error("{}: cannot create the output folder: {}", out.string(), error.message());
-    return 1;
+    return kExitFailure;
   }
   spdlog::info("rendering {} frames {}..{} at {}x{}, {} spp, max depth {}", options.scene, frames.first,
                frames.second, settings.width, settings.height, settings.spp, settings.maxDepth);
@@ -120,15 +120,15 @@ int runRender(const RenderOptions& options) {
     }
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
-    return 1;
+    return kExitFailure;
   }
   spdlog::info("EXR frames{} in {}", options.png ? " and PNG previews" : "", out.string());
-  return 0;
+  return kExitOk;
 }
 
 }  // namespace
 
-std::function<int()> addRenderCommand(CLI::App& app) {
+std::vector<Command> addRenderCommand(CLI::App& app) {
   auto options = std::make_shared<RenderOptions>();
   CLI::App* render = app.add_subcommand("render", "render frames of a scene to multi-layer EXR files");
   render->add_option("scene", options->scene, "scene file (JSON, see docs/scene-format.md)")->required();
@@ -143,7 +143,7 @@ std::function<int()> addRenderCommand(CLI::App& app) {
   render->add_flag("--png", options->png, "also write frame_NNNN.png previews (sRGB)");
   render->add_option("--exposure", options->exposure, "exposure multiplier of the PNG previews")
       ->check(CLI::Range(1e-6, 1e6));
-  return [options] { return runRender(*options); };
+  return {{render, [options] { return runRender(*options); }}};
 }
 
 }  // namespace pathfarm

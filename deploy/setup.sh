@@ -8,7 +8,7 @@ PACKAGES=(
   build-essential cmake ninja-build pkg-config git
   libembree-dev libopenexr-dev libimath-dev libtbb-dev
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler
-  libsqlite3-dev libspdlog-dev libfmt-dev libgtest-dev libgmock-dev
+  libsqlite3-dev libssl-dev libspdlog-dev libfmt-dev libgtest-dev libgmock-dev
   libcli11-dev nlohmann-json3-dev libtinyobjloader-dev libstb-dev
 )
 

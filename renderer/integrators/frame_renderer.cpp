@@ -43,12 +43,16 @@ struct TileCounters {
 }  // namespace
 
 FrameImage FrameRenderer::render(int64_t frame, const ProgressCallback& progress, RenderStats* stats) const {
+  return renderWindow(frame, {0, 0, settings_.width, settings_.height}, progress, stats);
+}
+
+FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window, const ProgressCallback& progress,
+                                       RenderStats* stats) const {
   const auto start = std::chrono::steady_clock::now();
   const FrameGeometry geometry(shot_->geometry, frame);
   const PathTracer tracer(geometry, shot_->lights, {settings_.maxDepth});
   const Camera camera(scene_.camera, settings_.width, settings_.height);
 
-  const PixelWindow window = settings_.window.value_or(PixelWindow{0, 0, settings_.width, settings_.height});
   if (window.x0 < 0 || window.y0 < 0 || window.x1 > settings_.width || window.y1 > settings_.height ||
       window.width() <= 0 || window.height() <= 0)
     throw std::invalid_argument("the pixel window lies outside the frame or is empty");

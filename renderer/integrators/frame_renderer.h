@@ -7,7 +7,6 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
-#include <optional>
 
 #include "image/frame_image.h"
 #include "renderer/integrators/path_tracer.h"
@@ -25,9 +24,6 @@ struct PixelWindow {
 
 struct RenderSettings {
   int width = 320, height = 240;
-  // Render only this part of the frame (a farm tile); the image then has the window's
-  // size and its pixels are bit-identical to the same pixels of a whole-frame render.
-  std::optional<PixelWindow> window;
   int spp = 16;
   int maxDepth = 8;
   int tileSize = 32;
@@ -51,9 +47,13 @@ class FrameRenderer {
   FrameRenderer(const Scene& scene, RenderSettings settings);
   ~FrameRenderer();
 
-  // The frame's (or window's) beauty in R, G, B and the variance of each pixel's mean in
-  // variance.R/G/B.
+  // The frame's beauty in R, G, B and the variance of each pixel's mean in variance.R/G/B.
   FrameImage render(int64_t frame, const ProgressCallback& progress = {}, RenderStats* stats = nullptr) const;
+  // Only a part of the frame (a farm tile): the image has the window's size and its pixels
+  // are bit-identical to the same pixels of render(). Throws std::invalid_argument for a
+  // window outside the frame.
+  FrameImage renderWindow(int64_t frame, const PixelWindow& window, const ProgressCallback& progress = {},
+                          RenderStats* stats = nullptr) const;
 
   const Scene& scene() const { return scene_; }
   const RenderSettings& settings() const { return settings_; }

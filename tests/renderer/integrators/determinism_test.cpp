@@ -54,14 +54,12 @@ TEST(Determinism, WindowsPastedTogetherEqualTheWholeFrame) {
   // Uneven windows, as a farm's edge tiles are.
   for (const PixelWindow window : {PixelWindow{0, 0, 16, 16}, PixelWindow{16, 0, 30, 16},
                                    PixelWindow{0, 16, 16, 22}, PixelWindow{16, 16, 30, 22}}) {
-    settings.window = window;
-    joined.paste(FrameRenderer(scene, settings).render(5), window.x0, window.y0);
+    joined.paste(FrameRenderer(scene, settings).renderWindow(5, window), window.x0, window.y0);
   }
   ASSERT_EQ(joined.channelNames(), whole.channelNames());
   for (const std::string& name : whole.channelNames()) EXPECT_EQ(joined.channel(name), whole.channel(name)) << name;
 
-  settings.window = PixelWindow{20, 0, 31, 5};  // past the right edge
-  EXPECT_THROW(FrameRenderer(scene, settings).render(5), std::invalid_argument);
+  EXPECT_THROW(FrameRenderer(scene, settings).renderWindow(5, {20, 0, 31, 5}), std::invalid_argument);
 }
 
 TEST(Determinism, DifferentFramesAndSeedsDiffer) {

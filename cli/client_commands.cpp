@@ -1,0 +1,128 @@
+// `pathfarm submit | status | watch | fetch | cancel | pause | resume | workers`: thin
+// calls through FarmClient.
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+#include <memory>
+
+#include "cli/command.h"
+#include "cli/shot_progress.h"
+#include "proto/wire/connection.h"
+#include "renderer/scene/json_node.h"
+#include "scheduler/farm_client.h"
+#include "scheduler/shot_file.h"
+
+namespace pathfarm {
+namespace {
+
+struct ClientArguments {
+  std::string scheduler = "127.0.0.1:7700";
+  std::string tokenFile;
+  std::string shotFile;
+  int64_t shotId = 0;
+  std::string out;
+};
+
+void addConnectionOptions(CLI::App* command, ClientArguments& arguments) {
+  command->add_option("--scheduler", arguments.scheduler, "scheduler address HOST:PORT")->capture_default_str();
+  command->add_option("--token-file", arguments.tokenFile,
+                      "file holding the farm's access token (or PATHFARM_TOKEN[_FILE])");
+}
+
+// Runs a client call, turning the farm's refusals into messages and exit statuses.
+template <class Body>
+int withClient(const ClientArguments& arguments, Body body) {
+  try {
+    farm::FarmClient client(arguments.scheduler, farm::loadToken(arguments.tokenFile));
+    return body(client);
+  } catch (const SceneError& e) {
+    spdlog::error("{}", e.what());
+    return kExitBadInput;
+  } catch (const farm::FarmError& e) {
+    spdlog::error("{}", e.what());
+    const bool badRequest = e.code() == grpc::StatusCode::INVALID_ARGUMENT || e.code() == grpc::StatusCode::NOT_FOUND;
+    return badRequest ? kExitBadInput : kExitFailure;
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return kExitFailure;
+  }
+}
+
+int exitFor(const farm::ShotSummary& summary) { return summary.state() == farm::SHOT_DONE ? kExitOk : kExitFailure; }
+
+}  // namespace
+
+std::vector<Command> addClientCommands(CLI::App& app) {
+  std::vector<Command> commands;
+  const auto add = [&](const char* name, const char* description, auto configure, auto run) {
+    auto arguments = std::make_shared<ClientArguments>();
+    CLI::App* command = app.add_subcommand(name, description);
+    addConnectionOptions(command, *arguments);
+    configure(command, *arguments);
+    commands.push_back({command, [arguments, run] { return withClient(*arguments, [&](farm::FarmClient& c) {
+                                                      return run(c, *arguments);
+                                                    }); }});
+  };
+  const auto shotIdOption = [](CLI::App* command, ClientArguments& a) {
+    command->add_option("id", a.shotId, "shot id")->required();
+  };
+
+  add("submit", "queue a shot file; prints the shot id",
+      [](CLI::App* c, ClientArguments& a) { c->add_option("shot", a.shotFile, "shot file (JSON)")->required(); },
+      [](farm::FarmClient& client, const ClientArguments& a) {
+        const farm::ShotSpec spec = farm::loadShotFile(a.shotFile);  // validated before anything is queued
+        std::printf("%lld\n", static_cast<long long>(client.submit(spec)));
+        return kExitOk;
+      });
+  add("status", "list every shot, or show one with its events",
+      [](CLI::App* c, ClientArguments& a) { c->add_option("id", a.shotId, "shot id"); },
+      [](farm::FarmClient& client, const ClientArguments& a) {
+        if (a.shotId == 0) {
+          for (const auto& s : client.shots()) std::printf("%s\n", describeShot(s).c_str());
+          return kExitOk;
+        }
+        const farm::ShotReply reply = client.shot(a.shotId);
+        std::printf("%s\n", describeShot(reply.summary()).c_str());
+        for (const auto& event : reply.events()) std::printf("  %.3f  %s\n", event.time(), event.message().c_str());
+        return kExitOk;
+      });
+  add("watch", "follow a shot until it ends", shotIdOption, [](farm::FarmClient& client, const ClientArguments& a) {
+    ShotProgress progress;
+    const auto summary = client.watch(a.shotId, [&](const farm::ShotSummary& s) { progress.update(s); });
+    std::printf("%s\n", describeShot(summary).c_str());
+    return exitFor(summary);
+  });
+  add("fetch", "write a shot's finished frames as EXR files",
+      [](CLI::App* c, ClientArguments& a) {
+        c->add_option("id", a.shotId, "shot id")->required();
+        c->add_option("--out", a.out, "output folder")->required();
+      },
+      [](farm::FarmClient& client, const ClientArguments& a) {
+        const auto summary = client.shot(a.shotId).summary();
+        const auto files = client.fetch(a.shotId, a.out);
+        std::printf("%zu frames in %s\n", files.size(), a.out.c_str());
+        if (summary.state() != farm::SHOT_DONE)
+          spdlog::warn("shot {} is {}: fetched the {} frames finished so far", a.shotId,
+                       farm::ShotState_Name(summary.state()), files.size());
+        return kExitOk;
+      });
+  const auto control = [&](const char* name, const char* description, auto call) {
+    add(name, description, shotIdOption, [call](farm::FarmClient& client, const ClientArguments& a) {
+      std::printf("%s\n", describeShot(call(client, a.shotId)).c_str());
+      return kExitOk;
+    });
+  };
+  control("cancel", "cancel a shot", [](farm::FarmClient& c, int64_t id) { return c.cancel(id); });
+  control("pause", "stop leasing a shot's tasks", [](farm::FarmClient& c, int64_t id) { return c.pause(id); });
+  control("resume", "lease a paused shot's tasks again", [](farm::FarmClient& c, int64_t id) { return c.resume(id); });
+  add("workers", "list the workers the scheduler knows", [](CLI::App*, ClientArguments&) {},
+      [](farm::FarmClient& client, const ClientArguments&) {
+        for (const auto& w : client.workers())
+          std::printf("%lld %s: %d/%d slots busy, seen %.1f s ago\n", static_cast<long long>(w.id()), w.name().c_str(),
+                      w.busy(), w.slots(), w.seconds_since_seen());
+        return kExitOk;
+      });
+  return commands;
+}
+
+}  // namespace pathfarm

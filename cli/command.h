@@ -1,0 +1,25 @@
+#pragma once
+// A subcommand of `pathfarm`: where CLI11 parsed its arguments, and what runs it.
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <vector>
+
+namespace pathfarm {
+
+struct Command {
+  CLI::App* app;
+  std::function<int()> run;  // returns the exit status
+};
+
+// Exit statuses shared by every command.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitFailure = 1;   // the work failed (rendering, the farm, a failed shot)
+inline constexpr int kExitBadInput = 2;  // bad arguments, scene or shot file; nothing was done
+
+std::vector<Command> addRenderCommand(CLI::App& app);
+std::vector<Command> addFarmProcessCommands(CLI::App& app);  // scheduler, worker
+std::vector<Command> addClientCommands(CLI::App& app);       // submit, status, watch, fetch, ...
+std::vector<Command> addLocalCommand(CLI::App& app);
+
+}  // namespace pathfarm

@@ -1,0 +1,96 @@
+// `pathfarm scheduler` and `pathfarm worker`: the farm's long-running processes.
+#include <spdlog/spdlog.h>
+
+#include <fstream>
+#include <memory>
+#include <thread>
+
+#include "cli/command.h"
+#include "cli/stop_signal.h"
+#include "proto/wire/connection.h"
+#include "scheduler/scheduler_server.h"
+#include "worker/worker.h"
+
+namespace pathfarm {
+namespace {
+
+struct SchedulerArguments {
+  farm::SchedulerOptions options;
+  std::string tokenFile;
+  std::string portFile;
+};
+
+int runScheduler(SchedulerArguments& arguments) {
+  const auto& stop = stopRequested();
+  try {
+    arguments.options.token = farm::loadToken(arguments.tokenFile);
+    farm::SchedulerServer server(arguments.options);
+    if (!arguments.portFile.empty()) {
+      // Written after the port is bound, renamed into place so a reader never sees half.
+      const std::string partial = arguments.portFile + ".partial";
+      std::ofstream(partial) << server.port() << "\n";
+      std::filesystem::rename(partial, arguments.portFile);
+    }
+    while (!stop) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    spdlog::info("scheduler stopping");
+    server.shutdown();
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return kExitFailure;
+  }
+  return kExitOk;
+}
+
+struct WorkerArguments {
+  farm::WorkerOptions options;
+  std::string tokenFile;
+};
+
+int runWorker(WorkerArguments& arguments) {
+  const auto& stop = stopRequested();
+  try {
+    arguments.options.token = farm::loadToken(arguments.tokenFile);
+    farm::Worker(arguments.options).run(stop);
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return kExitFailure;
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+std::vector<Command> addFarmProcessCommands(CLI::App& app) {
+  auto scheduler = std::make_shared<SchedulerArguments>();
+  CLI::App* s = app.add_subcommand("scheduler", "run the farm's scheduler (state in SQLite, chunks on disk)");
+  s->add_option("--listen", scheduler->options.listen, "address to serve on; loopback unless you say otherwise")
+      ->capture_default_str();
+  s->add_option("--db", scheduler->options.database, "SQLite database file")->capture_default_str();
+  s->add_option("--store", scheduler->options.store, "folder of content-addressed chunks")->capture_default_str();
+  s->add_option("--token-file", scheduler->tokenFile,
+                "file holding the access token every call must carry (or PATHFARM_TOKEN[_FILE])");
+  s->add_option("--lease-seconds", scheduler->options.farm.leaseSeconds, "lease lifetime without a heartbeat")
+      ->check(CLI::Range(0.5, 3600.0))
+      ->capture_default_str();
+  s->add_option("--hung-seconds", scheduler->options.farm.hungSeconds, "a task without progress this long is retried")
+      ->check(CLI::Range(1.0, 1e6))
+      ->capture_default_str();
+  s->add_option("--retry-backoff", scheduler->options.farm.retryBackoffSeconds, "first retry delay in seconds")
+      ->check(CLI::Range(0.0, 3600.0))
+      ->capture_default_str();
+  s->add_option("--port-file", scheduler->portFile, "write the bound port here (for --listen HOST:0)");
+
+  auto worker = std::make_shared<WorkerArguments>();
+  CLI::App* w = app.add_subcommand("worker", "run a worker that leases and renders tasks");
+  w->add_option("--scheduler", worker->options.scheduler, "scheduler address HOST:PORT")->capture_default_str();
+  w->add_option("--slots", worker->options.slots, "tasks at once")->check(CLI::Range(1, 256))->capture_default_str();
+  w->add_option("--threads", worker->options.threads, "render threads per task (0: every core)")
+      ->check(CLI::Range(0, 1024));
+  w->add_option("--name", worker->options.name, "name shown by `pathfarm workers` (default host:pid)");
+  w->add_option("--cache", worker->options.cache, "folder caching input chunks");
+  w->add_option("--token-file", worker->tokenFile, "file holding the farm's access token (or PATHFARM_TOKEN[_FILE])");
+
+  return {{s, [scheduler] { return runScheduler(*scheduler); }}, {w, [worker] { return runWorker(*worker); }}};
+}
+
+}  // namespace pathfarm

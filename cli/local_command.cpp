@@ -1,0 +1,67 @@
+// `pathfarm local SHOT.json --workers N --out DIR`: the embedded farm. Starts a
+// scheduler and N worker processes, submits the shot, watches it, fetches the frames
+// into DIR and stops everything.
+#include <spdlog/spdlog.h>
+
+#include <memory>
+
+#include "cli/command.h"
+#include "cli/shot_progress.h"
+#include "renderer/scene/json_node.h"
+#include "scheduler/local_farm.h"
+#include "scheduler/shot_file.h"
+
+namespace pathfarm {
+namespace {
+
+struct LocalArguments {
+  std::string shotFile;
+  std::string out;
+  int workers = 2;
+  int threads = 0;
+};
+
+int runLocal(const LocalArguments& arguments) {
+  farm::ShotSpec spec;
+  try {
+    spec = farm::loadShotFile(arguments.shotFile);
+  } catch (const SceneError& e) {
+    spdlog::error("{}", e.what());
+    return kExitBadInput;
+  }
+  const std::filesystem::path out(arguments.out.empty() ? spec.output() : arguments.out);
+  try {
+    farm::LocalFarm farm({out / "farm", arguments.workers, arguments.threads, farm::currentExecutable(), {}});
+    farm::FarmClient client = farm.client();
+    const int64_t id = client.submit(spec);
+    spdlog::info("shot {} submitted: {} frames {}..{} at {}x{}, {} spp, {}-pixel tiles", id, spec.name(),
+                 spec.frame_start(), spec.frame_end(), spec.width(), spec.height(), spec.spp(), spec.tile());
+    farm::ShotSummary summary;
+    {
+      ShotProgress progress;
+      summary = client.watch(id, [&](const farm::ShotSummary& s) { progress.update(s); });
+    }
+    const auto files = client.fetch(id, out);
+    farm.stop();
+    spdlog::info("{}", describeShot(summary));
+    spdlog::info("{} EXR frames in {}", files.size(), out.string());
+    return summary.state() == farm::SHOT_DONE ? kExitOk : kExitFailure;
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return kExitFailure;
+  }
+}
+
+}  // namespace
+
+std::vector<Command> addLocalCommand(CLI::App& app) {
+  auto arguments = std::make_shared<LocalArguments>();
+  CLI::App* local = app.add_subcommand("local", "render a shot on a farm of local worker processes");
+  local->add_option("shot", arguments->shotFile, "shot file (JSON, see docs/shot-format.md)")->required();
+  local->add_option("--workers", arguments->workers, "worker processes")->check(CLI::Range(1, 256))->capture_default_str();
+  local->add_option("--threads", arguments->threads, "render threads per worker (0: the cores shared out)");
+  local->add_option("--out", arguments->out, "output folder (default: the shot's output)");
+  return {{local, [arguments] { return runLocal(*arguments); }}};
+}
+
+}  // namespace pathfarm

@@ -1,0 +1,21 @@
+#pragma once
+// Shows a watched shot's progress: a bar with tasks done/total, workers busy, elapsed
+// and remaining time on a terminal; a log line now and then otherwise.
+#include "pathfarm/shot.pb.h"
+
+namespace pathfarm {
+
+class ShotProgress {
+ public:
+  ~ShotProgress();
+  void update(const farm::ShotSummary& summary);
+
+ private:
+  bool terminal_ = false, drawn_ = false, checked_ = false;
+  double lastLogged_ = -1e9;
+};
+
+// One line for listings: "12 cornell RUNNING 40/96 tasks ...".
+std::string describeShot(const farm::ShotSummary& summary);
+
+}  // namespace pathfarm

@@ -1,0 +1,64 @@
+#pragma once
+// Moving a chunk over a gRPC stream in bounded parts: the first part carries the
+// reference (digest and size), the receiver checks both before it believes the bytes.
+#include <algorithm>
+#include <string>
+
+#include "pathfarm/chunk.pb.h"
+#include "proto/wire/chunk_store.h"
+#include "proto/wire/sha256.h"
+
+namespace pathfarm::farm {
+
+// Bytes per part; with the headers a part stays well under kMaxMessageBytes.
+inline constexpr size_t kChunkPartBytes = 1 << 20;
+
+// `Writer` is any gRPC stream with Write(const ChunkPart&) -> bool.
+template <class Writer>
+bool sendChunk(Writer& writer, const ChunkRef& ref, const std::string& bytes) {
+  size_t offset = 0;
+  do {
+    ChunkPart part;
+    if (offset == 0) *part.mutable_ref() = ref;
+    const size_t n = std::min(kChunkPartBytes, bytes.size() - offset);
+    part.set_data(bytes.data() + offset, n);
+    if (!writer.Write(part)) return false;
+    offset += n;
+  } while (offset < bytes.size());
+  return true;
+}
+
+// Collects one chunk's parts and checks them against the announced reference.
+class ChunkAssembler {
+ public:
+  // Throws ChunkError when the announced size exceeds `maxBytes`.
+  void start(const ChunkRef& ref, size_t maxBytes);
+  // Throws ChunkError when the bytes outgrow the announced size.
+  void append(const std::string& data);
+  bool started() const { return started_; }
+  const ChunkRef& ref() const { return ref_; }
+  // The verified bytes; throws ChunkError for a short chunk or a digest mismatch.
+  std::string finish();
+
+ private:
+  ChunkRef ref_;
+  std::string bytes_;
+  bool started_ = false;
+};
+
+// `Reader` is any gRPC stream with Read(ChunkPart*) -> bool. Throws ChunkError when the
+// bytes do not match the announced reference or exceed `maxBytes`.
+template <class Reader>
+std::string receiveChunk(Reader& reader, ChunkRef& ref, size_t maxBytes) {
+  ChunkAssembler chunk;
+  ChunkPart part;
+  while (reader.Read(&part)) {
+    if (!chunk.started()) chunk.start(part.ref(), maxBytes);
+    chunk.append(part.data());
+  }
+  if (!chunk.started()) throw ChunkError("empty chunk stream");
+  ref = chunk.ref();
+  return chunk.finish();
+}
+
+}  // namespace pathfarm::farm

@@ -1,0 +1,66 @@
+#include "proto/wire/connection.h"
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace pathfarm::farm {
+namespace {
+
+constexpr const char* kTokenHeader = "x-pathfarm-token";
+
+// Compares without an early exit, so timing does not reveal how much of a guess matched
+// (a token's length is no secret worth guarding).
+bool equalInConstantTime(std::string_view a, std::string_view b) {
+  if (a.size() != b.size()) return false;
+  unsigned char difference = 0;
+  for (size_t i = 0; i < a.size(); ++i) difference |= static_cast<unsigned char>(a[i] ^ b[i]);
+  return difference == 0;
+}
+
+std::string readTokenFile(const std::string& file) {
+  std::ifstream in(file);
+  if (!in) throw std::runtime_error(file + ": cannot read the token file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  std::string token = text.str();
+  token.erase(token.find_last_not_of(" \t\r\n") + 1);
+  if (token.empty()) throw std::runtime_error(file + ": the token file is empty");
+  return token;
+}
+
+}  // namespace
+
+std::shared_ptr<grpc::Channel> makeChannel(const std::string& address) {
+  grpc::ChannelArguments arguments;
+  arguments.SetMaxReceiveMessageSize(kMaxMessageBytes);
+  arguments.SetMaxSendMessageSize(kMaxMessageBytes);
+  return grpc::CreateCustomChannel(address, grpc::InsecureChannelCredentials(), arguments);
+}
+
+void configureServer(grpc::ServerBuilder& builder) {
+  builder.SetMaxReceiveMessageSize(kMaxMessageBytes);
+  builder.SetMaxSendMessageSize(kMaxMessageBytes);
+}
+
+std::string loadToken(const std::string& tokenFile) {
+  if (!tokenFile.empty()) return readTokenFile(tokenFile);
+  if (const char* file = std::getenv("PATHFARM_TOKEN_FILE"); file && *file) return readTokenFile(file);
+  if (const char* token = std::getenv("PATHFARM_TOKEN")) return token;
+  return "";
+}
+
+void attachToken(grpc::ClientContext& context, const std::string& token) {
+  if (!token.empty()) context.AddMetadata(kTokenHeader, token);
+}
+
+bool isAuthorized(const grpc::ServerContext& context, const std::string& token) {
+  if (token.empty()) return true;
+  const auto& metadata = context.client_metadata();
+  const auto it = metadata.find(kTokenHeader);
+  if (it == metadata.end()) return false;
+  return equalInConstantTime(std::string_view(it->second.data(), it->second.size()), token);
+}
+
+}  // namespace pathfarm::farm

@@ -1,0 +1,28 @@
+#pragma once
+// Channel and server settings every party shares, and the access token.
+#include <grpcpp/grpcpp.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace pathfarm::farm {
+
+// The largest gRPC message either side accepts; chunk parts are 1 MiB.
+inline constexpr int kMaxMessageBytes = 8 << 20;
+// The largest chunk (a whole frame's EXR) accepted.
+inline constexpr size_t kMaxChunkBytes = size_t{2} << 30;
+
+std::shared_ptr<grpc::Channel> makeChannel(const std::string& address);
+void configureServer(grpc::ServerBuilder& builder);
+
+// The shared token: from `tokenFile` if given, else the file named by PATHFARM_TOKEN_FILE,
+// else the PATHFARM_TOKEN variable; empty when none is configured. Throws
+// std::runtime_error if a named file cannot be read or is empty.
+std::string loadToken(const std::string& tokenFile);
+
+void attachToken(grpc::ClientContext& context, const std::string& token);
+// True when no token is configured or the call carries it.
+bool isAuthorized(const grpc::ServerContext& context, const std::string& token);
+
+}  // namespace pathfarm::farm

@@ -1,0 +1,115 @@
+#include <chrono>
+
+#include "proto/wire/chunk_transfer.h"
+#include "scheduler/service_guard.h"
+
+namespace pathfarm::farm {
+grpc::Status ClientServiceImpl::Submit(grpc::ServerContext* context, const SubmitRequest* request,
+                                       SubmitReply* reply) {
+  return guarded(c_, context, [&] {
+    const auto plan = planShot(request->spec());
+    reply->set_shot_id(c_.state.submit(request->spec(), plan, wallClockSeconds()));
+    c_.signal.notify();
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status ClientServiceImpl::ListShots(grpc::ServerContext* context, const ListShotsRequest*,
+                                          ListShotsReply* reply) {
+  return guarded(c_, context, [&] {
+    for (ShotSummary& s : c_.state.shots(wallClockSeconds())) *reply->add_shots() = std::move(s);
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status ClientServiceImpl::GetShot(grpc::ServerContext* context, const ShotRequest* request, ShotReply* reply) {
+  return guarded(c_, context, [&] {
+    *reply = c_.state.shot(request->shot_id(), wallClockSeconds());
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status ClientServiceImpl::WatchShot(grpc::ServerContext* context, const ShotRequest* request,
+                                          grpc::ServerWriter<ShotSummary>* writer) {
+  return guarded(c_, context, [&] {
+    std::string last;
+    uint64_t seen = c_.signal.generation();
+    for (;;) {
+      const ShotSummary summary = c_.state.summary(request->shot_id(), wallClockSeconds());
+      // Elapsed time changes every call: compare what matters, but still send a beat
+      // now and then so the client's clock keeps moving.
+      ShotSummary comparable = summary;
+      comparable.clear_elapsed_seconds();
+      const std::string key = comparable.SerializeAsString();
+      if (key != last || isFinished(summary.state())) {
+        if (!writer->Write(summary)) return grpc::Status(grpc::StatusCode::CANCELLED, "the watcher went away");
+        last = key;
+      }
+      if (isFinished(summary.state())) return grpc::Status::OK;
+      if (context->IsCancelled()) return grpc::Status(grpc::StatusCode::CANCELLED, "the watcher went away");
+      seen = c_.signal.waitFor(seen, std::chrono::milliseconds(500));
+    }
+  });
+}
+
+grpc::Status ClientServiceImpl::CancelShot(grpc::ServerContext* context, const ShotRequest* request,
+                                           ControlReply* reply) {
+  return guarded(c_, context, [&] {
+    *reply->mutable_summary() = c_.state.cancel(request->shot_id(), wallClockSeconds());
+    c_.signal.notify();
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status ClientServiceImpl::PauseShot(grpc::ServerContext* context, const ShotRequest* request,
+                                          ControlReply* reply) {
+  return guarded(c_, context, [&] {
+    *reply->mutable_summary() = c_.state.pause(request->shot_id(), wallClockSeconds());
+    c_.signal.notify();
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status ClientServiceImpl::ResumeShot(grpc::ServerContext* context, const ShotRequest* request,
+                                           ControlReply* reply) {
+  return guarded(c_, context, [&] {
+    *reply->mutable_summary() = c_.state.resume(request->shot_id(), wallClockSeconds());
+    c_.signal.notify();
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status ClientServiceImpl::FetchOutputs(grpc::ServerContext* context, const ShotRequest* request,
+                                             grpc::ServerWriter<OutputPart>* writer) {
+  return guarded(c_, context, [&] {
+    c_.state.summary(request->shot_id(), wallClockSeconds());  // NOT_FOUND for an unknown shot
+    for (const auto& [frame, ref] : c_.state.outputs(request->shot_id())) {
+      const auto bytes = c_.store.get(ref.sha256());
+      if (!bytes) return grpc::Status(grpc::StatusCode::DATA_LOSS, "frame " + std::to_string(frame) +
+                                                                       ": chunk " + ref.sha256() + " is missing or damaged");
+      // Adapts the output stream to sendChunk's Write(ChunkPart).
+      struct FramePartWriter {
+        grpc::ServerWriter<OutputPart>* writer;
+        int64_t frame;
+        bool Write(const ChunkPart& part) {
+          OutputPart out;
+          out.set_frame(frame);
+          *out.mutable_part() = part;
+          return writer->Write(out);
+        }
+      } frameWriter{writer, frame};
+      if (!sendChunk(frameWriter, ref, *bytes)) return grpc::Status(grpc::StatusCode::CANCELLED, "the reader went away");
+    }
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status ClientServiceImpl::ListWorkers(grpc::ServerContext* context, const ListWorkersRequest*,
+                                            ListWorkersReply* reply) {
+  return guarded(c_, context, [&] {
+    for (WorkerInfo& w : c_.state.workers(wallClockSeconds())) *reply->add_workers() = std::move(w);
+    return grpc::Status::OK;
+  });
+}
+
+}  // namespace pathfarm::farm

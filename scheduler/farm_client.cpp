@@ -1,0 +1,133 @@
+#include "scheduler/farm_client.h"
+
+#include <cstdio>
+
+#include "image/exr_io.h"
+#include "proto/wire/chunk_transfer.h"
+#include "proto/wire/connection.h"
+
+namespace pathfarm::farm {
+namespace {
+
+void check(const grpc::Status& status) {
+  if (!status.ok()) throw FarmError(status.error_code(), status.error_message());
+}
+
+}  // namespace
+
+std::string frameFileName(int64_t frame) {
+  char name[64];
+  std::snprintf(name, sizeof name, "frame_%04lld.exr", static_cast<long long>(frame));
+  return name;
+}
+
+FarmClient::FarmClient(const std::string& address, std::string token)
+    : stub_(ClientService::NewStub(makeChannel(address))), token_(std::move(token)) {}
+
+std::unique_ptr<grpc::ClientContext> FarmClient::context(bool stream) const {
+  auto context = std::make_unique<grpc::ClientContext>();
+  // Streams (watching, fetching) last as long as they need; ordinary calls do not.
+  if (!stream) context->set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(30));
+  attachToken(*context, token_);
+  return context;
+}
+
+int64_t FarmClient::submit(const ShotSpec& spec) {
+  SubmitRequest request;
+  *request.mutable_spec() = spec;
+  SubmitReply reply;
+  check(stub_->Submit(context(false).get(), request, &reply));
+  return reply.shot_id();
+}
+
+std::vector<ShotSummary> FarmClient::shots() {
+  ListShotsReply reply;
+  check(stub_->ListShots(context(false).get(), ListShotsRequest(), &reply));
+  return {reply.shots().begin(), reply.shots().end()};
+}
+
+ShotReply FarmClient::shot(int64_t id) {
+  ShotRequest request;
+  request.set_shot_id(id);
+  ShotReply reply;
+  check(stub_->GetShot(context(false).get(), request, &reply));
+  return reply;
+}
+
+ShotSummary FarmClient::watch(int64_t id, const std::function<void(const ShotSummary&)>& update) {
+  ShotRequest request;
+  request.set_shot_id(id);
+  const auto call = context(true);
+  auto reader = stub_->WatchShot(call.get(), request);
+  ShotSummary summary;
+  while (reader->Read(&summary)) update(summary);
+  check(reader->Finish());
+  return summary;
+}
+
+ShotSummary FarmClient::cancel(int64_t id) {
+  ShotRequest request;
+  request.set_shot_id(id);
+  ControlReply reply;
+  check(stub_->CancelShot(context(false).get(), request, &reply));
+  return reply.summary();
+}
+
+ShotSummary FarmClient::pause(int64_t id) {
+  ShotRequest request;
+  request.set_shot_id(id);
+  ControlReply reply;
+  check(stub_->PauseShot(context(false).get(), request, &reply));
+  return reply.summary();
+}
+
+ShotSummary FarmClient::resume(int64_t id) {
+  ShotRequest request;
+  request.set_shot_id(id);
+  ControlReply reply;
+  check(stub_->ResumeShot(context(false).get(), request, &reply));
+  return reply.summary();
+}
+
+std::vector<std::filesystem::path> FarmClient::fetch(int64_t id, const std::filesystem::path& folder) {
+  ShotRequest request;
+  request.set_shot_id(id);
+  const auto call = context(true);
+  auto reader = stub_->FetchOutputs(call.get(), request);
+  std::filesystem::create_directories(folder);
+  std::vector<std::filesystem::path> files;
+  // Each frame's chunk starts with a part that carries its reference.
+  ChunkAssembler chunk;
+  int64_t frame = 0;
+  const auto writeFrame = [&] {
+    files.push_back(folder / frameFileName(frame));
+    writeFileAtomically(files.back(), chunk.finish());  // verified first
+  };
+  try {
+    OutputPart part;
+    while (reader->Read(&part)) {
+      if (part.part().has_ref()) {
+        if (chunk.started()) writeFrame();
+        chunk.start(part.part().ref(), kMaxChunkBytes);
+        frame = part.frame();
+      }
+      if (!chunk.started()) throw ChunkError("the output stream began without a chunk reference");
+      chunk.append(part.part().data());
+    }
+    if (chunk.started()) writeFrame();
+  } catch (const ChunkError& e) {
+    call->TryCancel();
+    reader->Finish();
+    throw FarmError(grpc::StatusCode::DATA_LOSS, e.what());
+  }
+  check(reader->Finish());
+  return files;
+}
+
+std::vector<WorkerInfo> FarmClient::workers() {
+  ListWorkersReply reply;
+  check(stub_->ListWorkers(context(false).get(), ListWorkersRequest(), &reply));
+  return {reply.workers().begin(), reply.workers().end()};
+}
+
+}  // namespace pathfarm::farm

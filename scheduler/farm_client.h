@@ -1,0 +1,49 @@
+#pragma once
+// The client side of ClientService for the CLI and tools: submit, follow, control and
+// fetch shots. Every call carries the access token; a refused or failed call throws
+// FarmError with the scheduler's message.
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "pathfarm/client_service.grpc.pb.h"
+
+namespace pathfarm::farm {
+
+class FarmError : public std::runtime_error {
+ public:
+  FarmError(grpc::StatusCode code, const std::string& message) : std::runtime_error(message), code_(code) {}
+  grpc::StatusCode code() const { return code_; }
+
+ private:
+  grpc::StatusCode code_;
+};
+
+class FarmClient {
+ public:
+  FarmClient(const std::string& address, std::string token);
+
+  int64_t submit(const ShotSpec& spec);
+  std::vector<ShotSummary> shots();
+  ShotReply shot(int64_t id);
+  // Calls `update` with each summary until the shot ends; returns the last one.
+  ShotSummary watch(int64_t id, const std::function<void(const ShotSummary&)>& update);
+  ShotSummary cancel(int64_t id);
+  ShotSummary pause(int64_t id);
+  ShotSummary resume(int64_t id);
+  // Writes every finished frame as DIR/frame_NNNN.exr (verified, atomically); returns the files.
+  std::vector<std::filesystem::path> fetch(int64_t id, const std::filesystem::path& folder);
+  std::vector<WorkerInfo> workers();
+
+ private:
+  std::unique_ptr<grpc::ClientContext> context(bool stream) const;
+  std::unique_ptr<ClientService::Stub> stub_;
+  std::string token_;
+};
+
+std::string frameFileName(int64_t frame);
+
+}  // namespace pathfarm::farm

@@ -1,0 +1,585 @@
+#include "scheduler/farm_state.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "scheduler/schema.h"
+
+namespace pathfarm::farm {
+
+namespace {
+
+constexpr int kRunning = static_cast<int>(AttemptState::Running);
+
+int64_t asInt(TaskState s) { return static_cast<int64_t>(s); }
+int64_t asInt(AttemptState s) { return static_cast<int64_t>(s); }
+
+bool isActive(ShotState state) { return state == SHOT_QUEUED || state == SHOT_RUNNING; }
+
+std::string describeTask(int64_t taskId, TaskKind kind, const TaskParams& params) {
+  std::string text = "task " + std::to_string(taskId) + " (" + TaskKind_Name(kind);
+  if (kind != TASK_NOOP) text += ", frame " + std::to_string(params.frame());
+  if (params.has_window()) {
+    const PixelWindow& w = params.window();
+    text += ", pixels [" + std::to_string(w.x0()) + "," + std::to_string(w.x1()) + ")x[" + std::to_string(w.y0()) +
+            "," + std::to_string(w.y1()) + ")";
+  }
+  return text + ")";
+}
+
+}  // namespace
+
+struct FarmState::AttemptRow {
+  int64_t id, taskId, shotId, workerId;
+  TaskKind kind;
+  int failures, maxAttempts;
+  TaskParams params;
+};
+
+FarmState::FarmState(const std::string& databaseFile, FarmSettings settings, double now)
+    : db_(databaseFile), settings_(settings) {
+  migrate(db_);
+  Transaction transaction(db_);
+  db_.query("UPDATE attempts SET expires_at = MAX(expires_at, ?1), progress_at = MAX(progress_at, ?2) WHERE state = ?3")
+      .bind(1, now + settings_.leaseSeconds)
+      .bind(2, now)
+      .bind(3, int64_t{kRunning})
+      .run();
+  transaction.commit();
+}
+
+int64_t FarmState::submit(const ShotSpec& spec, const std::vector<PlannedTask>& plan, double now) {
+  const std::lock_guard lock(mutex_);
+  Transaction transaction(db_);
+  db_.query("INSERT INTO shots (name, spec, state, priority, submitted_at) VALUES (?1, ?2, ?3, ?4, ?5)")
+      .bind(1, spec.name())
+      .bindBlob(2, spec.SerializeAsString())
+      .bind(3, int64_t{SHOT_QUEUED})
+      .bind(4, int64_t{spec.priority()})
+      .bind(5, now)
+      .run();
+  const int64_t shotId = db_.lastInsertId();
+  const int64_t maxAttempts = spec.max_attempts() > 0 ? spec.max_attempts() : settings_.defaultMaxAttempts;
+  std::vector<int64_t> ids;
+  ids.reserve(plan.size());
+  for (const PlannedTask& task : plan) {
+    const bool ready = task.dependencies.empty();
+    db_.query("INSERT INTO tasks (shot_id, kind, params, state, pending_deps, max_attempts) VALUES (?1, ?2, ?3, ?4, ?5, ?6)")
+        .bind(1, shotId)
+        .bind(2, int64_t{task.kind})
+        .bindBlob(3, task.params.SerializeAsString())
+        .bind(4, asInt(ready ? TaskState::Ready : TaskState::Waiting))
+        .bind(5, static_cast<int64_t>(task.dependencies.size()))
+        .bind(6, maxAttempts)
+        .run();
+    ids.push_back(db_.lastInsertId());
+    for (size_t dependency : task.dependencies) {
+      db_.query("INSERT INTO task_deps (task_id, depends_on) VALUES (?1, ?2)")
+          .bind(1, ids.back())
+          .bind(2, ids.at(dependency))
+          .run();
+    }
+  }
+  addEvent(shotId, "submitted: " + std::to_string(plan.size()) + " tasks", now);
+  transaction.commit();
+  return shotId;
+}
+
+int64_t FarmState::registerWorker(const std::string& name, int slots, double now) {
+  const std::lock_guard lock(mutex_);
+  Transaction transaction(db_);
+  db_.query("INSERT INTO workers (name, slots, registered_at, last_seen) VALUES (?1, ?2, ?3, ?3)")
+      .bind(1, name)
+      .bind(2, int64_t{slots})
+      .bind(3, now)
+      .run();
+  const int64_t id = db_.lastInsertId();
+  transaction.commit();
+  return id;
+}
+
+bool FarmState::workerExists(int64_t workerId) {
+  const std::lock_guard lock(mutex_);
+  Statement& q = db_.query("SELECT 1 FROM workers WHERE id = ?1").bind(1, workerId);
+  const bool found = q.step();
+  q.reset();
+  return found;
+}
+
+std::optional<int64_t> FarmState::nextTask(int64_t workerId, double now) {
+  // Rule order: active shots only; not blocklisted for this worker; priority, then age.
+  std::vector<int64_t> shots;
+  Statement& shotQuery = db_.query(
+      "SELECT id FROM shots WHERE state IN (?1, ?2) AND id NOT IN "
+      "(SELECT shot_id FROM worker_failures WHERE worker_id = ?3 AND blocklisted = 1) "
+      "ORDER BY priority DESC, id ASC");
+  shotQuery.bind(1, int64_t{SHOT_QUEUED}).bind(2, int64_t{SHOT_RUNNING}).bind(3, workerId);
+  while (shotQuery.step()) shots.push_back(shotQuery.integer(0));
+  // Then: a ready task, not in retry backoff, in the order the planner made them.
+  for (const int64_t shot : shots) {
+    Statement& taskQuery = db_.query(
+        "SELECT id FROM tasks WHERE shot_id = ?1 AND state = ?2 AND not_before <= ?3 ORDER BY id LIMIT 1");
+    taskQuery.bind(1, shot).bind(2, asInt(TaskState::Ready)).bind(3, now);
+    if (taskQuery.step()) {
+      const int64_t task = taskQuery.integer(0);
+      taskQuery.reset();
+      return task;
+    }
+  }
+  return std::nullopt;
+}
+
+std::optional<Lease> FarmState::lease(int64_t workerId, double now) {
+  const std::lock_guard lock(mutex_);
+  Transaction transaction(db_);
+  const auto taskId = nextTask(workerId, now);
+  if (!taskId) return std::nullopt;
+
+  db_.query("INSERT INTO attempts (task_id, worker_id, state, leased_at, expires_at, progress_at) "
+            "VALUES (?1, ?2, ?3, ?4, ?5, ?4)")
+      .bind(1, *taskId)
+      .bind(2, workerId)
+      .bind(3, int64_t{kRunning})
+      .bind(4, now)
+      .bind(5, now + settings_.leaseSeconds)
+      .run();
+  const int64_t attemptId = db_.lastInsertId();
+  db_.query("UPDATE tasks SET state = ?1, attempt_id = ?2 WHERE id = ?3")
+      .bind(1, asInt(TaskState::Leased))
+      .bind(2, attemptId)
+      .bind(3, *taskId)
+      .run();
+  db_.query("UPDATE workers SET last_seen = ?1 WHERE id = ?2").bind(1, now).bind(2, workerId).run();
+
+  Lease lease;
+  lease.set_attempt_id(attemptId);
+  lease.set_task_id(*taskId);
+  lease.set_expires_in_seconds(settings_.leaseSeconds);
+  {
+    Statement& q = db_.query(
+        "SELECT t.shot_id, t.kind, t.params, s.spec, s.state FROM tasks t JOIN shots s ON s.id = t.shot_id "
+        "WHERE t.id = ?1");
+    q.bind(1, *taskId);
+    q.step();
+    lease.set_shot_id(q.integer(0));
+    lease.set_kind(static_cast<TaskKind>(q.integer(1)));
+    lease.mutable_params()->ParseFromString(q.blob(2));
+    lease.mutable_spec()->ParseFromString(q.blob(3));
+    const auto shotState = static_cast<ShotState>(q.integer(4));
+    q.reset();
+    if (shotState == SHOT_QUEUED) {
+      db_.query("UPDATE shots SET state = ?1, started_at = ?2 WHERE id = ?3")
+          .bind(1, int64_t{SHOT_RUNNING})
+          .bind(2, now)
+          .bind(3, lease.shot_id())
+          .run();
+      addEvent(lease.shot_id(), "started", now);
+    }
+  }
+  Statement& inputs = db_.query(
+      "SELECT t.output_sha, c.size, t.params FROM task_deps d JOIN tasks t ON t.id = d.depends_on "
+      "JOIN chunks c ON c.sha256 = t.output_sha WHERE d.task_id = ?1 ORDER BY t.id");
+  inputs.bind(1, *taskId);
+  while (inputs.step()) {
+    ChunkRef* ref = lease.add_inputs();
+    ref->set_sha256(inputs.text(0));
+    ref->set_size(inputs.integer(1));
+    lease.add_input_params()->ParseFromString(inputs.blob(2));
+  }
+  transaction.commit();
+  return lease;
+}
+
+std::optional<FarmState::AttemptRow> FarmState::currentAttempt(int64_t attemptId) {
+  Statement& q = db_.query(
+      "SELECT a.id, a.task_id, t.shot_id, a.worker_id, t.kind, t.failures, t.max_attempts, t.params "
+      "FROM attempts a JOIN tasks t ON t.id = a.task_id "
+      "WHERE a.id = ?1 AND a.state = ?2 AND t.attempt_id = a.id AND t.state = ?3");
+  q.bind(1, attemptId).bind(2, int64_t{kRunning}).bind(3, asInt(TaskState::Leased));
+  if (!q.step()) return std::nullopt;
+  AttemptRow row{q.integer(0), q.integer(1), q.integer(2), q.integer(3), static_cast<TaskKind>(q.integer(4)),
+                 static_cast<int>(q.integer(5)), static_cast<int>(q.integer(6)), {}};
+  row.params.ParseFromString(q.blob(7));
+  q.reset();
+  return row;
+}
+
+HeartbeatReply FarmState::heartbeat(int64_t attemptId, double progress, double now) {
+  const std::lock_guard lock(mutex_);
+  Transaction transaction(db_);
+  HeartbeatReply reply;
+  const auto attempt = currentAttempt(attemptId);
+  if (!attempt) {
+    reply.set_keep_going(false);
+    return reply;
+  }
+  // SQLite evaluates every SET expression on the old row: progress_at moves only when
+  // the progress does.
+  db_.query("UPDATE attempts SET expires_at = ?1, progress_at = CASE WHEN ?2 > progress THEN ?3 ELSE progress_at END, "
+            "progress = MAX(progress, ?2) WHERE id = ?4")
+      .bind(1, now + settings_.leaseSeconds)
+      .bind(2, std::clamp(progress, 0.0, 1.0))
+      .bind(3, now)
+      .bind(4, attemptId)
+      .run();
+  db_.query("UPDATE workers SET last_seen = ?1 WHERE id = ?2").bind(1, now).bind(2, attempt->workerId).run();
+  transaction.commit();
+  reply.set_keep_going(true);
+  reply.set_expires_in_seconds(settings_.leaseSeconds);
+  return reply;
+}
+
+void FarmState::endAttempt(const AttemptRow& attempt, int state, const std::string& error, double now) {
+  db_.query("UPDATE attempts SET state = ?1, finished_at = ?2, error = ?3 WHERE id = ?4")
+      .bind(1, int64_t{state})
+      .bind(2, now)
+      .bind(3, error)
+      .bind(4, attempt.id)
+      .run();
+}
+
+ReportReply FarmState::complete(int64_t attemptId, const ChunkRef& output, double now) {
+  const std::lock_guard lock(mutex_);
+  Transaction transaction(db_);
+  ReportReply reply;
+  const auto attempt = currentAttempt(attemptId);
+  if (!attempt) {
+    reply.set_reason("the lease is no longer current (expired, revoked or superseded)");
+    return reply;
+  }
+  const bool hasOutput = attempt->kind != TASK_NOOP;
+  if (hasOutput) {
+    Statement& chunk = db_.query("SELECT 1 FROM chunks WHERE sha256 = ?1").bind(1, output.sha256());
+    const bool stored = chunk.step();
+    chunk.reset();
+    if (!stored) {
+      reply.set_reason("the output chunk " + output.sha256() + " was not stored first");
+      return reply;
+    }
+  }
+  endAttempt(*attempt, static_cast<int>(AttemptState::Done), "", now);
+  Statement& done = db_.query("UPDATE tasks SET state = ?1, attempt_id = NULL, output_sha = ?2 WHERE id = ?3");
+  done.bind(1, asInt(TaskState::Done));
+  if (hasOutput) {
+    done.bind(2, output.sha256());
+  } else {
+    done.bindNull(2);
+  }
+  done.bind(3, attempt->taskId).run();
+  db_.query("UPDATE tasks SET pending_deps = pending_deps - 1, state = CASE WHEN pending_deps = 1 AND state = ?1 "
+            "THEN ?2 ELSE state END WHERE id IN (SELECT task_id FROM task_deps WHERE depends_on = ?3)")
+      .bind(1, asInt(TaskState::Waiting))
+      .bind(2, asInt(TaskState::Ready))
+      .bind(3, attempt->taskId)
+      .run();
+  finishShotIfComplete(attempt->shotId, now);
+  transaction.commit();
+  reply.set_accepted(true);
+  return reply;
+}
+
+ReportReply FarmState::fail(int64_t attemptId, const std::string& reason, double now) {
+  const std::lock_guard lock(mutex_);
+  Transaction transaction(db_);
+  ReportReply reply;
+  const auto attempt = currentAttempt(attemptId);
+  if (!attempt) {
+    reply.set_reason("the lease is no longer current (expired, revoked or superseded)");
+    return reply;
+  }
+  endAttempt(*attempt, static_cast<int>(AttemptState::Failed), reason, now);
+  retryOrFail(*attempt, reason, true, now);
+  transaction.commit();
+  reply.set_accepted(true);
+  return reply;
+}
+
+void FarmState::retryOrFail(const AttemptRow& attempt, const std::string& reason, bool blameWorker, double now) {
+  const int failures = attempt.failures + 1;
+  const std::string task = describeTask(attempt.taskId, attempt.kind, attempt.params);
+  addEvent(attempt.shotId, task + " attempt " + std::to_string(failures) + " failed on worker " +
+                               std::to_string(attempt.workerId) + ": " + reason,
+           now);
+  if (blameWorker) {
+    db_.query("INSERT INTO worker_failures (shot_id, worker_id, failures) VALUES (?1, ?2, 1) "
+              "ON CONFLICT (shot_id, worker_id) DO UPDATE SET failures = failures + 1")
+        .bind(1, attempt.shotId)
+        .bind(2, attempt.workerId)
+        .run();
+    db_.query("UPDATE worker_failures SET blocklisted = 1 WHERE shot_id = ?1 AND worker_id = ?2 AND failures >= ?3 "
+              "AND blocklisted = 0")
+        .bind(1, attempt.shotId)
+        .bind(2, attempt.workerId)
+        .bind(3, int64_t{settings_.blocklistAfter})
+        .run();
+    if (db_.changes() > 0)
+      addEvent(attempt.shotId, "worker " + std::to_string(attempt.workerId) + " is blocklisted for this shot", now);
+  }
+  if (failures >= attempt.maxAttempts) {
+    db_.query("UPDATE tasks SET state = ?1, failures = ?2, attempt_id = NULL WHERE id = ?3")
+        .bind(1, asInt(TaskState::Failed))
+        .bind(2, int64_t{failures})
+        .bind(3, attempt.taskId)
+        .run();
+    endShot(attempt.shotId, SHOT_FAILED,
+            task + " failed " + std::to_string(failures) + " times; last: " + reason, now);
+    return;
+  }
+  const double backoff =
+      std::min(settings_.maxBackoffSeconds, settings_.retryBackoffSeconds * std::pow(2.0, failures - 1));
+  db_.query("UPDATE tasks SET state = ?1, failures = ?2, attempt_id = NULL, not_before = ?3 WHERE id = ?4")
+      .bind(1, asInt(TaskState::Ready))
+      .bind(2, int64_t{failures})
+      .bind(3, now + backoff)
+      .bind(4, attempt.taskId)
+      .run();
+}
+
+int FarmState::expireLeases(double now) {
+  const std::lock_guard lock(mutex_);
+  Transaction transaction(db_);
+  std::vector<std::pair<int64_t, bool>> ended;  // attempt, hung (rather than expired)
+  Statement& q = db_.query(
+      "SELECT id, expires_at < ?1 FROM attempts WHERE state = ?2 AND (expires_at < ?1 OR progress_at < ?3)");
+  q.bind(1, now).bind(2, int64_t{kRunning}).bind(3, now - settings_.hungSeconds);
+  while (q.step()) ended.emplace_back(q.integer(0), q.integer(1) == 0);
+  int count = 0;
+  for (const auto& [attemptId, hung] : ended) {
+    const auto attempt = currentAttempt(attemptId);
+    if (!attempt) continue;
+    const std::string reason = hung ? "no progress for " + std::to_string(static_cast<int>(settings_.hungSeconds)) +
+                                          " s: the task is hung and its lease was revoked"
+                                    : "the lease expired: the worker stopped renewing it";
+    endAttempt(*attempt, static_cast<int>(hung ? AttemptState::Revoked : AttemptState::Expired), reason, now);
+    retryOrFail(*attempt, reason, false, now);
+    ++count;
+  }
+  transaction.commit();
+  return count;
+}
+
+void FarmState::finishShotIfComplete(int64_t shotId, double now) {
+  Statement& q = db_.query("SELECT COUNT(*) FROM tasks WHERE shot_id = ?1 AND state != ?2");
+  q.bind(1, shotId).bind(2, asInt(TaskState::Done));
+  q.step();
+  const int64_t remaining = q.integer(0);
+  q.reset();
+  if (remaining == 0) endShot(shotId, SHOT_DONE, "", now);
+}
+
+void FarmState::endShot(int64_t shotId, ShotState state, const std::string& failure, double now) {
+  db_.query("UPDATE shots SET state = ?1, finished_at = ?2, failure = ?3 WHERE id = ?4")
+      .bind(1, int64_t{state})
+      .bind(2, now)
+      .bind(3, failure)
+      .bind(4, shotId)
+      .run();
+  // Leases still out for this shot are revoked: their heartbeats are told to stop.
+  db_.query("UPDATE attempts SET state = ?1, finished_at = ?2, error = 'the shot ended' "
+            "WHERE state = ?3 AND task_id IN (SELECT id FROM tasks WHERE shot_id = ?4)")
+      .bind(1, asInt(AttemptState::Revoked))
+      .bind(2, now)
+      .bind(3, int64_t{kRunning})
+      .bind(4, shotId)
+      .run();
+  db_.query("UPDATE tasks SET state = ?1, attempt_id = NULL WHERE shot_id = ?2 AND state = ?3")
+      .bind(1, asInt(TaskState::Ready))
+      .bind(2, shotId)
+      .bind(3, asInt(TaskState::Leased))
+      .run();
+  addEvent(shotId, std::string(ShotState_Name(state)) + (failure.empty() ? "" : ": " + failure), now);
+}
+
+void FarmState::addEvent(int64_t shotId, const std::string& message, double now) {
+  db_.query("INSERT INTO events (shot_id, time, message) VALUES (?1, ?2, ?3)")
+      .bind(1, shotId)
+      .bind(2, now)
+      .bind(3, message)
+      .run();
+}
+
+void FarmState::recordChunk(const ChunkRef& chunk, double now) {
+  const std::lock_guard lock(mutex_);
+  Transaction transaction(db_);
+  db_.query("INSERT OR IGNORE INTO chunks (sha256, size, stored_at) VALUES (?1, ?2, ?3)")
+      .bind(1, chunk.sha256())
+      .bind(2, chunk.size())
+      .bind(3, now)
+      .run();
+  transaction.commit();
+}
+
+bool FarmState::hasChunk(const std::string& sha256) {
+  const std::lock_guard lock(mutex_);
+  Statement& q = db_.query("SELECT 1 FROM chunks WHERE sha256 = ?1").bind(1, sha256);
+  const bool found = q.step();
+  q.reset();
+  return found;
+}
+
+ShotSummary FarmState::summaryLocked(int64_t shotId, double now) {
+  ShotSummary summary;
+  Statement& shot = db_.query(
+      "SELECT name, state, priority, submitted_at, finished_at, failure FROM shots WHERE id = ?1");
+  shot.bind(1, shotId);
+  if (!shot.step()) throw std::out_of_range("no shot " + std::to_string(shotId));
+  summary.set_id(shotId);
+  summary.set_name(shot.text(0));
+  summary.set_state(static_cast<ShotState>(shot.integer(1)));
+  summary.set_priority(static_cast<int32_t>(shot.integer(2)));
+  const double end = shot.isNull(4) ? now : shot.real(4);
+  summary.set_elapsed_seconds(end - shot.real(3));
+  summary.set_failure(shot.text(5));
+  shot.reset();
+
+  Statement& tasks = db_.query(
+      "SELECT COUNT(*), TOTAL(state = ?2), TOTAL(state = ?3), TOTAL(state = ?4), TOTAL(kind = ?5), "
+      "TOTAL(kind = ?5 AND state = ?2) FROM tasks WHERE shot_id = ?1");
+  tasks.bind(1, shotId)
+      .bind(2, asInt(TaskState::Done))
+      .bind(3, asInt(TaskState::Leased))
+      .bind(4, asInt(TaskState::Failed))
+      .bind(5, int64_t{TASK_ASSEMBLE_FRAME});
+  tasks.step();
+  summary.set_tasks_total(tasks.integer(0));
+  summary.set_tasks_done(static_cast<int64_t>(tasks.real(1)));
+  summary.set_tasks_running(static_cast<int64_t>(tasks.real(2)));
+  summary.set_tasks_failed(static_cast<int64_t>(tasks.real(3)));
+  summary.set_frames_total(static_cast<int64_t>(tasks.real(4)));
+  summary.set_frames_done(static_cast<int64_t>(tasks.real(5)));
+  tasks.reset();
+
+  Statement& attempts = db_.query(
+      "SELECT COUNT(*), COUNT(DISTINCT CASE WHEN a.state = ?2 THEN a.worker_id END) "
+      "FROM attempts a JOIN tasks t ON t.id = a.task_id WHERE t.shot_id = ?1");
+  attempts.bind(1, shotId).bind(2, int64_t{kRunning});
+  attempts.step();
+  summary.set_attempts(attempts.integer(0));
+  summary.set_workers_busy(static_cast<int32_t>(attempts.integer(1)));
+  attempts.reset();
+  return summary;
+}
+
+ShotSummary FarmState::summary(int64_t shotId, double now) {
+  const std::lock_guard lock(mutex_);
+  Transaction transaction(db_);
+  ShotSummary s = summaryLocked(shotId, now);
+  transaction.commit();
+  return s;
+}
+
+ShotReply FarmState::shot(int64_t shotId, double now) {
+  const std::lock_guard lock(mutex_);
+  Transaction transaction(db_);
+  ShotReply reply;
+  *reply.mutable_summary() = summaryLocked(shotId, now);
+  Statement& spec = db_.query("SELECT spec FROM shots WHERE id = ?1").bind(1, shotId);
+  spec.step();
+  reply.mutable_spec()->ParseFromString(spec.blob(0));
+  spec.reset();
+  Statement& events = db_.query("SELECT time, message FROM events WHERE shot_id = ?1 ORDER BY id");
+  events.bind(1, shotId);
+  while (events.step()) {
+    ShotEvent* event = reply.add_events();
+    event->set_shot_id(shotId);
+    event->set_time(events.real(0));
+    event->set_message(events.text(1));
+  }
+  transaction.commit();
+  return reply;
+}
+
+std::vector<ShotSummary> FarmState::shots(double now) {
+  const std::lock_guard lock(mutex_);
+  Transaction transaction(db_);
+  std::vector<int64_t> ids;
+  Statement& q = db_.query("SELECT id FROM shots ORDER BY id");
+  while (q.step()) ids.push_back(q.integer(0));
+  std::vector<ShotSummary> out;
+  for (const int64_t id : ids) out.push_back(summaryLocked(id, now));
+  transaction.commit();
+  return out;
+}
+
+void FarmState::setShotState(int64_t shotId, ShotState state, double now) {
+  db_.query("UPDATE shots SET state = ?1 WHERE id = ?2").bind(1, int64_t{state}).bind(2, shotId).run();
+  addEvent(shotId, ShotState_Name(state), now);
+}
+
+ShotSummary FarmState::cancel(int64_t shotId, double now) {
+  const std::lock_guard lock(mutex_);
+  Transaction transaction(db_);
+  const ShotSummary before = summaryLocked(shotId, now);
+  if (!isFinished(before.state())) endShot(shotId, SHOT_CANCELLED, "", now);
+  ShotSummary after = summaryLocked(shotId, now);
+  transaction.commit();
+  return after;
+}
+
+ShotSummary FarmState::pause(int64_t shotId, double now) {
+  const std::lock_guard lock(mutex_);
+  Transaction transaction(db_);
+  if (isActive(summaryLocked(shotId, now).state())) setShotState(shotId, SHOT_PAUSED, now);
+  ShotSummary after = summaryLocked(shotId, now);
+  transaction.commit();
+  return after;
+}
+
+ShotSummary FarmState::resume(int64_t shotId, double now) {
+  const std::lock_guard lock(mutex_);
+  Transaction transaction(db_);
+  if (summaryLocked(shotId, now).state() == SHOT_PAUSED) {
+    Statement& q = db_.query("SELECT started_at IS NOT NULL FROM shots WHERE id = ?1").bind(1, shotId);
+    q.step();
+    const bool started = q.integer(0) != 0;
+    q.reset();
+    setShotState(shotId, started ? SHOT_RUNNING : SHOT_QUEUED, now);
+  }
+  ShotSummary after = summaryLocked(shotId, now);
+  transaction.commit();
+  return after;
+}
+
+std::vector<std::pair<int64_t, ChunkRef>> FarmState::outputs(int64_t shotId) {
+  const std::lock_guard lock(mutex_);
+  Transaction transaction(db_);
+  std::vector<std::pair<int64_t, ChunkRef>> out;
+  Statement& q = db_.query(
+      "SELECT t.params, c.sha256, c.size FROM tasks t JOIN chunks c ON c.sha256 = t.output_sha "
+      "WHERE t.shot_id = ?1 AND t.kind = ?2 AND t.state = ?3 ORDER BY t.id");
+  q.bind(1, shotId).bind(2, int64_t{TASK_ASSEMBLE_FRAME}).bind(3, asInt(TaskState::Done));
+  while (q.step()) {
+    TaskParams params;
+    params.ParseFromString(q.blob(0));
+    ChunkRef ref;
+    ref.set_sha256(q.text(1));
+    ref.set_size(q.integer(2));
+    out.emplace_back(params.frame(), ref);
+  }
+  transaction.commit();
+  return out;
+}
+
+std::vector<WorkerInfo> FarmState::workers(double now) {
+  const std::lock_guard lock(mutex_);
+  Transaction transaction(db_);
+  std::vector<WorkerInfo> out;
+  Statement& q = db_.query(
+      "SELECT w.id, w.name, w.slots, w.last_seen, "
+      "(SELECT COUNT(*) FROM attempts a WHERE a.worker_id = w.id AND a.state = ?1) FROM workers w ORDER BY w.id");
+  q.bind(1, int64_t{kRunning});
+  while (q.step()) {
+    WorkerInfo info;
+    info.set_id(q.integer(0));
+    info.set_name(q.text(1));
+    info.set_slots(static_cast<int32_t>(q.integer(2)));
+    info.set_seconds_since_seen(now - q.real(3));
+    info.set_busy(static_cast<int32_t>(q.integer(4)));
+    out.push_back(std::move(info));
+  }
+  transaction.commit();
+  return out;
+}
+
+}  // namespace pathfarm::farm

@@ -1,0 +1,87 @@
+#pragma once
+// Everything the farm knows, in SQLite, and every change to it as one transaction:
+// shots and their task graphs, leases and attempts, workers, chunks and events. The
+// rules for which task a worker gets next live in one place (lease()), and the timeouts
+// in one checker (expireLeases()). Times are wall-clock seconds since the epoch, passed
+// in by the caller so that tests control them.
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pathfarm/client_service.pb.h"
+#include "pathfarm/worker_service.pb.h"
+#include "scheduler/planner.h"
+#include "scheduler/sqlite_db.h"
+
+namespace pathfarm::farm {
+
+struct FarmSettings {
+  double leaseSeconds = 30;        // a lease lives this long without a heartbeat
+  double hungSeconds = 600;        // a task whose progress stalls this long is revoked
+  double retryBackoffSeconds = 1;  // first retry delay; doubles per failure, capped
+  double maxBackoffSeconds = 60;
+  int blocklistAfter = 3;          // a worker failing this many tasks of a shot is blocklisted for it
+  int defaultMaxAttempts = 3;
+};
+
+// Done, failed or cancelled: nothing more will run for the shot.
+inline bool isFinished(ShotState state) {
+  return state == SHOT_DONE || state == SHOT_FAILED || state == SHOT_CANCELLED;
+}
+
+class FarmState {
+ public:
+  // Opens (and migrates) the database. Leases still running from a previous scheduler
+  // get one more lease period, so their workers can reconnect and deliver.
+  FarmState(const std::string& databaseFile, FarmSettings settings, double now);
+
+  int64_t submit(const ShotSpec& spec, const std::vector<PlannedTask>& plan, double now);
+  int64_t registerWorker(const std::string& name, int slots, double now);
+  bool workerExists(int64_t workerId);
+
+  // The next task for this worker, or nothing: ready tasks of running or queued shots
+  // the worker is not blocklisted for, by shot priority (high first), then shot age,
+  // then task order; tasks in retry backoff wait.
+  std::optional<Lease> lease(int64_t workerId, double now);
+  HeartbeatReply heartbeat(int64_t attemptId, double progress, double now);
+  ReportReply complete(int64_t attemptId, const ChunkRef& output, double now);
+  ReportReply fail(int64_t attemptId, const std::string& reason, double now);
+  // Expired leases and hung tasks go back to the queue (or fail their shot when out of
+  // attempts). Returns how many leases ended.
+  int expireLeases(double now);
+
+  void recordChunk(const ChunkRef& chunk, double now);
+  bool hasChunk(const std::string& sha256);
+
+  // Throw std::out_of_range for an unknown shot.
+  ShotSummary summary(int64_t shotId, double now);
+  ShotReply shot(int64_t shotId, double now);
+  std::vector<ShotSummary> shots(double now);
+  ShotSummary cancel(int64_t shotId, double now);
+  ShotSummary pause(int64_t shotId, double now);
+  ShotSummary resume(int64_t shotId, double now);
+  // The frames a shot has produced: (frame, chunk) in frame order.
+  std::vector<std::pair<int64_t, ChunkRef>> outputs(int64_t shotId);
+  std::vector<WorkerInfo> workers(double now);
+
+  const FarmSettings& settings() const { return settings_; }
+
+ private:
+  struct AttemptRow;
+  std::optional<AttemptRow> currentAttempt(int64_t attemptId);
+  void endAttempt(const AttemptRow& attempt, int state, const std::string& error, double now);
+  void retryOrFail(const AttemptRow& attempt, const std::string& reason, bool blameWorker, double now);
+  void finishShotIfComplete(int64_t shotId, double now);
+  void endShot(int64_t shotId, ShotState state, const std::string& failure, double now);
+  void setShotState(int64_t shotId, ShotState state, double now);
+  void addEvent(int64_t shotId, const std::string& message, double now);
+  ShotSummary summaryLocked(int64_t shotId, double now);
+  std::optional<int64_t> nextTask(int64_t workerId, double now);
+
+  std::mutex mutex_;  // one writer: every public method is one transaction under it
+  Database db_;
+  FarmSettings settings_;
+};
+
+}  // namespace pathfarm::farm

@@ -1,0 +1,61 @@
+#include "scheduler/local_farm.h"
+
+#include <signal.h>
+#include <spdlog/spdlog.h>
+
+#include <fstream>
+#include <stdexcept>
+#include <thread>
+
+namespace pathfarm::farm {
+
+std::string randomToken() {
+  std::ifstream random("/dev/urandom", std::ios::binary);
+  unsigned char bytes[16];
+  if (!random.read(reinterpret_cast<char*>(bytes), sizeof bytes)) throw std::runtime_error("cannot read /dev/urandom");
+  static const char* hex = "0123456789abcdef";
+  std::string token;
+  for (unsigned char b : bytes) {
+    token.push_back(hex[b >> 4]);
+    token.push_back(hex[b & 15]);
+  }
+  return token;
+}
+
+LocalFarm::LocalFarm(LocalFarmOptions options) : options_(std::move(options)), token_(randomToken()) {
+  std::filesystem::create_directories(options_.folder / "logs");
+  SchedulerOptions scheduler;
+  scheduler.listen = "127.0.0.1:0";
+  scheduler.database = options_.folder / "farm.db";
+  scheduler.store = options_.folder / "chunks";
+  scheduler.token = token_;
+  scheduler.farm = options_.farm;
+  scheduler_ = std::make_unique<SchedulerServer>(scheduler);
+  address_ = scheduler_->address();
+
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int threads = options_.threadsPerWorker > 0 ? options_.threadsPerWorker : std::max(1, cores / options_.workers);
+  for (int i = 0; i < options_.workers; ++i) {
+    const std::string name = "local-" + std::to_string(i);
+    workers_.emplace_back(
+        std::vector<std::string>{options_.executable, "worker", "--scheduler", address_, "--threads",
+                                 std::to_string(threads), "--name", name, "--cache",
+                                 (options_.folder / "cache" / name).string()},
+        (options_.folder / "logs" / (name + ".log")).string(), std::vector<std::string>{"PATHFARM_TOKEN=" + token_});
+  }
+  spdlog::info("local farm: scheduler on {}, {} workers with {} threads each (logs in {})", address_,
+               options_.workers, threads, (options_.folder / "logs").string());
+}
+
+LocalFarm::~LocalFarm() { stop(); }
+
+FarmClient LocalFarm::client() const { return FarmClient(address_, token_); }
+
+void LocalFarm::stop() {
+  for (ChildProcess& worker : workers_) worker.signal(SIGTERM);
+  for (ChildProcess& worker : workers_) worker.stop(std::chrono::seconds(30));
+  workers_.clear();
+  if (scheduler_) scheduler_->shutdown();
+}
+
+}  // namespace pathfarm::farm

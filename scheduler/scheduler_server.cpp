@@ -1,0 +1,72 @@
+#include "scheduler/scheduler_server.h"
+
+#include <algorithm>
+
+#include <grpcpp/grpcpp.h>
+#include <spdlog/spdlog.h>
+
+#include "proto/wire/connection.h"
+#include "scheduler/scheduler_services.h"
+
+namespace pathfarm::farm {
+
+struct SchedulerServer::Services {
+  FarmState state;
+  ChunkStore store;
+  FarmSignal signal;
+  WorkerServiceImpl workerService;
+  ClientServiceImpl clientService;
+
+  explicit Services(const SchedulerOptions& o)
+      : state(o.database.string(), o.farm, wallClockSeconds()),
+        store(o.store),
+        workerService({state, store, signal, o.token}),
+        clientService({state, store, signal, o.token}) {}
+};
+
+SchedulerServer::SchedulerServer(SchedulerOptions options)
+    : options_(std::move(options)), services_(std::make_unique<Services>(options_)) {
+  grpc::ServerBuilder builder;
+  configureServer(builder);
+  builder.AddListeningPort(options_.listen, grpc::InsecureServerCredentials(), &port_);
+  builder.RegisterService(&services_->workerService);
+  builder.RegisterService(&services_->clientService);
+  server_ = builder.BuildAndStart();
+  if (!server_ || port_ == 0) throw std::runtime_error("cannot listen on " + options_.listen);
+
+  // The one checker of timeouts: leases not renewed, tasks that stopped progressing.
+  checker_ = std::thread([this] {
+    const double period = std::clamp(options_.farm.leaseSeconds / 10, 0.05, 1.0);
+    while (!stopping_) {
+      try {
+        if (services_->state.expireLeases(wallClockSeconds()) > 0) services_->signal.notify();
+      } catch (const std::exception& e) {
+        spdlog::error("lease checker: {}", e.what());
+      }
+      std::this_thread::sleep_for(std::chrono::duration<double>(period));
+    }
+  });
+  spdlog::info("scheduler listening on {} (database {}, store {}{})", address(), options_.database.string(),
+               options_.store.string(), options_.token.empty() ? ", no access token" : ", token required");
+}
+
+SchedulerServer::~SchedulerServer() { shutdown(); }
+
+std::string SchedulerServer::address() const {
+  const auto colon = options_.listen.rfind(':');
+  return options_.listen.substr(0, colon) + ":" + std::to_string(port_);
+}
+
+void SchedulerServer::wait() {
+  if (server_) server_->Wait();
+}
+
+void SchedulerServer::shutdown() {
+  if (stopping_.exchange(true)) return;
+  services_->signal.notify();
+  // Open long-polls and watches get a moment to return, then are cut.
+  server_->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(1));
+  if (checker_.joinable()) checker_.join();
+}
+
+}  // namespace pathfarm::farm

@@ -1,0 +1,48 @@
+#pragma once
+// The scheduler process: FarmState on SQLite, the chunk store, both gRPC services, and
+// the one checker that ends expired leases and hung tasks.
+#include <atomic>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "scheduler/farm_state.h"
+
+namespace grpc {
+class Server;
+}
+
+namespace pathfarm::farm {
+
+struct SchedulerOptions {
+  std::string listen = "127.0.0.1:7700";  // port 0: any free port (see port())
+  std::filesystem::path database = "farm.db";
+  std::filesystem::path store = "chunks";
+  std::string token;  // empty: no access control
+  FarmSettings farm;
+};
+
+class SchedulerServer {
+ public:
+  // Opens the database and store and starts serving; throws std::runtime_error when the
+  // address cannot be bound.
+  explicit SchedulerServer(SchedulerOptions options);
+  ~SchedulerServer();
+
+  int port() const { return port_; }
+  std::string address() const;
+  void wait();      // until shutdown()
+  void shutdown();  // stops accepting calls, ends the open ones, stops the checker
+
+ private:
+  struct Services;
+  SchedulerOptions options_;
+  std::unique_ptr<Services> services_;
+  std::unique_ptr<grpc::Server> server_;
+  int port_ = 0;
+  std::atomic<bool> stopping_{false};
+  std::thread checker_;
+};
+
+}  // namespace pathfarm::farm

@@ -1,0 +1,52 @@
+#pragma once
+// The scheduler's two gRPC services over one FarmState and one chunk store.
+#include "pathfarm/client_service.grpc.pb.h"
+#include "pathfarm/worker_service.grpc.pb.h"
+#include "proto/wire/chunk_store.h"
+#include "scheduler/farm_signal.h"
+#include "scheduler/farm_state.h"
+
+namespace pathfarm::farm {
+
+struct SchedulerContext {
+  FarmState& state;
+  ChunkStore& store;
+  FarmSignal& signal;
+  std::string token;  // empty: no access control
+};
+
+class WorkerServiceImpl final : public WorkerService::Service {
+ public:
+  explicit WorkerServiceImpl(SchedulerContext context) : c_(context) {}
+
+  grpc::Status Register(grpc::ServerContext*, const RegisterRequest*, RegisterReply*) override;
+  grpc::Status LeaseTask(grpc::ServerContext*, const LeaseRequest*, LeaseReply*) override;
+  grpc::Status Heartbeat(grpc::ServerContext*, const HeartbeatRequest*, HeartbeatReply*) override;
+  grpc::Status CompleteTask(grpc::ServerContext*, const CompleteRequest*, ReportReply*) override;
+  grpc::Status FailTask(grpc::ServerContext*, const FailRequest*, ReportReply*) override;
+  grpc::Status PutChunk(grpc::ServerContext*, grpc::ServerReader<ChunkPart>*, PutChunkReply*) override;
+  grpc::Status GetChunk(grpc::ServerContext*, const GetChunkRequest*, grpc::ServerWriter<ChunkPart>*) override;
+
+ private:
+  SchedulerContext c_;
+};
+
+class ClientServiceImpl final : public ClientService::Service {
+ public:
+  explicit ClientServiceImpl(SchedulerContext context) : c_(context) {}
+
+  grpc::Status Submit(grpc::ServerContext*, const SubmitRequest*, SubmitReply*) override;
+  grpc::Status ListShots(grpc::ServerContext*, const ListShotsRequest*, ListShotsReply*) override;
+  grpc::Status GetShot(grpc::ServerContext*, const ShotRequest*, ShotReply*) override;
+  grpc::Status WatchShot(grpc::ServerContext*, const ShotRequest*, grpc::ServerWriter<ShotSummary>*) override;
+  grpc::Status CancelShot(grpc::ServerContext*, const ShotRequest*, ControlReply*) override;
+  grpc::Status PauseShot(grpc::ServerContext*, const ShotRequest*, ControlReply*) override;
+  grpc::Status ResumeShot(grpc::ServerContext*, const ShotRequest*, ControlReply*) override;
+  grpc::Status FetchOutputs(grpc::ServerContext*, const ShotRequest*, grpc::ServerWriter<OutputPart>*) override;
+  grpc::Status ListWorkers(grpc::ServerContext*, const ListWorkersRequest*, ListWorkersReply*) override;
+
+ private:
+  SchedulerContext c_;
+};
+
+}  // namespace pathfarm::farm

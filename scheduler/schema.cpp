@@ -1,0 +1,106 @@
+#include "scheduler/schema.h"
+
+#include <string>
+#include <vector>
+
+namespace pathfarm::farm {
+namespace {
+
+// Append only: a released migration never changes, a new one is added at the end.
+const std::vector<const char*>& migrations() {
+  static const std::vector<const char*> list = {
+      // 1: the farm's first schema.
+      R"sql(
+      CREATE TABLE shots (
+        id INTEGER PRIMARY KEY,
+        name TEXT NOT NULL,
+        spec BLOB NOT NULL,                -- ShotSpec, serialized
+        state INTEGER NOT NULL,            -- ShotState
+        priority INTEGER NOT NULL,
+        submitted_at REAL NOT NULL,
+        started_at REAL,
+        finished_at REAL,
+        failure TEXT NOT NULL DEFAULT '');
+      CREATE TABLE chunks (
+        sha256 TEXT PRIMARY KEY,
+        size INTEGER NOT NULL,
+        stored_at REAL NOT NULL);
+      CREATE TABLE tasks (
+        id INTEGER PRIMARY KEY,
+        shot_id INTEGER NOT NULL REFERENCES shots(id) ON DELETE CASCADE,
+        kind INTEGER NOT NULL,             -- TaskKind
+        params BLOB NOT NULL,              -- TaskParams, serialized
+        state INTEGER NOT NULL,            -- TaskState
+        pending_deps INTEGER NOT NULL,     -- dependencies not yet done
+        failures INTEGER NOT NULL DEFAULT 0,
+        max_attempts INTEGER NOT NULL,
+        not_before REAL NOT NULL DEFAULT 0,  -- retry backoff
+        attempt_id INTEGER,                -- the current lease
+        output_sha TEXT REFERENCES chunks(sha256));
+      CREATE INDEX tasks_by_shot ON tasks(shot_id, state, id);
+      CREATE TABLE task_deps (
+        task_id INTEGER NOT NULL REFERENCES tasks(id) ON DELETE CASCADE,
+        depends_on INTEGER NOT NULL REFERENCES tasks(id) ON DELETE CASCADE,
+        PRIMARY KEY (task_id, depends_on));
+      CREATE INDEX task_deps_reverse ON task_deps(depends_on);
+      CREATE TABLE workers (
+        id INTEGER PRIMARY KEY,
+        name TEXT NOT NULL,
+        slots INTEGER NOT NULL,
+        registered_at REAL NOT NULL,
+        last_seen REAL NOT NULL);
+      CREATE TABLE attempts (
+        id INTEGER PRIMARY KEY,
+        task_id INTEGER NOT NULL REFERENCES tasks(id) ON DELETE CASCADE,
+        worker_id INTEGER NOT NULL REFERENCES workers(id),
+        state INTEGER NOT NULL,            -- AttemptState
+        leased_at REAL NOT NULL,
+        expires_at REAL NOT NULL,
+        progress REAL NOT NULL DEFAULT 0,
+        progress_at REAL NOT NULL,
+        finished_at REAL,
+        error TEXT NOT NULL DEFAULT '');
+      CREATE INDEX attempts_by_state ON attempts(state, expires_at);
+      CREATE INDEX attempts_by_task ON attempts(task_id);
+      CREATE TABLE worker_failures (
+        shot_id INTEGER NOT NULL REFERENCES shots(id) ON DELETE CASCADE,
+        worker_id INTEGER NOT NULL REFERENCES workers(id),
+        failures INTEGER NOT NULL,
+        blocklisted INTEGER NOT NULL DEFAULT 0,
+        PRIMARY KEY (shot_id, worker_id));
+      CREATE TABLE events (
+        id INTEGER PRIMARY KEY,
+        shot_id INTEGER REFERENCES shots(id) ON DELETE CASCADE,
+        time REAL NOT NULL,
+        message TEXT NOT NULL);
+      CREATE INDEX events_by_shot ON events(shot_id, id);
+      )sql",
+  };
+  return list;
+}
+
+}  // namespace
+
+int schemaVersion(Database& db) {
+  Statement& statement = db.query("PRAGMA user_version");
+  statement.step();
+  const int version = static_cast<int>(statement.integer(0));
+  statement.reset();
+  return version;
+}
+
+void migrate(Database& db) {
+  const int newest = static_cast<int>(migrations().size());
+  const int current = schemaVersion(db);
+  if (current > newest)
+    throw DatabaseError("the database has schema version " + std::to_string(current) +
+                        ", newer than this pathfarm understands (" + std::to_string(newest) + ")");
+  for (int version = current; version < newest; ++version) {
+    Transaction transaction(db);
+    db.execute(migrations()[static_cast<size_t>(version)]);
+    db.execute("PRAGMA user_version = " + std::to_string(version + 1));
+    transaction.commit();
+  }
+}
+
+}  // namespace pathfarm::farm

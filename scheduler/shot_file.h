@@ -1,0 +1,14 @@
+#pragma once
+// Shot files (docs/shot-format.md): what to render and how, read into a ShotSpec with
+// every default filled in from the scene and every path made absolute. The scene is
+// loaded too, so a bad shot or scene is reported before anything is queued.
+#include <filesystem>
+
+#include "pathfarm/shot.pb.h"
+
+namespace pathfarm::farm {
+
+// Throws SceneError (renderer/scene/json_node.h) naming the file and key on bad input.
+ShotSpec loadShotFile(const std::filesystem::path& file);
+
+}  // namespace pathfarm::farm

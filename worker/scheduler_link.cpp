@@ -1,0 +1,95 @@
+#include "worker/scheduler_link.h"
+
+#include "proto/wire/chunk_transfer.h"
+#include "proto/wire/connection.h"
+
+namespace pathfarm::farm {
+namespace {
+
+constexpr double kCallSeconds = 10;      // an ordinary call
+constexpr double kTransferSeconds = 300;  // a chunk of a large frame on a slow link
+
+}  // namespace
+
+SchedulerLink::SchedulerLink(const std::string& address, std::string token)
+    : stub_(WorkerService::NewStub(makeChannel(address))), token_(std::move(token)) {}
+
+std::unique_ptr<grpc::ClientContext> SchedulerLink::context(double seconds) const {
+  auto context = std::make_unique<grpc::ClientContext>();
+  context->set_deadline(std::chrono::system_clock::now() +
+                        std::chrono::milliseconds(static_cast<int64_t>(seconds * 1000)));
+  attachToken(*context, token_);
+  return context;
+}
+
+grpc::Status SchedulerLink::registerWorker(const std::string& name, int slots, RegisterReply& reply) {
+  RegisterRequest request;
+  request.set_name(name);
+  request.set_slots(slots);
+  return stub_->Register(context(kCallSeconds).get(), request, &reply);
+}
+
+grpc::Status SchedulerLink::lease(int64_t workerId, double waitSeconds, LeaseReply& reply) {
+  LeaseRequest request;
+  request.set_worker_id(workerId);
+  request.set_wait_seconds(waitSeconds);
+  return stub_->LeaseTask(context(kCallSeconds + waitSeconds).get(), request, &reply);
+}
+
+grpc::Status SchedulerLink::heartbeat(int64_t attemptId, double progress, HeartbeatReply& reply) {
+  HeartbeatRequest request;
+  request.set_attempt_id(attemptId);
+  request.set_progress(progress);
+  return stub_->Heartbeat(context(kCallSeconds).get(), request, &reply);
+}
+
+grpc::Status SchedulerLink::complete(int64_t attemptId, const ChunkRef& output, ReportReply& reply) {
+  CompleteRequest request;
+  request.set_attempt_id(attemptId);
+  *request.mutable_output() = output;
+  return stub_->CompleteTask(context(kCallSeconds).get(), request, &reply);
+}
+
+grpc::Status SchedulerLink::fail(int64_t attemptId, const std::string& reason, ReportReply& reply) {
+  FailRequest request;
+  request.set_attempt_id(attemptId);
+  request.set_reason(reason);
+  return stub_->FailTask(context(kCallSeconds).get(), request, &reply);
+}
+
+grpc::Status SchedulerLink::putChunk(const std::string& bytes, ChunkRef& stored) {
+  ChunkRef ref;
+  ref.set_sha256(sha256Hex(bytes));
+  ref.set_size(static_cast<int64_t>(bytes.size()));
+  const auto call = context(kTransferSeconds);
+  PutChunkReply reply;
+  auto writer = stub_->PutChunk(call.get(), &reply);
+  sendChunk(*writer, ref, bytes);
+  writer->WritesDone();
+  const grpc::Status status = writer->Finish();
+  if (status.ok()) stored = reply.ref();
+  return status;
+}
+
+grpc::Status SchedulerLink::getChunk(const std::string& sha256, std::string& bytes) {
+  GetChunkRequest request;
+  request.set_sha256(sha256);
+  const auto call = context(kTransferSeconds);
+  auto reader = stub_->GetChunk(call.get(), request);
+  ChunkRef ref;
+  try {
+    bytes = receiveChunk(*reader, ref, kMaxChunkBytes);
+  } catch (const ChunkError& e) {
+    call->TryCancel();
+    const grpc::Status status = reader->Finish();
+    // A refusal (no such chunk, no access) explains an empty stream better than the stream.
+    if (!status.ok() && status.error_code() != grpc::StatusCode::CANCELLED) return status;
+    return {grpc::StatusCode::DATA_LOSS, e.what()};
+  }
+  const grpc::Status status = reader->Finish();
+  if (status.ok() && ref.sha256() != sha256)
+    return {grpc::StatusCode::DATA_LOSS, "asked for chunk " + sha256 + ", received " + ref.sha256()};
+  return status;
+}
+
+}  // namespace pathfarm::farm

@@ -1,0 +1,93 @@
+#include "worker/task_runner.h"
+
+#include "image/exr_io.h"
+#include "renderer/integrators/frame_renderer.h"
+#include "renderer/scene/scene_loader.h"
+
+namespace pathfarm::farm {
+namespace {
+
+constexpr size_t kShotsKept = 2;
+
+RenderSettings settingsOf(const ShotSpec& spec, int threads) {
+  RenderSettings settings;
+  settings.width = spec.width();
+  settings.height = spec.height();
+  settings.spp = spec.spp();
+  settings.maxDepth = spec.max_depth();
+  settings.threads = threads;
+  return settings;
+}
+
+}  // namespace
+
+struct TaskRunner::ShotRenderer {
+  Scene scene;
+  std::unique_ptr<FrameRenderer> renderer;
+};
+
+TaskRunner::~TaskRunner() = default;
+
+std::shared_ptr<TaskRunner::ShotRenderer> TaskRunner::rendererFor(const Lease& lease) {
+  const std::lock_guard lock(mutex_);
+  auto& entry = renderers_[lease.shot_id()];
+  if (!entry) {
+    auto shot = std::make_shared<ShotRenderer>();
+    shot->scene = loadScene(lease.spec().scene());
+    shot->renderer = std::make_unique<FrameRenderer>(shot->scene, settingsOf(lease.spec(), threads_));
+    entry = shot;
+    // Keep the newest shots: ids grow with submission order.
+    while (renderers_.size() > kShotsKept) renderers_.erase(renderers_.begin());
+  }
+  return entry;
+}
+
+std::string TaskRunner::run(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,
+                            const std::atomic<bool>& abandon) {
+  switch (lease.kind()) {
+    case TASK_RENDER_TILE:
+      return renderTile(lease, progress, abandon);
+    case TASK_ASSEMBLE_FRAME:
+      return assembleFrame(lease, fetch, progress);
+    case TASK_NOOP:
+      return "";
+    default:
+      throw std::runtime_error("this worker cannot run tasks of kind " + std::to_string(lease.kind()));
+  }
+}
+
+std::string TaskRunner::renderTile(const Lease& lease, std::atomic<double>& progress,
+                                   const std::atomic<bool>& abandon) {
+  const auto shot = rendererFor(lease);
+  const PixelWindow& w = lease.params().window();
+  const FrameImage tile = shot->renderer->renderWindow(
+      lease.params().frame(), {w.x0(), w.y0(), w.x1(), w.y1()}, [&](size_t done, size_t total) {
+        if (abandon) throw TaskAbandoned();
+        progress = static_cast<double>(done) / static_cast<double>(total);
+      });
+  return encodeExr(tile);
+}
+
+std::string TaskRunner::assembleFrame(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress) {
+  const ShotSpec& spec = lease.spec();
+  FrameImage frame(spec.width(), spec.height());
+  uint64_t nonFinite = 0;
+  for (int i = 0; i < lease.inputs_size(); ++i) {
+    const FrameImage tile = decodeExr(fetch(lease.inputs(i)), "tile chunk " + lease.inputs(i).sha256());
+    const auto& window = lease.input_params(i).window();
+    if (tile.width() != window.x1() - window.x0() || tile.height() != window.y1() - window.y0())
+      throw std::runtime_error("tile chunk " + lease.inputs(i).sha256() + " does not have its window's size");
+    frame.paste(tile, window.x0(), window.y0());
+    // The frame carries the tiles' header; the count of dropped samples is their sum.
+    for (const auto& [key, value] : tile.attributes()) frame.attributes()[key] = value;
+    const auto count = tile.attributes().find("pathfarm.nonfinite_samples");
+    if (count == tile.attributes().end())
+      throw std::runtime_error("tile chunk " + lease.inputs(i).sha256() + " was not made by a pathfarm renderer");
+    nonFinite += std::stoull(count->second);
+    progress = static_cast<double>(i + 1) / static_cast<double>(lease.inputs_size());
+  }
+  frame.attributes()["pathfarm.nonfinite_samples"] = std::to_string(nonFinite);
+  return encodeExr(frame);
+}
+
+}  // namespace pathfarm::farm

@@ -1,0 +1,53 @@
+#pragma once
+// Runs one leased task with the renderer library and returns its output chunk's bytes:
+// a tile's EXR for render_tile, the frame's EXR for assemble_frame, nothing for noop.
+// Scenes and their built geometry are cached per shot, so the tiles of a shot pay for
+// loading and BVH building once per worker.
+#include <atomic>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+
+#include "pathfarm/worker_service.pb.h"
+
+namespace pathfarm {
+class FrameRenderer;
+struct Scene;
+}  // namespace pathfarm
+
+namespace pathfarm::farm {
+
+// Thrown out of a running task when its lease is gone and the work is wasted.
+class TaskAbandoned : public std::runtime_error {
+ public:
+  TaskAbandoned() : std::runtime_error("the lease was lost; task abandoned") {}
+};
+
+class TaskRunner {
+ public:
+  // Input chunks' bytes by digest (from a cache or the scheduler); throws on failure.
+  using ChunkFetcher = std::function<std::string(const ChunkRef&)>;
+
+  explicit TaskRunner(int threads) : threads_(threads) {}
+  ~TaskRunner();
+
+  // `progress` receives 0..1; `abandon` turning true stops the task with TaskAbandoned.
+  // Any other failure throws with a message for the scheduler's records.
+  std::string run(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,
+                  const std::atomic<bool>& abandon);
+
+ private:
+  struct ShotRenderer;
+  std::shared_ptr<ShotRenderer> rendererFor(const Lease& lease);
+  std::string renderTile(const Lease& lease, std::atomic<double>& progress, const std::atomic<bool>& abandon);
+  std::string assembleFrame(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress);
+
+  int threads_;
+  std::mutex mutex_;
+  std::map<int64_t, std::shared_ptr<ShotRenderer>> renderers_;  // by shot id, a few kept
+};
+
+}  // namespace pathfarm::farm

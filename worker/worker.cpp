@@ -1,0 +1,203 @@
+#include "worker/worker.h"
+
+#include <spdlog/spdlog.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <future>
+#include <thread>
+#include <vector>
+
+#include "proto/wire/chunk_store.h"
+#include "worker/scheduler_link.h"
+#include "worker/task_runner.h"
+
+namespace pathfarm::farm {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr double kLeaseWaitSeconds = 2;
+// After a stop request, how long a finished result is still offered to an unreachable scheduler.
+constexpr auto kDeliveryGrace = std::chrono::seconds(60);
+
+bool isTransient(const grpc::Status& status) {
+  return status.error_code() == grpc::StatusCode::UNAVAILABLE ||
+         status.error_code() == grpc::StatusCode::DEADLINE_EXCEEDED ||
+         status.error_code() == grpc::StatusCode::DATA_LOSS;
+}
+
+// Sleeps with doubling backoff between attempts, from 100 ms up to 5 s.
+class Backoff {
+ public:
+  void sleep() {
+    std::this_thread::sleep_for(delay_);
+    delay_ = std::min(delay_ * 2, std::chrono::milliseconds(5000));
+  }
+  void reset() { delay_ = std::chrono::milliseconds(100); }
+
+ private:
+  std::chrono::milliseconds delay_{100};
+};
+
+// One slot: leases and runs tasks one at a time.
+class Slot {
+ public:
+  Slot(SchedulerLink& link, TaskRunner& runner, ChunkStore& cache, int64_t& workerId, const WorkerOptions& options,
+       double heartbeatSeconds)
+      : link_(link), runner_(runner), cache_(cache), workerId_(workerId), options_(options),
+        heartbeat_(std::chrono::milliseconds(static_cast<int64_t>(heartbeatSeconds * 1000))) {}
+
+  void run(const std::atomic<bool>& stop) {
+    Backoff backoff;
+    while (!stop) {
+      LeaseReply reply;
+      const grpc::Status status = link_.lease(workerId_, kLeaseWaitSeconds, reply);
+      if (status.error_code() == grpc::StatusCode::NOT_FOUND) {
+        if (!reregister()) backoff.sleep();  // a scheduler with a fresh database forgot us
+        continue;
+      }
+      if (!status.ok()) {
+        spdlog::warn("cannot lease a task: {}", status.error_message());
+        backoff.sleep();
+        continue;
+      }
+      backoff.reset();
+      if (reply.has_task()) execute(reply.lease(), stop);
+    }
+  }
+
+ private:
+  bool reregister() {
+    RegisterReply reply;
+    if (!link_.registerWorker(options_.name, options_.slots, reply).ok()) return false;
+    workerId_ = reply.worker_id();
+    return true;
+  }
+
+  std::string fetch(const ChunkRef& ref) {
+    if (auto bytes = cache_.get(ref.sha256())) return *bytes;
+    std::string bytes;
+    const grpc::Status status = link_.getChunk(ref.sha256(), bytes);
+    if (!status.ok()) throw std::runtime_error("cannot fetch input chunk " + ref.sha256() + ": " + status.error_message());
+    cache_.put(bytes, ref);
+    return bytes;
+  }
+
+  void execute(const Lease& lease, const std::atomic<bool>& stop) {
+    spdlog::info("task {} ({}) of shot {}: started", lease.task_id(), TaskKind_Name(lease.kind()), lease.shot_id());
+    std::atomic<double> progress{0};
+    std::atomic<bool> abandon{false};
+    auto result = std::async(std::launch::async, [&] {
+      return runner_.run(lease, [this](const ChunkRef& ref) { return fetch(ref); }, progress, abandon);
+    });
+    // Renew the lease while the task runs; a lost lease abandons the work.
+    while (result.wait_for(heartbeat_) == std::future_status::timeout) {
+      HeartbeatReply beat;
+      const grpc::Status status = link_.heartbeat(lease.attempt_id(), progress, beat);
+      if (status.ok() && !beat.keep_going()) abandon = true;
+    }
+    std::string output;
+    try {
+      output = result.get();
+    } catch (const TaskAbandoned&) {
+      spdlog::warn("task {}: lease lost, result dropped", lease.task_id());
+      return;
+    } catch (const std::exception& e) {
+      spdlog::error("task {} failed: {}", lease.task_id(), e.what());
+      report([&](ReportReply& r) { return link_.fail(lease.attempt_id(), e.what(), r); }, stop);
+      return;
+    }
+    deliver(lease, output, stop);
+  }
+
+  // Uploads the output and completes the task, retrying while the scheduler is away.
+  void deliver(const Lease& lease, const std::string& output, const std::atomic<bool>& stop) {
+    ChunkRef stored;
+    if (lease.kind() != TASK_NOOP) {
+      Backoff backoff;
+      const auto giveUp = [&, since = Clock::now()] { return stop && Clock::now() - since > kDeliveryGrace; };
+      for (;;) {
+        const grpc::Status status = link_.putChunk(output, stored);
+        if (status.ok()) break;
+        if (!isTransient(status) || giveUp()) {
+          spdlog::error("task {}: cannot upload its output: {}", lease.task_id(), status.error_message());
+          return;
+        }
+        backoff.sleep();
+      }
+    }
+    if (report([&](ReportReply& r) { return link_.complete(lease.attempt_id(), stored, r); }, stop))
+      spdlog::info("task {}: done", lease.task_id());
+  }
+
+  // Sends a completion or failure until the scheduler answers; true if it was accepted.
+  template <class Call>
+  bool report(Call call, const std::atomic<bool>& stop) {
+    Backoff backoff;
+    const auto since = Clock::now();
+    for (;;) {
+      ReportReply reply;
+      const grpc::Status status = call(reply);
+      if (status.ok()) {
+        if (!reply.accepted()) spdlog::warn("the scheduler refused the report: {}", reply.reason());
+        return reply.accepted();
+      }
+      if (!isTransient(status) || (stop && Clock::now() - since > kDeliveryGrace)) {
+        spdlog::error("cannot report to the scheduler: {}", status.error_message());
+        return false;
+      }
+      backoff.sleep();
+    }
+  }
+
+  SchedulerLink& link_;
+  TaskRunner& runner_;
+  ChunkStore& cache_;
+  int64_t& workerId_;
+  const WorkerOptions& options_;
+  std::chrono::milliseconds heartbeat_;
+};
+
+std::string defaultName() {
+  char host[256] = {};
+  gethostname(host, sizeof host - 1);
+  return std::string(host) + ":" + std::to_string(getpid());
+}
+
+}  // namespace
+
+Worker::Worker(WorkerOptions options) : options_(std::move(options)) {
+  if (options_.name.empty()) options_.name = defaultName();
+  if (options_.cache.empty()) options_.cache = std::filesystem::temp_directory_path() / "pathfarm-worker-cache";
+}
+
+void Worker::run(const std::atomic<bool>& stop) {
+  SchedulerLink link(options_.scheduler, options_.token);
+  RegisterReply registration;
+  Backoff backoff;
+  for (;;) {
+    const grpc::Status status = link.registerWorker(options_.name, options_.slots, registration);
+    if (status.ok()) break;
+    if (status.error_code() == grpc::StatusCode::UNAUTHENTICATED)
+      throw std::runtime_error("the scheduler refused this worker: " + status.error_message());
+    if (stop) return;
+    spdlog::warn("cannot reach the scheduler at {}: {}; retrying", options_.scheduler, status.error_message());
+    backoff.sleep();
+  }
+  int64_t workerId = registration.worker_id();
+  spdlog::info("worker {} ({}) registered with {}: {} slots", workerId, options_.name, options_.scheduler,
+               options_.slots);
+  ChunkStore cache(options_.cache);
+  TaskRunner runner(options_.threads);
+  std::vector<std::thread> slots;
+  for (int i = 0; i < options_.slots; ++i) {
+    slots.emplace_back([&] {
+      Slot(link, runner, cache, workerId, options_, registration.heartbeat_seconds()).run(stop);
+    });
+  }
+  for (std::thread& t : slots) t.join();
+  spdlog::info("worker {} stopped", workerId);
+}
+
+}  // namespace pathfarm::farm

@@ -1,0 +1,33 @@
+#pragma once
+// `pathfarm worker`: a stateless process that registers with the scheduler, then in each
+// of its slots leases a task, runs it (renewing the lease with heartbeats), and delivers
+// the output chunk. Nothing it holds matters if it dies: the lease expires and another
+// worker redoes the task. A finished result it cannot deliver (scheduler down) is kept
+// and retried with backoff, so a scheduler restart costs no finished work.
+#include <atomic>
+#include <filesystem>
+#include <string>
+
+namespace pathfarm::farm {
+
+struct WorkerOptions {
+  std::string scheduler = "127.0.0.1:7700";
+  int slots = 1;    // tasks run at once
+  int threads = 0;  // render threads per task; 0: every core
+  std::string name;
+  std::string token;
+  std::filesystem::path cache;  // input chunks; default: a folder under the temp dir
+};
+
+class Worker {
+ public:
+  explicit Worker(WorkerOptions options);
+  // Works until `stop` turns true, then finishes and delivers the tasks in hand and
+  // returns. Throws std::runtime_error if the scheduler refuses the worker (bad token).
+  void run(const std::atomic<bool>& stop);
+
+ private:
+  WorkerOptions options_;
+};
+
+}  // namespace pathfarm::farm
