@@ -1,0 +1,229 @@
+// The farm's state machine with a controlled clock: leasing rules, stale reports,
+// expiry, retries, blocklists, hung tasks, shot control, and a restart.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "scheduler/farm_state.h"
+#include "scheduler/schema.h"
+
+namespace pathfarm::farm {
+namespace {
+
+class FarmStateTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    folder_ = std::filesystem::temp_directory_path() /
+              ("pathfarm_state_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    std::filesystem::remove_all(folder_);
+    std::filesystem::create_directories(folder_);
+    settings_.leaseSeconds = 10;
+    settings_.hungSeconds = 100;
+    settings_.retryBackoffSeconds = 2;
+    settings_.blocklistAfter = 2;
+    open();
+  }
+  void TearDown() override {
+    state_.reset();
+    std::filesystem::remove_all(folder_);
+  }
+  void open() { state_ = std::make_unique<FarmState>((folder_ / "farm.db").string(), settings_, now_); }
+
+  // One frame of 2x1 tiles plus its assembly, as the planner makes for "pt".
+  int64_t submitFrame(int priority = 0, int maxAttempts = 3) {
+    ShotSpec spec;
+    spec.set_name("shot");
+    spec.set_pipeline("pt");
+    spec.set_width(64);
+    spec.set_height(32);
+    spec.set_spp(1);
+    spec.set_tile(32);
+    spec.set_priority(priority);
+    spec.set_max_attempts(maxAttempts);
+    return state_->submit(spec, planShot(spec), now_);
+  }
+  ChunkRef storedChunk(const std::string& name) {
+    ChunkRef ref;
+    ref.set_sha256(std::string(64 - name.size(), '0') + name);
+    ref.set_size(10);
+    state_->recordChunk(ref, now_);
+    return ref;
+  }
+  Lease leaseFor(int64_t worker) {
+    auto lease = state_->lease(worker, now_);
+    EXPECT_TRUE(lease.has_value());
+    return lease.value_or(Lease{});
+  }
+
+  std::filesystem::path folder_;
+  FarmSettings settings_;
+  double now_ = 1000;
+  std::unique_ptr<FarmState> state_;
+};
+
+TEST_F(FarmStateTest, AssemblyWaitsForItsTilesAndGetsTheirChunks) {
+  const int64_t shot = submitFrame();
+  const int64_t worker = state_->registerWorker("w", 1, now_);
+  const Lease a = leaseFor(worker), b = leaseFor(worker);
+  EXPECT_EQ(a.kind(), TASK_RENDER_TILE);
+  EXPECT_EQ(b.kind(), TASK_RENDER_TILE);
+  EXPECT_FALSE(state_->lease(worker, now_).has_value()) << "assembly leased before its tiles were done";
+  EXPECT_TRUE(state_->complete(a.attempt_id(), storedChunk("a"), now_).accepted());
+  EXPECT_FALSE(state_->lease(worker, now_).has_value());
+  EXPECT_TRUE(state_->complete(b.attempt_id(), storedChunk("b"), now_).accepted());
+  const Lease assemble = leaseFor(worker);
+  ASSERT_EQ(assemble.kind(), TASK_ASSEMBLE_FRAME);
+  ASSERT_EQ(assemble.inputs_size(), 2);
+  EXPECT_EQ(assemble.inputs(0).sha256(), storedChunk("a").sha256());
+  EXPECT_EQ(assemble.input_params(1).window().x0(), 32);
+  EXPECT_EQ(state_->summary(shot, now_).state(), SHOT_RUNNING);
+  EXPECT_TRUE(state_->complete(assemble.attempt_id(), storedChunk("frame"), now_).accepted());
+  const ShotSummary done = state_->summary(shot, now_);
+  EXPECT_EQ(done.state(), SHOT_DONE);
+  EXPECT_EQ(done.tasks_done(), 3);
+  EXPECT_EQ(done.frames_done(), 1);
+  ASSERT_EQ(state_->outputs(shot).size(), 1u);
+  EXPECT_EQ(state_->outputs(shot)[0].second.sha256(), storedChunk("frame").sha256());
+}
+
+TEST_F(FarmStateTest, CompletionNeedsItsChunkStoredFirst) {
+  submitFrame();
+  const Lease lease = leaseFor(state_->registerWorker("w", 1, now_));
+  ChunkRef missing;
+  missing.set_sha256(std::string(64, 'f'));
+  EXPECT_FALSE(state_->complete(lease.attempt_id(), missing, now_).accepted());
+  EXPECT_TRUE(state_->complete(lease.attempt_id(), storedChunk("x"), now_).accepted());
+}
+
+TEST_F(FarmStateTest, PriorityThenAgeDecideWhoGoesFirst) {
+  const int64_t older = submitFrame(0);
+  const int64_t urgent = submitFrame(5);
+  const int64_t newer = submitFrame(0);
+  const int64_t worker = state_->registerWorker("w", 1, now_);
+  EXPECT_EQ(leaseFor(worker).shot_id(), urgent);
+  EXPECT_EQ(leaseFor(worker).shot_id(), urgent);
+  EXPECT_EQ(leaseFor(worker).shot_id(), older);  // urgent's assembly is not ready
+  state_->pause(older, now_);
+  EXPECT_EQ(leaseFor(worker).shot_id(), newer);
+  state_->resume(older, now_);
+  EXPECT_EQ(leaseFor(worker).shot_id(), older);
+}
+
+TEST_F(FarmStateTest, ExpiredLeaseIsRequeuedAndItsLateReportsRefused) {
+  const int64_t shot = submitFrame();
+  const int64_t w1 = state_->registerWorker("w1", 1, now_), w2 = state_->registerWorker("w2", 1, now_);
+  const Lease first = leaseFor(w1);
+  now_ += 5;
+  EXPECT_TRUE(state_->heartbeat(first.attempt_id(), 0.5, now_).keep_going());  // renewed to now + 10
+  now_ += 9;
+  EXPECT_EQ(state_->expireLeases(now_), 0);
+  now_ += 2;
+  EXPECT_EQ(state_->expireLeases(now_), 1);
+  // The task comes back after its retry backoff, under a new attempt id.
+  EXPECT_NE(leaseFor(w2).task_id(), first.task_id());
+  EXPECT_FALSE(state_->lease(w2, now_).has_value());
+  now_ += settings_.retryBackoffSeconds;
+  const Lease second = leaseFor(w2);
+  EXPECT_EQ(second.task_id(), first.task_id());
+  EXPECT_NE(second.attempt_id(), first.attempt_id());
+  // The first worker comes back late: nothing it says changes anything.
+  EXPECT_FALSE(state_->heartbeat(first.attempt_id(), 1.0, now_).keep_going());
+  EXPECT_FALSE(state_->complete(first.attempt_id(), storedChunk("late"), now_).accepted());
+  EXPECT_FALSE(state_->fail(first.attempt_id(), "late", now_).accepted());
+  EXPECT_TRUE(state_->complete(second.attempt_id(), storedChunk("good"), now_).accepted());
+  EXPECT_EQ(state_->summary(shot, now_).attempts(), 3);
+}
+
+TEST_F(FarmStateTest, FailuresBackOffThenFailTheShotWithTheReason) {
+  const int64_t shot = submitFrame(0, 2);
+  const int64_t worker = state_->registerWorker("w", 1, now_);
+  const Lease first = leaseFor(worker);
+  EXPECT_TRUE(state_->fail(first.attempt_id(), "scene.json: cannot open the scene file", now_).accepted());
+  leaseFor(worker);  // the other tile
+  EXPECT_FALSE(state_->lease(worker, now_).has_value()) << "retried before its backoff";
+  now_ += settings_.retryBackoffSeconds;
+  const Lease retry = leaseFor(worker);
+  EXPECT_EQ(retry.task_id(), first.task_id());
+  EXPECT_TRUE(state_->fail(retry.attempt_id(), "scene.json: cannot open the scene file", now_).accepted());
+  const ShotSummary summary = state_->summary(shot, now_);
+  EXPECT_EQ(summary.state(), SHOT_FAILED);
+  EXPECT_NE(summary.failure().find("failed 2 times"), std::string::npos) << summary.failure();
+  EXPECT_NE(summary.failure().find("cannot open the scene file"), std::string::npos);
+  EXPECT_FALSE(state_->lease(worker, now_ + 100).has_value());
+}
+
+TEST_F(FarmStateTest, WorkerFailingTooOftenIsBlocklistedForThatShot) {
+  const int64_t shot = submitFrame(0, 10);
+  const int64_t bad = state_->registerWorker("bad", 1, now_), good = state_->registerWorker("good", 1, now_);
+  for (int i = 0; i < settings_.blocklistAfter; ++i) {
+    EXPECT_TRUE(state_->fail(leaseFor(bad).attempt_id(), "out of memory", now_).accepted());
+    now_ += 100;  // past any backoff
+  }
+  EXPECT_FALSE(state_->lease(bad, now_).has_value());
+  EXPECT_EQ(leaseFor(good).shot_id(), shot);
+  const int64_t other = submitFrame();
+  EXPECT_EQ(leaseFor(bad).shot_id(), other);  // blocklisted for one shot only
+}
+
+TEST_F(FarmStateTest, TaskWithoutProgressIsRevokedAsHung) {
+  submitFrame();
+  const int64_t worker = state_->registerWorker("w", 1, now_);
+  const Lease lease = leaseFor(worker);
+  now_ += 9;
+  ASSERT_TRUE(state_->heartbeat(lease.attempt_id(), 0.2, now_).keep_going());
+  const double lastProgress = now_;
+  // Heartbeats keep the lease alive, but the progress stays at 0.2.
+  while (now_ + 9 <= lastProgress + settings_.hungSeconds) {
+    now_ += 9;
+    EXPECT_TRUE(state_->heartbeat(lease.attempt_id(), 0.2, now_).keep_going());
+    EXPECT_EQ(state_->expireLeases(now_), 0);
+  }
+  now_ += 9;
+  EXPECT_EQ(state_->expireLeases(now_), 1);
+  EXPECT_FALSE(state_->heartbeat(lease.attempt_id(), 0.2, now_).keep_going());
+}
+
+TEST_F(FarmStateTest, CancelStopsLeasesAndTellsRunningWorkers) {
+  const int64_t shot = submitFrame();
+  const int64_t worker = state_->registerWorker("w", 1, now_);
+  const Lease lease = leaseFor(worker);
+  EXPECT_EQ(state_->cancel(shot, now_).state(), SHOT_CANCELLED);
+  EXPECT_FALSE(state_->heartbeat(lease.attempt_id(), 0.5, now_).keep_going());
+  EXPECT_FALSE(state_->complete(lease.attempt_id(), storedChunk("x"), now_).accepted());
+  EXPECT_FALSE(state_->lease(worker, now_).has_value());
+  EXPECT_THROW(state_->summary(shot + 100, now_), std::out_of_range);
+}
+
+TEST_F(FarmStateTest, RestartKeepsFinishedWorkAndGivesRunningLeasesGrace) {
+  const int64_t shot = submitFrame();
+  const int64_t worker = state_->registerWorker("w", 1, now_);
+  const Lease done = leaseFor(worker), running = leaseFor(worker);
+  ASSERT_TRUE(state_->complete(done.attempt_id(), storedChunk("a"), now_).accepted());
+  state_.reset();  // the scheduler dies...
+  now_ += 60;      // ...and comes back a minute later, past the lease
+  open();
+  EXPECT_EQ(state_->expireLeases(now_), 0) << "a lease expired while nobody could renew it";
+  EXPECT_TRUE(state_->complete(running.attempt_id(), storedChunk("b"), now_).accepted());
+  const Lease assemble = leaseFor(worker);
+  EXPECT_EQ(assemble.kind(), TASK_ASSEMBLE_FRAME);
+  EXPECT_TRUE(state_->complete(assemble.attempt_id(), storedChunk("f"), now_).accepted());
+  EXPECT_EQ(state_->summary(shot, now_).state(), SHOT_DONE);
+  EXPECT_EQ(state_->summary(shot, now_).attempts(), 3);  // nothing ran twice
+}
+
+TEST(Schema, MigratesOnceAndRefusesANewerDatabase) {
+  const auto file = std::filesystem::temp_directory_path() / "pathfarm_schema.db";
+  std::filesystem::remove(file);
+  {
+    Database db(file.string());
+    migrate(db);
+    EXPECT_EQ(schemaVersion(db), 1);
+    migrate(db);  // nothing to do the second time
+    db.execute("PRAGMA user_version = 99");
+    EXPECT_THROW(migrate(db), DatabaseError);
+  }
+  std::filesystem::remove(file);
+}
+
+}  // namespace
+}  // namespace pathfarm::farm
