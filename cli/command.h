@@ -21,5 +21,6 @@ std::vector<Command> addRenderCommand(CLI::App& app);
 std::vector<Command> addFarmProcessCommands(CLI::App& app);  // scheduler, worker
 std::vector<Command> addClientCommands(CLI::App& app);       // submit, status, watch, fetch, ...
 std::vector<Command> addLocalCommand(CLI::App& app);
+std::vector<Command> addPreviewCommand(CLI::App& app);
 
 }  // namespace pathfarm

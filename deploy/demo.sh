@@ -1,11 +1,15 @@
 #!/usr/bin/env bash
-# Installs dependencies, builds, and renders the demo animation: the animated Cornell box.
+# Installs dependencies, builds, and renders the demo animation (the animated Cornell
+# box, scenes/cornell/shot.json) on an embedded local farm: a scheduler and two worker
+# processes on this machine.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./deploy/setup.sh
 BUILD_DIR=${PATHFARM_BUILD_DIR:-build}
 OUT=${PATHFARM_DEMO_OUT:-demo-output/cornell}
-"$BUILD_DIR/bin/pathfarm" render scenes/cornell/scene.json --frames 0:23 --spp 64 --res 256x256 --out "$OUT" --png
+"$BUILD_DIR/bin/pathfarm" local scenes/cornell/shot.json --workers 2 --out "$OUT"
+"$BUILD_DIR/bin/pathfarm" preview "$OUT"
 echo
 echo "EXR frames (beauty in R,G,B; per-pixel variance in variance.R/G/B): $OUT/frame_0000.exr .. frame_0023.exr"
 echo "PNG previews:                                                      $OUT/frame_0000.png .. frame_0023.png"
+echo "The farm's database, chunks and worker logs:                       $OUT/farm/"

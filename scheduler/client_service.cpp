@@ -1,4 +1,5 @@
 #include <chrono>
+#include <thread>
 
 #include "proto/wire/chunk_transfer.h"
 #include "scheduler/service_guard.h"
@@ -47,7 +48,10 @@ grpc::Status ClientServiceImpl::WatchShot(grpc::ServerContext* context, const Sh
       }
       if (isFinished(summary.state())) return grpc::Status::OK;
       if (context->IsCancelled()) return grpc::Status(grpc::StatusCode::CANCELLED, "the watcher went away");
-      seen = c_.signal.waitFor(seen, std::chrono::milliseconds(500));
+      // At most ten summaries a second: a busy farm changes far more often than that, and
+      // each summary reads the whole shot.
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      seen = c_.signal.waitFor(seen, std::chrono::milliseconds(400));
     }
   });
 }

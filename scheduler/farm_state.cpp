@@ -52,12 +52,13 @@ FarmState::FarmState(const std::string& databaseFile, FarmSettings settings, dou
 int64_t FarmState::submit(const ShotSpec& spec, const std::vector<PlannedTask>& plan, double now) {
   const std::lock_guard lock(mutex_);
   Transaction transaction(db_);
-  db_.query("INSERT INTO shots (name, spec, state, priority, submitted_at) VALUES (?1, ?2, ?3, ?4, ?5)")
+  db_.query("INSERT INTO shots (name, spec, state, priority, tasks_left, submitted_at) VALUES (?1, ?2, ?3, ?4, ?5, ?6)")
       .bind(1, spec.name())
       .bindBlob(2, spec.SerializeAsString())
       .bind(3, int64_t{SHOT_QUEUED})
       .bind(4, int64_t{spec.priority()})
-      .bind(5, now)
+      .bind(5, static_cast<int64_t>(plan.size()))
+      .bind(6, now)
       .run();
   const int64_t shotId = db_.lastInsertId();
   const int64_t maxAttempts = spec.max_attempts() > 0 ? spec.max_attempts() : settings_.defaultMaxAttempts;
@@ -273,7 +274,7 @@ ReportReply FarmState::complete(int64_t attemptId, const ChunkRef& output, doubl
       .bind(2, asInt(TaskState::Ready))
       .bind(3, attempt->taskId)
       .run();
-  finishShotIfComplete(attempt->shotId, now);
+  countTaskDone(attempt->shotId, now);
   transaction.commit();
   reply.set_accepted(true);
   return reply;
@@ -359,9 +360,9 @@ int FarmState::expireLeases(double now) {
   return count;
 }
 
-void FarmState::finishShotIfComplete(int64_t shotId, double now) {
-  Statement& q = db_.query("SELECT COUNT(*) FROM tasks WHERE shot_id = ?1 AND state != ?2");
-  q.bind(1, shotId).bind(2, asInt(TaskState::Done));
+void FarmState::countTaskDone(int64_t shotId, double now) {
+  db_.query("UPDATE shots SET tasks_left = tasks_left - 1 WHERE id = ?1").bind(1, shotId).run();
+  Statement& q = db_.query("SELECT tasks_left FROM shots WHERE id = ?1").bind(1, shotId);
   q.step();
   const int64_t remaining = q.integer(0);
   q.reset();

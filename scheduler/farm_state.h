@@ -72,7 +72,7 @@ class FarmState {
   std::optional<AttemptRow> currentAttempt(int64_t attemptId);
   void endAttempt(const AttemptRow& attempt, int state, const std::string& error, double now);
   void retryOrFail(const AttemptRow& attempt, const std::string& reason, bool blameWorker, double now);
-  void finishShotIfComplete(int64_t shotId, double now);
+  void countTaskDone(int64_t shotId, double now);
   void endShot(int64_t shotId, ShotState state, const std::string& failure, double now);
   void setShotState(int64_t shotId, ShotState state, double now);
   void addEvent(int64_t shotId, const std::string& message, double now);

@@ -17,6 +17,7 @@ const std::vector<const char*>& migrations() {
         spec BLOB NOT NULL,                -- ShotSpec, serialized
         state INTEGER NOT NULL,            -- ShotState
         priority INTEGER NOT NULL,
+        tasks_left INTEGER NOT NULL,       -- tasks not yet done: the shot is done at 0
         submitted_at REAL NOT NULL,
         started_at REAL,
         finished_at REAL,

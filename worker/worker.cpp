@@ -17,7 +17,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-constexpr double kLeaseWaitSeconds = 2;
+// Long-poll length: short enough that a stop request is noticed quickly.
+constexpr double kLeaseWaitSeconds = 0.5;
 // After a stop request, how long a finished result is still offered to an unreachable scheduler.
 constexpr auto kDeliveryGrace = std::chrono::seconds(60);
 

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# `pathfarm local` and `pathfarm preview` as a user runs them: a tiny shot on two local
+# workers gives the same EXR bytes as `pathfarm render`, previews appear next to the
+# frames, and a bad shot is refused with exit status 2 before any farm starts.
+set -u
+pathfarm=$1
+source_dir=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+cat > "$work/shot.json" <<JSON
+{"name": "tiny", "scene": "$source_dir/scenes/cornell/scene.json", "frames": {"start": 1, "end": 2},
+ "resolution": [40, 30], "spp": 2, "max_depth": 6, "tile": 16, "output": "farm_out"}
+JSON
+"$pathfarm" local "$work/shot.json" --workers 2 --threads 1 > "$work/log" 2>&1 || fail "local failed: $(cat "$work/log")"
+"$pathfarm" render "$source_dir/scenes/cornell/scene.json" --frames 1:2 --res 40x30 --spp 2 --max-depth 6 \
+  --out "$work/render" > "$work/render.log" 2>&1 || fail "render failed"
+for f in frame_0001.exr frame_0002.exr; do
+  cmp -s "$work/farm_out/$f" "$work/render/$f" || fail "$f from the farm differs from pathfarm render"
+done
+# Its workers' command lines name their cache under the output folder.
+pgrep -f "$work/farm_out/farm/cache" > /dev/null && fail "workers left running"
+
+"$pathfarm" preview "$work/farm_out" > "$work/log" 2>&1 || fail "preview failed: $(cat "$work/log")"
+[ -s "$work/farm_out/frame_0001.png" ] || fail "no preview written"
+
+echo '{"scene": "missing.json"}' > "$work/bad.json"
+"$pathfarm" local "$work/bad.json" --out "$work/bad_out" > "$work/log" 2>&1
+status=$?
+[ "$status" -eq 2 ] || fail "bad shot: exit status $status, expected 2"
+grep -q "missing.json: cannot open the scene file" "$work/log" || fail "bad shot message: $(cat "$work/log")"
+[ -e "$work/bad_out" ] && fail "a bad shot started a farm"
+
+if [ "$failures" -eq 0 ]; then echo "local CLI: all checks passed"; fi
+exit "$failures"
