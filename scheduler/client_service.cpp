@@ -56,31 +56,29 @@ grpc::Status ClientServiceImpl::WatchShot(grpc::ServerContext* context, const Sh
   });
 }
 
-grpc::Status ClientServiceImpl::CancelShot(grpc::ServerContext* context, const ShotRequest* request,
-                                           ControlReply* reply) {
+template <class Change>
+grpc::Status ClientServiceImpl::controlShot(grpc::ServerContext* context, const ShotRequest* request,
+                                            ControlReply* reply, Change change) {
   return guarded(c_, context, [&] {
-    *reply->mutable_summary() = c_.state.cancel(request->shot_id(), wallClockSeconds());
+    *reply->mutable_summary() = (c_.state.*change)(request->shot_id(), wallClockSeconds());
     c_.signal.notify();
     return grpc::Status::OK;
   });
+}
+
+grpc::Status ClientServiceImpl::CancelShot(grpc::ServerContext* context, const ShotRequest* request,
+                                           ControlReply* reply) {
+  return controlShot(context, request, reply, &FarmState::cancel);
 }
 
 grpc::Status ClientServiceImpl::PauseShot(grpc::ServerContext* context, const ShotRequest* request,
                                           ControlReply* reply) {
-  return guarded(c_, context, [&] {
-    *reply->mutable_summary() = c_.state.pause(request->shot_id(), wallClockSeconds());
-    c_.signal.notify();
-    return grpc::Status::OK;
-  });
+  return controlShot(context, request, reply, &FarmState::pause);
 }
 
 grpc::Status ClientServiceImpl::ResumeShot(grpc::ServerContext* context, const ShotRequest* request,
                                            ControlReply* reply) {
-  return guarded(c_, context, [&] {
-    *reply->mutable_summary() = c_.state.resume(request->shot_id(), wallClockSeconds());
-    c_.signal.notify();
-    return grpc::Status::OK;
-  });
+  return controlShot(context, request, reply, &FarmState::resume);
 }
 
 grpc::Status ClientServiceImpl::FetchOutputs(grpc::ServerContext* context, const ShotRequest* request,

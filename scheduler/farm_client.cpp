@@ -65,29 +65,18 @@ ShotSummary FarmClient::watch(int64_t id, const std::function<void(const ShotSum
   return summary;
 }
 
-ShotSummary FarmClient::cancel(int64_t id) {
+template <class Method>
+ShotSummary FarmClient::controlShot(Method method, int64_t id) {
   ShotRequest request;
   request.set_shot_id(id);
   ControlReply reply;
-  check(stub_->CancelShot(context(false).get(), request, &reply));
+  check((stub_.get()->*method)(context(false).get(), request, &reply));
   return reply.summary();
 }
 
-ShotSummary FarmClient::pause(int64_t id) {
-  ShotRequest request;
-  request.set_shot_id(id);
-  ControlReply reply;
-  check(stub_->PauseShot(context(false).get(), request, &reply));
-  return reply.summary();
-}
-
-ShotSummary FarmClient::resume(int64_t id) {
-  ShotRequest request;
-  request.set_shot_id(id);
-  ControlReply reply;
-  check(stub_->ResumeShot(context(false).get(), request, &reply));
-  return reply.summary();
-}
+ShotSummary FarmClient::cancel(int64_t id) { return controlShot(&ClientService::Stub::CancelShot, id); }
+ShotSummary FarmClient::pause(int64_t id) { return controlShot(&ClientService::Stub::PauseShot, id); }
+ShotSummary FarmClient::resume(int64_t id) { return controlShot(&ClientService::Stub::ResumeShot, id); }
 
 std::vector<std::filesystem::path> FarmClient::fetch(int64_t id, const std::filesystem::path& folder) {
   ShotRequest request;

@@ -40,6 +40,8 @@ class FarmClient {
 
  private:
   std::unique_ptr<grpc::ClientContext> context(bool stream) const;
+  template <class Method>
+  ShotSummary controlShot(Method method, int64_t id);
   std::unique_ptr<ClientService::Stub> stub_;
   std::string token_;
 };

@@ -508,38 +508,37 @@ void FarmState::setShotState(int64_t shotId, ShotState state, double now) {
   addEvent(shotId, ShotState_Name(state), now);
 }
 
-ShotSummary FarmState::cancel(int64_t shotId, double now) {
+template <class Change>
+ShotSummary FarmState::changeShot(int64_t shotId, double now, Change change) {
   const std::lock_guard lock(mutex_);
   Transaction transaction(db_);
-  const ShotSummary before = summaryLocked(shotId, now);
-  if (!isFinished(before.state())) endShot(shotId, SHOT_CANCELLED, "", now);
+  change(summaryLocked(shotId, now).state());
   ShotSummary after = summaryLocked(shotId, now);
   transaction.commit();
   return after;
+}
+
+ShotSummary FarmState::cancel(int64_t shotId, double now) {
+  return changeShot(shotId, now, [&](ShotState state) {
+    if (!isFinished(state)) endShot(shotId, SHOT_CANCELLED, "", now);
+  });
 }
 
 ShotSummary FarmState::pause(int64_t shotId, double now) {
-  const std::lock_guard lock(mutex_);
-  Transaction transaction(db_);
-  if (isActive(summaryLocked(shotId, now).state())) setShotState(shotId, SHOT_PAUSED, now);
-  ShotSummary after = summaryLocked(shotId, now);
-  transaction.commit();
-  return after;
+  return changeShot(shotId, now, [&](ShotState state) {
+    if (isActive(state)) setShotState(shotId, SHOT_PAUSED, now);
+  });
 }
 
 ShotSummary FarmState::resume(int64_t shotId, double now) {
-  const std::lock_guard lock(mutex_);
-  Transaction transaction(db_);
-  if (summaryLocked(shotId, now).state() == SHOT_PAUSED) {
+  return changeShot(shotId, now, [&](ShotState state) {
+    if (state != SHOT_PAUSED) return;
     Statement& q = db_.query("SELECT started_at IS NOT NULL FROM shots WHERE id = ?1").bind(1, shotId);
     q.step();
     const bool started = q.integer(0) != 0;
     q.reset();
     setShotState(shotId, started ? SHOT_RUNNING : SHOT_QUEUED, now);
-  }
-  ShotSummary after = summaryLocked(shotId, now);
-  transaction.commit();
-  return after;
+  });
 }
 
 std::vector<std::pair<int64_t, ChunkRef>> FarmState::outputs(int64_t shotId) {

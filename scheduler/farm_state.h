@@ -75,6 +75,9 @@ class FarmState {
   void countTaskDone(int64_t shotId, double now);
   void endShot(int64_t shotId, ShotState state, const std::string& failure, double now);
   void setShotState(int64_t shotId, ShotState state, double now);
+  // One transaction: `change` gets the shot's state; the summary after is returned.
+  template <class Change>
+  ShotSummary changeShot(int64_t shotId, double now, Change change);
   void addEvent(int64_t shotId, const std::string& message, double now);
   ShotSummary summaryLocked(int64_t shotId, double now);
   std::optional<int64_t> nextTask(int64_t workerId, double now);

@@ -46,6 +46,9 @@ class ClientServiceImpl final : public ClientService::Service {
   grpc::Status ListWorkers(grpc::ServerContext*, const ListWorkersRequest*, ListWorkersReply*) override;
 
  private:
+  template <class Change>
+  grpc::Status controlShot(grpc::ServerContext* context, const ShotRequest* request, ControlReply* reply,
+                           Change change);
   SchedulerContext c_;
 };
 
