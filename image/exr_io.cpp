@@ -10,6 +10,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -75,7 +76,11 @@ FrameImage decodeExr(const std::string& bytes, const std::string& label) {
 }
 
 void writeFileAtomically(const std::filesystem::path& file, const std::string& bytes) {
-  const std::string temporary = file.string() + ".partial";
+  // A name of this writer's own: concurrent writers of the same file never share (or
+  // remove) each other's temporary, and the last rename wins with complete content.
+  static std::atomic<uint64_t> counter{0};
+  const std::string temporary =
+      file.string() + "." + std::to_string(::getpid()) + "." + std::to_string(counter++) + ".partial";
   const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) throw ExrError(file.string() + ": cannot write: " + std::strerror(errno));
   size_t written = 0;

@@ -134,8 +134,13 @@ std::optional<int64_t> FarmState::nextTask(int64_t workerId, double now) {
 std::optional<Lease> FarmState::lease(int64_t workerId, double now) {
   const std::lock_guard lock(mutex_);
   Transaction transaction(db_);
+  // Asking for work is a sign of life, whether or not there is any.
+  db_.query("UPDATE workers SET last_seen = ?1 WHERE id = ?2").bind(1, now).bind(2, workerId).run();
   const auto taskId = nextTask(workerId, now);
-  if (!taskId) return std::nullopt;
+  if (!taskId) {
+    transaction.commit();
+    return std::nullopt;
+  }
 
   db_.query("INSERT INTO attempts (task_id, worker_id, state, leased_at, expires_at, progress_at) "
             "VALUES (?1, ?2, ?3, ?4, ?5, ?4)")
@@ -151,7 +156,6 @@ std::optional<Lease> FarmState::lease(int64_t workerId, double now) {
       .bind(2, attemptId)
       .bind(3, *taskId)
       .run();
-  db_.query("UPDATE workers SET last_seen = ?1 WHERE id = ?2").bind(1, now).bind(2, workerId).run();
 
   Lease lease;
   lease.set_attempt_id(attemptId);
@@ -302,6 +306,7 @@ void FarmState::retryOrFail(const AttemptRow& attempt, const std::string& reason
   addEvent(attempt.shotId, task + " attempt " + std::to_string(failures) + " failed on worker " +
                                std::to_string(attempt.workerId) + ": " + reason,
            now);
+  bool blocklisted = false;
   if (blameWorker) {
     db_.query("INSERT INTO worker_failures (shot_id, worker_id, failures) VALUES (?1, ?2, 1) "
               "ON CONFLICT (shot_id, worker_id) DO UPDATE SET failures = failures + 1")
@@ -314,7 +319,8 @@ void FarmState::retryOrFail(const AttemptRow& attempt, const std::string& reason
         .bind(2, attempt.workerId)
         .bind(3, int64_t{settings_.blocklistAfter})
         .run();
-    if (db_.changes() > 0)
+    blocklisted = db_.changes() > 0;
+    if (blocklisted)
       addEvent(attempt.shotId, "worker " + std::to_string(attempt.workerId) + " is blocklisted for this shot", now);
   }
   if (failures >= attempt.maxAttempts) {
@@ -325,6 +331,11 @@ void FarmState::retryOrFail(const AttemptRow& attempt, const std::string& reason
         .run();
     endShot(attempt.shotId, SHOT_FAILED,
             task + " failed " + std::to_string(failures) + " times; last: " + reason, now);
+    return;
+  }
+  if (blocklisted && !anyWorkerCanRun(attempt.shotId, now)) {
+    endShot(attempt.shotId, SHOT_FAILED,
+            "every live worker is blocklisted for this shot after repeated failures; last: " + reason, now);
     return;
   }
   const double backoff =
@@ -358,6 +369,18 @@ int FarmState::expireLeases(double now) {
   }
   transaction.commit();
   return count;
+}
+
+bool FarmState::anyWorkerCanRun(int64_t shotId, double now) {
+  // Live: asked for work or renewed a lease within two lease periods.
+  Statement& q = db_.query(
+      "SELECT COUNT(*) FROM workers WHERE last_seen >= ?1 AND id NOT IN "
+      "(SELECT worker_id FROM worker_failures WHERE shot_id = ?2 AND blocklisted = 1)");
+  q.bind(1, now - 2 * settings_.leaseSeconds).bind(2, shotId);
+  q.step();
+  const bool any = q.integer(0) > 0;
+  q.reset();
+  return any;
 }
 
 void FarmState::countTaskDone(int64_t shotId, double now) {

@@ -21,7 +21,8 @@ struct FarmSettings {
   double hungSeconds = 600;        // a task whose progress stalls this long is revoked
   double retryBackoffSeconds = 1;  // first retry delay; doubles per failure, capped
   double maxBackoffSeconds = 60;
-  int blocklistAfter = 3;          // a worker failing this many tasks of a shot is blocklisted for it
+  int blocklistAfter = 3;          // a worker failing this many tasks of a shot is blocklisted for
+                                   // it; when no live worker is left, the shot fails
   int defaultMaxAttempts = 3;
 };
 
@@ -73,6 +74,7 @@ class FarmState {
   void endAttempt(const AttemptRow& attempt, int state, const std::string& error, double now);
   void retryOrFail(const AttemptRow& attempt, const std::string& reason, bool blameWorker, double now);
   void countTaskDone(int64_t shotId, double now);
+  bool anyWorkerCanRun(int64_t shotId, double now);
   void endShot(int64_t shotId, ShotState state, const std::string& failure, double now);
   void setShotState(int64_t shotId, ShotState state, double now);
   // One transaction: `change` gets the shot's state; the summary after is returned.

@@ -76,19 +76,29 @@ grpc::Status SchedulerLink::getChunk(const std::string& sha256, std::string& byt
   request.set_sha256(sha256);
   const auto call = context(kTransferSeconds);
   auto reader = stub_->GetChunk(call.get(), request);
-  ChunkRef ref;
+  ChunkAssembler chunk;
   try {
-    bytes = receiveChunk(*reader, ref, kMaxChunkBytes);
+    ChunkPart part;
+    while (reader->Read(&part)) {
+      if (!chunk.started()) chunk.start(part.ref(), kMaxChunkBytes);
+      chunk.append(part.data());
+    }
   } catch (const ChunkError& e) {
-    call->TryCancel();
-    const grpc::Status status = reader->Finish();
-    // A refusal (no such chunk, no access) explains an empty stream better than the stream.
-    if (!status.ok() && status.error_code() != grpc::StatusCode::CANCELLED) return status;
+    call->TryCancel();  // the bytes are bad: stop the stream
+    reader->Finish();
     return {grpc::StatusCode::DATA_LOSS, e.what()};
   }
+  // The stream ended: its status (a refusal, a dropped connection) explains a short chunk.
   const grpc::Status status = reader->Finish();
-  if (status.ok() && ref.sha256() != sha256)
-    return {grpc::StatusCode::DATA_LOSS, "asked for chunk " + sha256 + ", received " + ref.sha256()};
+  if (!status.ok()) return status;
+  if (!chunk.started()) return {grpc::StatusCode::DATA_LOSS, "empty chunk stream for " + sha256};
+  if (chunk.ref().sha256() != sha256)
+    return {grpc::StatusCode::DATA_LOSS, "asked for chunk " + sha256 + ", received " + chunk.ref().sha256()};
+  try {
+    bytes = chunk.finish();
+  } catch (const ChunkError& e) {
+    return {grpc::StatusCode::DATA_LOSS, e.what()};
+  }
   return status;
 }
 

@@ -1,5 +1,7 @@
 #include "worker/task_runner.h"
 
+#include <algorithm>
+
 #include "image/exr_io.h"
 #include "renderer/integrators/frame_renderer.h"
 #include "renderer/scene/scene_loader.h"
@@ -30,16 +32,19 @@ TaskRunner::~TaskRunner() = default;
 
 std::shared_ptr<TaskRunner::ShotRenderer> TaskRunner::rendererFor(const Lease& lease) {
   const std::lock_guard lock(mutex_);
-  auto& entry = renderers_[lease.shot_id()];
-  if (!entry) {
-    auto shot = std::make_shared<ShotRenderer>();
-    shot->scene = loadScene(lease.spec().scene());
-    shot->renderer = std::make_unique<FrameRenderer>(shot->scene, settingsOf(lease.spec(), threads_));
-    entry = shot;
-    // Keep the newest shots: ids grow with submission order.
-    while (renderers_.size() > kShotsKept) renderers_.erase(renderers_.begin());
+  // Most recently used first; a shot seen again moves to the front.
+  const auto cached = std::find_if(renderers_.begin(), renderers_.end(),
+                                   [&](const auto& entry) { return entry.first == lease.shot_id(); });
+  if (cached != renderers_.end()) {
+    std::rotate(renderers_.begin(), cached, cached + 1);
+    return renderers_.front().second;
   }
-  return entry;
+  auto shot = std::make_shared<ShotRenderer>();
+  shot->scene = loadScene(lease.spec().scene());
+  shot->renderer = std::make_unique<FrameRenderer>(shot->scene, settingsOf(lease.spec(), threads_));
+  renderers_.insert(renderers_.begin(), {lease.shot_id(), shot});
+  if (renderers_.size() > kShotsKept) renderers_.pop_back();  // tasks still using it keep their copy
+  return shot;
 }
 
 std::string TaskRunner::run(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,

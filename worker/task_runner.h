@@ -5,11 +5,12 @@
 // loading and BVH building once per worker.
 #include <atomic>
 #include <functional>
-#include <map>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "pathfarm/worker_service.pb.h"
 
@@ -47,7 +48,7 @@ class TaskRunner {
 
   int threads_;
   std::mutex mutex_;
-  std::map<int64_t, std::shared_ptr<ShotRenderer>> renderers_;  // by shot id, a few kept
+  std::vector<std::pair<int64_t, std::shared_ptr<ShotRenderer>>> renderers_;  // by shot id, recent first
 };
 
 }  // namespace pathfarm::farm

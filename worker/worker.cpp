@@ -76,13 +76,23 @@ class Slot {
     return true;
   }
 
-  std::string fetch(const ChunkRef& ref) {
+  // An input chunk from the cache or the scheduler. An unreachable scheduler is waited
+  // for (it is not the task's fault) until the lease is lost.
+  std::string fetch(const ChunkRef& ref, const std::atomic<bool>& abandon) {
     if (auto bytes = cache_.get(ref.sha256())) return *bytes;
-    std::string bytes;
-    const grpc::Status status = link_.getChunk(ref.sha256(), bytes);
-    if (!status.ok()) throw std::runtime_error("cannot fetch input chunk " + ref.sha256() + ": " + status.error_message());
-    cache_.put(bytes, ref);
-    return bytes;
+    Backoff backoff;
+    for (;;) {
+      std::string bytes;
+      const grpc::Status status = link_.getChunk(ref.sha256(), bytes);
+      if (status.ok()) {
+        cache_.put(bytes, ref);
+        return bytes;
+      }
+      if (abandon) throw TaskAbandoned();
+      if (!isTransient(status))
+        throw std::runtime_error("cannot fetch input chunk " + ref.sha256() + ": " + status.error_message());
+      backoff.sleep();
+    }
   }
 
   void execute(const Lease& lease, const std::atomic<bool>& stop) {
@@ -90,7 +100,7 @@ class Slot {
     std::atomic<double> progress{0};
     std::atomic<bool> abandon{false};
     auto result = std::async(std::launch::async, [&] {
-      return runner_.run(lease, [this](const ChunkRef& ref) { return fetch(ref); }, progress, abandon);
+      return runner_.run(lease, [&](const ChunkRef& ref) { return fetch(ref, abandon); }, progress, abandon);
     });
     // Renew the lease while the task runs; a lost lease abandons the work.
     while (result.wait_for(heartbeat_) == std::future_status::timeout) {

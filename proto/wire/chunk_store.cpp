@@ -35,8 +35,7 @@ ChunkRef ChunkStore::put(const std::string& bytes, const ChunkRef& expected) {
   const auto target = pathOf(ref.sha256());
   std::filesystem::create_directories(target.parent_path());
   try {
-    // writeFileAtomically uses "<target>.partial": unique per digest, and identical
-    // content if two writers race, so the rename is safe either way.
+    // Two writers of one chunk write the same bytes, each through its own temporary.
     writeFileAtomically(target, bytes);
   } catch (const std::exception& e) {
     throw ChunkError(std::string("cannot store chunk: ") + e.what());

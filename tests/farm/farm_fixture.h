@@ -5,7 +5,7 @@
 // and compares the farm's frames with `pathfarm render`'s byte for byte. Every wait has
 // a deadline; a helper that times out throws with a message saying what it waited for,
 // which fails the test. TearDown stops every process and removes the folder, printing
-// the processes' logs first when the test failed.
+// the processes' logs first when the test failed (PATHFARM_FARM_TEST_KEEP=1 keeps it).
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sqlite3.h>
@@ -180,7 +180,9 @@ class FarmTest : public ::testing::Test {
     if (scheduler_) scheduler_->stop(5s);
     scheduler_.reset();
     if (HasFailure()) dumpLogs();
-    if (!dir_.empty()) {
+    if (std::getenv("PATHFARM_FARM_TEST_KEEP")) {
+      std::cerr << "kept the test's folder: " << dir_.string() << "\n";
+    } else if (!dir_.empty()) {
       std::error_code ignored;
       fs::remove_all(dir_, ignored);
     }

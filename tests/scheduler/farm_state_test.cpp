@@ -155,14 +155,29 @@ TEST_F(FarmStateTest, FailuresBackOffThenFailTheShotWithTheReason) {
 TEST_F(FarmStateTest, WorkerFailingTooOftenIsBlocklistedForThatShot) {
   const int64_t shot = submitFrame(0, 10);
   const int64_t bad = state_->registerWorker("bad", 1, now_), good = state_->registerWorker("good", 1, now_);
-  for (int i = 0; i < settings_.blocklistAfter; ++i) {
-    EXPECT_TRUE(state_->fail(leaseFor(bad).attempt_id(), "out of memory", now_).accepted());
-    now_ += 100;  // past any backoff
-  }
+  const Lease first = leaseFor(bad), second = leaseFor(bad);
+  EXPECT_TRUE(state_->fail(first.attempt_id(), "out of memory", now_).accepted());
+  EXPECT_TRUE(state_->fail(second.attempt_id(), "out of memory", now_).accepted());
+  now_ += settings_.retryBackoffSeconds;
   EXPECT_FALSE(state_->lease(bad, now_).has_value());
   EXPECT_EQ(leaseFor(good).shot_id(), shot);
+  EXPECT_EQ(state_->summary(shot, now_).state(), SHOT_RUNNING);
   const int64_t other = submitFrame();
   EXPECT_EQ(leaseFor(bad).shot_id(), other);  // blocklisted for one shot only
+}
+
+TEST_F(FarmStateTest, ShotFailsWhenEveryLiveWorkerIsBlocklisted) {
+  const int64_t shot = submitFrame(0, 10);
+  const int64_t only = state_->registerWorker("only", 1, now_);
+  state_->registerWorker("long gone", 1, now_ - 1000);
+  const Lease first = leaseFor(only), second = leaseFor(only);
+  EXPECT_TRUE(state_->fail(first.attempt_id(), "scene.json: cannot open the scene file", now_).accepted());
+  EXPECT_EQ(state_->summary(shot, now_).state(), SHOT_RUNNING);
+  EXPECT_TRUE(state_->fail(second.attempt_id(), "scene.json: cannot open the scene file", now_).accepted());
+  const ShotSummary summary = state_->summary(shot, now_);
+  EXPECT_EQ(summary.state(), SHOT_FAILED);
+  EXPECT_NE(summary.failure().find("blocklisted"), std::string::npos) << summary.failure();
+  EXPECT_NE(summary.failure().find("cannot open the scene file"), std::string::npos) << summary.failure();
 }
 
 TEST_F(FarmStateTest, TaskWithoutProgressIsRevokedAsHung) {
