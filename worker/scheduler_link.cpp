@@ -33,7 +33,22 @@ grpc::Status SchedulerLink::lease(int64_t workerId, double waitSeconds, LeaseRep
   LeaseRequest request;
   request.set_worker_id(workerId);
   request.set_wait_seconds(waitSeconds);
-  return stub_->LeaseTask(context(kCallSeconds + waitSeconds).get(), request, &reply);
+  const auto call = context(kCallSeconds + waitSeconds);
+  {
+    const std::lock_guard lock(mutex_);
+    if (leasingStopped_) return {grpc::StatusCode::CANCELLED, "the worker is stopping"};
+    pendingLeases_.insert(call.get());
+  }
+  const grpc::Status status = stub_->LeaseTask(call.get(), request, &reply);
+  const std::lock_guard lock(mutex_);
+  pendingLeases_.erase(call.get());
+  return status;
+}
+
+void SchedulerLink::stopLeasing() {
+  const std::lock_guard lock(mutex_);
+  leasingStopped_ = true;
+  for (grpc::ClientContext* call : pendingLeases_) call->TryCancel();
 }
 
 grpc::Status SchedulerLink::heartbeat(int64_t attemptId, double progress, HeartbeatReply& reply) {

@@ -2,6 +2,8 @@
 // A worker's calls to the scheduler: the WorkerService stub with the access token and a
 // deadline on every call, and chunk transfer in bounded, verified parts.
 #include <memory>
+#include <mutex>
+#include <set>
 #include <string>
 
 #include "pathfarm/worker_service.grpc.pb.h"
@@ -13,7 +15,11 @@ class SchedulerLink {
   SchedulerLink(const std::string& address, std::string token);
 
   grpc::Status registerWorker(const std::string& name, int slots, RegisterReply& reply);
+  // A long-poll for a task; returns CANCELLED at once after stopLeasing().
   grpc::Status lease(int64_t workerId, double waitSeconds, LeaseReply& reply);
+  // Ends the long-polls under way and refuses new ones: a stopping worker need not wait
+  // for them to time out.
+  void stopLeasing();
   grpc::Status heartbeat(int64_t attemptId, double progress, HeartbeatReply& reply);
   grpc::Status complete(int64_t attemptId, const ChunkRef& output, ReportReply& reply);
   grpc::Status fail(int64_t attemptId, const std::string& reason, ReportReply& reply);
@@ -24,6 +30,9 @@ class SchedulerLink {
   std::unique_ptr<grpc::ClientContext> context(double seconds) const;
   std::unique_ptr<WorkerService::Stub> stub_;
   std::string token_;
+  std::mutex mutex_;
+  bool leasingStopped_ = false;
+  std::set<grpc::ClientContext*> pendingLeases_;
 };
 
 }  // namespace pathfarm::farm

@@ -17,8 +17,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Long-poll length: short enough that a stop request is noticed quickly.
-constexpr double kLeaseWaitSeconds = 0.5;
+// Long-poll length; a stop request cancels a poll under way.
+constexpr double kLeaseWaitSeconds = 2;
 // After a stop request, how long a finished result is still offered to an unreachable scheduler.
 constexpr auto kDeliveryGrace = std::chrono::seconds(60);
 
@@ -58,6 +58,7 @@ class Slot {
         if (!reregister()) backoff.sleep();  // a scheduler with a fresh database forgot us
         continue;
       }
+      if (stop) break;
       if (!status.ok()) {
         spdlog::warn("cannot lease a task: {}", status.error_message());
         backoff.sleep();
@@ -207,6 +208,8 @@ void Worker::run(const std::atomic<bool>& stop) {
       Slot(link, runner, cache, workerId, options_, registration.heartbeat_seconds()).run(stop);
     });
   }
+  while (!stop) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  link.stopLeasing();
   for (std::thread& t : slots) t.join();
   spdlog::info("worker {} stopped", workerId);
 }

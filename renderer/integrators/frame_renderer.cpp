@@ -33,6 +33,13 @@ FrameRenderer::FrameRenderer(const Scene& scene, RenderSettings settings)
 
 FrameRenderer::~FrameRenderer() = default;
 
+std::shared_ptr<const FrameGeometry> FrameRenderer::geometryFor(int64_t frame) const {
+  const std::lock_guard lock(geometryMutex_);
+  if (!lastGeometry_ || lastGeometry_->frame() != frame)
+    lastGeometry_ = std::make_shared<const FrameGeometry>(shot_->geometry, frame);
+  return lastGeometry_;
+}
+
 namespace {
 
 struct TileCounters {
@@ -49,8 +56,8 @@ FrameImage FrameRenderer::render(int64_t frame, const ProgressCallback& progress
 FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window, const ProgressCallback& progress,
                                        RenderStats* stats) const {
   const auto start = std::chrono::steady_clock::now();
-  const FrameGeometry geometry(shot_->geometry, frame);
-  const PathTracer tracer(geometry, shot_->lights, {settings_.maxDepth});
+  const std::shared_ptr<const FrameGeometry> geometry = geometryFor(frame);
+  const PathTracer tracer(*geometry, shot_->lights, {settings_.maxDepth});
   const Camera camera(scene_.camera, settings_.width, settings_.height);
 
   if (window.x0 < 0 || window.y0 < 0 || window.x1 > settings_.width || window.y1 > settings_.height ||

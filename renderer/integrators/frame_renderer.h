@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <mutex>
 
 #include "image/frame_image.h"
 #include "renderer/integrators/path_tracer.h"
@@ -60,9 +61,15 @@ class FrameRenderer {
 
  private:
   struct Shot;
+  // The placed geometry of `frame`, built once and shared by the calls rendering windows
+  // of the same frame (a farm worker renders many tiles of one frame in a row).
+  std::shared_ptr<const FrameGeometry> geometryFor(int64_t frame) const;
+
   const Scene& scene_;
   RenderSettings settings_;
   std::unique_ptr<Shot> shot_;
+  mutable std::mutex geometryMutex_;
+  mutable std::shared_ptr<const FrameGeometry> lastGeometry_;
 };
 
 }  // namespace pathfarm
