@@ -17,6 +17,20 @@ int64_t asInt(AttemptState s) { return static_cast<int64_t>(s); }
 
 bool isActive(ShotState state) { return state == SHOT_QUEUED || state == SHOT_RUNNING; }
 
+constexpr const char* kStaleLease = "the lease is no longer current (expired, revoked or superseded)";
+
+ReportReply refused(const std::string& reason) {
+  ReportReply reply;
+  reply.set_reason(reason);
+  return reply;
+}
+
+ReportReply accepted() {
+  ReportReply reply;
+  reply.set_accepted(true);
+  return reply;
+}
+
 std::string describeTask(int64_t taskId, TaskKind kind, const TaskParams& params) {
   std::string text = "task " + std::to_string(taskId) + " (" + TaskKind_Name(kind);
   if (kind != TASK_NOOP) text += ", frame " + std::to_string(params.frame());
@@ -29,6 +43,20 @@ std::string describeTask(int64_t taskId, TaskKind kind, const TaskParams& params
 }
 
 }  // namespace
+
+template <class Body>
+auto FarmState::transact(Body body) -> decltype(body()) {
+  const std::lock_guard lock(mutex_);
+  Transaction transaction(db_);
+  if constexpr (std::is_void_v<decltype(body())>) {
+    body();
+    transaction.commit();
+  } else {
+    auto result = body();
+    transaction.commit();
+    return result;
+  }
+}
 
 struct FarmState::AttemptRow {
   int64_t id, taskId, shotId, workerId;
@@ -50,62 +78,61 @@ FarmState::FarmState(const std::string& databaseFile, FarmSettings settings, dou
 }
 
 int64_t FarmState::submit(const ShotSpec& spec, const std::vector<PlannedTask>& plan, double now) {
-  const std::lock_guard lock(mutex_);
-  Transaction transaction(db_);
-  db_.query("INSERT INTO shots (name, spec, state, priority, tasks_left, submitted_at) VALUES (?1, ?2, ?3, ?4, ?5, ?6)")
-      .bind(1, spec.name())
-      .bindBlob(2, spec.SerializeAsString())
-      .bind(3, int64_t{SHOT_QUEUED})
-      .bind(4, int64_t{spec.priority()})
-      .bind(5, static_cast<int64_t>(plan.size()))
-      .bind(6, now)
-      .run();
-  const int64_t shotId = db_.lastInsertId();
-  const int64_t maxAttempts = spec.max_attempts() > 0 ? spec.max_attempts() : settings_.defaultMaxAttempts;
-  std::vector<int64_t> ids;
-  ids.reserve(plan.size());
-  for (const PlannedTask& task : plan) {
-    const bool ready = task.dependencies.empty();
-    db_.query("INSERT INTO tasks (shot_id, kind, params, state, pending_deps, max_attempts) VALUES (?1, ?2, ?3, ?4, ?5, ?6)")
-        .bind(1, shotId)
-        .bind(2, int64_t{task.kind})
-        .bindBlob(3, task.params.SerializeAsString())
-        .bind(4, asInt(ready ? TaskState::Ready : TaskState::Waiting))
-        .bind(5, static_cast<int64_t>(task.dependencies.size()))
-        .bind(6, maxAttempts)
+  return transact([&]() -> int64_t {
+    db_.query("INSERT INTO shots (name, spec, state, priority, tasks_left, submitted_at) VALUES (?1, ?2, ?3, ?4, ?5, ?6)")
+        .bind(1, spec.name())
+        .bindBlob(2, spec.SerializeAsString())
+        .bind(3, int64_t{SHOT_QUEUED})
+        .bind(4, int64_t{spec.priority()})
+        .bind(5, static_cast<int64_t>(plan.size()))
+        .bind(6, now)
         .run();
-    ids.push_back(db_.lastInsertId());
-    for (size_t dependency : task.dependencies) {
-      db_.query("INSERT INTO task_deps (task_id, depends_on) VALUES (?1, ?2)")
-          .bind(1, ids.back())
-          .bind(2, ids.at(dependency))
+    const int64_t shotId = db_.lastInsertId();
+    const int64_t maxAttempts = spec.max_attempts() > 0 ? spec.max_attempts() : settings_.defaultMaxAttempts;
+    std::vector<int64_t> ids;
+    ids.reserve(plan.size());
+    for (const PlannedTask& task : plan) {
+      const bool ready = task.dependencies.empty();
+      db_.query("INSERT INTO tasks (shot_id, kind, params, state, pending_deps, max_attempts) VALUES (?1, ?2, ?3, ?4, ?5, ?6)")
+          .bind(1, shotId)
+          .bind(2, int64_t{task.kind})
+          .bindBlob(3, task.params.SerializeAsString())
+          .bind(4, asInt(ready ? TaskState::Ready : TaskState::Waiting))
+          .bind(5, static_cast<int64_t>(task.dependencies.size()))
+          .bind(6, maxAttempts)
           .run();
+      ids.push_back(db_.lastInsertId());
+      for (size_t dependency : task.dependencies) {
+        db_.query("INSERT INTO task_deps (task_id, depends_on) VALUES (?1, ?2)")
+            .bind(1, ids.back())
+            .bind(2, ids.at(dependency))
+            .run();
+      }
     }
-  }
-  addEvent(shotId, "submitted: " + std::to_string(plan.size()) + " tasks", now);
-  transaction.commit();
-  return shotId;
+    addEvent(shotId, "submitted: " + std::to_string(plan.size()) + " tasks", now);
+    return shotId;
+  });
 }
 
 int64_t FarmState::registerWorker(const std::string& name, int slots, double now) {
-  const std::lock_guard lock(mutex_);
-  Transaction transaction(db_);
-  db_.query("INSERT INTO workers (name, slots, registered_at, last_seen) VALUES (?1, ?2, ?3, ?3)")
-      .bind(1, name)
-      .bind(2, int64_t{slots})
-      .bind(3, now)
-      .run();
-  const int64_t id = db_.lastInsertId();
-  transaction.commit();
-  return id;
+  return transact([&]() -> int64_t {
+    db_.query("INSERT INTO workers (name, slots, registered_at, last_seen) VALUES (?1, ?2, ?3, ?3)")
+        .bind(1, name)
+        .bind(2, int64_t{slots})
+        .bind(3, now)
+        .run();
+    const int64_t id = db_.lastInsertId();
+    return id;
+  });
 }
 
 bool FarmState::workerExists(int64_t workerId) {
-  const std::lock_guard lock(mutex_);
-  Statement& q = db_.query("SELECT 1 FROM workers WHERE id = ?1").bind(1, workerId);
-  const bool found = q.step();
-  q.reset();
-  return found;
+  return transact([&]() -> bool {
+    Statement& q = db_.query("SELECT 1 FROM workers WHERE id = ?1").bind(1, workerId);
+    const bool found = q.step();
+    q.reset();
+    return found;
+  });
 }
 
 std::optional<int64_t> FarmState::nextTask(int64_t workerId, double now) {
@@ -132,68 +159,64 @@ std::optional<int64_t> FarmState::nextTask(int64_t workerId, double now) {
 }
 
 std::optional<Lease> FarmState::lease(int64_t workerId, double now) {
-  const std::lock_guard lock(mutex_);
-  Transaction transaction(db_);
-  // Asking for work is a sign of life, whether or not there is any.
-  db_.query("UPDATE workers SET last_seen = ?1 WHERE id = ?2").bind(1, now).bind(2, workerId).run();
-  const auto taskId = nextTask(workerId, now);
-  if (!taskId) {
-    transaction.commit();
-    return std::nullopt;
-  }
+  return transact([&]() -> std::optional<Lease> {
+    // Asking for work is a sign of life, whether or not there is any.
+    db_.query("UPDATE workers SET last_seen = ?1 WHERE id = ?2").bind(1, now).bind(2, workerId).run();
+    const auto taskId = nextTask(workerId, now);
+    if (!taskId) return std::nullopt;
 
-  db_.query("INSERT INTO attempts (task_id, worker_id, state, leased_at, expires_at, progress_at) "
-            "VALUES (?1, ?2, ?3, ?4, ?5, ?4)")
-      .bind(1, *taskId)
-      .bind(2, workerId)
-      .bind(3, int64_t{kRunning})
-      .bind(4, now)
-      .bind(5, now + settings_.leaseSeconds)
-      .run();
-  const int64_t attemptId = db_.lastInsertId();
-  db_.query("UPDATE tasks SET state = ?1, attempt_id = ?2 WHERE id = ?3")
-      .bind(1, asInt(TaskState::Leased))
-      .bind(2, attemptId)
-      .bind(3, *taskId)
-      .run();
+    db_.query("INSERT INTO attempts (task_id, worker_id, state, leased_at, expires_at, progress_at) "
+              "VALUES (?1, ?2, ?3, ?4, ?5, ?4)")
+        .bind(1, *taskId)
+        .bind(2, workerId)
+        .bind(3, int64_t{kRunning})
+        .bind(4, now)
+        .bind(5, now + settings_.leaseSeconds)
+        .run();
+    const int64_t attemptId = db_.lastInsertId();
+    db_.query("UPDATE tasks SET state = ?1, attempt_id = ?2 WHERE id = ?3")
+        .bind(1, asInt(TaskState::Leased))
+        .bind(2, attemptId)
+        .bind(3, *taskId)
+        .run();
 
-  Lease lease;
-  lease.set_attempt_id(attemptId);
-  lease.set_task_id(*taskId);
-  lease.set_expires_in_seconds(settings_.leaseSeconds);
-  {
-    Statement& q = db_.query(
-        "SELECT t.shot_id, t.kind, t.params, s.spec, s.state FROM tasks t JOIN shots s ON s.id = t.shot_id "
-        "WHERE t.id = ?1");
-    q.bind(1, *taskId);
-    q.step();
-    lease.set_shot_id(q.integer(0));
-    lease.set_kind(static_cast<TaskKind>(q.integer(1)));
-    lease.mutable_params()->ParseFromString(q.blob(2));
-    lease.mutable_spec()->ParseFromString(q.blob(3));
-    const auto shotState = static_cast<ShotState>(q.integer(4));
-    q.reset();
-    if (shotState == SHOT_QUEUED) {
-      db_.query("UPDATE shots SET state = ?1, started_at = ?2 WHERE id = ?3")
-          .bind(1, int64_t{SHOT_RUNNING})
-          .bind(2, now)
-          .bind(3, lease.shot_id())
-          .run();
-      addEvent(lease.shot_id(), "started", now);
+    Lease lease;
+    lease.set_attempt_id(attemptId);
+    lease.set_task_id(*taskId);
+    lease.set_expires_in_seconds(settings_.leaseSeconds);
+    {
+      Statement& q = db_.query(
+          "SELECT t.shot_id, t.kind, t.params, s.spec, s.state FROM tasks t JOIN shots s ON s.id = t.shot_id "
+          "WHERE t.id = ?1");
+      q.bind(1, *taskId);
+      q.step();
+      lease.set_shot_id(q.integer(0));
+      lease.set_kind(static_cast<TaskKind>(q.integer(1)));
+      lease.mutable_params()->ParseFromString(q.blob(2));
+      lease.mutable_spec()->ParseFromString(q.blob(3));
+      const auto shotState = static_cast<ShotState>(q.integer(4));
+      q.reset();
+      if (shotState == SHOT_QUEUED) {
+        db_.query("UPDATE shots SET state = ?1, started_at = ?2 WHERE id = ?3")
+            .bind(1, int64_t{SHOT_RUNNING})
+            .bind(2, now)
+            .bind(3, lease.shot_id())
+            .run();
+        addEvent(lease.shot_id(), "started", now);
+      }
     }
-  }
-  Statement& inputs = db_.query(
-      "SELECT t.output_sha, c.size, t.params FROM task_deps d JOIN tasks t ON t.id = d.depends_on "
-      "JOIN chunks c ON c.sha256 = t.output_sha WHERE d.task_id = ?1 ORDER BY t.id");
-  inputs.bind(1, *taskId);
-  while (inputs.step()) {
-    ChunkRef* ref = lease.add_inputs();
-    ref->set_sha256(inputs.text(0));
-    ref->set_size(inputs.integer(1));
-    lease.add_input_params()->ParseFromString(inputs.blob(2));
-  }
-  transaction.commit();
-  return lease;
+    Statement& inputs = db_.query(
+        "SELECT t.output_sha, c.size, t.params FROM task_deps d JOIN tasks t ON t.id = d.depends_on "
+        "JOIN chunks c ON c.sha256 = t.output_sha WHERE d.task_id = ?1 ORDER BY t.id");
+    inputs.bind(1, *taskId);
+    while (inputs.step()) {
+      ChunkRef* ref = lease.add_inputs();
+      ref->set_sha256(inputs.text(0));
+      ref->set_size(inputs.integer(1));
+      lease.add_input_params()->ParseFromString(inputs.blob(2));
+    }
+    return lease;
+  });
 }
 
 std::optional<FarmState::AttemptRow> FarmState::currentAttempt(int64_t attemptId) {
@@ -211,28 +234,27 @@ std::optional<FarmState::AttemptRow> FarmState::currentAttempt(int64_t attemptId
 }
 
 HeartbeatReply FarmState::heartbeat(int64_t attemptId, double progress, double now) {
-  const std::lock_guard lock(mutex_);
-  Transaction transaction(db_);
-  HeartbeatReply reply;
-  const auto attempt = currentAttempt(attemptId);
-  if (!attempt) {
-    reply.set_keep_going(false);
+  return transact([&]() -> HeartbeatReply {
+    HeartbeatReply reply;
+    const auto attempt = currentAttempt(attemptId);
+    if (!attempt) {
+      reply.set_keep_going(false);
+      return reply;
+    }
+    // SQLite evaluates every SET expression on the old row: progress_at moves only when
+    // the progress does.
+    db_.query("UPDATE attempts SET expires_at = ?1, progress_at = CASE WHEN ?2 > progress THEN ?3 ELSE progress_at END, "
+              "progress = MAX(progress, ?2) WHERE id = ?4")
+        .bind(1, now + settings_.leaseSeconds)
+        .bind(2, std::clamp(progress, 0.0, 1.0))
+        .bind(3, now)
+        .bind(4, attemptId)
+        .run();
+    db_.query("UPDATE workers SET last_seen = ?1 WHERE id = ?2").bind(1, now).bind(2, attempt->workerId).run();
+    reply.set_keep_going(true);
+    reply.set_expires_in_seconds(settings_.leaseSeconds);
     return reply;
-  }
-  // SQLite evaluates every SET expression on the old row: progress_at moves only when
-  // the progress does.
-  db_.query("UPDATE attempts SET expires_at = ?1, progress_at = CASE WHEN ?2 > progress THEN ?3 ELSE progress_at END, "
-            "progress = MAX(progress, ?2) WHERE id = ?4")
-      .bind(1, now + settings_.leaseSeconds)
-      .bind(2, std::clamp(progress, 0.0, 1.0))
-      .bind(3, now)
-      .bind(4, attemptId)
-      .run();
-  db_.query("UPDATE workers SET last_seen = ?1 WHERE id = ?2").bind(1, now).bind(2, attempt->workerId).run();
-  transaction.commit();
-  reply.set_keep_going(true);
-  reply.set_expires_in_seconds(settings_.leaseSeconds);
-  return reply;
+  });
 }
 
 void FarmState::endAttempt(const AttemptRow& attempt, int state, const std::string& error, double now) {
@@ -245,59 +267,44 @@ void FarmState::endAttempt(const AttemptRow& attempt, int state, const std::stri
 }
 
 ReportReply FarmState::complete(int64_t attemptId, const ChunkRef& output, double now) {
-  const std::lock_guard lock(mutex_);
-  Transaction transaction(db_);
-  ReportReply reply;
-  const auto attempt = currentAttempt(attemptId);
-  if (!attempt) {
-    reply.set_reason("the lease is no longer current (expired, revoked or superseded)");
-    return reply;
-  }
-  const bool hasOutput = attempt->kind != TASK_NOOP;
-  if (hasOutput) {
-    Statement& chunk = db_.query("SELECT 1 FROM chunks WHERE sha256 = ?1").bind(1, output.sha256());
-    const bool stored = chunk.step();
-    chunk.reset();
-    if (!stored) {
-      reply.set_reason("the output chunk " + output.sha256() + " was not stored first");
-      return reply;
+  return transact([&]() -> ReportReply {
+    const auto attempt = currentAttempt(attemptId);
+    if (!attempt) return refused(kStaleLease);
+    const bool hasOutput = attempt->kind != TASK_NOOP;
+    if (hasOutput) {
+      Statement& chunk = db_.query("SELECT 1 FROM chunks WHERE sha256 = ?1").bind(1, output.sha256());
+      const bool stored = chunk.step();
+      chunk.reset();
+      if (!stored) return refused("the output chunk " + output.sha256() + " was not stored first");
     }
-  }
-  endAttempt(*attempt, static_cast<int>(AttemptState::Done), "", now);
-  Statement& done = db_.query("UPDATE tasks SET state = ?1, attempt_id = NULL, output_sha = ?2 WHERE id = ?3");
-  done.bind(1, asInt(TaskState::Done));
-  if (hasOutput) {
-    done.bind(2, output.sha256());
-  } else {
-    done.bindNull(2);
-  }
-  done.bind(3, attempt->taskId).run();
-  db_.query("UPDATE tasks SET pending_deps = pending_deps - 1, state = CASE WHEN pending_deps = 1 AND state = ?1 "
-            "THEN ?2 ELSE state END WHERE id IN (SELECT task_id FROM task_deps WHERE depends_on = ?3)")
-      .bind(1, asInt(TaskState::Waiting))
-      .bind(2, asInt(TaskState::Ready))
-      .bind(3, attempt->taskId)
-      .run();
-  countTaskDone(attempt->shotId, now);
-  transaction.commit();
-  reply.set_accepted(true);
-  return reply;
+    endAttempt(*attempt, static_cast<int>(AttemptState::Done), "", now);
+    Statement& done = db_.query("UPDATE tasks SET state = ?1, attempt_id = NULL, output_sha = ?2 WHERE id = ?3");
+    done.bind(1, asInt(TaskState::Done));
+    if (hasOutput) {
+      done.bind(2, output.sha256());
+    } else {
+      done.bindNull(2);
+    }
+    done.bind(3, attempt->taskId).run();
+    db_.query("UPDATE tasks SET pending_deps = pending_deps - 1, state = CASE WHEN pending_deps = 1 AND state = ?1 "
+              "THEN ?2 ELSE state END WHERE id IN (SELECT task_id FROM task_deps WHERE depends_on = ?3)")
+        .bind(1, asInt(TaskState::Waiting))
+        .bind(2, asInt(TaskState::Ready))
+        .bind(3, attempt->taskId)
+        .run();
+    countTaskDone(attempt->shotId, now);
+    return accepted();
+  });
 }
 
 ReportReply FarmState::fail(int64_t attemptId, const std::string& reason, double now) {
-  const std::lock_guard lock(mutex_);
-  Transaction transaction(db_);
-  ReportReply reply;
-  const auto attempt = currentAttempt(attemptId);
-  if (!attempt) {
-    reply.set_reason("the lease is no longer current (expired, revoked or superseded)");
-    return reply;
-  }
-  endAttempt(*attempt, static_cast<int>(AttemptState::Failed), reason, now);
-  retryOrFail(*attempt, reason, true, now);
-  transaction.commit();
-  reply.set_accepted(true);
-  return reply;
+  return transact([&]() -> ReportReply {
+    const auto attempt = currentAttempt(attemptId);
+    if (!attempt) return refused(kStaleLease);
+    endAttempt(*attempt, static_cast<int>(AttemptState::Failed), reason, now);
+    retryOrFail(*attempt, reason, true, now);
+    return accepted();
+  });
 }
 
 void FarmState::retryOrFail(const AttemptRow& attempt, const std::string& reason, bool blameWorker, double now) {
@@ -349,26 +356,25 @@ void FarmState::retryOrFail(const AttemptRow& attempt, const std::string& reason
 }
 
 int FarmState::expireLeases(double now) {
-  const std::lock_guard lock(mutex_);
-  Transaction transaction(db_);
-  std::vector<std::pair<int64_t, bool>> ended;  // attempt, hung (rather than expired)
-  Statement& q = db_.query(
-      "SELECT id, expires_at < ?1 FROM attempts WHERE state = ?2 AND (expires_at < ?1 OR progress_at < ?3)");
-  q.bind(1, now).bind(2, int64_t{kRunning}).bind(3, now - settings_.hungSeconds);
-  while (q.step()) ended.emplace_back(q.integer(0), q.integer(1) == 0);
-  int count = 0;
-  for (const auto& [attemptId, hung] : ended) {
-    const auto attempt = currentAttempt(attemptId);
-    if (!attempt) continue;
-    const std::string reason = hung ? "no progress for " + std::to_string(static_cast<int>(settings_.hungSeconds)) +
-                                          " s: the task is hung and its lease was revoked"
-                                    : "the lease expired: the worker stopped renewing it";
-    endAttempt(*attempt, static_cast<int>(hung ? AttemptState::Revoked : AttemptState::Expired), reason, now);
-    retryOrFail(*attempt, reason, false, now);
-    ++count;
-  }
-  transaction.commit();
-  return count;
+  return transact([&]() -> int {
+    std::vector<std::pair<int64_t, bool>> ended;  // attempt, hung (rather than expired)
+    Statement& q = db_.query(
+        "SELECT id, expires_at < ?1 FROM attempts WHERE state = ?2 AND (expires_at < ?1 OR progress_at < ?3)");
+    q.bind(1, now).bind(2, int64_t{kRunning}).bind(3, now - settings_.hungSeconds);
+    while (q.step()) ended.emplace_back(q.integer(0), q.integer(1) == 0);
+    int count = 0;
+    for (const auto& [attemptId, hung] : ended) {
+      const auto attempt = currentAttempt(attemptId);
+      if (!attempt) continue;
+      const std::string reason = hung ? "no progress for " + std::to_string(static_cast<int>(settings_.hungSeconds)) +
+                                            " s: the task is hung and its lease was revoked"
+                                      : "the lease expired: the worker stopped renewing it";
+      endAttempt(*attempt, static_cast<int>(hung ? AttemptState::Revoked : AttemptState::Expired), reason, now);
+      retryOrFail(*attempt, reason, false, now);
+      ++count;
+    }
+    return count;
+  });
 }
 
 bool FarmState::anyWorkerCanRun(int64_t shotId, double now) {
@@ -424,22 +430,22 @@ void FarmState::addEvent(int64_t shotId, const std::string& message, double now)
 }
 
 void FarmState::recordChunk(const ChunkRef& chunk, double now) {
-  const std::lock_guard lock(mutex_);
-  Transaction transaction(db_);
-  db_.query("INSERT OR IGNORE INTO chunks (sha256, size, stored_at) VALUES (?1, ?2, ?3)")
-      .bind(1, chunk.sha256())
-      .bind(2, chunk.size())
-      .bind(3, now)
-      .run();
-  transaction.commit();
+  return transact([&]() -> void {
+    db_.query("INSERT OR IGNORE INTO chunks (sha256, size, stored_at) VALUES (?1, ?2, ?3)")
+        .bind(1, chunk.sha256())
+        .bind(2, chunk.size())
+        .bind(3, now)
+        .run();
+  });
 }
 
 bool FarmState::hasChunk(const std::string& sha256) {
-  const std::lock_guard lock(mutex_);
-  Statement& q = db_.query("SELECT 1 FROM chunks WHERE sha256 = ?1").bind(1, sha256);
-  const bool found = q.step();
-  q.reset();
-  return found;
+  return transact([&]() -> bool {
+    Statement& q = db_.query("SELECT 1 FROM chunks WHERE sha256 = ?1").bind(1, sha256);
+    const bool found = q.step();
+    q.reset();
+    return found;
+  });
 }
 
 ShotSummary FarmState::summaryLocked(int64_t shotId, double now) {
@@ -486,44 +492,41 @@ ShotSummary FarmState::summaryLocked(int64_t shotId, double now) {
 }
 
 ShotSummary FarmState::summary(int64_t shotId, double now) {
-  const std::lock_guard lock(mutex_);
-  Transaction transaction(db_);
-  ShotSummary s = summaryLocked(shotId, now);
-  transaction.commit();
-  return s;
+  return transact([&]() -> ShotSummary {
+    ShotSummary s = summaryLocked(shotId, now);
+    return s;
+  });
 }
 
 ShotReply FarmState::shot(int64_t shotId, double now) {
-  const std::lock_guard lock(mutex_);
-  Transaction transaction(db_);
-  ShotReply reply;
-  *reply.mutable_summary() = summaryLocked(shotId, now);
-  Statement& spec = db_.query("SELECT spec FROM shots WHERE id = ?1").bind(1, shotId);
-  spec.step();
-  reply.mutable_spec()->ParseFromString(spec.blob(0));
-  spec.reset();
-  Statement& events = db_.query("SELECT time, message FROM events WHERE shot_id = ?1 ORDER BY id");
-  events.bind(1, shotId);
-  while (events.step()) {
-    ShotEvent* event = reply.add_events();
-    event->set_shot_id(shotId);
-    event->set_time(events.real(0));
-    event->set_message(events.text(1));
-  }
-  transaction.commit();
-  return reply;
+  return transact([&]() -> ShotReply {
+    ShotReply reply;
+    *reply.mutable_summary() = summaryLocked(shotId, now);
+    Statement& spec = db_.query("SELECT spec FROM shots WHERE id = ?1").bind(1, shotId);
+    spec.step();
+    reply.mutable_spec()->ParseFromString(spec.blob(0));
+    spec.reset();
+    Statement& events = db_.query("SELECT time, message FROM events WHERE shot_id = ?1 ORDER BY id");
+    events.bind(1, shotId);
+    while (events.step()) {
+      ShotEvent* event = reply.add_events();
+      event->set_shot_id(shotId);
+      event->set_time(events.real(0));
+      event->set_message(events.text(1));
+    }
+    return reply;
+  });
 }
 
 std::vector<ShotSummary> FarmState::shots(double now) {
-  const std::lock_guard lock(mutex_);
-  Transaction transaction(db_);
-  std::vector<int64_t> ids;
-  Statement& q = db_.query("SELECT id FROM shots ORDER BY id");
-  while (q.step()) ids.push_back(q.integer(0));
-  std::vector<ShotSummary> out;
-  for (const int64_t id : ids) out.push_back(summaryLocked(id, now));
-  transaction.commit();
-  return out;
+  return transact([&]() -> std::vector<ShotSummary> {
+    std::vector<int64_t> ids;
+    Statement& q = db_.query("SELECT id FROM shots ORDER BY id");
+    while (q.step()) ids.push_back(q.integer(0));
+    std::vector<ShotSummary> out;
+    for (const int64_t id : ids) out.push_back(summaryLocked(id, now));
+    return out;
+  });
 }
 
 void FarmState::setShotState(int64_t shotId, ShotState state, double now) {
@@ -533,12 +536,10 @@ void FarmState::setShotState(int64_t shotId, ShotState state, double now) {
 
 template <class Change>
 ShotSummary FarmState::changeShot(int64_t shotId, double now, Change change) {
-  const std::lock_guard lock(mutex_);
-  Transaction transaction(db_);
-  change(summaryLocked(shotId, now).state());
-  ShotSummary after = summaryLocked(shotId, now);
-  transaction.commit();
-  return after;
+  return transact([&]() -> ShotSummary {
+    change(summaryLocked(shotId, now).state());
+    return summaryLocked(shotId, now);
+  });
 }
 
 ShotSummary FarmState::cancel(int64_t shotId, double now) {
@@ -565,44 +566,42 @@ ShotSummary FarmState::resume(int64_t shotId, double now) {
 }
 
 std::vector<std::pair<int64_t, ChunkRef>> FarmState::outputs(int64_t shotId) {
-  const std::lock_guard lock(mutex_);
-  Transaction transaction(db_);
-  std::vector<std::pair<int64_t, ChunkRef>> out;
-  Statement& q = db_.query(
-      "SELECT t.params, c.sha256, c.size FROM tasks t JOIN chunks c ON c.sha256 = t.output_sha "
-      "WHERE t.shot_id = ?1 AND t.kind = ?2 AND t.state = ?3 ORDER BY t.id");
-  q.bind(1, shotId).bind(2, int64_t{TASK_ASSEMBLE_FRAME}).bind(3, asInt(TaskState::Done));
-  while (q.step()) {
-    TaskParams params;
-    params.ParseFromString(q.blob(0));
-    ChunkRef ref;
-    ref.set_sha256(q.text(1));
-    ref.set_size(q.integer(2));
-    out.emplace_back(params.frame(), ref);
-  }
-  transaction.commit();
-  return out;
+  return transact([&]() -> std::vector<std::pair<int64_t, ChunkRef>> {
+    std::vector<std::pair<int64_t, ChunkRef>> out;
+    Statement& q = db_.query(
+        "SELECT t.params, c.sha256, c.size FROM tasks t JOIN chunks c ON c.sha256 = t.output_sha "
+        "WHERE t.shot_id = ?1 AND t.kind = ?2 AND t.state = ?3 ORDER BY t.id");
+    q.bind(1, shotId).bind(2, int64_t{TASK_ASSEMBLE_FRAME}).bind(3, asInt(TaskState::Done));
+    while (q.step()) {
+      TaskParams params;
+      params.ParseFromString(q.blob(0));
+      ChunkRef ref;
+      ref.set_sha256(q.text(1));
+      ref.set_size(q.integer(2));
+      out.emplace_back(params.frame(), ref);
+    }
+    return out;
+  });
 }
 
 std::vector<WorkerInfo> FarmState::workers(double now) {
-  const std::lock_guard lock(mutex_);
-  Transaction transaction(db_);
-  std::vector<WorkerInfo> out;
-  Statement& q = db_.query(
-      "SELECT w.id, w.name, w.slots, w.last_seen, "
-      "(SELECT COUNT(*) FROM attempts a WHERE a.worker_id = w.id AND a.state = ?1) FROM workers w ORDER BY w.id");
-  q.bind(1, int64_t{kRunning});
-  while (q.step()) {
-    WorkerInfo info;
-    info.set_id(q.integer(0));
-    info.set_name(q.text(1));
-    info.set_slots(static_cast<int32_t>(q.integer(2)));
-    info.set_seconds_since_seen(now - q.real(3));
-    info.set_busy(static_cast<int32_t>(q.integer(4)));
-    out.push_back(std::move(info));
-  }
-  transaction.commit();
-  return out;
+  return transact([&]() -> std::vector<WorkerInfo> {
+    std::vector<WorkerInfo> out;
+    Statement& q = db_.query(
+        "SELECT w.id, w.name, w.slots, w.last_seen, "
+        "(SELECT COUNT(*) FROM attempts a WHERE a.worker_id = w.id AND a.state = ?1) FROM workers w ORDER BY w.id");
+    q.bind(1, int64_t{kRunning});
+    while (q.step()) {
+      WorkerInfo info;
+      info.set_id(q.integer(0));
+      info.set_name(q.text(1));
+      info.set_slots(static_cast<int32_t>(q.integer(2)));
+      info.set_seconds_since_seen(now - q.real(3));
+      info.set_busy(static_cast<int32_t>(q.integer(4)));
+      out.push_back(std::move(info));
+    }
+    return out;
+  });
 }
 
 }  // namespace pathfarm::farm

@@ -70,6 +70,10 @@ class FarmState {
 
  private:
   struct AttemptRow;
+  // Runs `body` as one transaction under the lock; commits when it returns normally and
+  // rolls back when it throws.
+  template <class Body>
+  auto transact(Body body) -> decltype(body());
   std::optional<AttemptRow> currentAttempt(int64_t attemptId);
   void endAttempt(const AttemptRow& attempt, int state, const std::string& error, double now);
   void retryOrFail(const AttemptRow& attempt, const std::string& reason, bool blameWorker, double now);
