@@ -10,6 +10,7 @@
 #include "cli/progress_bar.h"
 #include "image/exr_io.h"
 #include "image/png_preview.h"
+#include "renderer/decomposition/auto_decomposition.h"
 #include "renderer/integrators/frame_renderer.h"
 #include "renderer/scene/scene_loader.h"
 
@@ -26,6 +27,7 @@ struct RenderOptions {
   int tileSize = 32;
   bool png = false;
   float exposure = 1;
+  std::string decompose = "none";
 };
 
 class UsageError : public std::runtime_error {
@@ -86,6 +88,12 @@ int runRender(const RenderOptions& options) {
     spdlog::error("{}", e.what());
     return kExitBadInput;
   }
+  try {
+    settings.decomposition = decompositionFor(scene, options.decompose);
+  } catch (const std::invalid_argument& e) {
+    spdlog::error("--decompose: {}", e.what());
+    return kExitBadInput;
+  }
   if (options.spp) settings.spp = *options.spp;
   if (options.maxDepth) settings.maxDepth = *options.maxDepth;
   settings.threads = options.threads;
@@ -141,6 +149,9 @@ std::vector<Command> addRenderCommand(CLI::App& app) {
   render->add_option("--threads", options->threads, "worker threads (0: every core)")->check(CLI::Range(0, 1024));
   render->add_option("--tile", options->tileSize, "tile size in pixels")->check(CLI::Range(1, 4096));
   render->add_flag("--png", options->png, "also write frame_NNNN.png previews (sRGB)");
+  render->add_option("--decompose", options->decompose,
+                     "path-space components: none, default, auto, or \"name=EXPR,...\" (docs/decomposition.md)")
+      ->capture_default_str();
   render->add_option("--exposure", options->exposure, "exposure multiplier of the PNG previews")
       ->check(CLI::Range(1e-6, 1e6));
   return {{render, [options] { return runRender(*options); }}};

@@ -8,6 +8,8 @@
 #include <stdexcept>
 
 #include "renderer/accel/shot_geometry.h"
+#include "renderer/decomposition/decomposed_film.h"
+#include "renderer/decomposition/primary_motion.h"
 
 namespace pathfarm {
 
@@ -42,6 +44,23 @@ std::shared_ptr<const FrameGeometry> FrameRenderer::geometryFor(int64_t frame) c
 
 namespace {
 
+SampleExtras extrasOf(const PathRecord& record, const Ray& ray, float time, const PrimaryMotion& motion) {
+  SampleExtras extras;
+  extras.hit = record.hit;
+  if (record.hit) {
+    const SurfaceHit& hit = record.primary;
+    extras.object = hit.object;
+    extras.position = hit.position;
+    extras.depth = hit.distance;
+    extras.motion = motion.ofSurface(hit.object, hit.position, time, +1);
+    extras.motionBack = motion.ofSurface(hit.object, hit.position, time, -1);
+  } else {
+    extras.motion = motion.ofBackground(ray.direction, time, +1);
+    extras.motionBack = motion.ofBackground(ray.direction, time, -1);
+  }
+  return extras;
+}
+
 struct TileCounters {
   uint64_t samples = 0, nonFinite = 0;
   RayCounts rays;
@@ -59,6 +78,8 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
   const std::shared_ptr<const FrameGeometry> geometry = geometryFor(frame);
   const PathTracer tracer(*geometry, shot_->lights, {settings_.maxDepth});
   const Camera camera(scene_.camera, settings_.width, settings_.height);
+  const Decomposition* decomposition = settings_.decomposition.get();
+  const PrimaryMotion motion(*geometry, camera, frame);
 
   if (window.x0 < 0 || window.y0 < 0 || window.x1 > settings_.width || window.y1 > settings_.height ||
       window.width() <= 0 || window.height() <= 0)
@@ -68,6 +89,8 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
   float* channels[6];
   const char* names[6] = {"R", "G", "B", "variance.R", "variance.G", "variance.B"};
   for (int c = 0; c < 6; ++c) channels[c] = image.addChannel(names[c]).data();
+  std::optional<DecomposedFilm> film;
+  if (decomposition) film.emplace(image, *decomposition);
 
   const int tilesX = (width + tile - 1) / tile, tilesY = (height + tile - 1) / tile;
   const size_t tileCount = static_cast<size_t>(tilesX) * static_cast<size_t>(tilesY);
@@ -76,6 +99,8 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
 
   auto renderTile = [&](size_t index) {
     TileCounters& local = counters.local();
+    SampleComponents components;
+    PathRecord record;
     const int x0 = static_cast<int>(index % static_cast<size_t>(tilesX)) * tile;
     const int y0 = static_cast<int>(index / static_cast<size_t>(tilesX)) * tile;
     for (int iy = y0; iy < std::min(y0 + tile, height); ++iy) {
@@ -83,6 +108,8 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
         const int x = window.x0 + ix, y = window.y0 + iy;  // frame pixel coordinates
         double sum[3] = {0, 0, 0}, sumSquares[3] = {0, 0, 0};
         int accepted = 0;
+        std::optional<DecomposedFilm::Pixel> sums;
+        if (film) sums.emplace(decomposition->size());
         for (int s = 0; s < settings_.spp; ++s) {
           SampleStream stream({scene_.seed, frame, x, y, static_cast<uint32_t>(s)});
           // Fixed order of the first dimensions: pixel position, shutter time, lens.
@@ -91,12 +118,18 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
           const Vec2f lens = stream.next2D();
           const Ray ray = camera.generateRay({static_cast<float>(x) + jitter.x, static_cast<float>(y) + jitter.y},
                                              lens, scene_.timeAt(frame, time));
-          const Rgb L = tracer.radiance(ray, time, stream, local.rays);
+          std::optional<PathDecomposer> decomposer;
+          if (film) {
+            decomposer.emplace(*decomposition, components);
+            record = {&*decomposer, false, {}};
+          }
+          const Rgb L = tracer.radiance(ray, time, stream, local.rays, film ? &record : nullptr);
           ++local.samples;
           if (!L.isFinite()) {
             ++local.nonFinite;
             continue;
           }
+          if (film) sums->add(components, extrasOf(record, ray, time, motion));
           ++accepted;
           for (int c = 0; c < 3; ++c) {
             sum[c] += L[c];
@@ -114,6 +147,7 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
           channels[c][pixel] = static_cast<float>(mean);
           channels[3 + c][pixel] = static_cast<float>(variance);
         }
+        if (film) film->write(pixel, *sums);
       }
     }
     const size_t done = ++tilesDone;
@@ -143,6 +177,7 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
   attributes["pathfarm.max_depth"] = std::to_string(settings_.maxDepth);
   attributes["pathfarm.seed"] = std::to_string(scene_.seed);
   attributes["pathfarm.nonfinite_samples"] = std::to_string(total.nonFiniteSamples);
+  if (decomposition) attributes["pathfarm.decomposition"] = decomposition->describe();
   if (stats) *stats = total;
   return image;
 }

@@ -10,6 +10,7 @@
 #include <mutex>
 
 #include "image/frame_image.h"
+#include "renderer/decomposition/decomposition.h"
 #include "renderer/integrators/path_tracer.h"
 #include "renderer/scene/scene.h"
 
@@ -29,6 +30,8 @@ struct RenderSettings {
   int maxDepth = 8;
   int tileSize = 32;
   int threads = 0;  // 0: every core
+  // Split every pixel into these path-space components (null: beauty only).
+  std::shared_ptr<const Decomposition> decomposition;
 
   static RenderSettings defaultsOf(const Scene& scene);
 };
@@ -48,7 +51,8 @@ class FrameRenderer {
   FrameRenderer(const Scene& scene, RenderSettings settings);
   ~FrameRenderer();
 
-  // The frame's beauty in R, G, B and the variance of each pixel's mean in variance.R/G/B.
+  // The frame's beauty in R, G, B and the variance of each pixel's mean in variance.R/G/B,
+  // and with a decomposition its components' buffers (decomposed_film.h).
   FrameImage render(int64_t frame, const ProgressCallback& progress = {}, RenderStats* stats = nullptr) const;
   // Only a part of the frame (a farm tile): the image has the window's size and its pixels
   // are bit-identical to the same pixels of render(). Throws std::invalid_argument for a

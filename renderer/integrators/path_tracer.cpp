@@ -32,12 +32,14 @@ struct BounceSamples {
 
 }  // namespace
 
-Rgb PathTracer::radiance(Ray ray, float time, SampleStream& stream, RayCounts& counts) const {
+Rgb PathTracer::radiance(Ray ray, float time, SampleStream& stream, RayCounts& counts, PathRecord* record) const {
   const Scene& scene = geometry_.shot().scene();
   Rgb result, throughput(1.0f);
   bool specularBounce = true;  // the camera "sees" emitters with full weight
   float previousPdf = 0;
   Vec3f previousPosition;
+  float pathLength = 0;
+  PathDecomposer* const decomposer = record ? record->decomposer : nullptr;
 
   for (int depth = 0;; ++depth) {
     SurfaceHit hit;
@@ -46,15 +48,23 @@ Rgb PathTracer::radiance(Ray ray, float time, SampleStream& stream, RayCounts& c
       if (!scene.environment.isBlack()) {
         const float weight = specularBounce ? 1 : powerHeuristic(previousPdf, lights_.environmentPdf());
         result += throughput * scene.environment * weight;
+        if (decomposer) decomposer->addEmission(scene.environment * weight);
       }
       break;
     }
+    if (record && depth == 0) {
+      record->hit = true;
+      record->primary = hit;
+    }
+    pathLength += hit.distance;
     const SceneObject& object = scene.objects[static_cast<size_t>(hit.object)];
-    if (object.isEmitter() && dot(ray.direction, hit.geometricNormal) < 0) {
+    const bool emitting = object.isEmitter() && dot(ray.direction, hit.geometricNormal) < 0;
+    if (emitting) {
       const float weight = specularBounce
                                ? 1
                                : powerHeuristic(previousPdf, lights_.pdf(geometry_, previousPosition, hit, time));
       result += throughput * object.emission * weight;
+      if (decomposer) decomposer->addEmission(object.emission * weight);
     }
     if (depth >= settings_.maxDepth) break;
 
@@ -83,12 +93,19 @@ Rgb PathTracer::radiance(Ray ray, float time, SampleStream& stream, RayCounts& c
           if (visible) {
             const float weight = powerHeuristic(light->pdf, bsdf.pdf(wo, wi));
             result += throughput * f * light->radiance * (weight / light->pdf);
+            if (decomposer)
+              decomposer->addLightSample(bsdf.lobes(), bsdf.evalLobes(wo, wi), light->radiance * (weight / light->pdf));
           }
         }
       }
     }
 
     const auto scattered = bsdf.sample(wo, u.lobe, u.direction);
+    if (decomposer) {
+      const VertexFeatures vertex{hit.position, normal, hit.uv, pathLength, emitting ? object.emission : Rgb(),
+                                  hit.object, object.objectId, hit.primitive};
+      decomposer->scatter(bsdf.lobes(), vertex, scattered ? &*scattered : nullptr);
+    }
     if (!scattered || scattered->weight.isBlack()) break;
     throughput *= scattered->weight;
     specularBounce = scattered->delta;
@@ -101,6 +118,7 @@ Rgb PathTracer::radiance(Ray ray, float time, SampleStream& stream, RayCounts& c
       const float survive = std::min(1.0f, throughput.maxComponent());
       if (u.roulette >= survive) break;
       throughput *= 1.0f / survive;
+      if (decomposer) decomposer->scale(1.0f / survive);
     }
   }
   return result;

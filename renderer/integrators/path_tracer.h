@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "renderer/accel/frame_geometry.h"
+#include "renderer/decomposition/path_decomposer.h"
 #include "renderer/lights/light_sampler.h"
 #include "renderer/sampling/sample_stream.h"
 
@@ -13,6 +14,13 @@ namespace pathfarm {
 struct RayCounts {
   uint64_t closestHit = 0;
   uint64_t shadow = 0;
+};
+
+// What a decomposing render learns about a sample's path besides its radiance.
+struct PathRecord {
+  PathDecomposer* decomposer = nullptr;  // splits the radiance into components
+  bool hit = false;                      // whether the camera ray hit anything, and where
+  SurfaceHit primary;
 };
 
 struct PathTracerSettings {
@@ -28,7 +36,9 @@ class PathTracer {
   // The radiance arriving along `ray` at shutter time `time` (in [0,1]). Draws a fixed
   // number of uniform numbers per bounce from `stream`, so that dimensions line up
   // between correlated samples.
-  Rgb radiance(Ray ray, float time, SampleStream& stream, RayCounts& counts) const;
+  // With a record, also splits the path into components and reports the first hit; the
+  // radiance returned is the same bits either way.
+  Rgb radiance(Ray ray, float time, SampleStream& stream, RayCounts& counts, PathRecord* record = nullptr) const;
 
  private:
   const FrameGeometry& geometry_;

@@ -34,3 +34,22 @@ Ray Camera::generateRay(Vec2f film, Vec2f lens, double seconds) const {
 }
 
 }  // namespace pathfarm
+
+namespace pathfarm {
+
+std::optional<Vec2f> Camera::toFilm(Vec3f v) const {
+  if (v.z >= 0) return std::nullopt;  // the camera looks along -z
+  const float sx = v.x / -v.z, sy = v.y / -v.z;
+  return Vec2f{(sx / (tanHalfFov_ * aspect_) + 1.0f) * 0.5f * static_cast<float>(width_),
+               (1.0f - sy / tanHalfFov_) * 0.5f * static_cast<float>(height_)};
+}
+
+std::optional<Vec2f> Camera::project(Vec3f point, double seconds) const {
+  return toFilm(cameraToWorld(seconds).inversePoint(point));
+}
+
+std::optional<Vec2f> Camera::projectDirection(Vec3f direction, double seconds) const {
+  return toFilm(cameraToWorld(seconds).inverseVector(direction));
+}
+
+}  // namespace pathfarm

@@ -1,6 +1,8 @@
 #pragma once
 // A perspective camera with an optional thin lens, animated like any object. It looks
 // along -z of its own frame with +y up; the vertical field of view is given.
+#include <optional>
+
 #include "renderer/scene/animation.h"
 
 namespace pathfarm {
@@ -28,11 +30,17 @@ class Camera {
   // [i,i+1)x[j,j+1)); `lens` a point in the unit square; `seconds` the ray's time.
   Ray generateRay(Vec2f film, Vec2f lens, double seconds) const;
   Transform cameraToWorld(double seconds) const;
+  // Where a world point is imaged at `seconds` (the pinhole projection, the centre of a
+  // thin lens's blur), as a continuous pixel position; nothing if it is behind the camera.
+  std::optional<Vec2f> project(Vec3f point, double seconds) const;
+  // Where a direction (a point at infinity) is imaged.
+  std::optional<Vec2f> projectDirection(Vec3f direction, double seconds) const;
 
  private:
   const CameraDesc& desc_;
   bool animated_;
   Transform staticCameraToWorld_;
+  std::optional<Vec2f> toFilm(Vec3f cameraSpace) const;
   float tanHalfFov_, aspect_;
   int width_, height_;
 };

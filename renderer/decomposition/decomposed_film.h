@@ -1,0 +1,63 @@
+#pragma once
+// The buffers of a decomposed frame (channel names `<component>.<buffer>.<channel>`, see
+// docs/decomposition.md) and each pixel's accumulation of its samples into them.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "image/frame_image.h"
+#include "renderer/decomposition/decomposition.h"
+#include "renderer/decomposition/path_decomposer.h"
+
+namespace pathfarm {
+
+// What one camera sample adds to its pixel besides its components.
+struct SampleExtras {
+  bool hit = false;             // the camera ray hit a surface
+  int object = -1;              // which object, if it did
+  Vec3f position;               // where
+  float depth = 0;              // how far
+  std::optional<Vec2f> motion, motionBack;  // primary motion to the next and previous frame
+};
+
+class DecomposedFilm {
+ public:
+  // Adds the decomposition's channels (and the frame-wide depth, motion and silhouette)
+  // to `image`.
+  DecomposedFilm(FrameImage& image, const Decomposition& decomposition);
+
+  // One pixel's running sums; lives on the stack of the thread rendering the pixel.
+  class Pixel {
+   public:
+    explicit Pixel(int components);
+    void add(const SampleComponents& components, const SampleExtras& extras);
+
+   private:
+    friend class DecomposedFilm;
+    struct Component {
+      double color[3] = {}, colorSquared[3] = {};
+      int features = 0, moving = 0;
+      double reflectance[3] = {}, normal[3] = {}, uv[2] = {}, depth = 0, emission[3] = {};
+      double motion[2] = {}, motionBack[2] = {};
+      uint32_t objectId = 0, primitive = 0;
+    };
+    std::vector<Component> components_;
+    int samples_ = 0, hits_ = 0, moving_ = 0;
+    double depth_ = 0, motion_[2] = {}, motionBack_[2] = {};
+    bool silhouette_ = false;
+    int firstObject_ = -2;  // -2: no sample yet, -1: the background
+    std::optional<Vec2f> firstMotion_;
+  };
+
+  void write(size_t pixel, const Pixel& sums) const;
+
+ private:
+  struct ComponentChannels {
+    float *color[3], *variance[3], *reflectance[3], *irradiance[3], *normal[3], *objectId, *primitive, *uv[2],
+        *depth, *emission[3], *motion[2], *motionBack[2], *motionValid;
+  };
+  std::vector<ComponentChannels> components_;
+  float *depth_, *motion_[2], *motionBack_[2], *silhouette_;
+};
+
+}  // namespace pathfarm

@@ -1,0 +1,107 @@
+#include "renderer/decomposition/path_decomposer.h"
+
+#include <stdexcept>
+
+namespace pathfarm {
+namespace {
+
+PathSymbol symbolOf(LobeSymbol s) {
+  switch (s) {
+    case LobeSymbol::D: return PathSymbol::D;
+    case LobeSymbol::R: return PathSymbol::R;
+    case LobeSymbol::T: return PathSymbol::T;
+  }
+  return PathSymbol::D;
+}
+
+bool hasDiffuseLobe(const LobeList& lobes) {
+  for (int l = 0; l < lobes.count; ++l)
+    if (lobes.lobes[l].symbol == LobeSymbol::D) return true;
+  return false;
+}
+
+}  // namespace
+
+void SampleComponents::reset(int components) {
+  color.assign(static_cast<size_t>(components), Rgb());
+  features.resize(static_cast<size_t>(components));
+  hasFeatures.assign(static_cast<size_t>(components), 0);
+}
+
+PathDecomposer::PathDecomposer(const Decomposition& decomposition, SampleComponents& out)
+    : decomposition_(decomposition), automaton_(decomposition.automaton()), out_(out) {
+  if (automaton_.stateCount() > kMaxStates)
+    throw std::invalid_argument("the decomposition's automaton has more than " + std::to_string(kMaxStates) +
+                                " states");
+  out_.reset(decomposition.size());
+  sampledState_ = automaton_.next(automaton_.initial(), PathSymbol::E);
+  states_[0] = {sampledState_, Rgb(1.0f)};
+  count_ = 1;
+}
+
+void PathDecomposer::addEmission(Rgb value) {
+  for (int i = 0; i < count_; ++i)
+    out_.color[static_cast<size_t>(automaton_.accepting(states_[i].state))] += states_[i].weight * value;
+}
+
+void PathDecomposer::addLightSample(const LobeList& lobes, const LobeValues& f, Rgb lightOverPdf) {
+  for (int l = 0; l < lobes.count; ++l) {
+    if (f.value[l].isBlack()) continue;
+    const Rgb contribution = f.value[l] * lightOverPdf;
+    const PathSymbol symbol = symbolOf(lobes.lobes[l].symbol);
+    for (int i = 0; i < count_; ++i) {
+      const int component = automaton_.accepting(automaton_.next(states_[i].state, symbol));
+      out_.color[static_cast<size_t>(component)] += states_[i].weight * contribution;
+    }
+  }
+}
+
+void PathDecomposer::recordFeatures(const LobeList& lobes, const VertexFeatures& vertex, const BsdfSample* sample) {
+  // This vertex is component k's first non-specular vertex when k, still alive, reads
+  // D here and had no features yet; the residual takes the sampled path's first D vertex.
+  const int afterD = automaton_.next(sampledState_, PathSymbol::D);
+  Rgb reflectance;
+  if (sample) {
+    for (int l = 0; l < lobes.count; ++l)
+      if (lobes.lobes[l].symbol == LobeSymbol::D) reflectance += sample->lobeWeight[l];
+  }
+  for (int k = 0; k < decomposition_.size(); ++k) {
+    const bool alive = k == decomposition_.residual() || automaton_.alive(afterD, k);
+    if (!alive || out_.hasFeatures[static_cast<size_t>(k)]) continue;
+    SampleComponents::Features& features = out_.features[static_cast<size_t>(k)];
+    static_cast<VertexFeatures&>(features) = vertex;
+    features.reflectance = reflectance;
+    out_.hasFeatures[static_cast<size_t>(k)] = 1;
+  }
+}
+
+void PathDecomposer::scatter(const LobeList& lobes, const VertexFeatures& vertex, const BsdfSample* sample) {
+  if (hasDiffuseLobe(lobes)) recordFeatures(lobes, vertex, sample);
+  if (!sample) {
+    count_ = 0;
+    return;
+  }
+  std::array<StateWeight, kMaxStates> next;
+  int nextCount = 0;
+  for (int l = 0; l < lobes.count; ++l) {
+    if (sample->lobeWeight[l].isBlack()) continue;
+    const PathSymbol symbol = symbolOf(lobes.lobes[l].symbol);
+    for (int i = 0; i < count_; ++i) {
+      const int state = automaton_.next(states_[i].state, symbol);
+      const Rgb weight = states_[i].weight * sample->lobeWeight[l];
+      int j = 0;
+      while (j < nextCount && next[j].state != state) ++j;
+      if (j == nextCount) next[nextCount++] = {state, Rgb()};
+      next[j].weight += weight;
+    }
+  }
+  states_ = next;
+  count_ = nextCount;
+  sampledState_ = automaton_.next(sampledState_, symbolOf(lobes.lobes[sample->lobe].symbol));
+}
+
+void PathDecomposer::scale(float factor) {
+  for (int i = 0; i < count_; ++i) states_[i].weight *= factor;
+}
+
+}  // namespace pathfarm

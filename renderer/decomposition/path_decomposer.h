@@ -1,0 +1,72 @@
+#pragma once
+// Follows one camera sample's path through the decomposition's automaton (Zimmer et al.
+// 2015, Section 3). The path's throughput is kept as a weight per automaton state; at a
+// vertex with several lobes each lobe's share (f_lobe / pdf) moves to the state its
+// symbol leads to, and next-event contributions are split the same way, so the
+// components of a sample add up to its undecomposed estimate. Each component also gets
+// the features of its first non-specular (D) vertex along the sampled path.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "renderer/decomposition/decomposition.h"
+#include "renderer/materials/bsdf.h"
+
+namespace pathfarm {
+
+// What a vertex offers a component as features.
+struct VertexFeatures {
+  Vec3f position;  // world
+  Vec3f normal;    // shading normal, facing the incoming path
+  Vec2f uv;
+  float depth = 0;     // distance from the camera along the sampled path
+  Rgb emission;        // radiance the vertex emits towards the path
+  int object = -1;     // scene object index
+  uint32_t objectId = 0;
+  uint32_t primitive = 0;
+};
+
+// One camera sample's share of every component.
+struct SampleComponents {
+  struct Features : VertexFeatures {
+    Rgb reflectance;  // a one-sample estimate of the D lobes' directional albedo
+  };
+  std::vector<Rgb> color;
+  std::vector<Features> features;
+  std::vector<uint8_t> hasFeatures;
+
+  void reset(int components);
+};
+
+class PathDecomposer {
+ public:
+  PathDecomposer(const Decomposition& decomposition, SampleComponents& out);
+
+  // Radiance `value` reaching the camera along the current path (an emitter hit, with
+  // its MIS weight), without the path's throughput.
+  void addEmission(Rgb value);
+  // Next-event estimation at the current vertex: f per lobe, times `lightOverPdf`.
+  void addLightSample(const LobeList& lobes, const LobeValues& f, Rgb lightOverPdf);
+  // The vertex's features for the components whose first D vertex this is, and the
+  // path's continuation by `sample` (nullptr: the path ends here).
+  void scatter(const LobeList& lobes, const VertexFeatures& vertex, const BsdfSample* sample);
+  // Russian roulette's survival scaling.
+  void scale(float factor);
+
+ private:
+  static constexpr int kMaxStates = 32;
+  struct StateWeight {
+    int state;
+    Rgb weight;
+  };
+  void recordFeatures(const LobeList& lobes, const VertexFeatures& vertex, const BsdfSample* sample);
+
+  const Decomposition& decomposition_;
+  const LpeAutomaton& automaton_;
+  SampleComponents& out_;
+  std::array<StateWeight, kMaxStates> states_;
+  int count_ = 0;
+  int sampledState_;  // the automaton along the sampled lobes only, for features
+};
+
+}  // namespace pathfarm
