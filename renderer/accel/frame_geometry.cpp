@@ -158,7 +158,8 @@ SurfaceHit FrameGeometry::makeHit(const Ray& ray, float distance, int object, un
     // Re-project onto the sphere: the analytic point is more precise than o + t d.
     const Vec3f local = toWorld.inversePoint(ray.origin + ray.direction * distance) - shape.center;
     const Vec3f n = normalize(local);
-    hit.position = toWorld.point(shape.center + n * shape.radius);
+    hit.shapePosition = shape.center + n * shape.radius;
+    hit.position = toWorld.point(hit.shapePosition);
     hit.geometricNormal = normalize(toWorld.normal(n));
     hit.shadingNormal = hit.geometricNormal;
     hit.uv = sphereUv(n);
@@ -169,7 +170,8 @@ SurfaceHit FrameGeometry::makeHit(const Ray& ray, float distance, int object, un
                  i2 = mesh.indices[3 * primitive + 2];
   const float w = 1 - u - v;
   const Vec3f p0 = mesh.positions[i0], p1 = mesh.positions[i1], p2 = mesh.positions[i2];
-  hit.position = toWorld.point(p0 * w + p1 * u + p2 * v);
+  hit.shapePosition = p0 * w + p1 * u + p2 * v;
+  hit.position = toWorld.point(hit.shapePosition);
   hit.geometricNormal = normalize(toWorld.normal(cross(p1 - p0, p2 - p0)));
   hit.shadingNormal = hit.geometricNormal;
   if (!mesh.normals.empty()) {

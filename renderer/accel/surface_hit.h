@@ -9,6 +9,7 @@ namespace pathfarm {
 struct SurfaceHit {
   float distance = 0;
   Vec3f position;
+  Vec3f shapePosition;    // the same point in the space of the object's prepared shape
   Vec3f geometricNormal;  // unit, facing out of the shape (the side that emits)
   Vec3f shadingNormal;    // unit, interpolated where the mesh has normals
   Vec2f uv;

@@ -48,11 +48,12 @@ Decomposition Decomposition::parse(const std::string& spec) {
   while (start <= spec.size()) {
     const size_t comma = std::min(spec.find(',', start), spec.size());
     const std::string item = spec.substr(start, comma - start);
+    start = comma + 1;
+    if (item == kResidual) continue;  // always there; describe() lists it
     const size_t equals = item.find('=');
     if (equals == std::string::npos)
       throw LpeError("decomposition \"" + spec + "\": expected name=EXPRESSION, found \"" + item + "\"");
     components.push_back({item.substr(0, equals), item.substr(equals + 1)});
-    start = comma + 1;
   }
   return Decomposition(std::move(components));
 }

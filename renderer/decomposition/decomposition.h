@@ -18,7 +18,8 @@ class Decomposition {
  public:
   // diffuse_direct: ED, diffuse_indirect: ED.+, reflection: ERD.*, transmission: ETTD.*
   static Decomposition standard();
-  // "default", or "name=EXPR,name=EXPR,..." (the residual is added). Throws LpeError
+  // "default", or "name=EXPR,name=EXPR,..." (the residual is added; a listed
+  // "residual" is skipped, so describe()'s text parses back). Throws LpeError
   // (std::invalid_argument) for a malformed list or expression.
   static Decomposition parse(const std::string& spec);
   explicit Decomposition(std::vector<Component> components);

@@ -33,15 +33,21 @@ PathDecomposer::PathDecomposer(const Decomposition& decomposition, SampleCompone
   if (automaton_.stateCount() > kMaxStates)
     throw std::invalid_argument("the decomposition's automaton has more than " + std::to_string(kMaxStates) +
                                 " states");
-  out_.reset(decomposition.size());
+  begin();
+}
+
+void PathDecomposer::begin() {
+  out_.reset(decomposition_.size());
   sampledState_ = automaton_.next(automaton_.initial(), PathSymbol::E);
-  states_[0] = {sampledState_, Rgb(1.0f)};
+  current_ = 0;
+  buffers_[0][0] = {sampledState_, Rgb(1.0f)};
   count_ = 1;
 }
 
 void PathDecomposer::addEmission(Rgb value) {
+  const auto& states = buffers_[current_];
   for (int i = 0; i < count_; ++i)
-    out_.color[static_cast<size_t>(automaton_.accepting(states_[i].state))] += states_[i].weight * value;
+    out_.color[static_cast<size_t>(automaton_.accepting(states[i].state))] += states[i].weight * value;
 }
 
 void PathDecomposer::addLightSample(const LobeList& lobes, const LobeValues& f, Rgb lightOverPdf) {
@@ -49,9 +55,10 @@ void PathDecomposer::addLightSample(const LobeList& lobes, const LobeValues& f, 
     if (f.value[l].isBlack()) continue;
     const Rgb contribution = f.value[l] * lightOverPdf;
     const PathSymbol symbol = symbolOf(lobes.lobes[l].symbol);
+    const auto& states = buffers_[current_];
     for (int i = 0; i < count_; ++i) {
-      const int component = automaton_.accepting(automaton_.next(states_[i].state, symbol));
-      out_.color[static_cast<size_t>(component)] += states_[i].weight * contribution;
+      const int component = automaton_.accepting(automaton_.next(states[i].state, symbol));
+      out_.color[static_cast<size_t>(component)] += states[i].weight * contribution;
     }
   }
 }
@@ -81,27 +88,29 @@ void PathDecomposer::scatter(const LobeList& lobes, const VertexFeatures& vertex
     count_ = 0;
     return;
   }
-  std::array<StateWeight, kMaxStates> next;
+  const auto& states = buffers_[current_];
+  auto& next = buffers_[1 - current_];
   int nextCount = 0;
   for (int l = 0; l < lobes.count; ++l) {
     if (sample->lobeWeight[l].isBlack()) continue;
     const PathSymbol symbol = symbolOf(lobes.lobes[l].symbol);
     for (int i = 0; i < count_; ++i) {
-      const int state = automaton_.next(states_[i].state, symbol);
-      const Rgb weight = states_[i].weight * sample->lobeWeight[l];
+      const int state = automaton_.next(states[i].state, symbol);
+      const Rgb weight = states[i].weight * sample->lobeWeight[l];
       int j = 0;
       while (j < nextCount && next[j].state != state) ++j;
       if (j == nextCount) next[nextCount++] = {state, Rgb()};
       next[j].weight += weight;
     }
   }
-  states_ = next;
+  current_ = 1 - current_;
   count_ = nextCount;
   sampledState_ = automaton_.next(sampledState_, symbolOf(lobes.lobes[sample->lobe].symbol));
 }
 
 void PathDecomposer::scale(float factor) {
-  for (int i = 0; i < count_; ++i) states_[i].weight *= factor;
+  auto& states = buffers_[current_];
+  for (int i = 0; i < count_; ++i) states[i].weight *= factor;
 }
 
 }  // namespace pathfarm

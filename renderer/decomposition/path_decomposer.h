@@ -41,6 +41,8 @@ struct SampleComponents {
 class PathDecomposer {
  public:
   PathDecomposer(const Decomposition& decomposition, SampleComponents& out);
+  // Starts the next camera sample: clears `out` and puts the path at the eye.
+  void begin();
 
   // Radiance `value` reaching the camera along the current path (an emitter hit, with
   // its MIS weight), without the path's throughput.
@@ -64,7 +66,9 @@ class PathDecomposer {
   const Decomposition& decomposition_;
   const LpeAutomaton& automaton_;
   SampleComponents& out_;
-  std::array<StateWeight, kMaxStates> states_;
+  // Two buffers of state weights, swapped at every bounce (no copying, no construction).
+  std::array<StateWeight, kMaxStates> buffers_[2];
+  int current_ = 0;
   int count_ = 0;
   int sampledState_;  // the automaton along the sampled lobes only, for features
 };

@@ -7,20 +7,19 @@ std::optional<Vec2f> PrimaryMotion::difference(const std::optional<Vec2f>& from,
   return Vec2f{to->x - from->x, to->y - from->y};
 }
 
-std::optional<Vec2f> PrimaryMotion::ofSurface(int object, Vec3f position, float time, int offset) const {
+std::optional<Vec2f> PrimaryMotion::ofSurface(const SurfaceHit& hit, float time, int offset) const {
+  const bool moves = geometry_.shot().shape(hit.object).animated;
+  if (!moves && !camera_.isAnimated()) return Vec2f{0, 0};  // nothing moves: no need to project
   const Scene& scene = geometry_.shot().scene();
   const double now = scene.timeAt(frame_, time), then = scene.timeAt(frame_ + offset, time);
-  Vec3f moved = position;
-  if (geometry_.shot().shape(object).animated) {
-    // Back to object space with the transform the point was traced with, forward with
-    // the animation at the other time.
-    const Vec3f local = geometry_.shapeToWorld(object, time).inversePoint(position);
-    moved = scene.objects[static_cast<size_t>(object)].transform.transformAt(then).point(local);
-  }
-  return difference(camera_.project(position, now), camera_.project(moved, then));
+  // An animated object's shape is in object space: carry the point with the animation.
+  const Vec3f moved = moves ? scene.objects[static_cast<size_t>(hit.object)].transform.transformAt(then).point(hit.shapePosition)
+                            : hit.position;
+  return difference(camera_.project(hit.position, now), camera_.project(moved, then));
 }
 
 std::optional<Vec2f> PrimaryMotion::ofBackground(Vec3f direction, float time, int offset) const {
+  if (!camera_.isAnimated()) return Vec2f{0, 0};
   const Scene& scene = geometry_.shot().scene();
   return difference(camera_.projectDirection(direction, scene.timeAt(frame_, time)),
                     camera_.projectDirection(direction, scene.timeAt(frame_ + offset, time)));

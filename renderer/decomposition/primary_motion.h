@@ -15,9 +15,9 @@ class PrimaryMotion {
   PrimaryMotion(const FrameGeometry& geometry, const Camera& camera, int64_t frame)
       : geometry_(geometry), camera_(camera), frame_(frame) {}
 
-  // Pixels moved by a point of `object` at world `position` and shutter time `time`
-  // between this frame and frame + `offset`; nothing if either image is behind the camera.
-  std::optional<Vec2f> ofSurface(int object, Vec3f position, float time, int offset) const;
+  // Pixels moved by the point `hit` saw at shutter time `time` between this frame and
+  // frame + `offset`; nothing if either image is behind the camera.
+  std::optional<Vec2f> ofSurface(const SurfaceHit& hit, float time, int offset) const;
   // Likewise for the environment seen along `direction`.
   std::optional<Vec2f> ofBackground(Vec3f direction, float time, int offset) const;
 

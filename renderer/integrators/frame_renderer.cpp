@@ -52,8 +52,8 @@ SampleExtras extrasOf(const PathRecord& record, const Ray& ray, float time, cons
     extras.object = hit.object;
     extras.position = hit.position;
     extras.depth = hit.distance;
-    extras.motion = motion.ofSurface(hit.object, hit.position, time, +1);
-    extras.motionBack = motion.ofSurface(hit.object, hit.position, time, -1);
+    extras.motion = motion.ofSurface(hit, time, +1);
+    extras.motionBack = motion.ofSurface(hit, time, -1);
   } else {
     extras.motion = motion.ofBackground(ray.direction, time, +1);
     extras.motionBack = motion.ofBackground(ray.direction, time, -1);
@@ -100,6 +100,8 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
   auto renderTile = [&](size_t index) {
     TileCounters& local = counters.local();
     SampleComponents components;
+    std::optional<PathDecomposer> decomposer;
+    if (film) decomposer.emplace(*decomposition, components);
     PathRecord record;
     const int x0 = static_cast<int>(index % static_cast<size_t>(tilesX)) * tile;
     const int y0 = static_cast<int>(index / static_cast<size_t>(tilesX)) * tile;
@@ -118,9 +120,8 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
           const Vec2f lens = stream.next2D();
           const Ray ray = camera.generateRay({static_cast<float>(x) + jitter.x, static_cast<float>(y) + jitter.y},
                                              lens, scene_.timeAt(frame, time));
-          std::optional<PathDecomposer> decomposer;
           if (film) {
-            decomposer.emplace(*decomposition, components);
+            decomposer->begin();
             record = {&*decomposer, false, {}};
           }
           const Rgb L = tracer.radiance(ray, time, stream, local.rays, film ? &record : nullptr);

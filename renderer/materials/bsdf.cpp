@@ -12,9 +12,9 @@ namespace pathfarm {
 namespace {
 
 // Builds the lobe implementation of the material on the stack and hands it to `f`. Each
-// implementation offers eval, pdf, sample(wo, uLobe, u), lobes() and kHasNonDeltaLobe with
-// the semantics of Bsdf. The switch compiles to direct calls: no virtual dispatch and no
-// allocation per hit.
+// implementation offers eval, evalLobes, pdf, sample(wo, uLobe, u), lobes() and
+// kHasNonDeltaLobe with the semantics of Bsdf. The switch compiles to direct calls: no
+// virtual dispatch and no allocation per hit.
 template <typename F>
 auto visit(const Material& material, Rgb albedo, float roughnessThreshold, F&& f) {
   switch (material.type) {
@@ -36,6 +36,10 @@ Bsdf::Bsdf(const Material& material, Rgb albedo, float roughnessThreshold)
 
 Rgb Bsdf::eval(Vec3f wo, Vec3f wi) const {
   return visit(material_, albedo_, roughnessThreshold_, [&](const auto& b) { return b.eval(wo, wi); });
+}
+
+LobeValues Bsdf::evalLobes(Vec3f wo, Vec3f wi) const {
+  return visit(material_, albedo_, roughnessThreshold_, [&](const auto& b) { return b.evalLobes(wo, wi); });
 }
 
 float Bsdf::pdf(Vec3f wo, Vec3f wi) const {

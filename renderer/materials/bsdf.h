@@ -3,6 +3,12 @@
 // normal, directions point away from the surface). Evaluation, sampling and density
 // agree: for every non-delta lobe, sample() draws wi with density pdf(wo, wi) and
 // returns weight = eval(wo, wi) / pdf(wo, wi).
+//
+// Lobe split (for the path-space decomposition of Zimmer et al. 2015): evalLobes and
+// BsdfSample::lobeWeight divide eval and weight among the lobes of lobes(), index i
+// belonging to lobes().lobes[i], so that throughput can follow each lobe's symbol. The
+// parts add up to the whole: bit for bit, except the rough plastic's sampled weight,
+// whose coating and base parts are each divided by the pdf (see BsdfSample).
 #include <optional>
 
 #include "renderer/materials/material.h"
@@ -20,13 +26,39 @@ struct LobeList {
   int count = 0;
 };
 
+// f(wo, wi) * |cos(wi)| of each lobe, index i for lobes().lobes[i]; entries past
+// lobes().count and those of delta lobes are zero. value[0] + value[1] == eval(wo, wi)
+// exactly (the same float additions eval performs, or an addition of zero).
+struct LobeValues {
+  Rgb value[2];
+};
+
 struct BsdfSample {
   Vec3f wi;
   Rgb weight;        // f * |cos(wi)| / pdf, including the lobe selection probability
   float pdf = 0;     // solid-angle density; for a delta lobe, its selection probability
   LobeSymbol symbol = LobeSymbol::D;
   bool delta = false;
+  // `weight` split by lobe (index as in lobes()). A delta sample puts all of `weight` on
+  // the sampled lobe. A non-delta sample puts evalLobes(wo, wi).value[i] / pdf on lobe i,
+  // with the same total density `pdf` for every lobe; only the rough plastic has two
+  // non-delta lobes that overlap, and there each part is rounded on its own:
+  // lobeWeight[0] + lobeWeight[1] equals `weight` to a relative 4 * 2^-24 (2.4e-7; both
+  // parts are non-negative) rather than bit for bit, `weight` itself keeping the bits it
+  // always had. Everywhere else one entry is `weight` and the other zero, so the sum is
+  // exact.
+  Rgb lobeWeight[2];
+  // Index into lobes() of the lobe that sample() chose; with two non-delta lobes (rough
+  // plastic), lobeWeight may still give part of the weight to the other lobe.
+  int lobe = 0;
 };
+
+// For the lobe implementations: a sample whose whole weight belongs to the lobe `lobe`.
+inline BsdfSample oneLobeSample(Vec3f wi, Rgb weight, float pdf, LobeSymbol symbol, bool delta, int lobe) {
+  BsdfSample s{wi, weight, pdf, symbol, delta, {Rgb(), Rgb()}, lobe};
+  s.lobeWeight[lobe] = weight;
+  return s;
+}
 
 // Radiance travels from wi towards wo (the camera side); transmission includes the
 // 1/eta^2 radiance scaling of the refracted direction.
@@ -37,6 +69,9 @@ class Bsdf {
 
   // f(wo, wi) * |cos(wi)|; zero for pairs only delta lobes connect.
   Rgb eval(Vec3f wo, Vec3f wi) const;
+  // eval(wo, wi) split by lobe; see LobeValues. Dielectrics: the reflection lobe when wo
+  // and wi lie on the same side of the surface, the transmission lobe otherwise.
+  LobeValues evalLobes(Vec3f wo, Vec3f wi) const;
   // Density of sample() over solid angle for the non-delta lobes.
   float pdf(Vec3f wo, Vec3f wi) const;
   std::optional<BsdfSample> sample(Vec3f wo, float uLobe, Vec2f u) const;

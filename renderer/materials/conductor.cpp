@@ -15,7 +15,7 @@ Rgb conductorFresnel(const Material& material, float cosThetaI) {
 
 std::optional<BsdfSample> SmoothConductorBsdf::sample(Vec3f wo, float /*uLobe*/, Vec2f /*u*/) const {
   if (wo.z <= 0) return std::nullopt;
-  return BsdfSample{{-wo.x, -wo.y, wo.z}, conductorFresnel(material_, wo.z), 1, LobeSymbol::R, true};
+  return oneLobeSample({-wo.x, -wo.y, wo.z}, conductorFresnel(material_, wo.z), 1, LobeSymbol::R, true, 0);
 }
 
 RoughConductorBsdf::RoughConductorBsdf(const Material& material, float roughnessThreshold)
@@ -43,7 +43,7 @@ std::optional<BsdfSample> RoughConductorBsdf::sample(Vec3f wo, float /*uLobe*/, 
   if (wi.z <= 0) return std::nullopt;
   const float pdf = distribution_.reflectionPdf(wo, m);
   const Rgb value = conductorFresnel(material_, cosOM) * distribution_.reflectionEval(wo, wi, m);
-  return BsdfSample{wi, value / pdf, pdf, symbol_, false};
+  return oneLobeSample(wi, value / pdf, pdf, symbol_, false, 0);
 }
 
 }  // namespace pathfarm

@@ -15,6 +15,7 @@ class SmoothConductorBsdf {
   explicit SmoothConductorBsdf(const Material& material) : material_(material) {}
 
   Rgb eval(Vec3f, Vec3f) const { return {}; }
+  LobeValues evalLobes(Vec3f, Vec3f) const { return {}; }
   float pdf(Vec3f, Vec3f) const { return 0; }
   std::optional<BsdfSample> sample(Vec3f wo, float uLobe, Vec2f u) const;
   LobeList lobes() const { return {{{LobeSymbol::R, true}}, 1}; }
@@ -31,6 +32,7 @@ class RoughConductorBsdf {
   RoughConductorBsdf(const Material& material, float roughnessThreshold);
 
   Rgb eval(Vec3f wo, Vec3f wi) const;
+  LobeValues evalLobes(Vec3f wo, Vec3f wi) const { return {{eval(wo, wi), Rgb()}}; }
   float pdf(Vec3f wo, Vec3f wi) const;
   std::optional<BsdfSample> sample(Vec3f wo, float uLobe, Vec2f u) const;
   LobeList lobes() const { return {{{symbol_, false}}, 1}; }

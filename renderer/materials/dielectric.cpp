@@ -33,12 +33,12 @@ std::optional<BsdfSample> SmoothDielectricBsdf::sample(Vec3f wo, float uLobe, Ve
   const Oriented o = orient(wo, ior_);
   const DielectricFresnel fresnel = fresnelDielectric(o.wo.z, o.eta);
   if (uLobe < fresnel.reflectance) {
-    return BsdfSample{flipIf(o.flipped, {-o.wo.x, -o.wo.y, o.wo.z}), Rgb(1), fresnel.reflectance,
-                      LobeSymbol::R, true};
+    return oneLobeSample(flipIf(o.flipped, {-o.wo.x, -o.wo.y, o.wo.z}), Rgb(1), fresnel.reflectance,
+                         LobeSymbol::R, true, 0);
   }
   const Vec3f wi = refract(o.wo, {0, 0, 1}, o.eta, fresnel.cosThetaT);
-  return BsdfSample{flipIf(o.flipped, wi), Rgb(1 / (o.eta * o.eta)), 1 - fresnel.reflectance, LobeSymbol::T,
-                    true};
+  return oneLobeSample(flipIf(o.flipped, wi), Rgb(1 / (o.eta * o.eta)), 1 - fresnel.reflectance, LobeSymbol::T,
+                       true, 1);
 }
 
 RoughDielectricBsdf::RoughDielectricBsdf(const Material& material, float roughnessThreshold)
@@ -85,6 +85,15 @@ RoughDielectricBsdf::Term RoughDielectricBsdf::evaluate(Vec3f wo, Vec3f wi) cons
   return transmission(o.wo, wi, m, 1 - fresnelDielectric(dot(o.wo, m), o.eta).reflectance, o.eta);
 }
 
+LobeValues RoughDielectricBsdf::evalLobes(Vec3f wo, Vec3f wi) const {
+  // The side test of evaluate(), which reflects exactly when wi, mirrored along with wo,
+  // has z > 0.
+  const float side = orient(wo, ior_).flipped ? -wi.z : wi.z;
+  LobeValues v;
+  v.value[side > 0 ? 0 : 1] = Rgb(evaluate(wo, wi).value);
+  return v;
+}
+
 std::optional<BsdfSample> RoughDielectricBsdf::sample(Vec3f wo, float uLobe, Vec2f u) const {
   if (wo.z == 0) return std::nullopt;
   const Oriented o = orient(wo, ior_);
@@ -94,18 +103,21 @@ std::optional<BsdfSample> RoughDielectricBsdf::sample(Vec3f wo, float uLobe, Vec
   Vec3f wi;
   Term term;
   LobeSymbol symbol;
+  int lobe;
   if (uLobe < fresnel.reflectance) {
     wi = reflect(o.wo, m);
     if (wi.z <= 0) return std::nullopt;
     term = reflection(o.wo, wi, m, fresnel.reflectance);
     symbol = reflectSymbol_;
+    lobe = 0;
   } else {
     wi = refract(o.wo, m, o.eta, fresnel.cosThetaT);
     if (wi.z >= 0) return std::nullopt;
     term = transmission(o.wo, wi, m, 1 - fresnel.reflectance, o.eta);
     symbol = transmitSymbol_;
+    lobe = 1;
   }
-  return BsdfSample{flipIf(o.flipped, wi), Rgb(term.value / term.pdf), term.pdf, symbol, false};
+  return oneLobeSample(flipIf(o.flipped, wi), Rgb(term.value / term.pdf), term.pdf, symbol, false, lobe);
 }
 
 }  // namespace pathfarm

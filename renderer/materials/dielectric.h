@@ -16,6 +16,7 @@ class SmoothDielectricBsdf {
   explicit SmoothDielectricBsdf(float ior) : ior_(ior) {}
 
   Rgb eval(Vec3f, Vec3f) const { return {}; }
+  LobeValues evalLobes(Vec3f, Vec3f) const { return {}; }
   float pdf(Vec3f, Vec3f) const { return 0; }
   // Chooses reflection with probability F, so the weight is 1 for reflection and
   // 1 / eta^2 for refraction.
@@ -33,6 +34,9 @@ class RoughDielectricBsdf {
   RoughDielectricBsdf(const Material& material, float roughnessThreshold);
 
   Rgb eval(Vec3f wo, Vec3f wi) const { return Rgb(evaluate(wo, wi).value); }
+  // Reflection (index 0) when wi lies on wo's side of the surface, refraction (index 1)
+  // otherwise: at any pair only one of them is nonzero.
+  LobeValues evalLobes(Vec3f wo, Vec3f wi) const;
   float pdf(Vec3f wo, Vec3f wi) const { return evaluate(wo, wi).pdf; }
   // Walter et al. section 5.3: m from the distribution, then reflection with probability
   // F(wo.m), refraction otherwise.

@@ -18,7 +18,7 @@ std::optional<BsdfSample> DiffuseBsdf::sample(Vec3f wo, float /*uLobe*/, Vec2f u
   if (wo.z <= 0) return std::nullopt;
   const Vec3f wi = sampleCosineHemisphere(u);
   if (wi.z <= 0) return std::nullopt;
-  return BsdfSample{wi, albedo_, cosineHemispherePdf(wi.z), LobeSymbol::D, false};
+  return oneLobeSample(wi, albedo_, cosineHemispherePdf(wi.z), LobeSymbol::D, false, 0);
 }
 
 }  // namespace pathfarm

@@ -35,12 +35,13 @@ std::optional<BsdfSample> SmoothPlasticBsdf::sample(Vec3f wo, float uLobe, Vec2f
   if (wo.z <= 0) return std::nullopt;
   const float coating = base_.coatingProbability(wo);
   if (uLobe < coating) {
-    return BsdfSample{{-wo.x, -wo.y, wo.z}, Rgb(base_.fresnel(wo.z) / coating), coating, LobeSymbol::R, true};
+    return oneLobeSample({-wo.x, -wo.y, wo.z}, Rgb(base_.fresnel(wo.z) / coating), coating, LobeSymbol::R, true,
+                         0);
   }
   const Vec3f wi = sampleCosineHemisphere(u);
   if (wi.z <= 0) return std::nullopt;
   const float pdf = (1 - coating) * cosineHemispherePdf(wi.z);
-  return BsdfSample{wi, base_.eval(wo, wi) / pdf, pdf, LobeSymbol::D, false};
+  return oneLobeSample(wi, base_.eval(wo, wi) / pdf, pdf, LobeSymbol::D, false, 1);
 }
 
 RoughPlasticBsdf::RoughPlasticBsdf(const Material& material, Rgb albedo, float roughnessThreshold)
@@ -48,11 +49,17 @@ RoughPlasticBsdf::RoughPlasticBsdf(const Material& material, Rgb albedo, float r
       distribution_(material.distribution, material.alpha),
       coatingSymbol_(glossyLobeSymbol(material.alpha, roughnessThreshold, LobeSymbol::R)) {}
 
-Rgb RoughPlasticBsdf::eval(Vec3f wo, Vec3f wi) const {
+LobeValues RoughPlasticBsdf::evalLobes(Vec3f wo, Vec3f wi) const {
   if (wo.z <= 0 || wi.z <= 0) return {};
   const Vec3f m = normalize(wo + wi);
   const float coating = base_.fresnel(dot(wo, m)) * distribution_.reflectionEval(wo, wi, m);
-  return Rgb(coating) + base_.eval(wo, wi);
+  return {{Rgb(coating), base_.eval(wo, wi)}};
+}
+
+Rgb RoughPlasticBsdf::eval(Vec3f wo, Vec3f wi) const {
+  // Below the horizon both parts are +0 and so is their sum, as before.
+  const LobeValues v = evalLobes(wo, wi);
+  return v.value[0] + v.value[1];
 }
 
 float RoughPlasticBsdf::pdf(Vec3f wo, Vec3f wi) const {
@@ -66,18 +73,26 @@ std::optional<BsdfSample> RoughPlasticBsdf::sample(Vec3f wo, float uLobe, Vec2f 
   if (wo.z <= 0) return std::nullopt;
   Vec3f wi;
   LobeSymbol symbol;
+  int lobe;
   if (uLobe < base_.coatingProbability(wo)) {
     const Vec3f m = distribution_.sampleNormal(wo, u);
     if (dot(wo, m) <= 0) return std::nullopt;
     wi = reflect(wo, m);
     symbol = coatingSymbol_;
+    lobe = 0;
   } else {
     wi = sampleCosineHemisphere(u);
     symbol = LobeSymbol::D;
+    lobe = 1;
   }
   if (wi.z <= 0) return std::nullopt;
   const float pdf = this->pdf(wo, wi);
-  return BsdfSample{wi, eval(wo, wi) / pdf, pdf, symbol, false};
+  const LobeValues v = evalLobes(wo, wi);
+  // The weight is eval(wo, wi) / pdf as it always was. Both lobes are non-delta, so each
+  // gets its own f cos over the mixture density, whichever was sampled; the parts are
+  // rounded separately, so their sum matches the weight only to rounding (see bsdf.h).
+  return BsdfSample{wi, (v.value[0] + v.value[1]) / pdf, pdf, symbol, false,
+                    {v.value[0] / pdf, v.value[1] / pdf}, lobe};
 }
 
 }  // namespace pathfarm

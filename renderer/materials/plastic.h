@@ -45,6 +45,8 @@ class SmoothPlasticBsdf {
   SmoothPlasticBsdf(const Material& material, Rgb albedo) : base_(albedo, material.ior) {}
 
   Rgb eval(Vec3f wo, Vec3f wi) const;
+  // The delta coating (index 0) contributes nothing; everything is the base's (index 1).
+  LobeValues evalLobes(Vec3f wo, Vec3f wi) const { return {{Rgb(), eval(wo, wi)}}; }
   float pdf(Vec3f wo, Vec3f wi) const;
   std::optional<BsdfSample> sample(Vec3f wo, float uLobe, Vec2f u) const;
   LobeList lobes() const { return {{{LobeSymbol::R, true}, {LobeSymbol::D, false}}, 2}; }
@@ -59,7 +61,10 @@ class RoughPlasticBsdf {
 
   RoughPlasticBsdf(const Material& material, Rgb albedo, float roughnessThreshold);
 
+  // The sum of evalLobes, coating + base: the same single addition it always was.
   Rgb eval(Vec3f wo, Vec3f wi) const;
+  // Coating (index 0) and base (index 1).
+  LobeValues evalLobes(Vec3f wo, Vec3f wi) const;
   float pdf(Vec3f wo, Vec3f wi) const;
   std::optional<BsdfSample> sample(Vec3f wo, float uLobe, Vec2f u) const;
   LobeList lobes() const { return {{{coatingSymbol_, false}, {LobeSymbol::D, false}}, 2}; }

@@ -30,6 +30,7 @@ class Camera {
   // [i,i+1)x[j,j+1)); `lens` a point in the unit square; `seconds` the ray's time.
   Ray generateRay(Vec2f film, Vec2f lens, double seconds) const;
   Transform cameraToWorld(double seconds) const;
+  bool isAnimated() const { return animated_; }
   // Where a world point is imaged at `seconds` (the pinhole projection, the centre of a
   // thin lens's blur), as a continuous pixel position; nothing if it is behind the camera.
   std::optional<Vec2f> project(Vec3f point, double seconds) const;
