@@ -66,7 +66,7 @@ DecomposedFilm::Pixel::Pixel(int components) : components_(static_cast<size_t>(c
 
 void DecomposedFilm::Pixel::add(const SampleComponents& sample, const SampleExtras& extras) {
   ++samples_;
-  const bool moving = extras.motion && extras.motionBack;
+  const bool moving = extras.motionSampled && extras.motion && extras.motionBack;
   for (size_t k = 0; k < components_.size(); ++k) {
     Component& c = components_[k];
     const Rgb color = sample.color[k];
@@ -110,6 +110,7 @@ void DecomposedFilm::Pixel::add(const SampleComponents& sample, const SampleExtr
     motionBack_[1] += extras.motionBack->y;
   }
   // A silhouette: the pixel's samples see different objects moving differently.
+  if (!extras.motionSampled) return;
   const int object = extras.hit ? extras.object : -1;
   if (firstObject_ == -2) {
     firstObject_ = object;

@@ -17,11 +17,17 @@ struct SampleExtras {
   int object = -1;              // which object, if it did
   Vec3f position;               // where
   float depth = 0;              // how far
-  std::optional<Vec2f> motion, motionBack;  // primary motion to the next and previous frame
+  bool motionSampled = false;   // whether this sample measured the primary motion:
+  std::optional<Vec2f> motion, motionBack;  // to the next and from the previous frame
 };
 
 class DecomposedFilm {
  public:
+  // Motion is measured on the first samples of a pixel only: it varies smoothly inside
+  // the pixel, and projecting every sample into three frames would cost more than the
+  // rest of the decomposition (an animated camera is re-evaluated for each).
+  static constexpr int kMotionSamples = 8;
+
   // Adds the decomposition's channels (and the frame-wide depth, motion and silhouette)
   // to `image`.
   DecomposedFilm(FrameImage& image, const Decomposition& decomposition);

@@ -1,28 +1,42 @@
 #include "renderer/decomposition/primary_motion.h"
 
 namespace pathfarm {
+namespace {
 
-std::optional<Vec2f> PrimaryMotion::difference(const std::optional<Vec2f>& from, const std::optional<Vec2f>& to) {
+std::optional<Vec2f> difference(const std::optional<Vec2f>& from, const std::optional<Vec2f>& to) {
   if (!from || !to) return std::nullopt;
   return Vec2f{to->x - from->x, to->y - from->y};
 }
 
-std::optional<Vec2f> PrimaryMotion::ofSurface(const SurfaceHit& hit, float time, int offset) const {
+const MotionPair kStill{Vec2f{0, 0}, Vec2f{0, 0}};
+
+}  // namespace
+
+MotionPair PrimaryMotion::ofSurface(const SurfaceHit& hit, float time) const {
   const bool moves = geometry_.shot().shape(hit.object).animated;
-  if (!moves && !camera_.isAnimated()) return Vec2f{0, 0};  // nothing moves: no need to project
+  if (!moves && !camera_.isAnimated()) return kStill;  // nothing moves: no need to project
   const Scene& scene = geometry_.shot().scene();
-  const double now = scene.timeAt(frame_, time), then = scene.timeAt(frame_ + offset, time);
-  // An animated object's shape is in object space: carry the point with the animation.
-  const Vec3f moved = moves ? scene.objects[static_cast<size_t>(hit.object)].transform.transformAt(then).point(hit.shapePosition)
-                            : hit.position;
-  return difference(camera_.project(hit.position, now), camera_.project(moved, then));
+  const auto imageAt = [&](int offset) {
+    const double seconds = scene.timeAt(frame_ + offset, time);
+    // An animated object's shape is in object space: carry the point with the animation.
+    const Vec3f point =
+        offset != 0 && moves
+            ? scene.objects[static_cast<size_t>(hit.object)].transform.transformAt(seconds).point(hit.shapePosition)
+            : hit.position;
+    return camera_.project(point, seconds);
+  };
+  const auto now = imageAt(0);
+  return {difference(now, imageAt(+1)), difference(now, imageAt(-1))};
 }
 
-std::optional<Vec2f> PrimaryMotion::ofBackground(Vec3f direction, float time, int offset) const {
-  if (!camera_.isAnimated()) return Vec2f{0, 0};
+MotionPair PrimaryMotion::ofBackground(Vec3f direction, float time) const {
+  if (!camera_.isAnimated()) return kStill;
   const Scene& scene = geometry_.shot().scene();
-  return difference(camera_.projectDirection(direction, scene.timeAt(frame_, time)),
-                    camera_.projectDirection(direction, scene.timeAt(frame_ + offset, time)));
+  const auto imageAt = [&](int offset) {
+    return camera_.projectDirection(direction, scene.timeAt(frame_ + offset, time));
+  };
+  const auto now = imageAt(0);
+  return {difference(now, imageAt(+1)), difference(now, imageAt(-1))};
 }
 
 }  // namespace pathfarm

@@ -10,19 +10,23 @@
 
 namespace pathfarm {
 
+// Pixels moved to the next and from the previous frame; nothing where the point's image
+// is behind the camera in one of them.
+struct MotionPair {
+  std::optional<Vec2f> forward, backward;
+};
+
 class PrimaryMotion {
  public:
   PrimaryMotion(const FrameGeometry& geometry, const Camera& camera, int64_t frame)
       : geometry_(geometry), camera_(camera), frame_(frame) {}
 
-  // Pixels moved by the point `hit` saw at shutter time `time` between this frame and
-  // frame + `offset`; nothing if either image is behind the camera.
-  std::optional<Vec2f> ofSurface(const SurfaceHit& hit, float time, int offset) const;
-  // Likewise for the environment seen along `direction`.
-  std::optional<Vec2f> ofBackground(Vec3f direction, float time, int offset) const;
+  // The point `hit` saw at shutter time `time`.
+  MotionPair ofSurface(const SurfaceHit& hit, float time) const;
+  // The environment seen along `direction`.
+  MotionPair ofBackground(Vec3f direction, float time) const;
 
  private:
-  static std::optional<Vec2f> difference(const std::optional<Vec2f>& from, const std::optional<Vec2f>& to);
   const FrameGeometry& geometry_;
   const Camera& camera_;
   int64_t frame_;

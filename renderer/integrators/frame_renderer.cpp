@@ -44,7 +44,7 @@ std::shared_ptr<const FrameGeometry> FrameRenderer::geometryFor(int64_t frame) c
 
 namespace {
 
-SampleExtras extrasOf(const PathRecord& record, const Ray& ray, float time, const PrimaryMotion& motion) {
+SampleExtras extrasOf(const PathRecord& record, const Ray& ray, float time, const PrimaryMotion* motion) {
   SampleExtras extras;
   extras.hit = record.hit;
   if (record.hit) {
@@ -52,12 +52,12 @@ SampleExtras extrasOf(const PathRecord& record, const Ray& ray, float time, cons
     extras.object = hit.object;
     extras.position = hit.position;
     extras.depth = hit.distance;
-    extras.motion = motion.ofSurface(hit, time, +1);
-    extras.motionBack = motion.ofSurface(hit, time, -1);
-  } else {
-    extras.motion = motion.ofBackground(ray.direction, time, +1);
-    extras.motionBack = motion.ofBackground(ray.direction, time, -1);
   }
+  if (!motion) return extras;
+  const MotionPair moved = record.hit ? motion->ofSurface(record.primary, time) : motion->ofBackground(ray.direction, time);
+  extras.motionSampled = true;
+  extras.motion = moved.forward;
+  extras.motionBack = moved.backward;
   return extras;
 }
 
@@ -130,7 +130,8 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
             ++local.nonFinite;
             continue;
           }
-          if (film) sums->add(components, extrasOf(record, ray, time, motion));
+          if (film)
+            sums->add(components, extrasOf(record, ray, time, s < DecomposedFilm::kMotionSamples ? &motion : nullptr));
           ++accepted;
           for (int c = 0; c < 3; ++c) {
             sum[c] += L[c];

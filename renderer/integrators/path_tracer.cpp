@@ -80,11 +80,14 @@ Rgb PathTracer::radiance(Ray ray, float time, SampleStream& stream, RayCounts& c
     const Frame frame = Frame::fromNormal(normal);
     const Vec3f wo = frame.toLocal(-ray.direction);
     const Bsdf bsdf(material, albedoAt(scene, material, hit.uv), scene.roughnessThreshold);
+    const LobeList lobes = decomposer ? bsdf.lobes() : LobeList{};
 
     if (bsdf.hasNonDeltaLobe() && !lights_.empty()) {
       if (const auto light = lights_.sample(geometry_, hit.position, time, u.light, u.lightPoint)) {
         const Vec3f wi = frame.toLocal(light->direction);
-        const Rgb f = bsdf.eval(wo, wi);
+        // The lobes sum to eval() exactly (bsdf.h), so the beauty keeps its bits.
+        const LobeValues perLobe = decomposer ? bsdf.evalLobes(wo, wi) : LobeValues{};
+        const Rgb f = decomposer ? perLobe.value[0] + perLobe.value[1] : bsdf.eval(wo, wi);
         if (!f.isBlack()) {
           ++counts.shadow;
           const bool visible = std::isinf(light->distance)
@@ -93,8 +96,7 @@ Rgb PathTracer::radiance(Ray ray, float time, SampleStream& stream, RayCounts& c
           if (visible) {
             const float weight = powerHeuristic(light->pdf, bsdf.pdf(wo, wi));
             result += throughput * f * light->radiance * (weight / light->pdf);
-            if (decomposer)
-              decomposer->addLightSample(bsdf.lobes(), bsdf.evalLobes(wo, wi), light->radiance * (weight / light->pdf));
+            if (decomposer) decomposer->addLightSample(lobes, perLobe, light->radiance * (weight / light->pdf));
           }
         }
       }
@@ -104,7 +106,7 @@ Rgb PathTracer::radiance(Ray ray, float time, SampleStream& stream, RayCounts& c
     if (decomposer) {
       const VertexFeatures vertex{hit.position, normal, hit.uv, pathLength, emitting ? object.emission : Rgb(),
                                   hit.object, object.objectId, hit.primitive};
-      decomposer->scatter(bsdf.lobes(), vertex, scattered ? &*scattered : nullptr);
+      decomposer->scatter(lobes, vertex, scattered ? &*scattered : nullptr);
     }
     if (!scattered || scattered->weight.isBlack()) break;
     throughput *= scattered->weight;

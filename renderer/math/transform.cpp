@@ -52,9 +52,14 @@ Transform Transform::fromMatrix(const Matrix& m) {
 }
 
 Transform Transform::fromTrs(const Trs& trs) {
+  // Columns of the rotation matrix are the rotated basis vectors, here from the unit
+  // quaternion's closed form.
   const Quaternion& q = trs.rotation;
-  // Columns of the rotation matrix are the rotated basis vectors.
-  const Vec3f rx = q.rotate({1, 0, 0}), ry = q.rotate({0, 1, 0}), rz = q.rotate({0, 0, 1});
+  const float xx = q.x * q.x, yy = q.y * q.y, zz = q.z * q.z, xy = q.x * q.y, xz = q.x * q.z, yz = q.y * q.z,
+              wx = q.w * q.x, wy = q.w * q.y, wz = q.w * q.z;
+  const Vec3f rx{1 - 2 * (yy + zz), 2 * (xy + wz), 2 * (xz - wy)};
+  const Vec3f ry{2 * (xy - wz), 1 - 2 * (xx + zz), 2 * (yz + wx)};
+  const Vec3f rz{2 * (xz + wy), 2 * (yz - wx), 1 - 2 * (xx + yy)};
   const Vec3f s = trs.scale, t = trs.translation;
   Transform result;
   result.m_ = {rx.x * s.x, ry.x * s.y, rz.x * s.z, t.x,
