@@ -3,6 +3,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "renderer/decomposition/auto_decomposition.h"
 #include "renderer/scene/json_node.h"
 #include "renderer/scene/scene_loader.h"
 
@@ -22,7 +23,7 @@ ShotSpec loadShotFile(const std::filesystem::path& file) {
   }
   const JsonNode root(document, "", label);
   root.expectKeys({"name", "scene", "frames", "resolution", "spp", "max_depth", "pipeline", "tile", "output",
-                   "priority", "max_attempts", "noop_tasks"});
+                   "priority", "max_attempts", "noop_tasks", "decompose"});
   const std::filesystem::path folder = std::filesystem::absolute(file).parent_path();
 
   ShotSpec spec;
@@ -62,6 +63,15 @@ ShotSpec loadShotFile(const std::filesystem::path& file) {
   }
   spec.set_spp(root.has("spp") ? root["spp"].integer(1, 1 << 20) : scene.defaults.spp);
   spec.set_max_depth(root.has("max_depth") ? root["max_depth"].integer(0, 1024) : scene.defaults.maxDepth);
+  if (auto decompose = root.optional("decompose")) {
+    try {
+      // Resolved here, once: every worker then splits the frames the same way.
+      const auto decomposition = decompositionFor(scene, decompose->string());
+      spec.set_decompose(decomposition ? decomposition->describe() : "none");
+    } catch (const std::invalid_argument& e) {
+      decompose->fail(e.what());
+    }
+  }
   return spec;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "image/exr_io.h"
+#include "renderer/decomposition/auto_decomposition.h"
 #include "renderer/integrators/frame_renderer.h"
 #include "renderer/scene/scene_loader.h"
 
@@ -11,8 +12,9 @@ namespace {
 
 constexpr size_t kShotsKept = 2;
 
-RenderSettings settingsOf(const ShotSpec& spec, int threads) {
+RenderSettings settingsOf(const Scene& scene, const ShotSpec& spec, int threads) {
   RenderSettings settings;
+  settings.decomposition = decompositionFor(scene, spec.decompose().empty() ? "none" : spec.decompose());
   settings.width = spec.width();
   settings.height = spec.height();
   settings.spp = spec.spp();
@@ -41,7 +43,7 @@ std::shared_ptr<TaskRunner::ShotRenderer> TaskRunner::rendererFor(const Lease& l
   }
   auto shot = std::make_shared<ShotRenderer>();
   shot->scene = loadScene(lease.spec().scene());
-  shot->renderer = std::make_unique<FrameRenderer>(shot->scene, settingsOf(lease.spec(), threads_));
+  shot->renderer = std::make_unique<FrameRenderer>(shot->scene, settingsOf(shot->scene, lease.spec(), threads_));
   renderers_.insert(renderers_.begin(), {lease.shot_id(), shot});
   if (renderers_.size() > kShotsKept) renderers_.pop_back();  // tasks still using it keep their copy
   return shot;

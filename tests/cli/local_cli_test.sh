@@ -23,6 +23,16 @@ done
 # Its workers' command lines name their cache under the output folder.
 pgrep -f "$work/farm_out/farm/cache" > /dev/null && fail "workers left running"
 
+# A decomposed shot: every component's buffers come back from the tiles unchanged.
+cat > "$work/decomposed.json" <<JSON
+{"name": "split", "scene": "$source_dir/scenes/cornell/scene.json", "frames": {"start": 2, "end": 2},
+ "resolution": [40, 30], "spp": 2, "max_depth": 6, "tile": 16, "output": "split_out", "decompose": "default"}
+JSON
+"$pathfarm" local "$work/decomposed.json" --workers 2 --threads 1 > "$work/log" 2>&1 || fail "decomposed local failed: $(cat "$work/log")"
+"$pathfarm" render "$source_dir/scenes/cornell/scene.json" --frames 2:2 --res 40x30 --spp 2 --max-depth 6 \
+  --decompose default --out "$work/split_render" > "$work/render.log" 2>&1 || fail "decomposed render failed"
+cmp -s "$work/split_out/frame_0002.exr" "$work/split_render/frame_0002.exr" || fail "decomposed farm frame differs"
+
 "$pathfarm" preview "$work/farm_out" > "$work/log" 2>&1 || fail "preview failed: $(cat "$work/log")"
 [ -s "$work/farm_out/frame_0001.png" ] || fail "no preview written"
 

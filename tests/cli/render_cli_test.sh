@@ -33,7 +33,7 @@ grep -q 'bad.json: shapes\[0\].material: unknown material "glas"' "$work/log" ||
 [ -e "$work/bad_out" ] && fail "bad scene created its output folder"
 
 # Bad arguments: exit 2 as well.
-for args in "--frames 5:2" "--frames x" "--res 10" "--spp 0"; do
+for args in "--frames 5:2" "--frames x" "--res 10" "--spp 0" "--decompose x=E(D"; do
   # shellcheck disable=SC2086
   "$pathfarm" render "$source_dir/scenes/cornell/scene.json" $args --out "$work/args_out" > "$work/log" 2>&1
   status=$?

@@ -60,6 +60,15 @@ TEST(ShotFile, BadShotsAreRefusedWithFileAndKey) {
             std::string::npos);
   EXPECT_NE(errorOf(R"({"scene": "cornell/scene.json", "tile": 2})").find("tile: 2 is out of range"), std::string::npos);
   EXPECT_NE(errorOf(R"({"scene": )").find("invalid JSON"), std::string::npos);
+  EXPECT_NE(errorOf(R"({"scene": "cornell/scene.json", "decompose": "x=E(D"})").find("decompose: light-path expression"),
+            std::string::npos);
+}
+
+TEST(ShotFile, ResolvesTheDecompositionOnceForEveryWorker) {
+  const auto file = writeShot("split", R"({"scene": "cornell/scene.json", "decompose": "default"})");
+  EXPECT_EQ(loadShotFile(file).decompose(),
+            "diffuse_direct=ED,diffuse_indirect=ED.+,reflection=ERD.*,transmission=ETTD.*,residual");
+  std::filesystem::remove(file);
 }
 
 }  // namespace
