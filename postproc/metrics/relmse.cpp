@@ -8,10 +8,7 @@ double relMse(const std::vector<float>& image, const std::vector<float>& referen
   if (image.size() != reference.size() || image.empty())
     throw std::invalid_argument("relMSE needs two non-empty buffers of the same size");
   double sum = 0;
-  for (size_t i = 0; i < image.size(); ++i) {
-    const double d = static_cast<double>(image[i]) - reference[i];
-    sum += d * d / (static_cast<double>(reference[i]) * reference[i] + 0.01);
-  }
+  for (size_t i = 0; i < image.size(); ++i) sum += relativeSquaredError(image[i], reference[i]);
   return sum / static_cast<double>(image.size());
 }
 

@@ -7,6 +7,9 @@
 
 namespace pathfarm {
 
+// One value's term of relMSE: (x - ref)^2 / (ref^2 + 0.01).
+inline double relativeSquaredError(double x, double ref) { return (x - ref) * (x - ref) / (ref * ref + 0.01); }
+
 // Relative MSE: the mean over pixels and channels of (x - ref)^2 / (ref^2 + 0.01).
 double relMse(const std::vector<float>& image, const std::vector<float>& reference);
 // relMSE over the named channels of two frames of equal size (default: the beauty).

@@ -1,0 +1,127 @@
+#include "postproc/metrics/image_metrics.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "postproc/metrics/relmse.h"
+
+namespace pathfarm {
+namespace {
+
+struct Sums {
+  double rel = 0, squared = 0, smape = 0;
+  size_t compared = 0, skippedReference = 0, nonFinite = 0;
+
+  void add(double x, double r) {
+    if (!std::isfinite(r)) {
+      ++skippedReference;
+      return;
+    }
+    if (!std::isfinite(x)) {
+      ++nonFinite;
+      return;
+    }
+    rel += relativeSquaredError(x, r);
+    squared += (x - r) * (x - r);
+    smape += 2 * std::abs(x - r) / (std::abs(x) + std::abs(r) + 0.01);
+    ++compared;
+  }
+
+  ImageMetrics metrics() const {
+    ImageMetrics m;
+    const double n = compared > 0 ? static_cast<double>(compared) : 1;
+    m.relMse = rel / n;
+    m.mse = squared / n;
+    m.psnr = m.mse > 0 ? 10 * std::log10(1 / m.mse) : INFINITY;
+    m.smape = smape / n;
+    m.compared = compared;
+    m.skippedReference = skippedReference;
+    m.nonFinite = nonFinite;
+    return m;
+  }
+};
+
+Crop checkedCrop(const FrameImage& image, const std::optional<Crop>& crop) {
+  const Crop c = crop.value_or(Crop{0, 0, image.width(), image.height()});
+  if (c.x0 < 0 || c.y0 < 0 || c.x1 > image.width() || c.y1 > image.height() || c.x0 >= c.x1 || c.y0 >= c.y1)
+    throw std::invalid_argument("the crop lies outside the " + std::to_string(image.width()) + "x" +
+                                std::to_string(image.height()) + " frame or is empty");
+  return c;
+}
+
+void checkSameSize(const FrameImage& a, const FrameImage& b) {
+  if (a.width() != b.width() || a.height() != b.height())
+    throw std::invalid_argument("the frames differ in size: " + std::to_string(a.width()) + "x" +
+                                std::to_string(a.height()) + " against " + std::to_string(b.width()) + "x" +
+                                std::to_string(b.height()));
+}
+
+const std::vector<float>& channelOf(const FrameImage& frame, const std::string& name) {
+  if (!frame.hasChannel(name)) throw std::invalid_argument("missing channel \"" + name + "\"");
+  return frame.channel(name);
+}
+
+// Calls visit(p) for every pixel index p inside the crop.
+template <class Visit>
+void forEachPixel(const Crop& crop, int width, Visit visit) {
+  for (int y = crop.y0; y < crop.y1; ++y)
+    for (int x = crop.x0; x < crop.x1; ++x) visit(static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x));
+}
+
+}  // namespace
+
+std::vector<std::string> layerChannels(const FrameImage& frame, const std::string& layer) {
+  std::vector<std::string> names;
+  if (layer.empty()) {
+    names = {"R", "G", "B"};
+  } else {
+    const std::string prefix = layer + ".";
+    for (const std::string& name : frame.channelNames())
+      if (name.compare(0, prefix.size(), prefix) == 0) names.push_back(name);
+  }
+  for (const std::string& name : names) channelOf(frame, name);
+  if (names.empty()) throw std::invalid_argument("the frame has no layer \"" + layer + "\"");
+  return names;
+}
+
+ImageMetrics compareImages(const FrameImage& image, const FrameImage& reference,
+                           const std::vector<std::string>& channels, const std::optional<Crop>& crop) {
+  checkSameSize(image, reference);
+  const Crop c = checkedCrop(image, crop);
+  Sums sums;
+  for (const std::string& name : channels) {
+    const auto& x = channelOf(image, name);
+    const auto& r = channelOf(reference, name);
+    forEachPixel(c, image.width(), [&](size_t p) { sums.add(x[p], r[p]); });
+  }
+  return sums.metrics();
+}
+
+SequenceMetrics compareSequences(const std::vector<FrameImage>& images, const std::vector<FrameImage>& references,
+                                 const std::vector<std::string>& channels, const std::optional<Crop>& crop) {
+  if (images.size() != references.size() || images.empty())
+    throw std::invalid_argument("the sequences must have the same, non-zero number of frames (" +
+                                std::to_string(images.size()) + " against " + std::to_string(references.size()) + ")");
+  SequenceMetrics result;
+  Sums temporal;
+  for (size_t i = 0; i < images.size(); ++i) {
+    result.frames.push_back(compareImages(images[i], references[i], channels, crop));
+    result.meanRelMse += result.frames.back().relMse / static_cast<double>(images.size());
+    if (i == 0) continue;
+    checkSameSize(images[i], images[i - 1]);
+    const Crop c = checkedCrop(images[i], crop);
+    for (const std::string& name : channels) {
+      const auto& x = channelOf(images[i], name);
+      const auto& xBefore = channelOf(images[i - 1], name);
+      const auto& r = channelOf(references[i], name);
+      const auto& rBefore = channelOf(references[i - 1], name);
+      forEachPixel(c, images[i].width(), [&](size_t p) {
+        temporal.add(static_cast<double>(x[p]) - xBefore[p], static_cast<double>(r[p]) - rBefore[p]);
+      });
+    }
+  }
+  result.temporalRelMse = images.size() > 1 ? temporal.metrics().relMse : 0;
+  return result;
+}
+
+}  // namespace pathfarm

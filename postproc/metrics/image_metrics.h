@@ -1,0 +1,47 @@
+#pragma once
+// Error metrics of an image against a reference, over chosen channels and an optional
+// crop: relMSE (DESIGN.md's definition), MSE, PSNR and SMAPE. Reference pixels that are
+// not finite are skipped and counted; a non-finite value in the image counts as an error
+// of its own (it is kept out of the means and counted in `nonFinite`).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "image/frame_image.h"
+
+namespace pathfarm {
+
+struct Crop {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // [x0, x1) x [y0, y1)
+};
+
+struct ImageMetrics {
+  double relMse = 0;
+  double mse = 0;
+  double psnr = 0;   // 10 log10(1 / MSE): a peak of 1, as for display-referred values
+  double smape = 0;  // mean of 2|x - r| / (|x| + |r| + 0.01)
+  size_t compared = 0;       // values that entered the means
+  size_t skippedReference = 0;  // reference values that were not finite
+  size_t nonFinite = 0;      // image values that were not finite
+};
+
+// The channels of a layer: "" for the beauty R, G, B; "diffuse_direct.color" for
+// diffuse_direct.color.R/G/B; any other prefix takes every channel that starts with it.
+// Throws std::invalid_argument naming the layer when the frame has none.
+std::vector<std::string> layerChannels(const FrameImage& frame, const std::string& layer);
+
+// Throws std::invalid_argument for different sizes, a missing channel or a crop outside.
+ImageMetrics compareImages(const FrameImage& image, const FrameImage& reference,
+                           const std::vector<std::string>& channels, const std::optional<Crop>& crop = {});
+
+struct SequenceMetrics {
+  std::vector<ImageMetrics> frames;
+  double meanRelMse = 0;
+  // Flicker: relMSE of the image's frame-to-frame differences against the reference's.
+  double temporalRelMse = 0;
+};
+
+SequenceMetrics compareSequences(const std::vector<FrameImage>& images, const std::vector<FrameImage>& references,
+                                 const std::vector<std::string>& channels, const std::optional<Crop>& crop = {});
+
+}  // namespace pathfarm
