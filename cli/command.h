@@ -22,5 +22,6 @@ std::vector<Command> addFarmProcessCommands(CLI::App& app);  // scheduler, worke
 std::vector<Command> addClientCommands(CLI::App& app);       // submit, status, watch, fetch, ...
 std::vector<Command> addLocalCommand(CLI::App& app);
 std::vector<Command> addPreviewCommand(CLI::App& app);
+std::vector<Command> addMetricsCommands(CLI::App& app);  // compare, compare-seq
 
 }  // namespace pathfarm

@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# `pathfarm compare` and `compare-seq` as a user runs them: a noisier render has the
+# larger error, JSON is well-formed, and bad input is refused with exit status 2.
+set -u
+pathfarm=$1
+source_dir=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+scene="$source_dir/scenes/cornell/scene.json"
+
+for spp in 1 8 64; do
+  "$pathfarm" render "$scene" --frames 2:3 --res 32x32 --spp $spp --out "$work/spp$spp" > /dev/null 2>&1 || fail "render $spp spp"
+done
+relmse() { "$pathfarm" compare "$1" "$2" --json | python3 -c 'import json,sys; print(json.load(sys.stdin)["relmse"])'; }
+low=$(relmse "$work/spp1/frame_0002.exr" "$work/spp64/frame_0002.exr") || fail "compare --json"
+high=$(relmse "$work/spp8/frame_0002.exr" "$work/spp64/frame_0002.exr") || fail "compare --json"
+python3 -c "import sys; sys.exit(0 if $low > $high > 0 else 1)" || fail "1 spp ($low) should be worse than 8 spp ($high)"
+
+"$pathfarm" compare "$work/spp8/frame_0002.exr" "$work/spp64/frame_0002.exr" --crop 0,0,16,16 > "$work/out" 2>&1 || fail "compare --crop"
+grep -q "relMSE" "$work/out" || fail "compare prints no relMSE: $(cat "$work/out")"
+"$pathfarm" compare-seq "$work/spp8" "$work/spp64" > "$work/out" 2>&1 || fail "compare-seq: $(cat "$work/out")"
+grep -q "temporal relMSE (flicker)" "$work/out" || fail "compare-seq prints no temporal error: $(cat "$work/out")"
+"$pathfarm" compare-seq "$work/spp8" "$work/spp64" --json | python3 -c 'import json,sys; d=json.load(sys.stdin); assert len(d["frames"]) == 2' \
+  || fail "compare-seq --json"
+
+for args in "$work/missing.exr $work/spp64/frame_0002.exr" \
+            "$work/spp8/frame_0002.exr $work/spp64/frame_0002.exr --layer reflection.color" \
+            "$work/spp8/frame_0002.exr $work/spp64/frame_0002.exr --crop 0,0,99,99"; do
+  # shellcheck disable=SC2086
+  "$pathfarm" compare $args > "$work/out" 2>&1
+  status=$?
+  [ "$status" -eq 2 ] || fail "compare $args: exit status $status, expected 2"
+done
+
+if [ "$failures" -eq 0 ]; then echo "metrics CLI: all checks passed"; fi
+exit "$failures"
