@@ -23,5 +23,6 @@ std::vector<Command> addClientCommands(CLI::App& app);       // submit, status, 
 std::vector<Command> addLocalCommand(CLI::App& app);
 std::vector<Command> addPreviewCommand(CLI::App& app);
 std::vector<Command> addMetricsCommands(CLI::App& app);  // compare, compare-seq
+std::vector<Command> addFilterCommands(CLI::App& app);   // denoise, upsample
 
 }  // namespace pathfarm

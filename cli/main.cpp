@@ -12,7 +12,8 @@ int main(int argc, char** argv) {
   app.add_flag("-v,--verbose", verbose, "log debugging detail");
   std::vector<pathfarm::Command> commands;
   for (auto add : {pathfarm::addRenderCommand, pathfarm::addFarmProcessCommands, pathfarm::addClientCommands,
-                   pathfarm::addLocalCommand, pathfarm::addPreviewCommand, pathfarm::addMetricsCommands}) {
+                   pathfarm::addLocalCommand, pathfarm::addPreviewCommand, pathfarm::addMetricsCommands,
+                   pathfarm::addFilterCommands}) {
     for (pathfarm::Command& command : add(app)) commands.push_back(std::move(command));
   }
   try {

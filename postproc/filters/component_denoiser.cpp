@@ -1,0 +1,278 @@
+#include "postproc/filters/component_denoiser.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "postproc/filters/warp.h"
+#include "renderer/decomposition/effective_irradiance.h"
+
+namespace pathfarm {
+namespace {
+
+const char* const kRgb[] = {"R", "G", "B"};
+const char* const kXyz[] = {"X", "Y", "Z"};
+
+// One filtered layer: the beauty, or a component.
+struct LayerSpec {
+  std::string component;         // "" for the beauty
+  std::string featureComponent;  // whose features guide it ("" for none)
+  std::string motionPrefix;      // "" (frame-wide motion) or "<component>."
+};
+
+// A buffer of a layer's frame: a channel prefix and its channel suffixes.
+struct Buffer {
+  std::string prefix;
+  std::vector<std::string> channels;
+  FeatureKind kind = FeatureKind::Continuous;
+
+  std::string name(size_t i) const { return prefix.empty() ? channels[i] : prefix + "." + channels[i]; }
+};
+
+Buffer rgb(const std::string& prefix) { return {prefix, {kRgb[0], kRgb[1], kRgb[2]}}; }
+
+std::vector<Buffer> featureBuffers(const LayerSpec& layer, const DenoiseSettings& s) {
+  if (layer.featureComponent.empty()) return {};
+  const std::string& c = layer.featureComponent;
+  std::vector<Buffer> buffers = {{c + ".normal", {kXyz[0], kXyz[1], kXyz[2]}},
+                                 rgb(c + ".reflectance"),
+                                 {c + ".objectid", {"Y"}, FeatureKind::ExactMatch}};
+  if (s.useDepth) buffers.push_back({c + ".depth", {"Z"}});
+  return buffers;
+}
+
+// The buffers a frame must have for a layer, in load order: color, variance, (reflectance).
+std::vector<Buffer> colorBuffers(const LayerSpec& layer) {
+  if (layer.component.empty()) return {rgb(""), rgb("variance")};
+  return {rgb(layer.component + ".irradiance"), rgb(layer.component + ".variance"),
+          rgb(layer.component + ".reflectance")};
+}
+
+void requireChannel(const FrameImage& frame, const std::string& name, const std::string& label) {
+  if (!frame.hasChannel(name)) throw std::invalid_argument(label + ": missing channel \"" + name + "\"");
+}
+
+void requireBuffers(const FrameImage& frame, const std::vector<Buffer>& buffers, const std::string& label) {
+  for (const Buffer& buffer : buffers)
+    for (size_t i = 0; i < buffer.channels.size(); ++i) requireChannel(frame, buffer.name(i), label);
+}
+
+Planes planesOf(const FrameImage& frame, const Buffer& buffer) {
+  Planes planes;
+  planes.width = frame.width();
+  planes.height = frame.height();
+  for (size_t i = 0; i < buffer.channels.size(); ++i) planes.channels.push_back(frame.channel(buffer.name(i)));
+  return planes;
+}
+
+// A layer's buffers in one frame, before warping.
+struct LayerFrame {
+  Planes color, variance;
+  std::vector<Planes> features;
+};
+
+LayerFrame loadLayer(const FrameImage& frame, const LayerSpec& layer, const std::vector<Buffer>& features,
+                     const DenoiseSettings& s) {
+  const std::vector<Buffer> buffers = colorBuffers(layer);
+  LayerFrame out;
+  out.color = planesOf(frame, buffers[0]);
+  out.variance = planesOf(frame, buffers[1]);
+  if (!layer.component.empty()) {
+    // The variance of the mean carried through the division by the reflectance.
+    const Planes reflectance = planesOf(frame, buffers[2]);
+    for (size_t c = 0; c < 3; ++c) {
+      std::vector<float>& variance = out.variance.channels[c];
+      const std::vector<float>& r = reflectance.channels[c];
+      for (size_t p = 0; p < variance.size(); ++p)
+        if (r[p] >= kReflectanceGuard) variance[p] /= r[p] * r[p];
+    }
+  }
+  for (const Buffer& buffer : features) {
+    Planes planes = planesOf(frame, buffer);
+    if (buffer.kind == FeatureKind::Continuous && s.prefilterFeatures) {
+      NlMeansInput input;
+      NlMeansFrame& f = input.frames.emplace_back();
+      f.variance = Planes(planes.width, planes.height, static_cast<int>(planes.channels.size()));
+      f.color = std::move(planes);
+      planes = jointNlMeans(input, s.prefilter);
+    }
+    out.features.push_back(std::move(planes));
+  }
+  return out;
+}
+
+bool allZero(const Planes& planes) {
+  for (const auto& plane : planes.channels)
+    if (std::any_of(plane.begin(), plane.end(), [](float v) { return v != 0.0f; })) return false;
+  return true;
+}
+
+struct Neighbour {
+  const FrameImage* frame;
+  NeighbourFrame which;
+  const std::string* label;
+};
+
+struct LayerResult {
+  Planes color;  // filtered (irradiance for a component)
+  std::vector<uint8_t> invalid;
+  int frames = 1;
+};
+
+LayerResult filterLayer(const FrameImage& current, const std::vector<Neighbour>& neighbours, const LayerSpec& layer,
+                        const DenoiseSettings& s) {
+  const std::vector<Buffer> features = featureBuffers(layer, s);
+  LayerResult result;
+  NlMeansInput input;
+  for (const Buffer& buffer : features) input.featureKinds.push_back(buffer.kind);
+
+  LayerFrame first = loadLayer(current, layer, features, s);
+  bool zero = allZero(first.color) && allZero(first.variance);
+  std::vector<LayerFrame> loaded;
+  std::vector<MotionField> motions;
+  std::vector<std::vector<float>> valids;
+  for (const Neighbour& n : neighbours) {
+    MotionField motion = motionTowards(current, n.which, layer.motionPrefix, s.label);
+    std::vector<float> valid = warpValidity(motion);
+    if (std::none_of(valid.begin(), valid.end(), [](float v) { return v != 0.0f; })) continue;
+    LayerFrame frame = loadLayer(*n.frame, layer, features, s);
+    zero = zero && allZero(frame.color) && allZero(frame.variance);
+    loaded.push_back(std::move(frame));
+    motions.push_back(std::move(motion));
+    valids.push_back(std::move(valid));
+  }
+  if (zero) {
+    result.color = Planes(current.width(), current.height(), 3);
+    result.invalid.assign(current.pixelCount(), 0);
+    return result;
+  }
+
+  NlMeansFrame& center = input.frames.emplace_back();
+  center.color = std::move(first.color);
+  center.variance = std::move(first.variance);
+  center.features = std::move(first.features);
+  for (size_t i = 0; i < loaded.size(); ++i) {
+    NlMeansFrame& frame = input.frames.emplace_back();
+    frame.color = warpPlanes(loaded[i].color, motions[i]);
+    frame.variance = warpPlanes(loaded[i].variance, motions[i]);
+    for (size_t g = 0; g < features.size(); ++g)
+      frame.features.push_back(
+          warpPlanes(loaded[i].features[g], motions[i],
+                     features[g].kind == FeatureKind::ExactMatch ? WarpLookup::Nearest : WarpLookup::Bilinear));
+    frame.valid = std::move(valids[i]);
+  }
+  NlMeansSettings settings{s.spatialRadius, s.patch, s.kc, s.kf, s.tau, s.alpha};
+  if (input.frames.size() > 1) settings.radius = s.temporalRadius;
+  NlMeansStats stats;
+  result.color = jointNlMeans(input, settings, &stats);
+  result.invalid = std::move(stats.invalidCenter);
+  result.frames = static_cast<int>(input.frames.size());
+  return result;
+}
+
+std::string describe(const DenoiseSettings& s, int framesGiven) {
+  std::ostringstream text;
+  text << "mode=" << denoiseModeName(s.mode) << " frames=" << framesGiven << " r=" << s.spatialRadius << "/"
+       << s.temporalRadius << " f=" << s.patch << " kc=" << s.kc << " kf=" << s.kf << " tau=" << s.tau
+       << " alpha=" << s.alpha << " depth=" << (s.useDepth ? 1 : 0) << " prefilter=" << (s.prefilterFeatures ? 1 : 0);
+  return text.str();
+}
+
+}  // namespace
+
+std::string denoiseModeName(DenoiseMode mode) {
+  switch (mode) {
+    case DenoiseMode::Decomposition:
+      return "decomposition";
+    case DenoiseMode::ColorOnly:
+      return "color";
+    case DenoiseMode::DecompositionWithoutFeatures:
+      return "no-features";
+  }
+  return "decomposition";
+}
+
+DenoiseMode parseDenoiseMode(const std::string& name) {
+  for (DenoiseMode mode :
+       {DenoiseMode::Decomposition, DenoiseMode::ColorOnly, DenoiseMode::DecompositionWithoutFeatures})
+    if (denoiseModeName(mode) == name) return mode;
+  throw std::invalid_argument("unknown denoise mode \"" + name + "\" (decomposition, color or no-features)");
+}
+
+FrameImage denoiseFrame(const FrameImage& current, const FrameImage* previous, const FrameImage* next,
+                        const DenoiseSettings& settings) {
+  const DenoiseSettings& s = settings;
+  if (current.width() <= 0 || current.height() <= 0) throw std::invalid_argument(s.label + ": the frame is empty");
+  std::vector<Neighbour> neighbours;
+  if (previous != nullptr) neighbours.push_back({previous, NeighbourFrame::Previous, &s.previousLabel});
+  if (next != nullptr) neighbours.push_back({next, NeighbourFrame::Next, &s.nextLabel});
+  for (const Neighbour& n : neighbours)
+    if (n.frame->width() != current.width() || n.frame->height() != current.height())
+      throw std::invalid_argument(*n.label + " is " + std::to_string(n.frame->width()) + "x" +
+                                  std::to_string(n.frame->height()) + ", " + s.label + " is " +
+                                  std::to_string(current.width()) + "x" + std::to_string(current.height()));
+
+  // The layers to filter.
+  const std::vector<std::string> components = decompositionComponents(current);
+  std::vector<LayerSpec> layers;
+  if (s.mode == DenoiseMode::ColorOnly) {
+    LayerSpec beauty;
+    if (!components.empty()) {
+      const bool direct = std::find(components.begin(), components.end(), "diffuse_direct") != components.end();
+      beauty.featureComponent = direct ? "diffuse_direct" : components.front();
+    }
+    layers.push_back(beauty);
+  } else {
+    if (components.empty())
+      throw std::invalid_argument(s.label +
+                                  ": no \"pathfarm.decomposition\" attribute (not a decomposed render); the "
+                                  "color-only mode filters such frames");
+    for (const std::string& c : components)
+      layers.push_back({c, s.mode == DenoiseMode::Decomposition ? c : "", c + "."});
+  }
+
+  // Every channel, checked before any work.
+  for (const LayerSpec& layer : layers) {
+    const std::vector<Buffer> features = featureBuffers(layer, s);
+    requireBuffers(current, colorBuffers(layer), s.label);
+    requireBuffers(current, features, s.label);
+    for (const Neighbour& n : neighbours) {
+      const std::string motion = layer.motionPrefix + (n.which == NeighbourFrame::Previous ? "motion_back" : "motion");
+      requireChannel(current, motion + ".X", s.label);
+      requireChannel(current, motion + ".Y", s.label);
+      requireBuffers(*n.frame, colorBuffers(layer), *n.label);
+      requireBuffers(*n.frame, features, *n.label);
+    }
+  }
+
+  FrameImage out(current.width(), current.height());
+  for (const char* c : kRgb) out.addChannel(c);
+  std::vector<uint8_t> skipped(current.pixelCount(), 0);
+  for (const LayerSpec& layer : layers) {
+    const LayerResult filtered = filterLayer(current, neighbours, layer, s);
+    for (size_t p = 0; p < skipped.size(); ++p) skipped[p] |= filtered.invalid[p];
+    for (size_t c = 0; c < 3; ++c) {
+      std::vector<float>& beauty = out.channel(kRgb[c]);
+      const std::vector<float>& value = filtered.color.channels[c];
+      if (layer.component.empty()) {
+        beauty = value;
+        continue;
+      }
+      std::vector<float>& color = out.addChannel(layer.component + ".color." + kRgb[c]);
+      const std::vector<float>& reflectance = current.channel(layer.component + ".reflectance." + kRgb[c]);
+      for (size_t p = 0; p < color.size(); ++p) {
+        const float r = std::isfinite(reflectance[p]) ? reflectance[p] : 0.0f;
+        color[p] = modulateIrradiance(value[p], r);
+        beauty[p] += color[p];
+      }
+    }
+  }
+
+  out.attributes() = current.attributes();
+  out.attributes()["pathfarm.denoise"] = describe(s, 1 + static_cast<int>(neighbours.size()));
+  out.attributes()["pathfarm.denoise_skipped"] = std::to_string(std::count(skipped.begin(), skipped.end(), uint8_t{1}));
+  return out;
+}
+
+}  // namespace pathfarm

@@ -1,0 +1,246 @@
+#include "postproc/filters/component_upsampler.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+#include "postproc/filters/decomposed_frame.h"
+#include "renderer/decomposition/effective_irradiance.h"
+
+namespace pathfarm {
+namespace {
+
+constexpr const char* kDecompositionAttribute = "pathfarm.decomposition";
+constexpr const char* kRgb[] = {"R", "G", "B"};
+
+std::string sizeText(int width, int height) { return std::to_string(width) + "x" + std::to_string(height); }
+
+// The channel suffixes of the data contract's buffers (docs/decomposition.md).
+const std::vector<std::string>* knownChannels(const std::string& buffer) {
+  static const std::map<std::string, std::vector<std::string>> table = {
+      {"color", {"R", "G", "B"}},      {"variance", {"R", "G", "B"}},    {"reflectance", {"R", "G", "B"}},
+      {"irradiance", {"R", "G", "B"}}, {"emission", {"R", "G", "B"}},    {"normal", {"X", "Y", "Z"}},
+      {"uv", {"X", "Y"}},              {"motion", {"X", "Y"}},           {"motion_back", {"X", "Y"}},
+      {"depth", {"Z"}},                {"objectid", {"Y"}},              {"primid", {"Y"}},
+      {"motion_valid", {"Y"}},
+  };
+  const auto it = table.find(buffer);
+  return it == table.end() ? nullptr : &it->second;
+}
+
+// The channels of "<component>.<buffer>.*" in `frame`: the known suffixes (each must exist)
+// or, for other buffers, every channel with that prefix in frame order (at least one).
+// `what` names the frame with its verb ("low-resolution frame has").
+std::vector<std::string> bufferChannels(const FrameImage& frame, const std::string& component,
+                                        const std::string& buffer, const std::string& what) {
+  const std::string prefix = component + "." + buffer + ".";
+  std::vector<std::string> names;
+  if (const std::vector<std::string>* suffixes = knownChannels(buffer)) {
+    for (const std::string& suffix : *suffixes) {
+      if (!frame.hasChannel(prefix + suffix))
+        throw std::invalid_argument("upsampleFrame: the " + what + " no channel \"" + prefix + suffix +
+                                    "\" (component \"" + component + "\")");
+      names.push_back(prefix + suffix);
+    }
+    return names;
+  }
+  for (const std::string& name : frame.channelNames())
+    if (name.compare(0, prefix.size(), prefix) == 0) names.push_back(name);
+  if (names.empty())
+    throw std::invalid_argument("upsampleFrame: the " + what + " no channel \"" + prefix + "*\" (component \"" +
+                                component + "\")");
+  return names;
+}
+
+std::string describeSettings(const UpsampleSettings& settings) {
+  std::ostringstream text;
+  text << "guided factor=" << settings.guided.factor << " radius=" << settings.guided.radius
+       << " epsilon=" << settings.guided.epsilon << " guide=";
+  for (size_t i = 0; i < settings.guideBuffers.size(); ++i) text << (i ? "+" : "") << settings.guideBuffers[i];
+  return text.str();
+}
+
+// "<prefix>.<buffer>.<channel>" or "<buffer>.<channel>" (prefix empty) or a bare name.
+struct ChannelName {
+  std::string prefix, buffer, channel;
+};
+
+ChannelName splitChannel(const std::string& name) {
+  ChannelName parts;
+  const size_t last = name.rfind('.');
+  if (last == std::string::npos) {
+    parts.channel = name;
+    return parts;
+  }
+  parts.channel = name.substr(last + 1);
+  const size_t before = name.rfind('.', last - 1);
+  if (last == 0 || before == std::string::npos) {
+    parts.buffer = name.substr(0, last);
+  } else {
+    parts.prefix = name.substr(0, before);
+    parts.buffer = name.substr(before + 1, last - before - 1);
+  }
+  return parts;
+}
+
+std::vector<std::string> componentsOf(const FrameImage& frame) {
+  std::vector<std::string> names = decompositionComponents(frame);
+  if (names.empty())
+    throw std::invalid_argument(std::string("upsampleFrame: the low-resolution frame has no \"") +
+                                kDecompositionAttribute + "\" attribute (is it a decomposed render?)");
+  return names;
+}
+
+}  // namespace
+
+FrameImage upsampleFrame(const FrameImage& low, const FrameImage& highFeatures, const UpsampleSettings& settings) {
+  const int factor = settings.guided.factor;
+  if (factor < 1) throw std::invalid_argument("upsampleFrame: the factor must be at least 1, not " + std::to_string(factor));
+  if (settings.guideBuffers.empty()) throw std::invalid_argument("upsampleFrame: no guide buffer is set");
+  if (static_cast<long long>(low.width()) * factor != highFeatures.width() ||
+      static_cast<long long>(low.height()) * factor != highFeatures.height())
+    throw std::invalid_argument("upsampleFrame: a " + sizeText(low.width(), low.height()) + " frame upsampled by " +
+                                std::to_string(factor) + " needs " +
+                                sizeText(low.width() * factor, low.height() * factor) +
+                                " features, not " + sizeText(highFeatures.width(), highFeatures.height()));
+  const std::vector<std::string> components = componentsOf(low);
+  const auto highDecomposition = highFeatures.attributes().find(kDecompositionAttribute);
+  if (highDecomposition != highFeatures.attributes().end() &&
+      highDecomposition->second != low.attributes().at(kDecompositionAttribute))
+    throw std::invalid_argument("upsampleFrame: the features' decomposition \"" + highDecomposition->second +
+                                "\" is not the low-resolution frame's \"" +
+                                low.attributes().at(kDecompositionAttribute) + "\"");
+
+  // Every channel is checked before any work is done.
+  struct Job {
+    std::vector<std::string> irradiance, reflectance, guide;
+  };
+  std::vector<Job> jobs;
+  for (const std::string& c : components) {
+    Job job;
+    job.irradiance = bufferChannels(low, c, "irradiance", "low-resolution frame has");
+    job.reflectance = bufferChannels(highFeatures, c, "reflectance", "full-resolution features have");
+    for (const std::string& buffer : settings.guideBuffers) {
+      const std::vector<std::string> names = bufferChannels(highFeatures, c, buffer, "full-resolution features have");
+      job.guide.insert(job.guide.end(), names.begin(), names.end());
+    }
+    jobs.push_back(std::move(job));
+  }
+
+  const int width = highFeatures.width(), height = highFeatures.height();
+  FrameImage out(width, height);
+  out.attributes() = low.attributes();
+  for (const char* name : kRgb) out.addChannel(name);
+  std::vector<float> rerender(out.pixelCount(), 0.0f);
+
+  for (size_t k = 0; k < components.size(); ++k) {
+    const std::string& c = components[k];
+    const Job& job = jobs[k];
+    Planes lowIrradiance(low.width(), low.height(), 0);
+    for (const std::string& name : job.irradiance) lowIrradiance.channels.push_back(low.channel(name));
+    Planes guide(width, height, 0);
+    for (const std::string& name : job.guide) guide.channels.push_back(highFeatures.channel(name));
+
+    const GuidedUpsampleResult up = guidedUpsample(lowIrradiance, guide, settings.guided);
+    for (size_t i = 0; i < rerender.size(); ++i)
+      if (up.rerender[i] != 0.0f) rerender[i] = 1.0f;
+    for (int j = 0; j < 3; ++j) {
+      const std::vector<float>& irradiance = up.image.channels[static_cast<size_t>(j)];
+      const std::vector<float>& reflectance = highFeatures.channel(job.reflectance[static_cast<size_t>(j)]);
+      std::vector<float>& color = out.addChannel(c + ".color." + kRgb[j]);
+      std::vector<float>& beauty = out.channel(kRgb[j]);
+      for (size_t i = 0; i < color.size(); ++i) {
+        color[i] = modulateIrradiance(irradiance[i], reflectance[i]);
+        beauty[i] += color[i];
+      }
+      out.addChannel(c + ".irradiance." + kRgb[j]) = irradiance;
+    }
+  }
+
+  size_t rerenderPixels = 0;
+  for (const float flag : rerender) rerenderPixels += flag != 0.0f ? 1 : 0;
+  out.addChannel("rerender.Y") = std::move(rerender);
+  out.attributes()["pathfarm.rerender_pixels"] = std::to_string(rerenderPixels);
+  out.attributes()["pathfarm.upsample"] = describeSettings(settings);
+  return out;
+}
+
+FrameImage boxDownsample(const FrameImage& high, int factor) {
+  if (factor < 1) throw std::invalid_argument("boxDownsample: the factor must be at least 1, not " + std::to_string(factor));
+  if (high.width() % factor != 0 || high.height() % factor != 0)
+    throw std::invalid_argument("boxDownsample: a " + sizeText(high.width(), high.height()) +
+                                " frame is not a multiple of the factor " + std::to_string(factor));
+  const int width = high.width() / factor, height = high.height() / factor;
+  FrameImage low(width, height);
+  low.attributes() = high.attributes();
+  const double inverseArea = 1.0 / (static_cast<double>(factor) * factor);
+
+  enum class Rule { Mean, Variance, Motion, TopLeft, Maximum };
+  for (const std::string& name : high.channelNames()) {
+    const ChannelName parts = splitChannel(name);
+    Rule rule = Rule::Mean;
+    if (parts.buffer == "variance") rule = Rule::Variance;
+    else if (parts.buffer == "motion" || parts.buffer == "motion_back") rule = Rule::Motion;
+    else if (parts.buffer == "objectid" || parts.buffer == "primid") rule = Rule::TopLeft;
+    else if (parts.buffer == "silhouette" || parts.buffer == "motion_valid") rule = Rule::Maximum;
+
+    const std::vector<float>& source = high.channel(name);
+    std::vector<float>& target = low.addChannel(name);
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) {
+        const size_t corner = static_cast<size_t>(y) * factor * high.width() + static_cast<size_t>(x) * factor;
+        float& value = target[static_cast<size_t>(y) * width + x];
+        if (rule == Rule::TopLeft) {
+          value = source[corner];
+          continue;
+        }
+        double sum = 0.0;
+        float maximum = source[corner];
+        for (int dy = 0; dy < factor; ++dy)
+          for (int dx = 0; dx < factor; ++dx) {
+            const float v = source[corner + static_cast<size_t>(dy) * high.width() + dx];
+            sum += v;
+            maximum = std::max(maximum, v);
+          }
+        double mean = sum * inverseArea;
+        if (rule == Rule::Variance) mean *= inverseArea;
+        if (rule == Rule::Motion) mean /= factor;
+        value = rule == Rule::Maximum ? maximum : static_cast<float>(mean);
+      }
+  }
+
+  // Derived buffers, from the block means as the renderer derives them per pixel.
+  for (const std::string& name : high.channelNames()) {
+    const ChannelName parts = splitChannel(name);
+    if (parts.prefix.empty()) continue;
+    if (parts.buffer == "irradiance") {
+      const std::string color = parts.prefix + ".color." + parts.channel;
+      const std::string reflectance = parts.prefix + ".reflectance." + parts.channel;
+      if (!low.hasChannel(color) || !low.hasChannel(reflectance)) continue;
+      const std::vector<float>& c = low.channel(color);
+      const std::vector<float>& r = low.channel(reflectance);
+      std::vector<float>& irradiance = low.channel(name);
+      for (size_t i = 0; i < irradiance.size(); ++i) irradiance[i] = effectiveIrradiance(c[i], r[i]);
+    } else if (parts.buffer == "normal" && parts.channel == "X") {
+      const std::string base = parts.prefix + ".normal.";
+      if (!low.hasChannel(base + "Y") || !low.hasChannel(base + "Z")) continue;
+      std::vector<float>& nx = low.channel(base + "X");
+      std::vector<float>& ny = low.channel(base + "Y");
+      std::vector<float>& nz = low.channel(base + "Z");
+      for (size_t i = 0; i < nx.size(); ++i) {
+        const double length = std::sqrt(static_cast<double>(nx[i]) * nx[i] + static_cast<double>(ny[i]) * ny[i] +
+                                        static_cast<double>(nz[i]) * nz[i]);
+        if (!(length > 0.0)) continue;
+        nx[i] = static_cast<float>(nx[i] / length);
+        ny[i] = static_cast<float>(ny[i] / length);
+        nz[i] = static_cast<float>(nz[i] / length);
+      }
+    }
+  }
+  return low;
+}
+
+}  // namespace pathfarm

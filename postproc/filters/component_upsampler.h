@@ -1,0 +1,56 @@
+#pragma once
+// Joint upsampling of a decomposed frame (Zimmer et al. 2015, Section 5.2): every
+// path-space component's effective irradiance, rendered at low resolution, is upsampled by
+// the guided filter under that component's full-resolution features, then modulated by the
+// full-resolution reflectance, so textures and edges come from the features and only the
+// smooth illumination is interpolated.
+#include <string>
+#include <vector>
+
+#include "image/frame_image.h"
+#include "postproc/filters/guided_upsample.h"
+
+namespace pathfarm {
+
+struct UpsampleSettings {
+  GuidedUpsampleSettings guided;  // factor, radius (low-resolution pixels), epsilon, threads
+  // The guide of component c: the channels of "<c>.<buffer>.*" in the full-resolution
+  // features, for each buffer in this order (reflectance R G B, normal X Y Z, emission R G B).
+  std::vector<std::string> guideBuffers = {"reflectance", "normal", "emission"};
+};
+
+// Upsamples a decomposed frame by settings.guided.factor.
+//   low           the low-resolution render: attribute "pathfarm.decomposition"
+//                 ("name=EXPR,...,residual"; the components are the names before '=' in
+//                 order, then "residual") and, per component, "<c>.irradiance.R/G/B"
+//   highFeatures  the full-resolution features, factor times larger: per component the
+//                 guide buffers (by default "<c>.reflectance.R/G/B", "<c>.normal.X/Y/Z",
+//                 "<c>.emission.R/G/B"); "<c>.reflectance.R/G/B" is always needed
+// The result (full resolution) holds, in this order: beauty "R","G","B" (the sum of the
+// components), per component "<c>.color.R/G/B" = modulateIrradiance(upsampled irradiance,
+// full-resolution reflectance) and "<c>.irradiance.R/G/B" (upsampled), and "rerender.Y":
+// 1 where any component's upsampled irradiance came out negative (those channels are set to
+// 0). Attributes: those of `low`, "pathfarm.rerender_pixels" (the number of rerender
+// pixels) and "pathfarm.upsample" (the method and settings). Feature channels are not
+// copied; `FrameImage out = highFeatures; out.paste(result, 0, 0);` merges them.
+// Throws std::invalid_argument naming the missing channel, or when the sizes do not fit
+// the factor, or (from guidedUpsample) for settings out of range.
+FrameImage upsampleFrame(const FrameImage& low, const FrameImage& highFeatures, const UpsampleSettings& settings);
+
+// The evaluation protocol's low-resolution input: a target-resolution render (with 1/factor^2
+// of the samples) averaged over factor x factor blocks, so that every channel reads as a
+// render at the low resolution would have it. Every channel is the block's mean, except:
+//   "<c>.irradiance.*"       recomputed as effectiveIrradiance(mean color, mean reflectance),
+//                            as the renderer derives it (when "<c>.color.*" and
+//                            "<c>.reflectance.*" exist; else the mean)
+//   "variance.*", "<c>.variance.*"  mean / factor^2: the variance of the mean of factor^2
+//                            independent pixel means
+//   "<c>.normal.X/Y/Z"       the mean, renormalized (0 stays 0)
+//   "*.objectid.Y", "*.primid.Y"  the block's top-left pixel (ids cannot be averaged)
+//   "motion.*", "motion_back.*" and the components' ones: the mean / factor (low-resolution pixels)
+//   "silhouette.Y", "*.motion_valid.Y"  the block's maximum
+// Attributes are copied. Throws std::invalid_argument when factor < 1 or the size is not a
+// multiple of the factor.
+FrameImage boxDownsample(const FrameImage& high, int factor);
+
+}  // namespace pathfarm

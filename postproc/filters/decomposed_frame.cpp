@@ -1,0 +1,25 @@
+#include "postproc/filters/decomposed_frame.h"
+
+#include <algorithm>
+#include <sstream>
+
+namespace pathfarm {
+
+std::vector<std::string> decompositionComponents(const FrameImage& frame) {
+  const auto found = frame.attributes().find("pathfarm.decomposition");
+  if (found == frame.attributes().end()) return {};
+  std::vector<std::string> names;
+  std::istringstream items(found->second);
+  std::string item;
+  while (std::getline(items, item, ',')) {
+    std::string name = item.substr(0, item.find('='));
+    const auto first = name.find_first_not_of(" \t"), last = name.find_last_not_of(" \t");
+    if (first == std::string::npos) continue;
+    name = name.substr(first, last - first + 1);
+    if (name != "residual" && std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+  }
+  names.emplace_back("residual");
+  return names;
+}
+
+}  // namespace pathfarm

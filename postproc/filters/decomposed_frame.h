@@ -1,0 +1,16 @@
+#pragma once
+// Reading a decomposed frame's layout: which components its `pathfarm.decomposition`
+// attribute names (docs/decomposition.md).
+#include <string>
+#include <vector>
+
+#include "image/frame_image.h"
+
+namespace pathfarm {
+
+// The components named by a frame's `pathfarm.decomposition` attribute
+// ("diffuse_direct=ED,...,residual": the text before each '=', and `residual` once, last);
+// empty for a frame without the attribute.
+std::vector<std::string> decompositionComponents(const FrameImage& frame);
+
+}  // namespace pathfarm

@@ -1,0 +1,571 @@
+#include "postproc/filters/nlmeans.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <stdexcept>
+
+namespace pathfarm {
+namespace {
+
+constexpr float kEpsilon = 1e-10f;
+constexpr int kBandRows = 32;       // rows per parallel task: fixed, so results do not depend on threads
+constexpr float kMaxColor = 1e15f;  // larger magnitudes count as broken pixels
+constexpr float kMaxVariance = 1e30f;
+
+// e^-x for x in [0, kExpClamp] (callers clamp: a loop doing only that vectorizes, while a
+// clamp inside would not): x log2(e) = n + f with n an integer and |f| <= 1/2, 2^f by its
+// Taylor polynomial in f ln 2 (|f ln 2| <= 0.347, degree 6: relative error below 3e-7), 2^n
+// by the exponent bits; 0 from x ~ 87 on, where 2^n would leave float's normal range (so
+// no denormal ever reaches the sums). Plain arithmetic and an integer select, so loops
+// over it vectorize and give the same bits everywhere.
+constexpr float kExpClamp = 88.0f;
+
+inline float expNegative(float x) {
+  const float t = x * -1.44269504088896341f;
+  const int n = static_cast<int>(t - 0.5f);  // t <= 0: rounds to the nearest integer
+  const float u = (t - static_cast<float>(n)) * 0.693147180559945309f;
+  const float p =
+      1.0f +
+      u * (1.0f + u * (0.5f + u * (1.0f / 6.0f + u * (1.0f / 24.0f + u * (1.0f / 120.0f + u * (1.0f / 720.0f))))));
+  const int biased = n + 127;
+  const uint32_t bits = static_cast<uint32_t>(biased > 1 ? biased : 0) << 23;  // 0 bits: +0.0
+  return p * std::bit_cast<float>(bits);
+}
+
+// out[0] = 0 and out[i + 1] = in[0] + ... + in[i] for i < n. Four stretches are summed as
+// independent chains (their additions overlap in the pipeline) and then joined, which
+// is several times faster than one chain; the order is fixed, so are the bits.
+template <class T>
+void prefixSums(const T* in, double* out, int n) {
+  out[0] = 0.0;
+  if (n < 16) {
+    for (int i = 0; i < n; ++i) out[i + 1] = out[i] + static_cast<double>(in[i]);
+    return;
+  }
+  const int len = (n + 3) / 4, last = n - 3 * len;  // three stretches of len, the last shorter
+  const T* in1 = in + len;
+  const T* in2 = in + 2 * len;
+  const T* in3 = in + 3 * len;
+  double* out1 = out + len;
+  double* out2 = out + 2 * len;
+  double* out3 = out + 3 * len;
+  double a = 0.0, b = 0.0, c = 0.0, d = 0.0;
+  int i = 0;
+  for (; i < last; ++i) {
+    a += static_cast<double>(in[i]);
+    b += static_cast<double>(in1[i]);
+    c += static_cast<double>(in2[i]);
+    d += static_cast<double>(in3[i]);
+    out[i + 1] = a;
+    out1[i + 1] = b;
+    out2[i + 1] = c;
+    out3[i + 1] = d;
+  }
+  for (; i < len; ++i) {
+    a += static_cast<double>(in[i]);
+    b += static_cast<double>(in1[i]);
+    c += static_cast<double>(in2[i]);
+    out[i + 1] = a;
+    out1[i + 1] = b;
+    out2[i + 1] = c;
+  }
+  for (int s = 1; s < 4; ++s) {
+    const int begin = s * len, end = std::min(n, begin + len);
+    const double base = out[begin];
+    for (int j = begin + 1; j <= end; ++j) out[j] += base;
+  }
+}
+
+std::string sizeText(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
+
+void validate(const NlMeansInput& input, const NlMeansSettings& s) {
+  if (s.radius < 0 || s.patch < 0)
+    throw std::invalid_argument("NL-means: the search radius and patch size must not be negative");
+  if (!(s.kf > 0.0f) || !std::isfinite(s.kf) || !(s.kc >= 0.0f) || !std::isfinite(s.kc) || !(s.tau >= 0.0f) ||
+      !std::isfinite(s.alpha))
+    throw std::invalid_argument("NL-means: k_f must be positive, k_c and tau not negative, alpha finite");
+  if (input.frames.empty()) throw std::invalid_argument("NL-means: no frame to filter");
+  const NlMeansFrame& first = input.frames[0];
+  const int w = first.color.width, h = first.color.height;
+  const size_t colorChannels = first.color.channels.size();
+  if (w <= 0 || h <= 0 || colorChannels == 0) throw std::invalid_argument("NL-means: frame 0 has no color to filter");
+  const size_t pixels = first.color.pixelCount();
+  const auto check = [&](const Planes& planes, size_t channels, const std::string& what) {
+    if (planes.width != w || planes.height != h)
+      throw std::invalid_argument("NL-means: " + what + " is " + sizeText(planes.width, planes.height) +
+                                  ", the color of frame 0 is " + sizeText(w, h));
+    if (planes.channels.size() != channels)
+      throw std::invalid_argument("NL-means: " + what + " has " + std::to_string(planes.channels.size()) +
+                                  " channels, expected " + std::to_string(channels));
+    for (const auto& plane : planes.channels)
+      if (plane.size() != pixels)
+        throw std::invalid_argument("NL-means: a plane of " + what + " does not hold " + sizeText(w, h) + " pixels");
+  };
+  const size_t features = input.featureKinds.size();
+  for (size_t g = 0; g < features && g < first.features.size(); ++g)
+    if (first.features[g].channels.empty())
+      throw std::invalid_argument("NL-means: feature " + std::to_string(g) + " of frame 0 has no channel");
+  for (size_t t = 0; t < input.frames.size(); ++t) {
+    const NlMeansFrame& frame = input.frames[t];
+    const std::string label = "frame " + std::to_string(t);
+    check(frame.color, colorChannels, label + "'s color");
+    check(frame.variance, colorChannels, label + "'s variance");
+    if (frame.features.size() != features)
+      throw std::invalid_argument("NL-means: " + label + " has " + std::to_string(frame.features.size()) +
+                                  " features, expected " + std::to_string(features));
+    for (size_t g = 0; g < features; ++g)
+      check(frame.features[g], first.features[g].channels.size(), label + "'s feature " + std::to_string(g));
+    if (!frame.featureVariance.empty()) {
+      if (frame.featureVariance.size() != features)
+        throw std::invalid_argument("NL-means: " + label + " has feature variances for " +
+                                    std::to_string(frame.featureVariance.size()) + " of " + std::to_string(features) +
+                                    " features");
+      for (size_t g = 0; g < features; ++g)
+        if (!frame.featureVariance[g].channels.empty())
+          check(frame.featureVariance[g], first.features[g].channels.size(),
+                label + "'s variance of feature " + std::to_string(g));
+    }
+    if (!frame.valid.empty() && frame.valid.size() != pixels)
+      throw std::invalid_argument("NL-means: " + label + "'s validity does not hold " + sizeText(w, h) + " pixels");
+  }
+}
+
+// The input as flat pointers, with broken values replaced (in copies) and flagged invalid.
+class Prepared {
+ public:
+  struct Frame {
+    std::vector<const float*> color, variance;
+    std::vector<std::vector<const float*>> feature;
+    std::vector<std::vector<const float*>> featureVariance;  // per feature: empty, or a plane per channel
+    const float* valid = nullptr;
+    bool active = false;  // some pixel contributes
+  };
+
+  int width = 0, height = 0, channels = 0;
+  std::vector<Frame> frames;
+  std::vector<FeatureKind> kinds;
+  std::vector<int> featureChannels;
+  std::vector<std::vector<float>> featureScale;  // continuous features: 1 / (C_g kf^2 max(...)) at frame 0's pixels
+  std::vector<uint8_t> invalidCenter;
+  size_t invalidCenters = 0;
+  float distanceLow = 0, distanceHigh = 0;  // per-pixel color distances are clamped to [-low, high]
+
+  Prepared(const NlMeansInput& input, const NlMeansSettings& s) {
+    validate(input, s);
+    const NlMeansFrame& first = input.frames[0];
+    width = first.color.width;
+    height = first.color.height;
+    channels = static_cast<int>(first.color.channels.size());
+    kinds = input.featureKinds;
+    for (const Planes& feature : first.features) featureChannels.push_back(static_cast<int>(feature.channels.size()));
+    const size_t pixels = first.color.pixelCount();
+
+    for (size_t t = 0; t < input.frames.size(); ++t) {
+      const NlMeansFrame& in = input.frames[t];
+      Frame frame;
+      std::vector<float>& valid = storage_.emplace_back(pixels, 1.0f);
+      if (!in.valid.empty())
+        for (size_t p = 0; p < pixels; ++p) valid[p] = (in.valid[p] != 0.0f && !std::isnan(in.valid[p])) ? 1.0f : 0.0f;
+      for (const auto& plane : in.color.channels) frame.color.push_back(clean(plane, Value::Color, &valid));
+      for (const auto& plane : in.variance.channels) frame.variance.push_back(clean(plane, Value::Variance, &valid));
+      for (size_t g = 0; g < in.features.size(); ++g) {
+        std::vector<const float*> planes;
+        for (const auto& plane : in.features[g].channels) planes.push_back(clean(plane, Value::Feature, nullptr));
+        frame.feature.push_back(std::move(planes));
+        std::vector<const float*> variances;
+        if (g < in.featureVariance.size())
+          for (const auto& plane : in.featureVariance[g].channels)
+            variances.push_back(clean(plane, Value::FeatureVariance, nullptr));
+        frame.featureVariance.push_back(std::move(variances));
+      }
+      frame.valid = valid.data();
+      frame.active = std::any_of(valid.begin(), valid.end(), [](float v) { return v != 0.0f; });
+      if (t == 0) {
+        invalidCenter.resize(pixels);
+        for (size_t p = 0; p < pixels; ++p) {
+          invalidCenter[p] = valid[p] == 0.0f;
+          invalidCenters += invalidCenter[p];
+        }
+      }
+      frames.push_back(std::move(frame));
+    }
+    // Where only one frame of a pair has feature variances, the other's count as zero.
+    for (size_t g = 0; g < kinds.size(); ++g) {
+      const bool any =
+          std::any_of(frames.begin(), frames.end(), [&](const Frame& f) { return !f.featureVariance[g].empty(); });
+      if (!any) continue;
+      for (Frame& f : frames)
+        if (f.featureVariance[g].empty())
+          f.featureVariance[g].assign(static_cast<size_t>(featureChannels[g]), zeros(pixels));
+    }
+    computeFeatureScales(s);
+
+    // A pixel's distance is at least -2 alpha / kc^2 (the cancellation term over the
+    // denominator); clamping it above at `high` keeps any patch holding a clamped pixel
+    // beyond the exp cutoff, so the clamp never changes a weight.
+    const float patchPixels = static_cast<float>((2 * s.patch + 1) * (2 * s.patch + 1));
+    distanceLow = s.kc > 0.0f ? std::min(1e6f, std::max(0.0f, 2.0f * s.alpha / (s.kc * s.kc))) : 1e6f;
+    if (!(s.alpha > 0.0f)) distanceLow = 0.0f;
+    distanceHigh = patchPixels * kExpClamp + (patchPixels - 1.0f) * distanceLow;
+  }
+
+ private:
+  enum class Value { Color, Variance, Feature, FeatureVariance };
+
+  static bool broken(float v, Value kind) {
+    switch (kind) {
+      case Value::Color:
+      case Value::Feature:
+        return !std::isfinite(v) || std::abs(v) > kMaxColor;
+      case Value::Variance:
+      case Value::FeatureVariance:
+        return !std::isfinite(v) || v > kMaxVariance;
+    }
+    return false;
+  }
+
+  // `plane` itself when every value is usable, else a copy with broken values set to 0 (and
+  // their pixels marked invalid) and negative variances set to 0.
+  const float* clean(const std::vector<float>& plane, Value kind, std::vector<float>* valid) {
+    const bool variance = kind == Value::Variance || kind == Value::FeatureVariance;
+    const bool needsCopy =
+        std::any_of(plane.begin(), plane.end(), [&](float v) { return broken(v, kind) || (variance && v < 0.0f); });
+    if (!needsCopy) return plane.data();
+    std::vector<float>& copy = storage_.emplace_back(plane);
+    for (size_t p = 0; p < copy.size(); ++p) {
+      if (broken(copy[p], kind)) {
+        copy[p] = 0.0f;
+        if (valid != nullptr && kind != Value::FeatureVariance) (*valid)[p] = 0.0f;
+      } else if (variance && copy[p] < 0.0f) {
+        copy[p] = 0.0f;
+      }
+    }
+    return copy.data();
+  }
+
+  const float* zeros(size_t pixels) {
+    if (zeros_ == nullptr) zeros_ = storage_.emplace_back(pixels, 0.0f).data();
+    return zeros_;
+  }
+
+  // The normalization of each continuous feature's distance at frame 0's pixels.
+  void computeFeatureScales(const NlMeansSettings& s) {
+    featureScale.resize(kinds.size());
+    const Frame& first = frames[0];
+    const size_t w = static_cast<size_t>(width);
+    for (size_t g = 0; g < kinds.size(); ++g) {
+      if (kinds[g] != FeatureKind::Continuous) continue;
+      const int count = featureChannels[g];
+      std::vector<float>& scale = featureScale[g];
+      scale.assign(w * static_cast<size_t>(height), 0.0f);
+      std::vector<float> variance(scale.size(), 0.0f), gradient(scale.size(), 0.0f);
+      for (int j = 0; j < count; ++j) {
+        const float* f = first.feature[g][static_cast<size_t>(j)];
+        if (!first.featureVariance[g].empty()) {
+          const float* v = first.featureVariance[g][static_cast<size_t>(j)];
+          for (size_t p = 0; p < scale.size(); ++p) variance[p] += v[p];
+        }
+        for (int y = 0; y < height; ++y) {
+          const size_t up = static_cast<size_t>(std::max(0, y - 1)) * w,
+                       down = static_cast<size_t>(std::min(height - 1, y + 1)) * w;
+          const size_t row = static_cast<size_t>(y) * w;
+          for (int x = 0; x < width; ++x) {
+            const size_t left = static_cast<size_t>(std::max(0, x - 1)),
+                         right = static_cast<size_t>(std::min(width - 1, x + 1));
+            const float gx = 0.5f * (f[row + right] - f[row + left]);
+            const float gy = 0.5f * (f[down + static_cast<size_t>(x)] - f[up + static_cast<size_t>(x)]);
+            gradient[row + static_cast<size_t>(x)] += gx * gx + gy * gy;
+          }
+        }
+      }
+      const float inverseCount = 1.0f / static_cast<float>(count);
+      const float kf2 = s.kf * s.kf;
+      for (size_t p = 0; p < scale.size(); ++p) {
+        const float normalization = std::max({s.tau, variance[p] * inverseCount, gradient[p] * inverseCount, 1e-30f});
+        scale[p] = 1.0f / (static_cast<float>(count) * kf2 * normalization);
+      }
+    }
+  }
+
+  std::deque<std::vector<float>> storage_;  // cleaned copies and validity (stable addresses)
+  const float* zeros_ = nullptr;
+};
+
+// The weights of one band of rows [y0, y1) of frame 0 towards one frame and one offset.
+class BandFilter {
+ public:
+  BandFilter(const Prepared& prepared, const NlMeansSettings& s, int y0, int y1, bool keepFeatureDistances)
+      : in_(prepared), s_(s), y0_(y0), y1_(y1), keep_(keepFeatureDistances) {
+    const size_t w = static_cast<size_t>(in_.width);
+    const size_t rows = static_cast<size_t>(y1 - y0 + 2 * s.patch);
+    distance_.resize(rows * w);
+    mask_.resize(rows * w);
+    columnDistance_.resize(w);
+    columnMask_.resize(w);
+    prefixDistance_.resize(w + 1);
+    prefixMask_.resize(w + 1);
+    patch_.resize(w);
+    largest_.resize(w);
+    sum_.resize(w);
+    equal_.resize(w);
+    weight_.resize(w);
+    if (keep_) featureDistance_.assign(in_.kinds.size(), std::vector<float>(w));
+  }
+
+  const float* weight() const { return weight_.data(); }
+  const float* patchDistance() const { return patch_.data(); }
+  const float* featureDistance(size_t g) const { return featureDistance_[g].data(); }
+
+  // Calls onRow(y, x0, x1) for each row y of the band whose pixels p have partners
+  // q = p + (dx, dy) inside the image, for x in [x0, x1), once the row's weights are ready.
+  template <class RowFn>
+  void run(int t, int dx, int dy, RowFn&& onRow) {
+    const int w = in_.width, h = in_.height, f = s_.patch;
+    const int xa = std::max(0, -dx), xb = std::min(w, w - dx);
+    const int oy0 = std::max(y0_, -dy), oy1 = std::min(y1_, h - dy);
+    if (xa >= xb || oy0 >= oy1) return;
+    const Prepared::Frame& p0 = in_.frames[0];
+    const Prepared::Frame& pt = in_.frames[static_cast<size_t>(t)];
+    const bool center = t == 0 && dx == 0 && dy == 0;
+    const size_t W = static_cast<size_t>(w);
+
+    // Per-pixel distances d(x, x + offset) on the rows the band's patches reach.
+    const int ry0 = std::max(0, oy0 - f), ry1 = std::min(h, oy1 + f);
+    const float kc2 = s_.kc * s_.kc, alpha = s_.alpha, inverseChannels = 1.0f / static_cast<float>(in_.channels);
+    const float low = -in_.distanceLow, high = in_.distanceHigh;
+    for (int y = ry0; y < ry1; ++y) {
+      float* d = distance_.data() + static_cast<size_t>(y - ry0) * W;
+      float* m = mask_.data() + static_cast<size_t>(y - ry0) * W;
+      std::fill(d, d + W, 0.0f);
+      std::fill(m, m + W, 0.0f);
+      if (y + dy < 0 || y + dy >= h) continue;
+      const size_t rowP = static_cast<size_t>(y) * W;
+      const ptrdiff_t rowQ = static_cast<ptrdiff_t>(y + dy) * w + dx;
+      for (int c = 0; c < in_.channels; ++c) {
+        const float* up = p0.color[static_cast<size_t>(c)] + rowP;
+        const float* vp = p0.variance[static_cast<size_t>(c)] + rowP;
+        const float* uq = pt.color[static_cast<size_t>(c)] + rowQ;
+        const float* vq = pt.variance[static_cast<size_t>(c)] + rowQ;
+        for (int x = xa; x < xb; ++x) {
+          const float diff = up[x] - uq[x];
+          const float a = vp[x], b = vq[x];
+          d[x] += (diff * diff - alpha * (a + std::min(a, b))) / (kEpsilon + kc2 * (a + b));
+        }
+      }
+      const float* validP = p0.valid + rowP;
+      const float* validQ = pt.valid + rowQ;
+      for (int x = xa; x < xb; ++x) {
+        const float both = validP[x] * validQ[x];
+        d[x] = std::min(std::max(d[x] * inverseChannels, low), high) * both;
+        m[x] = both;
+      }
+    }
+
+    // Column sums over the patch rows, slid down the band (in double: the distances can be
+    // large, and what is subtracted must come back off exactly enough).
+    std::fill(columnDistance_.begin(), columnDistance_.end(), 0.0);
+    std::fill(columnMask_.begin(), columnMask_.end(), 0.0f);
+    const auto addRow = [&](int y, double sign) {
+      const float* d = distance_.data() + static_cast<size_t>(y - ry0) * W;
+      const float* m = mask_.data() + static_cast<size_t>(y - ry0) * W;
+      double* cd = columnDistance_.data();
+      float* cm = columnMask_.data();
+      const float signF = static_cast<float>(sign);
+      for (int x = xa; x < xb; ++x) {
+        cd[x] += sign * static_cast<double>(d[x]);
+        cm[x] += signF * m[x];
+      }
+    };
+    for (int y = std::max(ry0, oy0 - f); y < std::min(ry1, oy0 + f + 1); ++y) addRow(y, 1.0);
+
+    for (int y = oy0; y < oy1; ++y) {
+      if (y > oy0) {
+        if (y + f < ry1) addRow(y + f, 1.0);
+        if (y - f - 1 >= ry0) addRow(y - f - 1, -1.0);
+      }
+      // Row box filter through prefix sums over [xa, xb) (everything outside is zero).
+      const int n = xb - xa;
+      const double* pd = prefixDistance_.data();
+      const double* pm = prefixMask_.data();
+      prefixSums(columnDistance_.data() + xa, prefixDistance_.data(), n);
+      prefixSums(columnMask_.data() + xa, prefixMask_.data(), n);
+      float* patch = patch_.data() + xa;  // indexed from xa
+      // The masses are whole numbers, and where one is 0 so is the sum of distances.
+      const auto boxAt = [&](int i, int lo, int hi) {
+        patch[i] = static_cast<float>((pd[hi] - pd[lo]) / std::max(pm[hi] - pm[lo], 1.0));
+      };
+      const int interiorBegin = std::min(n, f), interiorEnd = std::max(interiorBegin, n - f - 1);
+      for (int i = 0; i < interiorBegin; ++i) boxAt(i, std::max(0, i - f), std::min(n, i + f + 1));
+      for (int i = interiorBegin; i < interiorEnd; ++i) {
+        const double mass = std::max(pm[i + f + 1] - pm[i - f], 1.0);
+        patch[i] = static_cast<float>((pd[i + f + 1] - pd[i - f]) / mass);
+      }
+      for (int i = interiorEnd; i < n; ++i) boxAt(i, std::max(0, i - f), std::min(n, i + f + 1));
+      patch = patch_.data();
+
+      // Feature distances, the largest distance, and the weight.
+      const size_t rowP = static_cast<size_t>(y) * W;
+      const ptrdiff_t rowQ = static_cast<ptrdiff_t>(y + dy) * w + dx;
+      float* largest = largest_.data();
+      float* equal = equal_.data();
+      for (int x = xa; x < xb; ++x) {
+        largest[x] = std::max(0.0f, patch[x]);
+        equal[x] = 1.0f;
+      }
+      for (size_t g = 0; g < in_.kinds.size(); ++g) {
+        const size_t count = static_cast<size_t>(in_.featureChannels[g]);
+        if (in_.kinds[g] == FeatureKind::ExactMatch) {
+          float* eq = keep_ ? sum_.data() : equal;
+          if (keep_) std::fill(sum_.begin() + xa, sum_.begin() + xb, 1.0f);
+          for (size_t j = 0; j < count; ++j) {
+            const float* a = p0.feature[g][j] + rowP;
+            const float* b = pt.feature[g][j] + rowQ;
+            for (int x = xa; x < xb; ++x) eq[x] = a[x] == b[x] ? eq[x] : 0.0f;
+          }
+          if (keep_) {
+            float* out = featureDistance_[g].data();
+            for (int x = xa; x < xb; ++x) {
+              out[x] = eq[x] != 0.0f ? 0.0f : std::numeric_limits<float>::infinity();
+              equal[x] *= eq[x];
+            }
+          }
+          continue;
+        }
+        float* sum = sum_.data();
+        std::fill(sum + xa, sum + xb, 0.0f);
+        for (size_t j = 0; j < count; ++j) {
+          const float* a = p0.feature[g][j] + rowP;
+          const float* b = pt.feature[g][j] + rowQ;
+          for (int x = xa; x < xb; ++x) {
+            const float diff = a[x] - b[x];
+            sum[x] += diff * diff;
+          }
+          if (!p0.featureVariance[g].empty()) {
+            const float* va = p0.featureVariance[g][j] + rowP;
+            const float* vb = pt.featureVariance[g][j] + rowQ;
+            for (int x = xa; x < xb; ++x) sum[x] -= va[x] + std::min(va[x], vb[x]);
+          }
+        }
+        const float* scale = in_.featureScale[g].data() + rowP;
+        float* out = keep_ ? featureDistance_[g].data() : sum;
+        for (int x = xa; x < xb; ++x) {
+          const float distance = sum[x] * scale[x];
+          out[x] = distance;
+          largest[x] = std::max(largest[x], distance);
+        }
+      }
+      float* weight = weight_.data();
+      const float* validQ = pt.valid + rowQ;
+      if (center) {
+        for (int x = xa; x < xb; ++x) weight[x] = p0.valid[rowP + static_cast<size_t>(x)];
+      } else {
+        for (int x = xa; x < xb; ++x) largest[x] = std::min(kExpClamp, largest[x]);  // NaN: the clamp
+        for (int x = xa; x < xb; ++x) weight[x] = expNegative(largest[x]) * equal[x] * validQ[x];
+      }
+      onRow(y, xa, xb);
+    }
+  }
+
+ private:
+  const Prepared& in_;
+  const NlMeansSettings& s_;
+  int y0_, y1_;
+  bool keep_;
+  std::vector<float> distance_, mask_;
+  std::vector<double> columnDistance_;
+  std::vector<float> columnMask_;
+  std::vector<double> prefixDistance_, prefixMask_;
+  std::vector<float> patch_, largest_, sum_, equal_, weight_;
+  std::vector<std::vector<float>> featureDistance_;
+};
+
+int bandCount(int height) { return (height + kBandRows - 1) / kBandRows; }
+
+}  // namespace
+
+Planes jointNlMeans(const NlMeansInput& input, const NlMeansSettings& settings, NlMeansStats* stats) {
+  const Prepared prepared(input, settings);
+  const int w = prepared.width, h = prepared.height, r = settings.radius;
+  const size_t W = static_cast<size_t>(w);
+  const size_t channels = static_cast<size_t>(prepared.channels);
+  Planes out(w, h, prepared.channels);
+  std::vector<uint8_t> unfilled(out.pixelCount(), 0);
+
+  tbb::parallel_for(tbb::blocked_range<int>(0, bandCount(h), 1), [&](const tbb::blocked_range<int>& bands) {
+    for (int band = bands.begin(); band != bands.end(); ++band) {
+      const int y0 = band * kBandRows, y1 = std::min(h, y0 + kBandRows);
+      const size_t cells = static_cast<size_t>(y1 - y0) * W;
+      std::vector<float> weightSum(cells, 0.0f), colorSum(channels * cells, 0.0f);
+      BandFilter filter(prepared, settings, y0, y1, false);
+      for (size_t t = 0; t < prepared.frames.size(); ++t) {
+        const Prepared::Frame& frame = prepared.frames[t];
+        if (!frame.active) continue;
+        for (int dy = -r; dy <= r; ++dy) {
+          for (int dx = -r; dx <= r; ++dx) {
+            filter.run(static_cast<int>(t), dx, dy, [&](int y, int x0, int x1) {
+              const float* weight = filter.weight();
+              const size_t row = static_cast<size_t>(y - y0) * W;
+              float* ws = weightSum.data() + row;
+              for (int x = x0; x < x1; ++x) ws[x] += weight[x];
+              const ptrdiff_t rowQ = static_cast<ptrdiff_t>(y + dy) * w + dx;
+              for (size_t c = 0; c < channels; ++c) {
+                float* cs = colorSum.data() + c * cells + row;
+                const float* uq = frame.color[c] + rowQ;
+                for (int x = x0; x < x1; ++x) cs[x] += weight[x] * uq[x];
+              }
+            });
+          }
+        }
+      }
+      for (size_t i = 0; i < cells; ++i) {
+        const size_t p = static_cast<size_t>(y0) * W + i;
+        const float ws = weightSum[i];
+        if (!(ws > 0.0f)) unfilled[p] = 1;
+        for (size_t c = 0; c < channels; ++c) out.channels[c][p] = ws > 0.0f ? colorSum[c * cells + i] / ws : 0.0f;
+      }
+    }
+  });
+
+  if (stats != nullptr) {
+    stats->invalidCenters = prepared.invalidCenters;
+    stats->invalidCenter = prepared.invalidCenter;
+    stats->unfilledCenters = static_cast<size_t>(std::count(unfilled.begin(), unfilled.end(), uint8_t{1}));
+  }
+  return out;
+}
+
+NlMeansPairTerms jointNlMeansPairTerms(const NlMeansInput& input, const NlMeansSettings& settings, int frame, int dx,
+                                       int dy) {
+  const Prepared prepared(input, settings);
+  if (frame < 0 || static_cast<size_t>(frame) >= prepared.frames.size())
+    throw std::invalid_argument("NL-means: no frame " + std::to_string(frame) + " in the window");
+  const int w = prepared.width, h = prepared.height;
+  const size_t W = static_cast<size_t>(w), pixels = W * static_cast<size_t>(h);
+  const float infinity = std::numeric_limits<float>::infinity();
+  NlMeansPairTerms terms;
+  terms.colorDistance.assign(pixels, infinity);
+  terms.featureDistance.assign(prepared.kinds.size(), std::vector<float>(pixels, infinity));
+  terms.weight.assign(pixels, 0.0f);
+  for (int band = 0; band < bandCount(h); ++band) {
+    const int y0 = band * kBandRows, y1 = std::min(h, y0 + kBandRows);
+    BandFilter filter(prepared, settings, y0, y1, true);
+    filter.run(frame, dx, dy, [&](int y, int x0, int x1) {
+      const size_t row = static_cast<size_t>(y) * W;
+      for (int x = x0; x < x1; ++x) {
+        const size_t p = row + static_cast<size_t>(x);
+        terms.colorDistance[p] = filter.patchDistance()[x];
+        terms.weight[p] = filter.weight()[x];
+        for (size_t g = 0; g < prepared.kinds.size(); ++g) terms.featureDistance[g][p] = filter.featureDistance(g)[x];
+      }
+    });
+  }
+  return terms;
+}
+
+}  // namespace pathfarm

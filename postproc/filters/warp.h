@@ -1,0 +1,50 @@
+#pragma once
+// Backward warping of a neighbour frame onto the current frame along the current frame's
+// motion (Zimmer et al. 2015, Section 6): pixel p of the current frame looks its value up
+// at p + motion(p) in the neighbour, so the warped planes line up with the current frame
+// pixel for pixel. For the previous frame the motion is the current frame's
+// `motion_back`, for the next frame its `motion` (docs/decomposition.md).
+//
+// Coordinates are pixel indices (pixel (i, j)'s centre is (i, j)); the renderer's motions
+// are differences of continuous film positions, so they apply unchanged.
+#include <string>
+#include <vector>
+
+#include "image/frame_image.h"
+#include "postproc/filters/nlmeans.h"
+
+namespace pathfarm {
+
+enum class NeighbourFrame { Previous, Next };
+
+enum class WarpLookup {
+  Bilinear,  // colors, variances, continuous features
+  Nearest,   // ids: never blended
+};
+
+// Where each pixel of the current frame comes from in a neighbour frame.
+struct MotionField {
+  int width = 0, height = 0;
+  std::vector<float> x, y;   // pixel p maps to p + (x[p], y[p]) in the neighbour
+  std::vector<float> valid;  // 1 where the motion holds (empty: everywhere)
+};
+
+// The current frame's motion towards `neighbour`: `<prefix>motion_back.X/Y` for the previous
+// frame, `<prefix>motion.X/Y` for the next, with `<prefix>motion_valid.Y` when the frame has
+// it. `prefix` is "" for the frame-wide (primary) motion or "<component>." for a
+// component's. Throws std::invalid_argument naming a missing channel after `label`.
+MotionField motionTowards(const FrameImage& current, NeighbourFrame neighbour, const std::string& prefix,
+                          const std::string& label);
+
+// 1 where the pixel's source lies inside the neighbour image (inside the pixel footprints:
+// [-0.5, width - 0.5) x [-0.5, height - 0.5)) and its motion is valid and finite, else 0.
+std::vector<float> warpValidity(const MotionField& motion);
+
+// Each plane of `neighbour` (the motion field's size) looked up at p + motion(p): bilinear
+// between the four nearest pixel centres, or the nearest pixel. Lookups are clamped to the
+// image, so where warpValidity is 0 the value is the nearest edge's (or, for a non-finite
+// motion, the pixel at p itself): plausible, but not to be used. An integer motion copies
+// pixels exactly. Throws std::invalid_argument for mismatched sizes.
+Planes warpPlanes(const Planes& neighbour, const MotionField& motion, WarpLookup lookup = WarpLookup::Bilinear);
+
+}  // namespace pathfarm
