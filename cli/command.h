@@ -1,5 +1,7 @@
 #pragma once
 // A subcommand of `pathfarm`: where CLI11 parsed its arguments, and what runs it.
+#include <spdlog/spdlog.h>
+
 #include <CLI/CLI.hpp>
 
 #include <functional>
@@ -16,6 +18,18 @@ struct Command {
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailure = 1;   // the work failed (rendering, the farm, a failed shot)
 inline constexpr int kExitBadInput = 2;  // bad arguments, scene or shot file; nothing was done
+
+// Runs a command whose every failure is bad input (a missing or damaged file, layer,
+// size or option): the message is logged and the exit status is kExitBadInput.
+template <class Body>
+int runReportingBadInput(Body body) {
+  try {
+    return body();
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return kExitBadInput;
+  }
+}
 
 std::vector<Command> addRenderCommand(CLI::App& app);
 std::vector<Command> addFarmProcessCommands(CLI::App& app);  // scheduler, worker

@@ -24,19 +24,9 @@ struct UpsampleArguments {
   UpsampleSettings settings;
 };
 
-// Bad or missing input (files, layers, sizes) is the user's to fix: exit status 2.
-template <class Body>
-int reportingErrors(Body body) {
-  try {
-    return body();
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return kExitBadInput;
-  }
-}
 
 int runDenoise(DenoiseArguments& a) {
-  return reportingErrors([&] {
+  return runReportingBadInput([&] {
     a.settings.mode = parseDenoiseMode(a.mode);
     if (a.radius) a.settings.spatialRadius = a.settings.temporalRadius = *a.radius;
     a.settings.label = a.input;
@@ -59,7 +49,7 @@ int runDenoise(DenoiseArguments& a) {
 }
 
 int runUpsample(UpsampleArguments& a) {
-  return reportingErrors([&] {
+  return runReportingBadInput([&] {
     const FrameImage low = readExr(a.input);
     FrameImage result = readExr(a.guide);  // the full-resolution features travel along
     const FrameImage upsampled = upsampleFrame(low, result, a.settings);

@@ -55,19 +55,9 @@ std::vector<std::filesystem::path> framesIn(const std::filesystem::path& folder)
   return files;
 }
 
-// Every failure here is bad input: a missing or damaged file, layer, size or crop.
-template <class Body>
-int reportingErrors(Body body) {
-  try {
-    return body();
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return kExitBadInput;
-  }
-}
 
 int runCompare(const CompareArguments& a) {
-  return reportingErrors([&] {
+  return runReportingBadInput([&] {
     const FrameImage image = readExr(a.image), reference = readExr(a.reference);
     const ImageMetrics m = compareImages(image, reference, layerChannels(reference, a.layer), parseCrop(a.crop));
     if (a.json) {
@@ -80,7 +70,7 @@ int runCompare(const CompareArguments& a) {
 }
 
 int runCompareSequence(const CompareArguments& a) {
-  return reportingErrors([&] {
+  return runReportingBadInput([&] {
     const auto files = framesIn(a.image);
     std::vector<FrameImage> images, references;
     for (const auto& file : files) {

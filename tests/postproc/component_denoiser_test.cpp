@@ -261,8 +261,5 @@ TEST(ComponentDenoiser, DecomposedDenoiseBeatsColorOnlyOnARenderedFrame) {
   EXPECT_LT(colorError, noisyError);
 }
 
-// Timing on this machine (run with --gtest_also_run_disabled_tests): 1280x720, one
-// component, spatial (r = 10) and with both neighbours (r = 5).
-
 }  // namespace
 }  // namespace pathfarm
