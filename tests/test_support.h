@@ -38,6 +38,18 @@ inline MeanEstimate meanOverPixels(const FrameImage& image, const std::string& c
   return {sum / n, std::sqrt(varianceSum) / n};
 }
 
+// A deterministic value in [0, 1) per (seed, c, x, y): test images without a generator.
+inline float hashed(uint32_t seed, int c, int x, int y) {
+  uint32_t h = seed * 0x9E3779B9u ^ static_cast<uint32_t>(c) * 0x85EBCA6Bu ^ static_cast<uint32_t>(x) * 0xC2B2AE35u ^
+               static_cast<uint32_t>(y) * 0x27D4EB2Fu;
+  h ^= h >> 15;
+  h *= 0x2C1B3C6Du;
+  h ^= h >> 12;
+  h *= 0x297A2D39u;
+  h ^= h >> 15;
+  return static_cast<float>(h >> 8) / 16777216.0f;
+}
+
 inline void expectNear(Vec3f a, Vec3f b, float tolerance = 1e-5f) {
   EXPECT_NEAR(a.x, b.x, tolerance);
   EXPECT_NEAR(a.y, b.y, tolerance);

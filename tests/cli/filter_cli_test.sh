@@ -1,13 +1,7 @@
 #!/usr/bin/env bash
 # `pathfarm denoise` and `pathfarm upsample` as a user runs them: decomposed frames in,
 # filtered frames out with a lower error, and bad input refused with exit status 2.
-set -u
-pathfarm=$1
-source_dir=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+source "$(dirname "$0")/cli_test_support.sh"
 scene="$source_dir/scenes/cornell/scene.json"
 quiet() { "$@" > "$work/log" 2>&1 || fail "$* failed: $(cat "$work/log")"; }
 
@@ -38,5 +32,4 @@ for args in "denoise $work/plain/frame_0005.exr --out $work/x.exr" \
 done
 [ -e "$work/x.exr" ] && fail "a refused command wrote its output"
 
-if [ "$failures" -eq 0 ]; then echo "filter CLI: all checks passed"; fi
-exit "$failures"
+finish "filter CLI"

@@ -2,13 +2,7 @@
 # `pathfarm local` and `pathfarm preview` as a user runs them: a tiny shot on two local
 # workers gives the same EXR bytes as `pathfarm render`, previews appear next to the
 # frames, and a bad shot is refused with exit status 2 before any farm starts.
-set -u
-pathfarm=$1
-source_dir=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+source "$(dirname "$0")/cli_test_support.sh"
 
 cat > "$work/shot.json" <<JSON
 {"name": "tiny", "scene": "$source_dir/scenes/cornell/scene.json", "frames": {"start": 1, "end": 2},
@@ -43,5 +37,4 @@ status=$?
 grep -q "missing.json: cannot open the scene file" "$work/log" || fail "bad shot message: $(cat "$work/log")"
 [ -e "$work/bad_out" ] && fail "a bad shot started a farm"
 
-if [ "$failures" -eq 0 ]; then echo "local CLI: all checks passed"; fi
-exit "$failures"
+finish "local CLI"

@@ -1,13 +1,7 @@
 #!/usr/bin/env bash
 # `pathfarm compare` and `compare-seq` as a user runs them: a noisier render has the
 # larger error, JSON is well-formed, and bad input is refused with exit status 2.
-set -u
-pathfarm=$1
-source_dir=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+source "$(dirname "$0")/cli_test_support.sh"
 scene="$source_dir/scenes/cornell/scene.json"
 
 for spp in 1 8 64; do
@@ -34,5 +28,4 @@ for args in "$work/missing.exr $work/spp64/frame_0002.exr" \
   [ "$status" -eq 2 ] || fail "compare $args: exit status $status, expected 2"
 done
 
-if [ "$failures" -eq 0 ]; then echo "metrics CLI: all checks passed"; fi
-exit "$failures"
+finish "metrics CLI"

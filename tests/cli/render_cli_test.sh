@@ -1,13 +1,7 @@
 #!/usr/bin/env bash
 # `pathfarm render` as a user runs it: frames and previews written, bad input refused
 # with exit status 2, a clear message, and no output.
-set -u
-pathfarm=$1
-source_dir=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+source "$(dirname "$0")/cli_test_support.sh"
 
 # A good render: two frames and their previews.
 if ! "$pathfarm" render "$source_dir/scenes/cornell/scene.json" --frames 3:4 --spp 2 --res 24x16 \
@@ -45,5 +39,4 @@ done
 [ $? -eq 2 ] || fail "missing scene file should exit 2"
 grep -q "missing.json: cannot open" "$work/log" || fail "missing scene message: $(cat "$work/log")"
 
-if [ "$failures" -eq 0 ]; then echo "render CLI: all checks passed"; fi
-exit "$failures"
+finish "render CLI"

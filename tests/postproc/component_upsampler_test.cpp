@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_support.h"
+
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -20,16 +22,7 @@ constexpr const char* kXyz[] = {"X", "Y", "Z"};
 const std::string kDecomposition = "diffuse=ED,residual";
 const std::string kComponents[] = {"diffuse", "residual"};
 
-float hashed(uint32_t seed, int c, int x, int y) {
-  uint32_t h = seed * 0x9E3779B9u ^ static_cast<uint32_t>(c) * 0x85EBCA6Bu ^ static_cast<uint32_t>(x) * 0xC2B2AE35u ^
-               static_cast<uint32_t>(y) * 0x27D4EB2Fu;
-  h ^= h >> 15;
-  h *= 0x2C1B3C6Du;
-  h ^= h >> 12;
-  h *= 0x297A2D39u;
-  h ^= h >> 15;
-  return static_cast<float>(h >> 8) / 16777216.0f;
-}
+using test_support::hashed;
 
 size_t index(int x, int y, int width) { return static_cast<size_t>(y) * width + x; }
 

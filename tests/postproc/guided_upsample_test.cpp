@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_support.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -25,17 +27,7 @@ float at(const Planes& planes, int c, int x, int y) {
   return planes.channels[static_cast<size_t>(c)][static_cast<size_t>(y) * planes.width + x];
 }
 
-// A deterministic value in [0, 1) per (seed, c, x, y).
-float hashed(uint32_t seed, int c, int x, int y) {
-  uint32_t h = seed * 0x9E3779B9u ^ static_cast<uint32_t>(c) * 0x85EBCA6Bu ^ static_cast<uint32_t>(x) * 0xC2B2AE35u ^
-               static_cast<uint32_t>(y) * 0x27D4EB2Fu;
-  h ^= h >> 15;
-  h *= 0x2C1B3C6Du;
-  h ^= h >> 12;
-  h *= 0x297A2D39u;
-  h ^= h >> 15;
-  return static_cast<float>(h >> 8) / 16777216.0f;
-}
+using test_support::hashed;
 
 // The guided filter straight from He et al.'s equations: every window's statistics summed
 // directly, (Sigma + eps U) a = cov solved by Gaussian elimination, coefficients averaged
