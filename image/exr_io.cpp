@@ -1,5 +1,7 @@
 #include "image/exr_io.h"
 
+#include "image/atomic_file.h"
+
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
@@ -7,12 +9,7 @@
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStdIO.h>
 #include <OpenEXR/ImfStringAttribute.h>
-#include <fcntl.h>
-#include <unistd.h>
 
-#include <atomic>
-#include <cerrno>
-#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -72,35 +69,6 @@ FrameImage decodeExr(const std::string& bytes, const std::string& label) {
     return frame;
   } catch (const std::exception& e) {
     throw ExrError(label + ": cannot read EXR: " + e.what());
-  }
-}
-
-void writeFileAtomically(const std::filesystem::path& file, const std::string& bytes) {
-  // A name of this writer's own: concurrent writers of the same file never share (or
-  // remove) each other's temporary, and the last rename wins with complete content.
-  static std::atomic<uint64_t> counter{0};
-  const std::string temporary =
-      file.string() + "." + std::to_string(::getpid()) + "." + std::to_string(counter++) + ".partial";
-  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw ExrError(file.string() + ": cannot write: " + std::strerror(errno));
-  size_t written = 0;
-  while (written < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const std::string reason = std::strerror(errno);
-      ::close(fd);
-      ::unlink(temporary.c_str());
-      throw ExrError(file.string() + ": cannot write: " + reason);
-    }
-    written += static_cast<size_t>(n);
-  }
-  const bool synced = ::fsync(fd) == 0;
-  ::close(fd);
-  if (!synced || ::rename(temporary.c_str(), file.c_str()) != 0) {
-    const std::string reason = std::strerror(errno);
-    ::unlink(temporary.c_str());
-    throw ExrError(file.string() + ": cannot move the finished file into place: " + reason);
   }
 }
 

@@ -24,7 +24,4 @@ void writeExr(const std::filesystem::path& file, const FrameImage& frame);
 // A missing, truncated or corrupted file throws ExrError naming the file.
 FrameImage readExr(const std::filesystem::path& file);
 
-// Writes bytes to `file` atomically: a temporary file of this writer's own, fsync, rename.
-void writeFileAtomically(const std::filesystem::path& file, const std::string& bytes);
-
 }  // namespace pathfarm

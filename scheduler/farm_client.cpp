@@ -2,7 +2,7 @@
 
 #include <cstdio>
 
-#include "image/exr_io.h"
+#include "image/atomic_file.h"
 #include "proto/wire/chunk_transfer.h"
 #include "proto/wire/connection.h"
 

@@ -1,10 +1,9 @@
 #include "proto/wire/chunk_store.h"
 
 #include <fstream>
-#include <random>
 #include <sstream>
 
-#include "image/exr_io.h"
+#include "image/atomic_file.h"
 #include "proto/wire/sha256.h"
 
 namespace pathfarm::farm {
