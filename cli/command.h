@@ -38,5 +38,6 @@ std::vector<Command> addLocalCommand(CLI::App& app);
 std::vector<Command> addPreviewCommand(CLI::App& app);
 std::vector<Command> addMetricsCommands(CLI::App& app);  // compare, compare-seq
 std::vector<Command> addFilterCommands(CLI::App& app);   // denoise, upsample
+std::vector<Command> addFlowCommand(CLI::App& app);
 
 }  // namespace pathfarm

@@ -13,7 +13,7 @@ int main(int argc, char** argv) {
   std::vector<pathfarm::Command> commands;
   for (auto add : {pathfarm::addRenderCommand, pathfarm::addFarmProcessCommands, pathfarm::addClientCommands,
                    pathfarm::addLocalCommand, pathfarm::addPreviewCommand, pathfarm::addMetricsCommands,
-                   pathfarm::addFilterCommands}) {
+                   pathfarm::addFilterCommands, pathfarm::addFlowCommand}) {
     for (pathfarm::Command& command : add(app)) commands.push_back(std::move(command));
   }
   try {
