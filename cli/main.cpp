@@ -13,7 +13,8 @@ int main(int argc, char** argv) {
   std::vector<pathfarm::Command> commands;
   for (auto add : {pathfarm::addRenderCommand, pathfarm::addFarmProcessCommands, pathfarm::addClientCommands,
                    pathfarm::addLocalCommand, pathfarm::addPreviewCommand, pathfarm::addMetricsCommands,
-                   pathfarm::addFilterCommands, pathfarm::addFlowCommand}) {
+                   pathfarm::addFilterCommands, pathfarm::addFlowCommand,
+                   pathfarm::addInterpolationCommands}) {
     for (pathfarm::Command& command : add(app)) commands.push_back(std::move(command));
   }
   try {

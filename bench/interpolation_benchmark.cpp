@@ -1,0 +1,100 @@
+// Keyframe interpolation on the animated Cornell box (Zimmer et al. 2015, Section 5.3 and
+// Figures 13-14): its speed, the error it buys and the pixels it leaves to re-render.
+//
+//   build/bin/interpolation_benchmark [--scene scenes/cornell/scene.json] [--keyframes 4]
+//                                     [--spp 16] [--reference-spp 512] [--size 128]
+//
+// Part 1 times flow (one 1280x720 irradiance layer), interpolation and motion blur of a
+// 1280x720 decomposed frame. Part 2 renders frames 0..2k at SIZE x SIZE (keyframes every k
+// frames, the frames between as guide features), interpolates every in-between frame
+// from its keyframes per component and color-only, and prints per frame the relMSE of
+// both against a --reference-spp render and the re-render rate.
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+
+#include "postproc/flow/optical_flow.h"
+#include "postproc/interpolation/frame_interpolation.h"
+#include "postproc/metrics/image_metrics.h"
+#include "postproc/motion_blur/motion_blur.h"
+#include "renderer/integrators/frame_renderer.h"
+#include "renderer/scene/scene_loader.h"
+
+namespace {
+
+using namespace pathfarm;
+
+template <class Work>
+double seconds(Work work) {
+  const auto start = std::chrono::steady_clock::now();
+  work();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+FrameImage render(const Scene& scene, int width, int height, int spp, int64_t frame, bool decompose) {
+  RenderSettings settings;
+  settings.width = width;
+  settings.height = height;
+  settings.spp = spp;
+  settings.maxDepth = scene.defaults.maxDepth;
+  if (decompose) settings.decomposition = std::make_shared<Decomposition>(Decomposition::standard());
+  return FrameRenderer(scene, settings).render(frame);
+}
+
+Planes irradiance(const FrameImage& frame) {
+  Planes planes(frame.width(), frame.height(), 0);
+  for (const char* c : {"R", "G", "B"}) planes.channels.push_back(frame.channel(std::string("diffuse_direct.irradiance.") + c));
+  return planes;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"pathfarm interpolation benchmark"};
+  std::string scenePath = "scenes/cornell/scene.json";
+  int keyframes = 4, spp = 16, referenceSpp = 512, size = 128;
+  app.add_option("--scene", scenePath);
+  app.add_option("--keyframes", keyframes);
+  app.add_option("--spp", spp);
+  app.add_option("--reference-spp", referenceSpp);
+  app.add_option("--size", size);
+  CLI11_PARSE(app, argc, argv);
+  const Scene scene = loadScene(scenePath);
+
+  // Part 1: speed at 1280x720.
+  const FrameImage a = render(scene, 1280, 720, 2, 4, true), b = render(scene, 1280, 720, 2, 5, true);
+  FlowField primary(a.width(), a.height());
+  primary.dx = a.channel("diffuse_direct.motion.X");
+  primary.dy = a.channel("diffuse_direct.motion.Y");
+  FlowSettings flowSettings;
+  flowSettings.logDomain = true;
+  const double flow = seconds([&] { bootstrappedFlow(irradiance(a), irradiance(b), primary, flowSettings); });
+  const double interpolation =
+      seconds([&] { interpolateFrameDetailed(a, b, concatenatePrimaryMotion({a, b}), 0.5f, {}); });
+  const double blur = seconds([&] { motionBlur(a, 0.5f); });
+  std::printf("1280x720: flow %.3f s (one RGB layer), interpolation %.3f s, motion blur %.3f s (5 components)\n",
+              flow, interpolation, blur);
+
+  // Part 2: error and re-render rate.
+  std::vector<FrameImage> frames;
+  for (int f = 0; f <= 2 * keyframes; ++f) frames.push_back(render(scene, size, size, spp, f, true));
+  std::printf("\n%dx%d, keyframes every %d frames, %d spp, reference %d spp\n", size, size, keyframes, spp,
+              referenceSpp);
+  std::printf("frame  relMSE per component  relMSE color only  re-render rate\n");
+  for (int k = 0; k + keyframes < static_cast<int>(frames.size()); k += keyframes) {
+    const std::vector<FrameImage> chain(frames.begin() + k, frames.begin() + k + keyframes + 1);
+    const ComponentMotions motions = concatenatePrimaryMotion(chain);
+    for (int f = 1; f < keyframes; ++f) {
+      const float s = static_cast<float>(f) / static_cast<float>(keyframes);
+      InterpolationSettings colorOnly;
+      colorOnly.colorOnly = true;
+      const InterpolationResult split = interpolateFrameDetailed(chain.front(), chain.back(), motions, s, {});
+      const InterpolationResult plain = interpolateFrameDetailed(chain.front(), chain.back(), motions, s, colorOnly);
+      const FrameImage reference = render(scene, size, size, referenceSpp, k + f, false);
+      std::printf("%5d  %20.5f  %17.5f  %13.2f %%\n", k + f,
+                  compareImages(split.frame, reference, {"R", "G", "B"}).relMse,
+                  compareImages(plain.frame, reference, {"R", "G", "B"}).relMse, 100 * split.rerenderRate);
+    }
+  }
+  return 0;
+}

@@ -1,0 +1,114 @@
+#pragma once
+// Per-component frame interpolation with re-render masks (Zimmer et al. 2015, Section
+// 5.3). Between two rendered keyframes K0 and K1 the frame at fraction s in (0, 1) is
+// built per path-space component (docs/decomposition.md): K0's component is forward-splatted
+// along s * motion(K0->K1) and K1's along (1 - s) * motion(K1->K0) (forward_splat.h:
+// bilinear footprints, nearest surface by `<c>.depth.Z` wins within a relative tolerance),
+// the two are blended with weights (1 - s) and s, and the components are summed into the
+// beauty R, G, B.
+//
+// What is splatted: the component's color `<c>.color.R/G/B` (its irradiance
+// `<c>.irradiance.R/G/B`, or the color where a frame has none, is splatted alongside for
+// the illumination test below). Splatting irradiance and reflectance apart and
+// re-modulating would not keep the components' sum: where one keyframe's reflectance is
+// below the demodulation guard its "irradiance" is the color, and the product of two
+// blends is not the blend of the products. Both keyframes see the same texture at a
+// tracked point, so the color carries it as well.
+//
+// Depth of the splat's depth test: `<c>.depth.Z`, except where `<c>.motion_valid.Y` is 1 and
+// the frame has `depth.Z`: there the component's motion is the primary motion (its first
+// non-specular vertex is the primary hit) and the frame-wide, less noisy `depth.Z` is used.
+//
+// Combining the keyframes at a pixel: both splats cover it -> if one's depth is nearer than
+// the other's by more than twice the depth tolerance it alone is kept, else the blend; one
+// covers it -> that one ("seen in one keyframe only"); none covers it -> a hole: the
+// best-effort value is the static blend (1 - s) K0(p) + s K1(p) of the component at the
+// same pixel, and the pixel is masked if that value is significant.
+//
+// The re-render mask (channel `rerender.Y`, 1 = render this pixel) is the union of
+//   holes         a component with no splat from either keyframe whose best-effort value is
+//                 significant there;
+//   silhouettes   the splat targets (nearest pixel) of K0/K1 pixels with `silhouette.Y` > 0.5
+//                 (motion is unreliable there). A missing `silhouette.Y` means none;
+//   untracked     pixels where a component is significant in K0 or K1 but its motion is
+//                 invalid (specular paths the caller could not track, or a chain leaving the
+//                 image); their targets are unknown, so the source pixel itself is marked. Their
+//                 best-effort value: splatted along the frame-wide motion (key "") when
+//                 untrackedFollowPrimary and it is given, else left to the hole rule;
+//   illumination  a significant component seen in one keyframe only, where the component's
+//                 irradiance changed between the keyframes nearby: the largest relative change
+//                 |L(E0) - L(E1)| / max((L(E0) + L(E1)) / 2, irradianceFloor) (L: luminance of
+//                 the splatted irradiances) over the pixels within illuminationRadius that both
+//                 keyframes cover exceeds illuminationChange; with no such pixel nearby the
+//                 change is unknown and the pixel is marked.
+// "Significant": the component's luminance there exceeds `significance` times the
+// pixel's beauty luminance (and 1e-6). Masked pixels keep their best-effort value.
+// The re-render rate (masked fraction) is in attribute `pathfarm.rerender_rate`.
+//
+// Color-only baseline (settings.colorOnly): the same code with one layer, the beauty
+// R, G, B, frame-wide `depth.Z` and the frame-wide motion (ComponentMotions key ""); its
+// output has no component channels and no `pathfarm.decomposition` attribute.
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "image/frame_image.h"
+#include "postproc/filters/warp.h"
+
+namespace pathfarm {
+
+// One layer's motion between the keyframes. forward: pixel p of K0 is at p + forward(p) in
+// K1; backward: pixel p of K1 is at p + backward(p) in K0. `valid` (empty: everywhere)
+// marks where the motion holds.
+struct ComponentMotion {
+  MotionField forward;
+  MotionField backward;
+};
+
+// Per component name; "" is the frame-wide primary motion (the color-only baseline).
+struct ComponentMotions {
+  std::map<std::string, ComponentMotion> components;
+};
+
+// Chains the per-frame motions of consecutive rendered frames K0 = frames.front() ..
+// K1 = frames.back(): forward p -> p + m_0(p) -> q + m_1(q) -> ... along `<c>.motion`,
+// backward along `<c>.motion_back` from K1, with bilinear lookups of the motion (nearest for
+// `<c>.motion_valid.Y`). Valid where every link is valid and every position is inside the
+// image. Produces every component of the frames' decomposition and "" from the frame-wide
+// `motion`/`motion_back`. Throws std::invalid_argument for fewer than two frames,
+// mismatched sizes or decompositions, missing motion channels or non-finite motion.
+ComponentMotions concatenatePrimaryMotion(const std::vector<FrameImage>& frames);
+
+struct InterpolationSettings {
+  bool colorOnly = false;         // the baseline: beauty along the frame-wide motion
+  float depthTolerance = 0.05f;   // relative depth difference still read as one surface
+  float minCoverage = 0.1f;       // splat weight below this is a hole
+  float significance = 0.02f;     // of the pixel's beauty luminance
+  float illuminationChange = 0.25f;  // relative irradiance change that masks one-sided pixels
+  float irradianceFloor = 1e-3f;  // denominator floor of that relative change
+  int illuminationRadius = 2;     // window of the change estimate
+  // Best effort for untracked pixels (still masked): splat them along the frame-wide motion
+  // (ComponentMotions key "", when given) instead of leaving them to the static hole blend.
+  bool untrackedFollowPrimary = true;
+};
+
+struct InterpolationResult {
+  FrameImage frame;              // R, G, B, `<c>.color.R/G/B`, `<c>.depth.Z`, `rerender.Y`
+  double rerenderRate = 0;       // fraction of pixels in the mask
+  std::vector<uint8_t> mask;     // per pixel, 1 = re-render
+  std::vector<uint8_t> holes;    // per pixel, 1 = a significant hole (always in the mask)
+  size_t holePixels = 0, silhouettePixels = 0, untrackedPixels = 0, illuminationPixels = 0;  // per cause
+};
+
+// Throws std::invalid_argument for s outside (0, 1), mismatched sizes or decompositions,
+// missing channels or motions (naming the frame and the layer) and non-finite values.
+InterpolationResult interpolateFrameDetailed(const FrameImage& k0, const FrameImage& k1,
+                                             const ComponentMotions& motions, float s,
+                                             const InterpolationSettings& settings = {});
+
+// The frame of interpolateFrameDetailed.
+FrameImage interpolateFrame(const FrameImage& k0, const FrameImage& k1, const ComponentMotions& motions, float s,
+                            const InterpolationSettings& settings = {});
+
+}  // namespace pathfarm

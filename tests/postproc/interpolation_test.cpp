@@ -1,0 +1,201 @@
+// Frame interpolation with re-render masks: depth decides splat conflicts, holes are
+// masked, a rendered in-between frame is closer to the reference per component than with
+// the beauty alone, and bad input is refused with the frame and layer named.
+#include "postproc/interpolation/frame_interpolation.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "postproc/metrics/image_metrics.h"
+#include "renderer/integrators/frame_renderer.h"
+#include "test_support.h"
+
+namespace pathfarm {
+namespace {
+
+const char* const kComponentChannels[] = {"residual.color.R", "residual.color.G", "residual.color.B",
+                                          "residual.depth.Z"};
+
+// A one-component ("residual") frame with every value `color` at depth `depth`.
+FrameImage flatFrame(int w, int h, float color, float depth) {
+  FrameImage f(w, h);
+  f.attributes()["pathfarm.decomposition"] = "residual";
+  for (const char* c : {"R", "G", "B", "residual.color.R", "residual.color.G", "residual.color.B"})
+    f.addChannel(c).assign(f.pixelCount(), color);
+  f.addChannel("residual.depth.Z").assign(f.pixelCount(), depth);
+  f.addChannel("depth.Z").assign(f.pixelCount(), depth);
+  return f;
+}
+
+void setPixel(FrameImage& f, int x, int y, float color, float depth) {
+  const size_t p = static_cast<size_t>(y * f.width() + x);
+  for (const char* c : {"R", "G", "B", "residual.color.R", "residual.color.G", "residual.color.B"})
+    f.channel(c)[p] = color;
+  f.channel("residual.depth.Z")[p] = depth;
+  f.channel("depth.Z")[p] = depth;
+}
+
+MotionField zeroField(int w, int h) {
+  MotionField m;
+  m.width = w;
+  m.height = h;
+  m.x.assign(static_cast<size_t>(w * h), 0.0f);
+  m.y.assign(static_cast<size_t>(w * h), 0.0f);
+  return m;
+}
+
+ComponentMotions motionsOf(const MotionField& forward, const MotionField& backward) {
+  ComponentMotions m;
+  m.components["residual"] = ComponentMotion{forward, backward};
+  m.components[""] = ComponentMotion{forward, backward};
+  return m;
+}
+
+// Object A (2x2, value 1) moves 4 px right between the keyframes over a static background
+// (0.2, depth 10); static object B (2x2, value 0.5, depth 5) sits where A is at s = 0.5.
+void depthCase(float depthA, float expected) {
+  const int w = 12, h = 4;
+  FrameImage k0 = flatFrame(w, h, 0.2f, 10.0f), k1 = flatFrame(w, h, 0.2f, 10.0f);
+  MotionField forward = zeroField(w, h), backward = zeroField(w, h);
+  for (int y = 1; y < 3; ++y) {
+    for (int x : {4, 5}) {
+      setPixel(k0, x, y, 0.5f, 5.0f);
+      setPixel(k1, x, y, 0.5f, 5.0f);
+    }
+    for (int x : {2, 3}) {
+      setPixel(k0, x, y, 1.0f, depthA);
+      forward.x[static_cast<size_t>(y * w + x)] = 4.0f;
+    }
+    for (int x : {6, 7}) {
+      setPixel(k1, x, y, 1.0f, depthA);
+      backward.x[static_cast<size_t>(y * w + x)] = -4.0f;
+    }
+  }
+  const InterpolationResult r = interpolateFrameDetailed(k0, k1, motionsOf(forward, backward), 0.5f);
+  for (int y = 1; y < 3; ++y)
+    for (int x : {4, 5}) EXPECT_NEAR(r.frame.channel("R")[static_cast<size_t>(y * w + x)], expected, 1e-5) << x << "," << y;
+  EXPECT_EQ(r.holePixels, 0u);
+}
+
+TEST(Interpolation, SplatConflictsAreResolvedByDepth) {
+  depthCase(1.0f, 1.0f);  // A in front of B: A
+  depthCase(8.0f, 0.5f);  // A behind B: B
+}
+
+TEST(Interpolation, HolesAreInTheMask) {
+  // Everything diverges from the middle column: nothing lands on the middle at s = 0.5.
+  const int w = 16, h = 6;
+  const FrameImage k0 = flatFrame(w, h, 0.5f, 3.0f), k1 = flatFrame(w, h, 0.5f, 3.0f);
+  MotionField forward = zeroField(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) forward.x[static_cast<size_t>(y * w + x)] = x < 8 ? -4.0f : 4.0f;
+  const InterpolationResult r = interpolateFrameDetailed(k0, k1, motionsOf(forward, forward), 0.5f);
+  EXPECT_GT(r.holePixels, 0u);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 7; x <= 8; ++x) EXPECT_EQ(r.holes[static_cast<size_t>(y * w + x)], 1) << x;
+    EXPECT_EQ(r.holes[static_cast<size_t>(y * w + 2)], 0);
+  }
+  for (size_t p = 0; p < r.holes.size(); ++p) {
+    if (r.holes[p]) {
+      EXPECT_EQ(r.mask[p], 1);
+    }
+    EXPECT_EQ(r.frame.channel("rerender.Y")[p], static_cast<float>(r.mask[p]));
+    EXPECT_FLOAT_EQ(r.frame.channel("R")[p], 0.5f);  // best effort: the static blend
+  }
+  EXPECT_GT(r.rerenderRate, 0.0);
+  EXPECT_EQ(r.frame.attributes().at("pathfarm.rerender_rate").substr(0, 3), "0.2");  // 4 of 16 columns + edges
+  // The same holes through the color-only baseline.
+  InterpolationSettings colorOnly;
+  colorOnly.colorOnly = true;
+  const InterpolationResult c = interpolateFrameDetailed(k0, k1, motionsOf(forward, forward), 0.5f, colorOnly);
+  EXPECT_EQ(c.holes, r.holes);
+}
+
+TEST(Interpolation, UntrackedAndSilhouettePixelsAreMasked) {
+  const int w = 10, h = 4;
+  FrameImage k0 = flatFrame(w, h, 0.5f, 3.0f), k1 = flatFrame(w, h, 0.5f, 3.0f);
+  MotionField forward = zeroField(w, h), backward = zeroField(w, h);
+  forward.valid.assign(static_cast<size_t>(w * h), 1.0f);
+  forward.valid[static_cast<size_t>(1 * w + 2)] = 0.0f;  // an untracked specular pixel
+  k1.addChannel("silhouette.Y")[static_cast<size_t>(2 * w + 6)] = 1.0f;
+  backward.x[static_cast<size_t>(2 * w + 6)] = -2.0f;  // lands at x = 5 for s = 0.5
+  const InterpolationResult r = interpolateFrameDetailed(k0, k1, motionsOf(forward, backward), 0.5f);
+  EXPECT_EQ(r.mask[static_cast<size_t>(1 * w + 2)], 1);
+  EXPECT_EQ(r.mask[static_cast<size_t>(2 * w + 5)], 1);
+  EXPECT_EQ(r.untrackedPixels, 1u);
+  EXPECT_EQ(r.silhouettePixels, 1u);
+}
+
+TEST(Interpolation, BadInputIsRefusedWithTheFrameAndLayerNamed) {
+  const FrameImage k0 = flatFrame(8, 4, 0.5f, 3.0f);
+  const ComponentMotions motions = motionsOf(zeroField(8, 4), zeroField(8, 4));
+  auto expectMessage = [](const auto& call, const std::string& needle) {
+    try {
+      call();
+      ADD_FAILURE() << "no exception, expected " << needle;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  };
+  expectMessage([&] { interpolateFrame(k0, flatFrame(9, 4, 0.5f, 3.0f), motions, 0.5f); }, "keyframe 1 is 9x4");
+  expectMessage([&] { interpolateFrame(k0, k0, motions, 1.0f); }, "(0, 1)");
+  expectMessage([&] { interpolateFrame(k0, k0, ComponentMotions{}, 0.5f); }, "component \"residual\"");
+  expectMessage([&] { interpolateFrame(k0, k0, motionsOf(zeroField(8, 3), zeroField(8, 4)), 0.5f); },
+                "forward motion of component \"residual\"");
+  FrameImage broken = k0;
+  broken.channel("residual.color.G")[5] = std::numeric_limits<float>::infinity();
+  expectMessage([&] { interpolateFrame(k0, broken, motions, 0.5f); }, "keyframe 1: channel \"residual.color.G\"");
+  FrameImage noDepth(8, 4);
+  noDepth.attributes() = k0.attributes();
+  for (const std::string& n : k0.channelNames())
+    if (n != "residual.depth.Z") noDepth.addChannel(n) = k0.channel(n);
+  expectMessage([&] { interpolateFrame(noDepth, k0, motions, 0.5f); }, "keyframe 0: missing channel \"residual.depth.Z\"");
+  // Concatenation: missing motion layers and too few frames.
+  expectMessage([&] { concatenatePrimaryMotion({k0, k0}); }, "frame 0: missing channel \"motion.X\"");
+  expectMessage([&] { concatenatePrimaryMotion({k0}); }, "at least two frames");
+  (void)kComponentChannels;
+}
+
+TEST(Interpolation, ConcatenatesMotionAlongTheChain) {
+  // Three frames; frame 0 moves everything +1.5 px in x, frame 1 moves pixels right of x = 5
+  // by +2 and the rest by +1: a pixel at x = 4 goes 5.5 (bilinear: 1.5 of +2 and +1) ...
+  const int w = 12, h = 2;
+  std::vector<FrameImage> frames;
+  for (int k = 0; k < 3; ++k) {
+    FrameImage f = flatFrame(w, h, 0.5f, 3.0f);
+    for (const char* c : {"motion.X", "motion.Y", "motion_back.X", "motion_back.Y", "residual.motion.X",
+                          "residual.motion.Y", "residual.motion_back.X", "residual.motion_back.Y",
+                          "residual.motion_valid.Y"})
+      f.addChannel(c);
+    for (int x = 0; x < w; ++x)
+      for (int y = 0; y < h; ++y) {
+        const size_t p = static_cast<size_t>(y * w + x);
+        const float m = k == 0 ? 1.5f : (x > 5 ? 2.0f : 1.0f);
+        f.channel("motion.X")[p] = f.channel("residual.motion.X")[p] = m;
+        f.channel("motion_back.X")[p] = f.channel("residual.motion_back.X")[p] = -1.0f;
+        f.channel("residual.motion_valid.Y")[p] = k == 1 && x == 7 ? 0.0f : 1.0f;
+      }
+    frames.push_back(f);
+  }
+  const ComponentMotions m = concatenatePrimaryMotion(frames);
+  const ComponentMotion& r = m.components.at("residual");
+  // x = 1 -> 2.5 (links 1 and 2 blended at 2.5: +1) -> 3.5.
+  EXPECT_FLOAT_EQ(r.forward.x[1], 2.5f);
+  // x = 5 -> 6.5 (+2) -> 8.5, but it passes x = 7's invalid link? 6.5 rounds to 7 (nearest).
+  EXPECT_EQ(r.forward.valid[5], 0.0f);
+  // x = 4 -> 5.5: half of +1 and +2.
+  EXPECT_FLOAT_EQ(r.forward.x[4], 3.0f);
+  // Leaving the image is invalid: x = 9 -> 10.5 -> 12.5.
+  EXPECT_EQ(r.forward.valid[9], 0.0f);
+  EXPECT_EQ(r.forward.valid[1], 1.0f);
+  EXPECT_FLOAT_EQ(r.backward.x[5], -2.0f);
+  EXPECT_EQ(r.backward.valid[1], 0.0f);  // 1 -> 0 -> -1
+  EXPECT_TRUE(m.components.at("").forward.valid[5] == 1.0f);  // the frame-wide motion has no validity plane
+}
+
+}  // namespace
+}  // namespace pathfarm
