@@ -34,8 +34,11 @@ int runInterpolate(const InterpolateArguments& a) {
     chain.push_back(readExr(a.k1));
     InterpolationSettings settings;
     settings.colorOnly = a.colorOnly;
-    const InterpolationResult result =
-        interpolateFrameDetailed(chain.front(), chain.back(), concatenatePrimaryMotion(chain), a.at, settings);
+    ComponentMotions motions = concatenatePrimaryMotion(chain);
+    // Reflectance moves with the geometry; irradiance (a shadow, a moving highlight) along
+    // its own optical flow between the keyframes.
+    if (!a.colorOnly) addIrradianceFlow(motions, chain.front(), chain.back(), FlowSettings{});
+    const InterpolationResult result = interpolateFrameDetailed(chain.front(), chain.back(), motions, a.at, settings);
     writeExr(a.out, result.frame);
     spdlog::info("{} at {} between {} and {}: {:.2f} % of the pixels to re-render (rerender.Y)", a.out, a.at, a.k0,
                  a.k1, 100 * result.rerenderRate);

@@ -10,6 +10,7 @@
 
 #include "postproc/filters/decomposed_frame.h"
 #include "postproc/interpolation/forward_splat.h"
+#include "renderer/decomposition/effective_irradiance.h"
 
 namespace pathfarm {
 namespace {
@@ -52,10 +53,19 @@ struct Layer {
   std::string name;  // component, or "" for the beauty
   std::array<std::string, 3> color, irradiance;
   std::string depth;
+  std::array<std::string, 3> reflectance;  // used with an irradiance motion
+  bool irradianceMotion = false;
+};
+
+// What a keyframe layer carries.
+enum class Carry {
+  Color,             // color R G B, irradiance R G B (or the color)
+  ColorReflectance,  // color R G B, irradiance R G B, reflectance R G B
+  Irradiance,        // irradiance R G B, irradiance R G B
 };
 
 struct KeyframeLayer {
-  Planes values;  // color R G B, irradiance R G B
+  Planes values;  // see Carry
   std::vector<float> depth;     // the depth test's depth (robust: see readLayer)
   std::vector<uint8_t> active;  // the layer's own motion valid here
   std::vector<uint8_t> splats;  // splatted: own motion, or the frame-wide fallback
@@ -63,13 +73,19 @@ struct KeyframeLayer {
 };
 
 KeyframeLayer readLayer(const FrameImage& frame, const Layer& layer, const MotionField& motion,
-                        const MotionField* fallback, const std::string& label) {
+                        const MotionField* fallback, const std::string& label, Carry carry = Carry::Color) {
   KeyframeLayer out;
-  out.values = Planes(frame.width(), frame.height(), 6);
+  out.values = Planes(frame.width(), frame.height(), carry == Carry::ColorReflectance ? 9 : 6);
   for (size_t c = 0; c < 3; ++c) {
+    if (carry == Carry::Irradiance) {
+      out.values.channels[c] = finiteChannel(frame, layer.irradiance[c], label);
+      out.values.channels[3 + c] = out.values.channels[c];
+      continue;
+    }
     out.values.channels[c] = finiteChannel(frame, layer.color[c], label);
     out.values.channels[3 + c] = frame.hasChannel(layer.irradiance[c]) ? finiteChannel(frame, layer.irradiance[c], label)
                                                                        : out.values.channels[c];
+    if (carry == Carry::ColorReflectance) out.values.channels[6 + c] = finiteChannel(frame, layer.reflectance[c], label);
   }
   out.depth = finiteChannel(frame, layer.depth, label);
   const size_t pixels = frame.pixelCount();
@@ -116,23 +132,28 @@ SplatResult splatLayer(const KeyframeLayer& layer, float fraction, const SplatSe
   return forwardSplat(source, settings);
 }
 
-// A layer's interpolated color and what happened at every pixel.
+// A layer's interpolated values (its first three: the color) and what happened at every pixel.
 struct LayerOutcome {
-  std::array<std::vector<float>, 3> color;
+  std::vector<std::vector<float>> color;  // every carried channel
   std::vector<float> depth;
   std::vector<uint8_t> hole, oneSided, changed;
+  std::vector<float> change;  // relative irradiance change where both keyframes agree, else -1
 };
+
+void markChanged(LayerOutcome& out, const InterpolationSettings& settings, int width, int height);
 
 LayerOutcome combine(const KeyframeLayer& l0, const KeyframeLayer& l1, const SplatResult& a, const SplatResult& b,
                      float s, const InterpolationSettings& settings, int width, int height) {
   const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
+  const size_t channels = l0.values.channels.size();
   LayerOutcome out;
-  for (auto& plane : out.color) plane.assign(pixels, 0.0f);
+  out.color.assign(channels, std::vector<float>(pixels, 0.0f));
   out.depth.assign(pixels, 0.0f);
   out.hole.assign(pixels, 0);
   out.oneSided.assign(pixels, 0);
   out.changed.assign(pixels, 0);
-  std::vector<float> change(pixels, -1.0f);  // relative irradiance change where both keyframes agree
+  std::vector<float>& change = out.change;
+  change.assign(pixels, -1.0f);
   // One keyframe alone only when it is nearer by clearly more than the splat's depth
   // tolerance (twice it): within that, the depths are one surface up to noise and both
   // keyframes are averaged.
@@ -141,7 +162,7 @@ LayerOutcome combine(const KeyframeLayer& l0, const KeyframeLayer& l1, const Spl
     const bool ca = a.covered[t] != 0, cb = b.covered[t] != 0;
     if (!ca && !cb) {
       out.hole[t] = 1;
-      for (size_t c = 0; c < 3; ++c)
+      for (size_t c = 0; c < channels; ++c)
         out.color[c][t] = (1.0f - s) * l0.values.channels[c][t] + s * l1.values.channels[c][t];
       const float d0 = l0.depth[t], d1 = l1.depth[t];
       out.depth[t] = std::max(d0, d1);
@@ -153,7 +174,7 @@ LayerOutcome combine(const KeyframeLayer& l0, const KeyframeLayer& l1, const Spl
       else if (b.depth[t] * tol < a.depth[t]) useA = false;
     }
     if (useA && useB) {
-      for (size_t c = 0; c < 3; ++c)
+      for (size_t c = 0; c < channels; ++c)
         out.color[c][t] = (1.0f - s) * a.values.channels[c][t] + s * b.values.channels[c][t];
       const float e0 = luminance(a.values.channels[3][t], a.values.channels[4][t], a.values.channels[5][t]);
       const float e1 = luminance(b.values.channels[3][t], b.values.channels[4][t], b.values.channels[5][t]);
@@ -162,12 +183,21 @@ LayerOutcome combine(const KeyframeLayer& l0, const KeyframeLayer& l1, const Spl
       out.depth[t] = std::isfinite(da) && std::isfinite(db) ? (1.0f - s) * da + s * db : std::min(da, db);
     } else {
       const SplatResult& r = useA ? a : b;
-      for (size_t c = 0; c < 3; ++c) out.color[c][t] = r.values.channels[c][t];
+      for (size_t c = 0; c < channels; ++c) out.color[c][t] = r.values.channels[c][t];
       out.depth[t] = r.depth[t];
       out.oneSided[t] = 1;
     }
     if (!std::isfinite(out.depth[t])) out.depth[t] = 0.0f;
   }
+  markChanged(out, settings, width, height);
+  return out;
+}
+
+// The illumination test: a one-sided pixel is `changed` when the largest change within the
+// radius exceeds the threshold, or no pixel there has a change.
+void markChanged(LayerOutcome& out, const InterpolationSettings& settings, int width, int height) {
+  const std::vector<float>& change = out.change;
+  out.changed.assign(change.size(), 0);
   const int radius = std::max(0, settings.illuminationRadius);
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
@@ -179,7 +209,6 @@ LayerOutcome combine(const KeyframeLayer& l0, const KeyframeLayer& l1, const Spl
           largest = std::max(largest, change[static_cast<size_t>(j) * static_cast<size_t>(width) + static_cast<size_t>(i)]);
       out.changed[t] = largest < 0.0f || largest > settings.illuminationChange;
     }
-  return out;
 }
 
 void checkSameLayout(const FrameImage& a, const FrameImage& b, const std::string& labelA, const std::string& labelB) {
@@ -190,7 +219,81 @@ void checkSameLayout(const FrameImage& a, const FrameImage& b, const std::string
     throw std::invalid_argument(labelB + " has another decomposition (pathfarm.decomposition) than " + labelA);
 }
 
+// `motion` where it is valid, else `primary` (with its validity).
+MotionField withPrimary(const MotionField& motion, const MotionField& primary) {
+  MotionField out = primary;
+  for (size_t p = 0; p < out.x.size(); ++p)
+    if (motion.valid.empty() || motion.valid[p] >= 0.5f) {
+      out.x[p] = motion.x[p];
+      out.y[p] = motion.y[p];
+      if (!out.valid.empty()) out.valid[p] = 1.0f;
+    }
+  return out;
+}
+
 }  // namespace
+
+void addIrradianceFlow(ComponentMotions& motions, const FrameImage& k0, const FrameImage& k1,
+                       const FlowSettings& settings) {
+  const int width = k0.width(), height = k0.height();
+  if (width <= 0 || height <= 0) throw std::invalid_argument("irradiance flow: keyframe 0 is empty");
+  checkSameLayout(k0, k1, "keyframe 0", "keyframe 1");
+  const std::vector<std::string> components = decompositionComponents(k0);
+  FlowSettings logSettings = settings;
+  logSettings.logDomain = true;
+  const size_t pixels = k0.pixelCount();
+  auto irradiance = [&](const FrameImage& frame, const std::string& c, const std::string& label) {
+    Planes planes(width, height, 3);
+    const char* rgb[3] = {"R", "G", "B"};
+    for (size_t i = 0; i < 3; ++i) planes.channels[i] = finiteChannel(frame, c + ".irradiance." + rgb[i], label);
+    return planes;
+  };
+  // The primary motion as the initial guess: 0 where it is invalid.
+  auto guess = [&](const MotionField& motion, const std::string& what) {
+    checkField(motion, width, height, what);
+    FlowField flow(width, height);
+    for (size_t p = 0; p < pixels; ++p)
+      if (motion.valid.empty() || motion.valid[p] >= 0.5f) {
+        flow.dx[p] = motion.x[p];
+        flow.dy[p] = motion.y[p];
+      }
+    return flow;
+  };
+  auto toMotion = [&](const FlowField& flow) {
+    MotionField motion;
+    motion.width = width;
+    motion.height = height;
+    motion.x = flow.dx;
+    motion.y = flow.dy;
+    motion.valid.assign(pixels, 0.0f);
+    for (size_t p = 0; p < pixels; ++p) {
+      const float tx = static_cast<float>(p % static_cast<size_t>(width)) + flow.dx[p];
+      const float ty = static_cast<float>(p / static_cast<size_t>(width)) + flow.dy[p];
+      if (std::isfinite(tx) && std::isfinite(ty) && tx > -0.5f && tx < static_cast<float>(width) - 0.5f &&
+          ty > -0.5f && ty < static_cast<float>(height) - 0.5f)
+        motion.valid[p] = 1.0f;
+    }
+    return motion;
+  };
+  std::vector<std::pair<const std::string, ComponentMotion>*> todo;
+  for (auto& entry : motions.components) {
+    if (entry.first.empty()) continue;
+    if (std::find(components.begin(), components.end(), entry.first) == components.end())
+      throw std::invalid_argument("irradiance flow: the keyframes have no component \"" + entry.first + "\"");
+    todo.push_back(&entry);
+  }
+  tbb::parallel_for(size_t(0), todo.size(), [&](size_t i) {
+    const std::string& c = todo[i]->first;
+    ComponentMotion& motion = todo[i]->second;
+    const std::string what = "irradiance flow: component \"" + c + "\"";
+    const Planes e0 = irradiance(k0, c, "keyframe 0"), e1 = irradiance(k1, c, "keyframe 1");
+    const FlowField forward = bootstrappedFlow(e0, e1, guess(motion.forward, what + " forward motion"), logSettings);
+    const FlowField backward = bootstrappedFlow(e1, e0, guess(motion.backward, what + " backward motion"), logSettings);
+    motion.irradianceForward = toMotion(forward);
+    motion.irradianceBackward = toMotion(backward);
+    motion.hasIrradianceMotion = true;
+  });
+}
 
 ComponentMotions concatenatePrimaryMotion(const std::vector<FrameImage>& frames) {
   if (frames.size() < 2)
@@ -271,7 +374,7 @@ InterpolationResult interpolateFrameDetailed(const FrameImage& k0, const FrameIm
   std::vector<Layer> layers;
   const std::vector<std::string> components = decompositionComponents(k0);
   if (settings.colorOnly) {
-    layers.push_back(Layer{"", {"R", "G", "B"}, {"R", "G", "B"}, "depth.Z"});
+    layers.push_back(Layer{"", {"R", "G", "B"}, {"R", "G", "B"}, "depth.Z", {"", "", ""}, false});
   } else {
     if (components.empty())
       throw std::invalid_argument(
@@ -280,7 +383,9 @@ InterpolationResult interpolateFrameDetailed(const FrameImage& k0, const FrameIm
       layers.push_back(Layer{c,
                              {c + ".color.R", c + ".color.G", c + ".color.B"},
                              {c + ".irradiance.R", c + ".irradiance.G", c + ".irradiance.B"},
-                             c + ".depth.Z"});
+                             c + ".depth.Z",
+                             {c + ".reflectance.R", c + ".reflectance.G", c + ".reflectance.B"},
+                             false});
   }
   const std::vector<float>* beauty0[3] = {&finiteChannel(k0, "R", "keyframe 0"), &finiteChannel(k0, "G", "keyframe 0"),
                                           &finiteChannel(k0, "B", "keyframe 0")};
@@ -291,6 +396,7 @@ InterpolationResult interpolateFrameDetailed(const FrameImage& k0, const FrameIm
       k1.hasChannel("silhouette.Y") ? &finiteChannel(k1, "silhouette.Y", "keyframe 1") : nullptr};
 
   std::vector<KeyframeLayer> at0(layers.size()), at1(layers.size());
+  std::vector<KeyframeLayer> irr0(layers.size()), irr1(layers.size());  // irradiance along its own motion
   for (size_t i = 0; i < layers.size(); ++i) {
     const std::string& name = layers[i].name;
     const std::string what = name.empty() ? "the frame-wide motion (\"\")" : "component \"" + name + "\"";
@@ -305,9 +411,20 @@ InterpolationResult interpolateFrameDetailed(const FrameImage& k0, const FrameIm
       checkField(primary->second.forward, width, height, "interpolation: forward frame-wide motion");
       checkField(primary->second.backward, width, height, "interpolation: backward frame-wide motion");
     }
-    at0[i] = readLayer(k0, layers[i], found->second.forward, fallback ? &primary->second.forward : nullptr, "keyframe 0");
-    at1[i] = readLayer(k1, layers[i], found->second.backward, fallback ? &primary->second.backward : nullptr,
-                       "keyframe 1");
+    const ComponentMotion& motion = found->second;
+    layers[i].irradianceMotion = !name.empty() && motion.hasIrradianceMotion;
+    const Carry carry = layers[i].irradianceMotion ? Carry::ColorReflectance : Carry::Color;
+    at0[i] = readLayer(k0, layers[i], motion.forward, fallback ? &primary->second.forward : nullptr, "keyframe 0", carry);
+    at1[i] = readLayer(k1, layers[i], motion.backward, fallback ? &primary->second.backward : nullptr, "keyframe 1",
+                       carry);
+    if (layers[i].irradianceMotion) {
+      checkField(motion.irradianceForward, width, height, "interpolation: forward irradiance motion of " + what);
+      checkField(motion.irradianceBackward, width, height, "interpolation: backward irradiance motion of " + what);
+      irr0[i] = readLayer(k0, layers[i], withPrimary(motion.irradianceForward, motion.forward),
+                          fallback ? &primary->second.forward : nullptr, "keyframe 0", Carry::Irradiance);
+      irr1[i] = readLayer(k1, layers[i], withPrimary(motion.irradianceBackward, motion.backward),
+                          fallback ? &primary->second.backward : nullptr, "keyframe 1", Carry::Irradiance);
+    }
   }
 
   const SplatSettings splat{settings.depthTolerance, settings.minCoverage, 0.25f};
@@ -316,6 +433,19 @@ InterpolationResult interpolateFrameDetailed(const FrameImage& k0, const FrameIm
     const SplatResult a = splatLayer(at0[i], s, splat);
     const SplatResult b = splatLayer(at1[i], 1.0f - s, splat);
     outcomes[i] = combine(at0[i], at1[i], a, b, s, settings, width, height);
+    if (!layers[i].irradianceMotion) return;
+    // The paper's scheme: irradiance along its own motion times reflectance along the primary.
+    const SplatResult ea = splatLayer(irr0[i], s, splat);
+    const SplatResult eb = splatLayer(irr1[i], 1.0f - s, splat);
+    const LayerOutcome e = combine(irr0[i], irr1[i], ea, eb, s, settings, width, height);
+    LayerOutcome& o = outcomes[i];
+    for (size_t t = 0; t < pixels; ++t) {
+      for (size_t c = 0; c < 3; ++c) o.color[c][t] = modulateIrradiance(e.color[c][t], o.color[6 + c][t]);
+      o.hole[t] = o.hole[t] || e.hole[t];
+      o.oneSided[t] = o.oneSided[t] || e.oneSided[t];
+    }
+    o.change = e.change;
+    markChanged(o, settings, width, height);
   });
 
   InterpolationResult result;

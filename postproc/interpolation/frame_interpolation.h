@@ -7,13 +7,21 @@
 // the two are blended with weights (1 - s) and s, and the components are summed into the
 // beauty R, G, B.
 //
-// What is splatted: the component's color `<c>.color.R/G/B` (its irradiance
-// `<c>.irradiance.R/G/B`, or the color where a frame has none, is splatted alongside for
-// the illumination test below). Splatting irradiance and reflectance apart and
-// re-modulating would not keep the components' sum: where one keyframe's reflectance is
-// below the demodulation guard its "irradiance" is the color, and the product of two
-// blends is not the blend of the products. Both keyframes see the same texture at a
-// tracked point, so the color carries it as well.
+// What is splatted: without an irradiance motion (ComponentMotion::hasIrradianceMotion
+// false) the component's color `<c>.color.R/G/B` (its irradiance `<c>.irradiance.R/G/B`, or
+// the color where a frame has none, is splatted alongside for the illumination test below).
+// With one (addIrradianceFlow), as in the paper: the reflectance `<c>.reflectance.R/G/B` is
+// splatted along the primary motion (forward/backward), the irradiance `<c>.irradiance.R/G/B`
+// along the irradiance motion (s * irradianceForward from K0, (1 - s) * irradianceBackward
+// from K1; where that motion is invalid, along the primary motion), each is combined as
+// below, and the component's color is modulateIrradiance(irradiance, reflectance)
+// (renderer/decomposition/effective_irradiance.h). A moving shadow on a static surface then
+// moves with the shadow instead of cross-fading. This does not keep the components' sum
+// exactly (the product of two blends is not the blend of the products, and where a
+// keyframe's reflectance is below the guard its "irradiance" is the color). A pixel is a
+// hole when either splat leaves it uncovered, one-sided when either is one-sided, and the
+// illumination test uses the change of the irradiance splatted along the irradiance motion.
+// The depth of both splats is the component's (below).
 //
 // Depth of the splat's depth test: `<c>.depth.Z`, except where `<c>.motion_valid.Y` is 1 and
 // the frame has `depth.Z`: there the component's motion is the primary motion (its first
@@ -51,9 +59,11 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "image/frame_image.h"
+#include "postproc/flow/optical_flow.h"
 #include "postproc/filters/warp.h"
 
 namespace pathfarm {
@@ -61,9 +71,19 @@ namespace pathfarm {
 // One layer's motion between the keyframes. forward: pixel p of K0 is at p + forward(p) in
 // K1; backward: pixel p of K1 is at p + backward(p) in K0. `valid` (empty: everywhere)
 // marks where the motion holds.
+// irradianceForward/irradianceBackward: the same for the component's irradiance (its optical
+// flow between the keyframes, addIrradianceFlow), used when hasIrradianceMotion; their
+// `valid` (empty: everywhere) marks where the flow holds, elsewhere the primary motion is used.
 struct ComponentMotion {
+  ComponentMotion() = default;
+  ComponentMotion(MotionField primaryForward, MotionField primaryBackward)
+      : forward(std::move(primaryForward)), backward(std::move(primaryBackward)) {}
+
   MotionField forward;
   MotionField backward;
+  MotionField irradianceForward;
+  MotionField irradianceBackward;
+  bool hasIrradianceMotion = false;
 };
 
 // Per component name; "" is the frame-wide primary motion (the color-only baseline).
@@ -79,6 +99,17 @@ struct ComponentMotions {
 // `motion`/`motion_back`. Throws std::invalid_argument for fewer than two frames,
 // mismatched sizes or decompositions, missing motion channels or non-finite motion.
 ComponentMotions concatenatePrimaryMotion(const std::vector<FrameImage>& frames);
+
+// Adds the irradiance motion of every component of `motions` but "" (the frame-wide motion):
+// the optical flow of `<c>.irradiance.R/G/B` from k0 to k1 and from k1 to k0 with
+// bootstrappedFlow (postproc/flow/optical_flow.h) in the log domain (settings.logDomain is
+// forced on), bootstrapped by the component's primary motion forward/backward (0 where that
+// is invalid). The flow is valid where p + flow(p) is inside the image. Sets
+// hasIrradianceMotion. Throws std::invalid_argument for mismatched sizes or decompositions,
+// missing irradiance channels, non-finite values or a component of `motions` the keyframes
+// do not have.
+void addIrradianceFlow(ComponentMotions& motions, const FrameImage& k0, const FrameImage& k1,
+                       const FlowSettings& settings);
 
 struct InterpolationSettings {
   bool colorOnly = false;         // the baseline: beauty along the frame-wide motion
