@@ -3,7 +3,11 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
+#include <cstdint>
+#include <queue>
+#include <utility>
 #include <limits>
 #include <queue>
 #include <stdexcept>
@@ -65,6 +69,42 @@ void fillDeepestFirst(Planes& values, std::vector<float>& depth, std::vector<uin
   }
 }
 
+// Fills the motion of pixels where `valid` is 0 by inpainting: each takes the motion of its
+// nearest valid pixel (breadth-first over 4-neighbours, so the result is deterministic).
+// Where the component has no valid pixel at all, the frame-wide primary motion (`fallback`,
+// may be null) stands in, or no motion. Only planes that are not empty are filled.
+void inpaintMotion(std::vector<float>* planes[4], const std::vector<float>& valid, int width, int height,
+                   const std::vector<float>* const fallback[4]) {
+  const size_t pixels = valid.size();
+  std::vector<size_t> source(pixels, SIZE_MAX);
+  std::queue<size_t> frontier;
+  for (size_t p = 0; p < pixels; ++p)
+    if (valid[p] >= 0.5f) {
+      source[p] = p;
+      frontier.push(p);
+    }
+  while (!frontier.empty()) {
+    const size_t p = frontier.front();
+    frontier.pop();
+    const int x = static_cast<int>(p % static_cast<size_t>(width)), y = static_cast<int>(p / static_cast<size_t>(width));
+    const std::pair<int, int> neighbours[4] = {{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}};
+    for (const auto& [nx, ny] : neighbours) {
+      if (nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
+      const size_t q = static_cast<size_t>(ny) * static_cast<size_t>(width) + static_cast<size_t>(nx);
+      if (source[q] != SIZE_MAX) continue;
+      source[q] = source[p];
+      frontier.push(q);
+    }
+  }
+  for (size_t p = 0; p < pixels; ++p) {
+    if (valid[p] >= 0.5f) continue;
+    for (int i = 0; i < 4; ++i) {
+      if (planes[i]->empty()) continue;
+      (*planes[i])[p] = source[p] != SIZE_MAX ? (*planes[i])[source[p]] : (fallback[i] ? (*fallback[i])[p] : 0.0f);
+    }
+  }
+}
+
 }  // namespace
 
 FrameImage motionBlur(const FrameImage& frame, float exposure, const MotionBlurSettings& settings) {
@@ -102,12 +142,14 @@ FrameImage motionBlur(const FrameImage& frame, float exposure, const MotionBlurS
       in.by = finiteChannel(frame, pre + "motion_back.Y");
     }
     if (frame.hasChannel(pre + "motion_valid.Y")) {
-      const std::vector<float>& valid = finiteChannel(frame, pre + "motion_valid.Y");
-      for (size_t p = 0; p < pixels; ++p)
-        if (valid[p] < 0.5f) {
-          in.fx[p] = in.fy[p] = 0.0f;
-          if (centered) in.bx[p] = in.by[p] = 0.0f;
-        }
+      // Undefined (specular) motion is inpainted from the component's own valid motion,
+      // or from the frame-wide primary motion where the component has none.
+      std::vector<float>* planes[4] = {&in.fx, &in.fy, &in.bx, &in.by};
+      const char* names[4] = {"motion.X", "motion.Y", "motion_back.X", "motion_back.Y"};
+      const std::vector<float>* fallback[4] = {};
+      for (int k = 0; k < 4; ++k)
+        if (!pre.empty() && frame.hasChannel(names[k])) fallback[k] = &finiteChannel(frame, names[k]);
+      inpaintMotion(planes, finiteChannel(frame, pre + "motion_valid.Y"), width, height, fallback);
     }
   }
 

@@ -18,8 +18,10 @@
 // them deepest surface first (what a moving surface uncovers). The results of all times
 // are averaged.
 //
-// Components whose motion is invalid (`<c>.motion_valid.Y` < 0.5: specular paths the
-// renderer cannot track) stay unblurred at those pixels: they are splatted with zero motion.
+// Where a component's motion is undefined (`<c>.motion_valid.Y` < 0.5: specular paths the
+// renderer does not track yet) it is inpainted: each such pixel takes the motion of the
+// component's nearest pixel with valid motion, or, where the component has none at all,
+// the frame-wide primary motion (the motion of the mirror or glass surface itself).
 // A frame without a decomposition is blurred as one layer: the beauty along the frame-wide
 // `motion`/`motion_back`, with `depth.Z`.
 //

@@ -1,5 +1,5 @@
 // Post-process motion blur: a translating constant square blurs into the analytic box
-// blur, invalid motion stays sharp, and bad input is refused with the layer named.
+// blur, undefined motion is inpainted, and bad input is refused with the layer named.
 #include "postproc/motion_blur/motion_blur.h"
 
 #include <gtest/gtest.h>
@@ -71,11 +71,21 @@ TEST(MotionBlur, TranslatingSquareMatchesTheAnalyticBoxBlur) {
   EXPECT_EQ(blurred.attributes().at("pathfarm.motion_blur"), std::to_string(1.0f));
 }
 
-TEST(MotionBlur, InvalidMotionStaysSharpAndZeroExposureIsIdentity) {
+TEST(MotionBlur, UndefinedMotionIsInpaintedAndZeroExposureIsIdentity) {
   FrameImage frame = squareFrame(32, 16, 8, 16, 4, 12, 6.0f);
+  const FrameImage expected = motionBlur(frame, 1.0f);
+  // The component's motion is undefined everywhere; the frame-wide primary motion (here the
+  // same as the component's) stands in, so the blur is unchanged.
+  for (const char* c : {"motion.X", "motion.Y", "motion_back.X", "motion_back.Y"})
+    frame.addChannel(c) = frame.channel(std::string("residual.") + c);
   for (float& v : frame.channel("residual.motion_valid.Y")) v = 0.0f;
-  const FrameImage blurred = motionBlur(frame, 1.0f);
-  EXPECT_EQ(blurred.channel("R"), frame.channel("R"));
+  EXPECT_EQ(motionBlur(frame, 1.0f).channel("R"), expected.channel("R"));
+  // Undefined inside the square only: its motion comes from its nearest valid pixels,
+  // which are the (static) background, so it stays sharp.
+  FrameImage partly = squareFrame(32, 16, 8, 16, 4, 12, 6.0f);
+  for (int y = 4; y < 12; ++y)
+    for (int x = 8; x < 16; ++x) partly.channel("residual.motion_valid.Y")[static_cast<size_t>(y * 32 + x)] = 0.0f;
+  EXPECT_EQ(motionBlur(partly, 1.0f).channel("R"), partly.channel("R"));
   frame.channel("residual.motion_valid.Y").assign(frame.pixelCount(), 1.0f);
   EXPECT_EQ(motionBlur(frame, 0.0f).channel("R"), frame.channel("R"));
   // Opening shutter: the square only smears forward (right).
