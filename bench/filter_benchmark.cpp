@@ -17,6 +17,7 @@
 #include "postproc/filters/component_denoiser.h"
 #include "postproc/filters/component_upsampler.h"
 #include "postproc/metrics/image_metrics.h"
+#include "bench/bench_support.h"
 #include "renderer/integrators/frame_renderer.h"
 #include "renderer/scene/scene_loader.h"
 
@@ -24,22 +25,8 @@ namespace {
 
 using namespace pathfarm;
 
-template <class Work>
-double seconds(Work work) {
-  const auto start = std::chrono::steady_clock::now();
-  work();
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-FrameImage render(const Scene& scene, int width, int height, int spp, int64_t frame, bool decompose) {
-  RenderSettings settings;
-  settings.width = width;
-  settings.height = height;
-  settings.spp = spp;
-  settings.maxDepth = scene.defaults.maxDepth;
-  if (decompose) settings.decomposition = std::make_shared<Decomposition>(Decomposition::standard());
-  return FrameRenderer(scene, settings).render(frame);
-}
+using bench::render;
+using bench::seconds;
 
 }  // namespace
 

@@ -18,6 +18,7 @@
 #include "postproc/interpolation/frame_interpolation.h"
 #include "postproc/metrics/image_metrics.h"
 #include "postproc/motion_blur/motion_blur.h"
+#include "bench/bench_support.h"
 #include "renderer/integrators/frame_renderer.h"
 #include "renderer/scene/scene_loader.h"
 
@@ -25,22 +26,8 @@ namespace {
 
 using namespace pathfarm;
 
-template <class Work>
-double seconds(Work work) {
-  const auto start = std::chrono::steady_clock::now();
-  work();
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-FrameImage render(const Scene& scene, int width, int height, int spp, int64_t frame, bool decompose) {
-  RenderSettings settings;
-  settings.width = width;
-  settings.height = height;
-  settings.spp = spp;
-  settings.maxDepth = scene.defaults.maxDepth;
-  if (decompose) settings.decomposition = std::make_shared<Decomposition>(Decomposition::standard());
-  return FrameRenderer(scene, settings).render(frame);
-}
+using bench::render;
+using bench::seconds;
 
 // The pipeline's result: the interpolated frame with its masked pixels re-rendered (taken
 // from `rerendered`, a render at the keyframes' sample count).

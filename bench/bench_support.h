@@ -1,0 +1,28 @@
+#pragma once
+// Shared by the benchmarks: timing a piece of work, and rendering a frame of a scene.
+#include <chrono>
+#include <memory>
+
+#include "renderer/integrators/frame_renderer.h"
+
+namespace pathfarm::bench {
+
+template <class Work>
+double seconds(Work work) {
+  const auto start = std::chrono::steady_clock::now();
+  work();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// A frame at the scene's max depth; with `decompose`, split by the default decomposition.
+inline FrameImage render(const Scene& scene, int width, int height, int spp, int64_t frame, bool decompose) {
+  RenderSettings settings;
+  settings.width = width;
+  settings.height = height;
+  settings.spp = spp;
+  settings.maxDepth = scene.defaults.maxDepth;
+  if (decompose) settings.decomposition = std::make_shared<Decomposition>(Decomposition::standard());
+  return FrameRenderer(scene, settings).render(frame);
+}
+
+}  // namespace pathfarm::bench
