@@ -20,6 +20,9 @@ RenderSettings settingsOf(const Scene& scene, const ShotSpec& spec, int threads)
   settings.spp = spec.spp();
   settings.maxDepth = spec.max_depth();
   settings.threads = threads;
+  // Small internal tiles: progress (each finished one) reaches the scheduler often enough
+  // that a slow farm tile is never mistaken for a hung one. The bits do not depend on it.
+  settings.tileSize = 8;
   return settings;
 }
 
