@@ -31,9 +31,7 @@ cmp -s "$work/split_out/frame_0002.exr" "$work/split_render/frame_0002.exr" || f
 [ -s "$work/farm_out/frame_0001.png" ] || fail "no preview written"
 
 echo '{"scene": "missing.json"}' > "$work/bad.json"
-"$pathfarm" local "$work/bad.json" --out "$work/bad_out" > "$work/log" 2>&1
-status=$?
-[ "$status" -eq 2 ] || fail "bad shot: exit status $status, expected 2"
+expect_refused local "$work/bad.json" --out "$work/bad_out"
 grep -q "missing.json: cannot open the scene file" "$work/log" || fail "bad shot message: $(cat "$work/log")"
 [ -e "$work/bad_out" ] && fail "a bad shot started a farm"
 

@@ -22,9 +22,7 @@ for args in "flow $work/plain/frame_0000.exr $work/seq/frame_0001.exr --out $wor
             "interpolate $work/seq/frame_0000.exr $work/plain/frame_0000.exr --at 0.5 --out $work/x.exr" \
             "motionblur $work/missing.exr --out $work/x.exr"; do
   # shellcheck disable=SC2086
-  "$pathfarm" $args > "$work/log" 2>&1
-  status=$?
-  [ "$status" -eq 2 ] || fail "$args: exit status $status, expected 2 ($(cat "$work/log"))"
+  expect_refused $args
 done
 [ -e "$work/x.exr" ] && fail "a refused command wrote its output"
 finish "motion CLI"

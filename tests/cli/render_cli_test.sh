@@ -20,23 +20,18 @@ cat > "$work/bad.json" <<'JSON'
  "materials": {"glass": {"type": "dielectric"}},
  "shapes": [{"type": "sphere", "radius": 1, "material": "glas"}]}
 JSON
-"$pathfarm" render "$work/bad.json" --out "$work/bad_out" > "$work/log" 2>&1
-status=$?
-[ "$status" -eq 2 ] || fail "bad scene: exit status $status, expected 2"
+expect_refused render "$work/bad.json" --out "$work/bad_out"
 grep -q 'bad.json: shapes\[0\].material: unknown material "glas"' "$work/log" || fail "bad scene message: $(cat "$work/log")"
 [ -e "$work/bad_out" ] && fail "bad scene created its output folder"
 
 # Bad arguments: exit 2 as well.
 for args in "--frames 5:2" "--frames x" "--res 10" "--spp 0" "--decompose x=E(D"; do
   # shellcheck disable=SC2086
-  "$pathfarm" render "$source_dir/scenes/cornell/scene.json" $args --out "$work/args_out" > "$work/log" 2>&1
-  status=$?
-  [ "$status" -eq 2 ] || fail "arguments '$args': exit status $status, expected 2"
+  expect_refused render "$source_dir/scenes/cornell/scene.json" $args --out "$work/args_out"
 done
 [ -e "$work/args_out" ] && fail "bad arguments created the output folder"
 
-"$pathfarm" render "$work/missing.json" --out "$work/x" > "$work/log" 2>&1
-[ $? -eq 2 ] || fail "missing scene file should exit 2"
+expect_refused render "$work/missing.json" --out "$work/x"
 grep -q "missing.json: cannot open" "$work/log" || fail "missing scene message: $(cat "$work/log")"
 
 finish "render CLI"
