@@ -44,4 +44,22 @@ void FrameImage::paste(const FrameImage& part, int x0, int y0) {
   }
 }
 
+FrameImage FrameImage::crop(int x0, int y0, int width, int height) const {
+  if (x0 < 0 || y0 < 0 || width < 0 || height < 0 || x0 + width > width_ || y0 + height > height_)
+    throw std::invalid_argument("a " + std::to_string(width) + "x" + std::to_string(height) + " crop at (" +
+                                std::to_string(x0) + ", " + std::to_string(y0) + ") does not fit a " +
+                                std::to_string(width_) + "x" + std::to_string(height_) + " frame");
+  FrameImage part(width, height);
+  for (const std::string& name : names_) {
+    const std::vector<float>& source = channel(name);
+    std::vector<float>& target = part.addChannel(name);
+    for (int y = 0; y < height; ++y) {
+      const auto from = source.begin() + (static_cast<ptrdiff_t>(y0 + y) * width_ + x0);
+      std::copy(from, from + width, target.begin() + static_cast<ptrdiff_t>(y) * width);
+    }
+  }
+  part.attributes_ = attributes_;
+  return part;
+}
+
 }  // namespace pathfarm

@@ -30,6 +30,9 @@ class FrameImage {
   // Copies every channel of `part` into this frame with its corner at (x0, y0), adding
   // channels this frame lacks; throws std::invalid_argument if it does not fit.
   void paste(const FrameImage& part, int x0, int y0);
+  // The pixels [x0, x0 + width) x [y0, y0 + height) of every channel, with the attributes;
+  // throws std::invalid_argument if they do not lie inside.
+  FrameImage crop(int x0, int y0, int width, int height) const;
 
   std::map<std::string, std::string>& attributes() { return attributes_; }
   const std::map<std::string, std::string>& attributes() const { return attributes_; }

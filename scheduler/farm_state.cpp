@@ -92,16 +92,7 @@ int64_t FarmState::submit(const ShotSpec& spec, const std::vector<PlannedTask>& 
     std::vector<int64_t> ids;
     ids.reserve(plan.size());
     for (const PlannedTask& task : plan) {
-      const bool ready = task.dependencies.empty();
-      db_.query("INSERT INTO tasks (shot_id, kind, params, state, pending_deps, max_attempts) VALUES (?1, ?2, ?3, ?4, ?5, ?6)")
-          .bind(1, shotId)
-          .bind(2, int64_t{task.kind})
-          .bindBlob(3, task.params.SerializeAsString())
-          .bind(4, asInt(ready ? TaskState::Ready : TaskState::Waiting))
-          .bind(5, static_cast<int64_t>(task.dependencies.size()))
-          .bind(6, maxAttempts)
-          .run();
-      ids.push_back(db_.lastInsertId());
+      ids.push_back(insertTask(shotId, task.kind, task.params, task.dependencies.size(), maxAttempts, task.output));
       for (size_t dependency : task.dependencies) {
         db_.query("INSERT INTO task_deps (task_id, depends_on) VALUES (?1, ?2)")
             .bind(1, ids.back())
@@ -112,6 +103,21 @@ int64_t FarmState::submit(const ShotSpec& spec, const std::vector<PlannedTask>& 
     addEvent(shotId, "submitted: " + std::to_string(plan.size()) + " tasks", now);
     return shotId;
   });
+}
+
+int64_t FarmState::insertTask(int64_t shotId, TaskKind kind, const TaskParams& params, size_t dependencies,
+                              int64_t maxAttempts, bool output) {
+  db_.query("INSERT INTO tasks (shot_id, kind, params, state, pending_deps, max_attempts, is_output) "
+            "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7)")
+      .bind(1, shotId)
+      .bind(2, int64_t{kind})
+      .bindBlob(3, params.SerializeAsString())
+      .bind(4, asInt(dependencies == 0 ? TaskState::Ready : TaskState::Waiting))
+      .bind(5, static_cast<int64_t>(dependencies))
+      .bind(6, maxAttempts)
+      .bind(7, int64_t{output})
+      .run();
+  return db_.lastInsertId();
 }
 
 int64_t FarmState::registerWorker(const std::string& name, int slots, double now) {
@@ -206,7 +212,7 @@ std::optional<Lease> FarmState::lease(int64_t workerId, double now) {
       }
     }
     Statement& inputs = db_.query(
-        "SELECT t.output_sha, c.size, t.params FROM task_deps d JOIN tasks t ON t.id = d.depends_on "
+        "SELECT t.output_sha, c.size, t.params, t.kind FROM task_deps d JOIN tasks t ON t.id = d.depends_on "
         "JOIN chunks c ON c.sha256 = t.output_sha WHERE d.task_id = ?1 ORDER BY t.id");
     inputs.bind(1, *taskId);
     while (inputs.step()) {
@@ -214,6 +220,7 @@ std::optional<Lease> FarmState::lease(int64_t workerId, double now) {
       ref->set_sha256(inputs.text(0));
       ref->set_size(inputs.integer(1));
       lease.add_input_params()->ParseFromString(inputs.blob(2));
+      lease.add_input_kinds(static_cast<TaskKind>(inputs.integer(3)));
     }
     return lease;
   });
@@ -266,9 +273,10 @@ void FarmState::endAttempt(const AttemptRow& attempt, int state, const std::stri
       .run();
 }
 
-ReportReply FarmState::complete(int64_t attemptId, const ChunkRef& output, double now) {
+ReportReply FarmState::complete(const CompleteRequest& request, double now) {
   return transact([&]() -> ReportReply {
-    const auto attempt = currentAttempt(attemptId);
+    const ChunkRef& output = request.output();
+    const auto attempt = currentAttempt(request.attempt_id());
     if (!attempt) return refused(kStaleLease);
     const bool hasOutput = attempt->kind != TASK_NOOP;
     if (hasOutput) {
@@ -278,14 +286,23 @@ ReportReply FarmState::complete(int64_t attemptId, const ChunkRef& output, doubl
       if (!stored) return refused("the output chunk " + output.sha256() + " was not stored first");
     }
     endAttempt(*attempt, static_cast<int>(AttemptState::Done), "", now);
-    Statement& done = db_.query("UPDATE tasks SET state = ?1, attempt_id = NULL, output_sha = ?2 WHERE id = ?3");
+    Statement& done =
+        db_.query("UPDATE tasks SET state = ?1, attempt_id = NULL, output_sha = ?2, core_seconds = ?3 WHERE id = ?4");
     done.bind(1, asInt(TaskState::Done));
     if (hasOutput) {
       done.bind(2, output.sha256());
     } else {
       done.bindNull(2);
     }
-    done.bind(3, attempt->taskId).run();
+    done.bind(3, std::max(0.0, request.core_seconds())).bind(4, attempt->taskId).run();
+    for (const auto& [name, value] : request.metrics()) {
+      db_.query("INSERT OR REPLACE INTO task_metrics (task_id, name, value) VALUES (?1, ?2, ?3)")
+          .bind(1, attempt->taskId)
+          .bind(2, name)
+          .bind(3, value)
+          .run();
+    }
+    addFollowUps(*attempt, request.follow_ups(), now);
     db_.query("UPDATE tasks SET pending_deps = pending_deps - 1, state = CASE WHEN pending_deps = 1 AND state = ?1 "
               "THEN ?2 ELSE state END WHERE id IN (SELECT task_id FROM task_deps WHERE depends_on = ?3)")
         .bind(1, asInt(TaskState::Waiting))
@@ -389,6 +406,33 @@ bool FarmState::anyWorkerCanRun(int64_t shotId, double now) {
   return any;
 }
 
+void FarmState::addFollowUps(const AttemptRow& attempt, const google::protobuf::RepeatedPtrField<TaskParams>& followUps,
+                             double now) {
+  if (followUps.empty()) return;
+  // The composite tasks waiting for the reporting task wait for the follow-ups too; they
+  // cannot be ready yet, as the reporting task is not counted done until after this.
+  std::vector<int64_t> composites;
+  Statement& q = db_.query("SELECT t.id FROM task_deps d JOIN tasks t ON t.id = d.task_id "
+                           "WHERE d.depends_on = ?1 AND t.kind = ?2");
+  q.bind(1, attempt.taskId).bind(2, int64_t{TASK_COMPOSITE});
+  while (q.step()) composites.push_back(q.integer(0));
+  for (const TaskParams& params : followUps) {
+    const int64_t id = insertTask(attempt.shotId, TASK_RENDER_TILE, params, 0, attempt.maxAttempts, false);
+    for (const int64_t composite : composites) {
+      db_.query("INSERT INTO task_deps (task_id, depends_on) VALUES (?1, ?2)").bind(1, composite).bind(2, id).run();
+      db_.query("UPDATE tasks SET pending_deps = pending_deps + 1 WHERE id = ?1").bind(1, composite).run();
+    }
+  }
+  db_.query("UPDATE shots SET tasks_left = tasks_left + ?1 WHERE id = ?2")
+      .bind(1, static_cast<int64_t>(followUps.size()))
+      .bind(2, attempt.shotId)
+      .run();
+  addEvent(attempt.shotId,
+           describeTask(attempt.taskId, attempt.kind, attempt.params) + " asked for " +
+               std::to_string(followUps.size()) + " re-render tiles",
+           now);
+}
+
 void FarmState::countTaskDone(int64_t shotId, double now) {
   db_.query("UPDATE shots SET tasks_left = tasks_left - 1 WHERE id = ?1").bind(1, shotId).run();
   Statement& q = db_.query("SELECT tasks_left FROM shots WHERE id = ?1").bind(1, shotId);
@@ -464,13 +508,12 @@ ShotSummary FarmState::summaryLocked(int64_t shotId, double now) {
   shot.reset();
 
   Statement& tasks = db_.query(
-      "SELECT COUNT(*), TOTAL(state = ?2), TOTAL(state = ?3), TOTAL(state = ?4), TOTAL(kind = ?5), "
-      "TOTAL(kind = ?5 AND state = ?2) FROM tasks WHERE shot_id = ?1");
+      "SELECT COUNT(*), TOTAL(state = ?2), TOTAL(state = ?3), TOTAL(state = ?4), TOTAL(is_output), "
+      "TOTAL(is_output AND state = ?2) FROM tasks WHERE shot_id = ?1");
   tasks.bind(1, shotId)
       .bind(2, asInt(TaskState::Done))
       .bind(3, asInt(TaskState::Leased))
-      .bind(4, asInt(TaskState::Failed))
-      .bind(5, int64_t{TASK_ASSEMBLE_FRAME});
+      .bind(4, asInt(TaskState::Failed));
   tasks.step();
   summary.set_tasks_total(tasks.integer(0));
   summary.set_tasks_done(static_cast<int64_t>(tasks.real(1)));
@@ -570,8 +613,8 @@ std::vector<std::pair<int64_t, ChunkRef>> FarmState::outputs(int64_t shotId) {
     std::vector<std::pair<int64_t, ChunkRef>> out;
     Statement& q = db_.query(
         "SELECT t.params, c.sha256, c.size FROM tasks t JOIN chunks c ON c.sha256 = t.output_sha "
-        "WHERE t.shot_id = ?1 AND t.kind = ?2 AND t.state = ?3 ORDER BY t.id");
-    q.bind(1, shotId).bind(2, int64_t{TASK_ASSEMBLE_FRAME}).bind(3, asInt(TaskState::Done));
+        "WHERE t.shot_id = ?1 AND t.is_output AND t.state = ?2 ORDER BY t.id");
+    q.bind(1, shotId).bind(2, asInt(TaskState::Done));
     while (q.step()) {
       TaskParams params;
       params.ParseFromString(q.blob(0));
@@ -581,6 +624,30 @@ std::vector<std::pair<int64_t, ChunkRef>> FarmState::outputs(int64_t shotId) {
       out.emplace_back(params.frame(), ref);
     }
     return out;
+  });
+}
+
+std::pair<ShotSpec, std::vector<TaskRecord>> FarmState::taskRecords(int64_t shotId) {
+  return transact([&]() -> std::pair<ShotSpec, std::vector<TaskRecord>> {
+    ShotSpec spec;
+    Statement& shot = db_.query("SELECT spec FROM shots WHERE id = ?1").bind(1, shotId);
+    if (!shot.step()) throw std::out_of_range("no shot " + std::to_string(shotId));
+    spec.ParseFromString(shot.blob(0));
+    shot.reset();
+    std::vector<TaskRecord> records;
+    Statement& q = db_.query("SELECT id, kind, params, state = ?2, core_seconds FROM tasks WHERE shot_id = ?1 ORDER BY id");
+    q.bind(1, shotId).bind(2, asInt(TaskState::Done));
+    while (q.step()) {
+      TaskRecord record;
+      record.kind = static_cast<TaskKind>(q.integer(1));
+      record.params.ParseFromString(q.blob(2));
+      record.done = q.integer(3) != 0;
+      record.coreSeconds = q.real(4);
+      records.push_back(std::move(record));
+      Statement& metrics = db_.query("SELECT name, value FROM task_metrics WHERE task_id = ?1").bind(1, q.integer(0));
+      while (metrics.step()) records.back().metrics[metrics.text(0)] = metrics.real(1);
+    }
+    return {spec, records};
   });
 }
 

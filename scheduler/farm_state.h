@@ -4,6 +4,7 @@
 // rules for which task a worker gets next live in one place (lease()), and the timeouts
 // in one checker (expireLeases()). Times are wall-clock seconds since the epoch, passed
 // in by the caller so that tests control them.
+#include <map>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -26,6 +27,15 @@ struct FarmSettings {
   int defaultMaxAttempts = 3;
 };
 
+// A task as the shot's report sees it.
+struct TaskRecord {
+  TaskKind kind = TASK_KIND_UNSPECIFIED;
+  TaskParams params;
+  bool done = false;
+  double coreSeconds = 0;  // of the accepted attempt
+  std::map<std::string, double> metrics;
+};
+
 // Done, failed or cancelled: nothing more will run for the shot.
 inline bool isFinished(ShotState state) {
   return state == SHOT_DONE || state == SHOT_FAILED || state == SHOT_CANCELLED;
@@ -46,7 +56,8 @@ class FarmState {
   // then task order; tasks in retry backoff wait.
   std::optional<Lease> lease(int64_t workerId, double now);
   HeartbeatReply heartbeat(int64_t attemptId, double progress, double now);
-  ReportReply complete(int64_t attemptId, const ChunkRef& output, double now);
+  // Accepts the output, the task's figures and its follow-up render tiles.
+  ReportReply complete(const CompleteRequest& request, double now);
   ReportReply fail(int64_t attemptId, const std::string& reason, double now);
   // Expired leases and hung tasks go back to the queue (or fail their shot when out of
   // attempts). Returns how many leases ended.
@@ -65,6 +76,8 @@ class FarmState {
   // The frames a shot has produced: (frame, chunk) in frame order.
   std::vector<std::pair<int64_t, ChunkRef>> outputs(int64_t shotId);
   std::vector<WorkerInfo> workers(double now);
+  // The shot's spec and every task's figures, for its report. Throws std::out_of_range.
+  std::pair<ShotSpec, std::vector<TaskRecord>> taskRecords(int64_t shotId);
 
   const FarmSettings& settings() const { return settings_; }
 
@@ -77,6 +90,10 @@ class FarmState {
   std::optional<AttemptRow> currentAttempt(int64_t attemptId);
   void endAttempt(const AttemptRow& attempt, int state, const std::string& error, double now);
   void retryOrFail(const AttemptRow& attempt, const std::string& reason, bool blameWorker, double now);
+  int64_t insertTask(int64_t shotId, TaskKind kind, const TaskParams& params, size_t dependencies,
+                     int64_t maxAttempts, bool output);
+  void addFollowUps(const AttemptRow& attempt, const google::protobuf::RepeatedPtrField<TaskParams>& followUps,
+                    double now);
   void countTaskDone(int64_t shotId, double now);
   bool anyWorkerCanRun(int64_t shotId, double now);
   void endShot(int64_t shotId, ShotState state, const std::string& failure, double now);

@@ -1,7 +1,10 @@
 #include "scheduler/planner.h"
 
 #include <algorithm>
+#include <map>
 #include <string>
+
+#include "renderer/decomposition/decomposition.h"
 
 namespace pathfarm::farm {
 namespace {
@@ -13,42 +16,202 @@ void checkRenderSpec(const ShotSpec& spec) {
     throw PlanError("resolution: width and height must be 1 to 16384");
   if (spec.spp() < 1) throw PlanError("spp: must be at least 1");
   if (spec.tile() < 8) throw PlanError("tile: must be at least 8 pixels");
+  if (spec.reference_spp() < 0) throw PlanError("reference_spp: must not be negative");
+  for (const int64_t frame : spec.evaluation_frames())
+    if (frame < spec.frame_start() || frame > spec.frame_end())
+      throw PlanError("evaluation_frames: frame " + std::to_string(frame) + " is not in the shot");
+}
+
+// Appends the tiles of one frame's render and the task assembling them; returns the
+// assemble task's index.
+size_t planFrameRender(const ShotSpec& spec, int64_t frame, TaskRole role, int spp, bool beautyOnly,
+                       std::vector<PlannedTask>& plan) {
+  const int tile = spec.tile();
+  PlannedTask assemble{TASK_ASSEMBLE_FRAME, {}, {}, role == ROLE_OUTPUT};
+  assemble.params.set_frame(frame);
+  assemble.params.set_role(role);
+  for (int y = 0; y < spec.height(); y += tile) {
+    for (int x = 0; x < spec.width(); x += tile) {
+      PlannedTask render{TASK_RENDER_TILE, {}, {}};
+      render.params.set_frame(frame);
+      render.params.set_role(role);
+      render.params.set_spp(spp);
+      render.params.set_beauty_only(beautyOnly);
+      PixelWindow* window = render.params.mutable_window();
+      window->set_x0(x);
+      window->set_y0(y);
+      window->set_x1(std::min(x + tile, spec.width()));
+      window->set_y1(std::min(y + tile, spec.height()));
+      assemble.dependencies.push_back(plan.size());
+      plan.push_back(std::move(render));
+    }
+  }
+  plan.push_back(std::move(assemble));
+  return plan.size() - 1;
+}
+
+// Per evaluation frame, the tasks whose outputs the evaluation compares (every stage the
+// frame passes through).
+using StageOutputs = std::map<int64_t, std::vector<size_t>>;
+
+// `filtering`: the shot is not itself the baseline, so its pt cost and error are measured on
+// baseline renders of the evaluation frames (unless the cost is given and no error is asked).
+void planEvaluation(const ShotSpec& spec, bool filtering, const StageOutputs& stages, std::vector<PlannedTask>& plan) {
+  const bool measureBaseline = filtering && (spec.baseline_core_seconds() <= 0 || spec.reference_spp() > 0);
+  PlannedTask evaluate{TASK_EVALUATE, {}, {}};
+  for (const int64_t frame : spec.evaluation_frames()) {
+    if (measureBaseline)
+      evaluate.dependencies.push_back(planFrameRender(spec, frame, ROLE_BASELINE, spec.spp(), true, plan));
+    if (spec.reference_spp() == 0) continue;
+    evaluate.dependencies.push_back(planFrameRender(spec, frame, ROLE_REFERENCE, spec.reference_spp(), true, plan));
+    const std::vector<size_t>& outputs = stages.at(frame);
+    evaluate.dependencies.insert(evaluate.dependencies.end(), outputs.begin(), outputs.end());
+  }
+  if (spec.reference_spp() > 0 && !spec.evaluation_frames().empty()) plan.push_back(std::move(evaluate));
 }
 
 void planPathTracing(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
+  StageOutputs stages;
+  for (int64_t frame = spec.frame_start(); frame <= spec.frame_end(); ++frame)
+    stages[frame].push_back(planFrameRender(spec, frame, ROLE_OUTPUT, spec.spp(), false, plan));
+  planEvaluation(spec, false, stages, plan);
+}
+
+// The components whose irradiance moves by optical flow: those whose first non-specular
+// vertex is the primary hit (their expression starts with ED) and the residual. Specular
+// components move along their own (manifold) motion.
+std::vector<std::string> flowComponents(const ShotSpec& spec) {
+  const Decomposition decomposition = Decomposition::parse(spec.decompose());
+  std::vector<std::string> names;
+  for (const Component& component : decomposition.components())
+    if (component.expression.rfind("ED", 0) == 0) names.push_back(component.name);
+  names.push_back(decomposition.name(decomposition.residual()));
+  return names;
+}
+
+PlannedTask task(TaskKind kind, int64_t frame, std::vector<size_t> dependencies) {
+  PlannedTask planned{kind, {}, std::move(dependencies)};
+  planned.params.set_frame(frame);
+  return planned;
+}
+
+size_t push(PlannedTask planned, std::vector<PlannedTask>& plan) {
+  plan.push_back(std::move(planned));
+  return plan.size() - 1;
+}
+
+void planFiltering(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
   checkRenderSpec(spec);
-  const int tile = spec.tile();
-  for (int64_t frame = spec.frame_start(); frame <= spec.frame_end(); ++frame) {
-    PlannedTask assemble{TASK_ASSEMBLE_FRAME, {}, {}};
-    assemble.params.set_frame(frame);
-    for (int y = 0; y < spec.height(); y += tile) {
-      for (int x = 0; x < spec.width(); x += tile) {
-        PlannedTask render{TASK_RENDER_TILE, {}, {}};
-        render.params.set_frame(frame);
-        PixelWindow* window = render.params.mutable_window();
-        window->set_x0(x);
-        window->set_y0(y);
-        window->set_x1(std::min(x + tile, spec.width()));
-        window->set_y1(std::min(y + tile, spec.height()));
-        assemble.dependencies.push_back(plan.size());
-        plan.push_back(std::move(render));
-      }
-    }
-    plan.push_back(std::move(assemble));
+  const PipelineStages stages = stagesOf(spec.pipeline());
+  if (spec.decompose().empty() || spec.decompose() == "none")
+    throw PlanError("pipeline \"" + spec.pipeline() + "\" filters path-space components: decompose must not be none");
+  if (stages.upsample && (spec.width() % 2 != 0 || spec.height() % 2 != 0))
+    throw PlanError("resolution: upsampling pipelines need an even width and height");
+  if (spec.keyframe_interval() < 1) throw PlanError("keyframe_interval: must be at least 1");
+  std::vector<std::string> components;
+  try {
+    components = flowComponents(spec);
+  } catch (const std::invalid_argument& e) {
+    throw PlanError(std::string("decompose: ") + e.what());
   }
+
+  const std::vector<int64_t> keyframes = keyframesOf(spec);
+  const int keyframeSpp = stages.upsample ? std::max(1, spec.spp() / 4) : spec.spp();
+  const int featureSpp = std::clamp(spec.feature_spp(), 1, spec.spp());
+  std::map<int64_t, size_t> rendered;  // frame -> its assembled render (keyframe or features)
+  for (const int64_t frame : keyframes) rendered[frame] = planFrameRender(spec, frame, ROLE_KEYFRAME, keyframeSpp, false, plan);
+  for (size_t i = 1; i < keyframes.size(); ++i)
+    for (int64_t frame = keyframes[i - 1] + 1; frame < keyframes[i]; ++frame)
+      rendered[frame] = planFrameRender(spec, frame, ROLE_FEATURES, featureSpp, false, plan);
+
+  // Motion chained across the frames between two keyframes more than one frame apart.
+  std::map<int64_t, size_t> motionFrom;  // keyframe K0 -> the motion task of (K0, next keyframe)
+  for (size_t i = 1; i < keyframes.size(); ++i) {
+    const int64_t k0 = keyframes[i - 1], k1 = keyframes[i];
+    if (k1 - k0 < 2) continue;
+    PlannedTask motion = task(TASK_MOTION, k0, {});
+    for (int64_t frame = k0; frame <= k1; ++frame) motion.dependencies.push_back(rendered.at(frame));
+    motion.params.set_keyframe_before(k0);
+    motion.params.set_keyframe_after(k1);
+    motionFrom[k0] = push(std::move(motion), plan);
+  }
+
+  StageOutputs evaluated;
+  std::map<int64_t, size_t> finalOf;  // frame -> the task whose frame the composite finishes
+  for (size_t i = 0; i < keyframes.size(); ++i) {
+    const int64_t frame = keyframes[i];
+    PlannedTask denoise = task(TASK_DENOISE, frame, {rendered.at(frame)});
+    if (i > 0) {
+      denoise.dependencies.push_back(rendered.at(keyframes[i - 1]));
+      if (motionFrom.count(keyframes[i - 1])) denoise.dependencies.push_back(motionFrom.at(keyframes[i - 1]));
+    }
+    if (i + 1 < keyframes.size()) {
+      denoise.dependencies.push_back(rendered.at(keyframes[i + 1]));
+      if (motionFrom.count(frame)) denoise.dependencies.push_back(motionFrom.at(frame));
+    }
+    finalOf[frame] = push(std::move(denoise), plan);
+    if (stages.upsample) finalOf[frame] = push(task(TASK_UPSAMPLE, frame, {finalOf[frame], rendered.at(frame)}), plan);
+    evaluated[frame] = {rendered.at(frame), finalOf[frame]};
+  }
+
+  for (const auto& [k0, motion] : motionFrom) {
+    const int64_t k1 = plan[motion].params.keyframe_after();
+    std::vector<size_t> interpolationInputs = {finalOf.at(k0), finalOf.at(k1), motion};
+    for (const std::string& component : components) {
+      PlannedTask flow = task(TASK_FLOW, k0, {finalOf.at(k0), finalOf.at(k1), motion});
+      flow.params.set_keyframe_before(k0);
+      flow.params.set_keyframe_after(k1);
+      flow.params.set_component(component);
+      interpolationInputs.push_back(push(std::move(flow), plan));
+    }
+    for (int64_t frame = k0 + 1; frame < k1; ++frame) {
+      PlannedTask interpolate = task(TASK_INTERPOLATE, frame, interpolationInputs);
+      interpolate.params.set_keyframe_before(k0);
+      interpolate.params.set_keyframe_after(k1);
+      finalOf[frame] = push(std::move(interpolate), plan);
+      evaluated[frame] = {finalOf[frame]};
+    }
+  }
+
+  for (const auto& [frame, stage] : finalOf) {
+    PlannedTask composite = task(TASK_COMPOSITE, frame, {stage});
+    composite.output = true;
+    evaluated[frame].push_back(push(std::move(composite), plan));
+  }
+  planEvaluation(spec, true, evaluated, plan);
 }
 
 }  // namespace
 
+bool isFilteringPipeline(const std::string& pipeline) {
+  return pipeline == "d" || pipeline == "du" || pipeline == "di" || pipeline == "dui";
+}
+
+PipelineStages stagesOf(const std::string& pipeline) {
+  if (!isFilteringPipeline(pipeline)) throw PlanError("\"" + pipeline + "\" is not a filtering pipeline");
+  return {pipeline.find('u') != std::string::npos, pipeline.find('i') != std::string::npos};
+}
+
+std::vector<int64_t> keyframesOf(const ShotSpec& spec) {
+  const int64_t step = stagesOf(spec.pipeline()).interpolate ? std::max(1, spec.keyframe_interval()) : 1;
+  std::vector<int64_t> keyframes;
+  for (int64_t frame = spec.frame_start(); frame <= spec.frame_end(); frame += step) keyframes.push_back(frame);
+  if (keyframes.back() != spec.frame_end()) keyframes.push_back(spec.frame_end());
+  return keyframes;
+}
+
 std::vector<PlannedTask> planShot(const ShotSpec& spec) {
   std::vector<PlannedTask> plan;
   if (spec.pipeline() == "pt") {
+    checkRenderSpec(spec);
     planPathTracing(spec, plan);
+  } else if (isFilteringPipeline(spec.pipeline())) {
+    planFiltering(spec, plan);
   } else if (spec.pipeline() == "noop") {
     if (spec.noop_tasks() < 1) throw PlanError("noop_tasks: must be at least 1");
     plan.assign(static_cast<size_t>(spec.noop_tasks()), PlannedTask{TASK_NOOP, {}, {}});
   } else {
-    throw PlanError("pipeline \"" + spec.pipeline() + "\" is not available (this farm runs: pt, noop)");
+    throw PlanError("pipeline \"" + spec.pipeline() + "\" is not available (this farm runs: pt, d, du, di, dui, noop)");
   }
   return plan;
 }

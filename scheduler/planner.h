@@ -1,8 +1,15 @@
 #pragma once
-// Turns a shot into its task graph. Pipeline "pt": every frame split into tiles, and an
-// assemble task per frame that depends on that frame's tiles and joins them into the
-// frame's EXR (a worker does the joining, so the scheduler never decodes images).
-// Pipeline "noop": independent tasks that do nothing, for measuring the farm itself.
+// Turns a shot into its task graph (docs/farm.md, "Task graphs").
+//   pt    every frame split into tiles, and an assemble task per frame that depends on
+//         that frame's tiles and joins them into the frame's EXR (a worker does the joining,
+//         so the scheduler never decodes images);
+//   d, du, di, dui  the filtering pipelines (Zimmer et al. 2015): keyframes rendered and
+//         filtered, in-between frames interpolated, a composite per frame; re-render tiles
+//         are added while the shot runs (FarmState::complete);
+//   noop  independent tasks that do nothing, for measuring the farm itself.
+// Every render pipeline adds the evaluation tasks the report needs: the baseline (plain pt
+// at the shot's spp) and, with reference_spp, the reference of the evaluation frames and
+// an evaluate task comparing every stage against it.
 #include <stdexcept>
 #include <vector>
 
@@ -14,12 +21,26 @@ struct PlannedTask {
   TaskKind kind;
   TaskParams params;
   std::vector<size_t> dependencies;  // indices of earlier tasks in the plan
+  bool output = false;               // one of the shot's frames
 };
 
 class PlanError : public std::invalid_argument {
  public:
   using std::invalid_argument::invalid_argument;
 };
+
+// What a filtering pipeline does besides rendering keyframes.
+struct PipelineStages {
+  bool upsample = false;     // keyframes at 1/4 of the samples, filtered at half resolution
+  bool interpolate = false;  // only every k-th frame is a keyframe
+};
+
+bool isFilteringPipeline(const std::string& pipeline);
+// Throws PlanError for a pipeline that is not a filtering one.
+PipelineStages stagesOf(const std::string& pipeline);
+// The rendered frames of a shot: every frame, or with interpolation every k-th from the
+// first, and the last.
+std::vector<int64_t> keyframesOf(const ShotSpec& spec);
 
 // Throws PlanError for a spec the farm cannot run (unknown pipeline, empty frame range...).
 std::vector<PlannedTask> planShot(const ShotSpec& spec);

@@ -76,6 +76,18 @@ const std::vector<const char*>& migrations() {
         message TEXT NOT NULL);
       CREATE INDEX events_by_shot ON events(shot_id, id);
       )sql",
+      // 2: filtering pipelines: frame outputs other than assembled tiles, tasks created
+      // while a shot runs, and the figures of the speed-against-error report.
+      R"sql(
+      ALTER TABLE tasks ADD COLUMN is_output INTEGER NOT NULL DEFAULT 0;  -- one of the shot's frames
+      UPDATE tasks SET is_output = 1 WHERE kind = 2;
+      ALTER TABLE tasks ADD COLUMN core_seconds REAL NOT NULL DEFAULT 0;  -- of the accepted attempt
+      CREATE TABLE task_metrics (
+        task_id INTEGER NOT NULL REFERENCES tasks(id) ON DELETE CASCADE,
+        name TEXT NOT NULL,
+        value REAL NOT NULL,
+        PRIMARY KEY (task_id, name));
+      )sql",
   };
   return list;
 }

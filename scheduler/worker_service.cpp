@@ -53,7 +53,7 @@ grpc::Status WorkerServiceImpl::Heartbeat(grpc::ServerContext* context, const He
 grpc::Status WorkerServiceImpl::CompleteTask(grpc::ServerContext* context, const CompleteRequest* request,
                                              ReportReply* reply) {
   return guarded(c_, context, [&] {
-    *reply = c_.state.complete(request->attempt_id(), request->output(), wallClockSeconds());
+    *reply = c_.state.complete(*request, wallClockSeconds());
     if (reply->accepted()) c_.signal.notify();
     return grpc::Status::OK;
   });

@@ -58,10 +58,7 @@ grpc::Status SchedulerLink::heartbeat(int64_t attemptId, double progress, Heartb
   return stub_->Heartbeat(context(kCallSeconds).get(), request, &reply);
 }
 
-grpc::Status SchedulerLink::complete(int64_t attemptId, const ChunkRef& output, ReportReply& reply) {
-  CompleteRequest request;
-  request.set_attempt_id(attemptId);
-  *request.mutable_output() = output;
+grpc::Status SchedulerLink::complete(const CompleteRequest& request, ReportReply& reply) {
   return stub_->CompleteTask(context(kCallSeconds).get(), request, &reply);
 }
 

@@ -21,7 +21,7 @@ class SchedulerLink {
   // for them to time out.
   void stopLeasing();
   grpc::Status heartbeat(int64_t attemptId, double progress, HeartbeatReply& reply);
-  grpc::Status complete(int64_t attemptId, const ChunkRef& output, ReportReply& reply);
+  grpc::Status complete(const CompleteRequest& request, ReportReply& reply);
   grpc::Status fail(int64_t attemptId, const std::string& reason, ReportReply& reply);
   grpc::Status putChunk(const std::string& bytes, ChunkRef& stored);
   grpc::Status getChunk(const std::string& sha256, std::string& bytes);

@@ -1,6 +1,9 @@
 #include "worker/task_runner.h"
 
+#include <tbb/task_arena.h>
+
 #include <algorithm>
+#include <map>
 
 #include "image/exr_io.h"
 #include "renderer/decomposition/auto_decomposition.h"
@@ -52,30 +55,68 @@ std::shared_ptr<TaskRunner::ShotRenderer> TaskRunner::rendererFor(const Lease& l
   return shot;
 }
 
-std::string TaskRunner::run(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,
-                            const std::atomic<bool>& abandon) {
+TaskOutput TaskRunner::run(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,
+                           const std::atomic<bool>& abandon) {
   switch (lease.kind()) {
     case TASK_RENDER_TILE:
       return renderTile(lease, progress, abandon);
     case TASK_ASSEMBLE_FRAME:
-      return assembleFrame(lease, fetch, progress);
+      return {assembleFrame(lease, fetch, progress), {}, {}};
     case TASK_NOOP:
-      return "";
+      return {};
     default:
-      throw std::runtime_error("this worker cannot run tasks of kind " + std::to_string(lease.kind()));
+      return filter(lease, fetch, progress);
   }
 }
 
-std::string TaskRunner::renderTile(const Lease& lease, std::atomic<double>& progress,
-                                   const std::atomic<bool>& abandon) {
+TaskOutput TaskRunner::renderTile(const Lease& lease, std::atomic<double>& progress,
+                                  const std::atomic<bool>& abandon) {
   const auto shot = rendererFor(lease);
-  const PixelWindow& w = lease.params().window();
-  const FrameImage tile = shot->renderer->renderWindow(
-      lease.params().frame(), {w.x0(), w.y0(), w.x1(), w.y1()}, [&](size_t done, size_t total) {
+  const TaskParams& params = lease.params();
+  RenderSettings settings = shot->renderer->settings();
+  if (params.spp() > 0) settings.spp = params.spp();
+  if (params.beauty_only()) settings.decomposition = nullptr;
+  const FrameRenderer renderer(*shot->renderer, settings);
+  const PixelWindow& w = params.window();
+  const std::vector<uint8_t> only(params.pixel_mask().begin(), params.pixel_mask().end());
+  RenderStats stats;
+  const FrameImage tile = renderer.renderWindow(
+      params.frame(), {w.x0(), w.y0(), w.x1(), w.y1()},
+      [&](size_t done, size_t total) {
         if (abandon) throw TaskAbandoned();
         progress = static_cast<double>(done) / static_cast<double>(total);
-      });
-  return encodeExr(tile);
+      },
+      &stats, only.empty() ? nullptr : &only);
+  TaskOutput output;
+  output.chunk = encodeExr(tile);
+  output.metrics["samples"] = static_cast<double>(stats.samples);
+  return output;
+}
+
+TaskOutput TaskRunner::filter(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress) {
+  using Filter = TaskOutput (*)(const Lease&, const std::vector<TaskInput>&);
+  const std::map<TaskKind, Filter> filters = {
+      {TASK_MOTION, runMotionTask},           {TASK_DENOISE, runDenoiseTask},     {TASK_UPSAMPLE, runUpsampleTask},
+      {TASK_FLOW, runFlowTask},               {TASK_INTERPOLATE, runInterpolateTask},
+      {TASK_COMPOSITE, runCompositeTask},     {TASK_EVALUATE, runEvaluateTask}};
+  const auto found = filters.find(lease.kind());
+  if (found == filters.end())
+    throw std::runtime_error("this worker cannot run tasks of kind " + std::to_string(lease.kind()));
+  if (lease.input_kinds_size() != lease.inputs_size() || lease.input_params_size() != lease.inputs_size())
+    throw std::runtime_error("the lease's inputs are incomplete (kinds or parameters missing)");
+  std::vector<TaskInput> inputs;
+  for (int i = 0; i < lease.inputs_size(); ++i) {
+    const ChunkRef& ref = lease.inputs(i);
+    const bool image = lease.input_kinds(i) != TASK_EVALUATE;
+    inputs.push_back({lease.input_kinds(i), lease.input_params(i),
+                      image ? decodeExr(fetch(ref), "input chunk " + ref.sha256()) : FrameImage{}});
+    // Fetching and decoding is the first half of a filter task's work, as far as anyone can tell.
+    progress = 0.5 * static_cast<double>(i + 1) / static_cast<double>(lease.inputs_size());
+  }
+  tbb::task_arena arena(threads_ > 0 ? threads_ : tbb::task_arena::automatic);
+  TaskOutput output = arena.execute([&] { return found->second(lease, inputs); });
+  progress = 1.0;
+  return output;
 }
 
 std::string TaskRunner::assembleFrame(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress) {

@@ -1,6 +1,7 @@
 #pragma once
-// Runs one leased task with the renderer library and returns its output chunk's bytes:
-// a tile's EXR for render_tile, the frame's EXR for assemble_frame, nothing for noop.
+// Runs one leased task with the renderer and postproc libraries and returns its output: a
+// tile's EXR for render_tile, the frame's EXR for assemble_frame, the filter tasks' chunks
+// (worker/filter_tasks.h), nothing for noop.
 // Scenes and their built geometry are cached per shot, so the tiles of a shot pay for
 // loading and BVH building once per worker.
 #include <atomic>
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "pathfarm/worker_service.pb.h"
+#include "worker/filter_tasks.h"
 
 namespace pathfarm {
 class FrameRenderer;
@@ -37,14 +39,15 @@ class TaskRunner {
 
   // `progress` receives 0..1; `abandon` turning true stops the task with TaskAbandoned.
   // Any other failure throws with a message for the scheduler's records.
-  std::string run(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,
-                  const std::atomic<bool>& abandon);
+  TaskOutput run(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,
+                 const std::atomic<bool>& abandon);
 
  private:
   struct ShotRenderer;
   std::shared_ptr<ShotRenderer> rendererFor(const Lease& lease);
-  std::string renderTile(const Lease& lease, std::atomic<double>& progress, const std::atomic<bool>& abandon);
+  TaskOutput renderTile(const Lease& lease, std::atomic<double>& progress, const std::atomic<bool>& abandon);
   std::string assembleFrame(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress);
+  TaskOutput filter(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress);
 
   int threads_;
   std::mutex mutex_;

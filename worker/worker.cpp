@@ -1,6 +1,7 @@
 #include "worker/worker.h"
 
 #include <spdlog/spdlog.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -26,6 +27,15 @@ bool isTransient(const grpc::Status& status) {
   return status.error_code() == grpc::StatusCode::UNAVAILABLE ||
          status.error_code() == grpc::StatusCode::DEADLINE_EXCEEDED ||
          status.error_code() == grpc::StatusCode::DATA_LOSS;
+}
+
+// CPU seconds this process has used, all threads. A task's core-seconds are the difference
+// across it: exact for a worker with one slot, shared among concurrent tasks with more.
+double processCpuSeconds() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  const auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
+  return seconds(usage.ru_utime) + seconds(usage.ru_stime);
 }
 
 // Sleeps with doubling backoff between attempts, from 100 ms up to 5 s.
@@ -100,6 +110,7 @@ class Slot {
     spdlog::info("task {} ({}) of shot {}: started", lease.task_id(), TaskKind_Name(lease.kind()), lease.shot_id());
     std::atomic<double> progress{0};
     std::atomic<bool> abandon{false};
+    const double cpuBefore = processCpuSeconds();
     auto result = std::async(std::launch::async, [&] {
       return runner_.run(lease, [&](const ChunkRef& ref) { return fetch(ref, abandon); }, progress, abandon);
     });
@@ -109,7 +120,7 @@ class Slot {
       const grpc::Status status = link_.heartbeat(lease.attempt_id(), progress, beat);
       if (status.ok() && !beat.keep_going()) abandon = true;
     }
-    std::string output;
+    TaskOutput output;
     try {
       output = result.get();
     } catch (const TaskAbandoned&) {
@@ -120,17 +131,22 @@ class Slot {
       report([&](ReportReply& r) { return link_.fail(lease.attempt_id(), e.what(), r); }, stop);
       return;
     }
-    deliver(lease, output, stop);
+    deliver(lease, output, processCpuSeconds() - cpuBefore, stop);
   }
 
   // Uploads the output and completes the task, retrying while the scheduler is away.
-  void deliver(const Lease& lease, const std::string& output, const std::atomic<bool>& stop) {
-    ChunkRef stored;
+  void deliver(const Lease& lease, const TaskOutput& output, double coreSeconds, const std::atomic<bool>& stop) {
+    CompleteRequest request;
+    request.set_attempt_id(lease.attempt_id());
+    request.set_core_seconds(coreSeconds);
+    for (const TaskParams& params : output.followUps) *request.add_follow_ups() = params;
+    for (const auto& [name, value] : output.metrics) (*request.mutable_metrics())[name] = value;
+    ChunkRef& stored = *request.mutable_output();
     if (lease.kind() != TASK_NOOP) {
       Backoff backoff;
       const auto giveUp = [&, since = Clock::now()] { return stop && Clock::now() - since > kDeliveryGrace; };
       for (;;) {
-        const grpc::Status status = link_.putChunk(output, stored);
+        const grpc::Status status = link_.putChunk(output.chunk, stored);
         if (status.ok()) break;
         if (!isTransient(status) || giveUp()) {
           spdlog::error("task {}: cannot upload its output: {}", lease.task_id(), status.error_message());
@@ -139,7 +155,7 @@ class Slot {
         backoff.sleep();
       }
     }
-    if (report([&](ReportReply& r) { return link_.complete(lease.attempt_id(), stored, r); }, stop))
+    if (report([&](ReportReply& r) { return link_.complete(request, r); }, stop))
       spdlog::info("task {}: done", lease.task_id());
   }
 

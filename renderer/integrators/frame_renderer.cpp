@@ -31,7 +31,10 @@ struct FrameRenderer::Shot {
 };
 
 FrameRenderer::FrameRenderer(const Scene& scene, RenderSettings settings)
-    : scene_(scene), settings_(settings), shot_(std::make_unique<Shot>(scene)) {}
+    : scene_(scene), settings_(settings), shot_(std::make_shared<Shot>(scene)) {}
+
+FrameRenderer::FrameRenderer(const FrameRenderer& shot, RenderSettings settings)
+    : scene_(shot.scene_), settings_(settings), shot_(shot.shot_) {}
 
 FrameRenderer::~FrameRenderer() = default;
 
@@ -73,7 +76,7 @@ FrameImage FrameRenderer::render(int64_t frame, const ProgressCallback& progress
 }
 
 FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window, const ProgressCallback& progress,
-                                       RenderStats* stats) const {
+                                       RenderStats* stats, const std::vector<uint8_t>* only) const {
   const auto start = std::chrono::steady_clock::now();
   const std::shared_ptr<const FrameGeometry> geometry = geometryFor(frame);
   const PathTracer tracer(*geometry, shot_->lights, {settings_.maxDepth});
@@ -84,6 +87,8 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
   if (window.x0 < 0 || window.y0 < 0 || window.x1 > settings_.width || window.y1 > settings_.height ||
       window.width() <= 0 || window.height() <= 0)
     throw std::invalid_argument("the pixel window lies outside the frame or is empty");
+  if (only && only->size() != static_cast<size_t>(window.width()) * static_cast<size_t>(window.height()))
+    throw std::invalid_argument("the pixel mask does not have the window's size");
   const int width = window.width(), height = window.height(), tile = settings_.tileSize;
   FrameImage image(width, height);
   float* channels[6];
@@ -108,6 +113,8 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
     for (int iy = y0; iy < std::min(y0 + tile, height); ++iy) {
       for (int ix = x0; ix < std::min(x0 + tile, width); ++ix) {
         const int x = window.x0 + ix, y = window.y0 + iy;  // frame pixel coordinates
+        const size_t pixel = static_cast<size_t>(iy) * static_cast<size_t>(width) + static_cast<size_t>(ix);
+        if (only && (*only)[pixel] == 0) continue;
         double sum[3] = {0, 0, 0}, sumSquares[3] = {0, 0, 0};
         int accepted = 0;
         std::optional<DecomposedFilm::Pixel> sums;
@@ -138,7 +145,6 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
             sumSquares[c] += static_cast<double>(L[c]) * L[c];
           }
         }
-        const size_t pixel = static_cast<size_t>(iy) * static_cast<size_t>(width) + static_cast<size_t>(ix);
         for (int c = 0; c < 3; ++c) {
           const double mean = accepted > 0 ? sum[c] / accepted : 0.0;
           // Variance of the pixel mean: the samples' unbiased variance over their count.

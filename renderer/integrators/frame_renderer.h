@@ -49,6 +49,9 @@ using ProgressCallback = std::function<void(size_t, size_t)>;
 class FrameRenderer {
  public:
   FrameRenderer(const Scene& scene, RenderSettings settings);
+  // The same shot with other settings (samples, decomposition, resolution): shares the
+  // built geometry, so it costs next to nothing.
+  FrameRenderer(const FrameRenderer& shot, RenderSettings settings);
   ~FrameRenderer();
 
   // The frame's beauty in R, G, B and the variance of each pixel's mean in variance.R/G/B,
@@ -56,9 +59,10 @@ class FrameRenderer {
   FrameImage render(int64_t frame, const ProgressCallback& progress = {}, RenderStats* stats = nullptr) const;
   // Only a part of the frame (a farm tile): the image has the window's size and its pixels
   // are bit-identical to the same pixels of render(). Throws std::invalid_argument for a
-  // window outside the frame.
+  // window outside the frame. With `only` (a byte per window pixel, row-major), pixels whose
+  // byte is 0 are not rendered and stay 0 in every channel.
   FrameImage renderWindow(int64_t frame, const PixelWindow& window, const ProgressCallback& progress = {},
-                          RenderStats* stats = nullptr) const;
+                          RenderStats* stats = nullptr, const std::vector<uint8_t>* only = nullptr) const;
 
   const Scene& scene() const { return scene_; }
   const RenderSettings& settings() const { return settings_; }
@@ -71,7 +75,7 @@ class FrameRenderer {
 
   const Scene& scene_;
   RenderSettings settings_;
-  std::unique_ptr<Shot> shot_;
+  std::shared_ptr<Shot> shot_;
   mutable std::mutex geometryMutex_;
   mutable std::shared_ptr<const FrameGeometry> lastGeometry_;
 };

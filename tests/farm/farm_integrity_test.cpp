@@ -103,7 +103,10 @@ TEST_F(FarmTest, CorruptUploadsAndLateCompletionsAreRefused) {
   farm::ChunkRef bogusRef;
   ASSERT_TRUE(link.putChunk(bogus, bogusRef).ok());
   farm::ReportReply completion;
-  const grpc::Status completed = link.complete(attempt, bogusRef, completion);
+  farm::CompleteRequest request;
+  request.set_attempt_id(attempt);
+  *request.mutable_output() = bogusRef;
+  const grpc::Status completed = link.complete(request, completion);
   ASSERT_TRUE(completed.ok()) << completed.error_message();
   EXPECT_FALSE(completion.accepted());
   EXPECT_TRUE(contains(completion.reason(), "lease")) << completion.reason();

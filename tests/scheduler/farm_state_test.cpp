@@ -49,6 +49,14 @@ class FarmStateTest : public ::testing::Test {
     state_->recordChunk(ref, now_);
     return ref;
   }
+  ReportReply complete(int64_t attemptId, const ChunkRef& output, double now,
+                       const std::vector<TaskParams>& followUps = {}) {
+    CompleteRequest request;
+    request.set_attempt_id(attemptId);
+    *request.mutable_output() = output;
+    for (const TaskParams& params : followUps) *request.add_follow_ups() = params;
+    return state_->complete(request, now);
+  }
   Lease leaseFor(int64_t worker) {
     auto lease = state_->lease(worker, now_);
     EXPECT_TRUE(lease.has_value());
@@ -68,16 +76,16 @@ TEST_F(FarmStateTest, AssemblyWaitsForItsTilesAndGetsTheirChunks) {
   EXPECT_EQ(a.kind(), TASK_RENDER_TILE);
   EXPECT_EQ(b.kind(), TASK_RENDER_TILE);
   EXPECT_FALSE(state_->lease(worker, now_).has_value()) << "assembly leased before its tiles were done";
-  EXPECT_TRUE(state_->complete(a.attempt_id(), storedChunk("a"), now_).accepted());
+  EXPECT_TRUE(complete(a.attempt_id(), storedChunk("a"), now_).accepted());
   EXPECT_FALSE(state_->lease(worker, now_).has_value());
-  EXPECT_TRUE(state_->complete(b.attempt_id(), storedChunk("b"), now_).accepted());
+  EXPECT_TRUE(complete(b.attempt_id(), storedChunk("b"), now_).accepted());
   const Lease assemble = leaseFor(worker);
   ASSERT_EQ(assemble.kind(), TASK_ASSEMBLE_FRAME);
   ASSERT_EQ(assemble.inputs_size(), 2);
   EXPECT_EQ(assemble.inputs(0).sha256(), storedChunk("a").sha256());
   EXPECT_EQ(assemble.input_params(1).window().x0(), 32);
   EXPECT_EQ(state_->summary(shot, now_).state(), SHOT_RUNNING);
-  EXPECT_TRUE(state_->complete(assemble.attempt_id(), storedChunk("frame"), now_).accepted());
+  EXPECT_TRUE(complete(assemble.attempt_id(), storedChunk("frame"), now_).accepted());
   const ShotSummary done = state_->summary(shot, now_);
   EXPECT_EQ(done.state(), SHOT_DONE);
   EXPECT_EQ(done.tasks_done(), 3);
@@ -91,8 +99,8 @@ TEST_F(FarmStateTest, CompletionNeedsItsChunkStoredFirst) {
   const Lease lease = leaseFor(state_->registerWorker("w", 1, now_));
   ChunkRef missing;
   missing.set_sha256(std::string(64, 'f'));
-  EXPECT_FALSE(state_->complete(lease.attempt_id(), missing, now_).accepted());
-  EXPECT_TRUE(state_->complete(lease.attempt_id(), storedChunk("x"), now_).accepted());
+  EXPECT_FALSE(complete(lease.attempt_id(), missing, now_).accepted());
+  EXPECT_TRUE(complete(lease.attempt_id(), storedChunk("x"), now_).accepted());
 }
 
 TEST_F(FarmStateTest, PriorityThenAgeDecideWhoGoesFirst) {
@@ -128,9 +136,9 @@ TEST_F(FarmStateTest, ExpiredLeaseIsRequeuedAndItsLateReportsRefused) {
   EXPECT_NE(second.attempt_id(), first.attempt_id());
   // The first worker comes back late: nothing it says changes anything.
   EXPECT_FALSE(state_->heartbeat(first.attempt_id(), 1.0, now_).keep_going());
-  EXPECT_FALSE(state_->complete(first.attempt_id(), storedChunk("late"), now_).accepted());
+  EXPECT_FALSE(complete(first.attempt_id(), storedChunk("late"), now_).accepted());
   EXPECT_FALSE(state_->fail(first.attempt_id(), "late", now_).accepted());
-  EXPECT_TRUE(state_->complete(second.attempt_id(), storedChunk("good"), now_).accepted());
+  EXPECT_TRUE(complete(second.attempt_id(), storedChunk("good"), now_).accepted());
   EXPECT_EQ(state_->summary(shot, now_).attempts(), 3);
 }
 
@@ -204,7 +212,7 @@ TEST_F(FarmStateTest, CancelStopsLeasesAndTellsRunningWorkers) {
   const Lease lease = leaseFor(worker);
   EXPECT_EQ(state_->cancel(shot, now_).state(), SHOT_CANCELLED);
   EXPECT_FALSE(state_->heartbeat(lease.attempt_id(), 0.5, now_).keep_going());
-  EXPECT_FALSE(state_->complete(lease.attempt_id(), storedChunk("x"), now_).accepted());
+  EXPECT_FALSE(complete(lease.attempt_id(), storedChunk("x"), now_).accepted());
   EXPECT_FALSE(state_->lease(worker, now_).has_value());
   EXPECT_THROW(state_->summary(shot + 100, now_), std::out_of_range);
 }
@@ -213,17 +221,76 @@ TEST_F(FarmStateTest, RestartKeepsFinishedWorkAndGivesRunningLeasesGrace) {
   const int64_t shot = submitFrame();
   const int64_t worker = state_->registerWorker("w", 1, now_);
   const Lease done = leaseFor(worker), running = leaseFor(worker);
-  ASSERT_TRUE(state_->complete(done.attempt_id(), storedChunk("a"), now_).accepted());
+  ASSERT_TRUE(complete(done.attempt_id(), storedChunk("a"), now_).accepted());
   state_.reset();  // the scheduler dies...
   now_ += 60;      // ...and comes back a minute later, past the lease
   open();
   EXPECT_EQ(state_->expireLeases(now_), 0) << "a lease expired while nobody could renew it";
-  EXPECT_TRUE(state_->complete(running.attempt_id(), storedChunk("b"), now_).accepted());
+  EXPECT_TRUE(complete(running.attempt_id(), storedChunk("b"), now_).accepted());
   const Lease assemble = leaseFor(worker);
   EXPECT_EQ(assemble.kind(), TASK_ASSEMBLE_FRAME);
-  EXPECT_TRUE(state_->complete(assemble.attempt_id(), storedChunk("f"), now_).accepted());
+  EXPECT_TRUE(complete(assemble.attempt_id(), storedChunk("f"), now_).accepted());
   EXPECT_EQ(state_->summary(shot, now_).state(), SHOT_DONE);
   EXPECT_EQ(state_->summary(shot, now_).attempts(), 3);  // nothing ran twice
+}
+
+TEST_F(FarmStateTest, FollowUpTilesJoinTheShotAndTheCompositeWaitsForThem) {
+  ShotSpec spec;
+  spec.set_name("filtered");
+  spec.set_pipeline("di");
+  std::vector<PlannedTask> plan = {{TASK_INTERPOLATE, {}, {}}, {TASK_COMPOSITE, {}, {0}, true}};
+  const int64_t shot = state_->submit(spec, plan, now_);
+  const int64_t worker = state_->registerWorker("w", 1, now_);
+  const Lease interpolate = leaseFor(worker);
+  ASSERT_EQ(interpolate.kind(), TASK_INTERPOLATE);
+  std::vector<TaskParams> tiles(2);
+  tiles[0].set_role(ROLE_RERENDER);
+  tiles[0].mutable_window()->set_x1(8);
+  tiles[1].set_role(ROLE_RERENDER);
+  tiles[1].mutable_window()->set_x0(8);
+  ASSERT_TRUE(complete(interpolate.attempt_id(), storedChunk("i"), now_, tiles).accepted());
+  EXPECT_EQ(state_->summary(shot, now_).tasks_total(), 4);
+
+  // The composite is not ready before the follow-ups are done; then it gets all three inputs.
+  const Lease first = leaseFor(worker);
+  const Lease second = leaseFor(worker);
+  EXPECT_EQ(first.kind(), TASK_RENDER_TILE);
+  EXPECT_EQ(second.kind(), TASK_RENDER_TILE);
+  EXPECT_FALSE(state_->lease(worker, now_).has_value());
+  ASSERT_TRUE(complete(first.attempt_id(), storedChunk("t1"), now_).accepted());
+  EXPECT_FALSE(state_->lease(worker, now_).has_value());
+  ASSERT_TRUE(complete(second.attempt_id(), storedChunk("t2"), now_).accepted());
+  const Lease composite = leaseFor(worker);
+  ASSERT_EQ(composite.kind(), TASK_COMPOSITE);
+  ASSERT_EQ(composite.inputs_size(), 3);
+  EXPECT_EQ(composite.input_kinds(0), TASK_INTERPOLATE);
+  EXPECT_EQ(composite.input_kinds(1), TASK_RENDER_TILE);
+  EXPECT_EQ(composite.input_params(2).window().x0(), 8);
+  ASSERT_TRUE(complete(composite.attempt_id(), storedChunk("c"), now_).accepted());
+  EXPECT_EQ(state_->summary(shot, now_).state(), SHOT_DONE);
+  const auto outputs = state_->outputs(shot);
+  ASSERT_EQ(outputs.size(), 1u);
+  EXPECT_EQ(outputs[0].second.sha256(), storedChunk("c").sha256());
+}
+
+TEST_F(FarmStateTest, ReportRecordsCarryCoreSecondsAndMetrics) {
+  const int64_t shot = submitFrame();
+  const int64_t worker = state_->registerWorker("w", 1, now_);
+  const Lease tile = leaseFor(worker);
+  CompleteRequest request;
+  request.set_attempt_id(tile.attempt_id());
+  *request.mutable_output() = storedChunk("t");
+  request.set_core_seconds(2.5);
+  (*request.mutable_metrics())["samples"] = 1024;
+  ASSERT_TRUE(state_->complete(request, now_).accepted());
+  const auto [spec, records] = state_->taskRecords(shot);
+  EXPECT_EQ(spec.name(), "shot");
+  ASSERT_EQ(records.size(), 3u);
+  EXPECT_TRUE(records[0].done);
+  EXPECT_EQ(records[0].coreSeconds, 2.5);
+  EXPECT_EQ(records[0].metrics.at("samples"), 1024);
+  EXPECT_FALSE(records[1].done);
+  EXPECT_TRUE(records[1].metrics.empty());
 }
 
 TEST(Schema, MigratesOnceAndRefusesANewerDatabase) {
@@ -232,7 +299,7 @@ TEST(Schema, MigratesOnceAndRefusesANewerDatabase) {
   {
     Database db(file.string());
     migrate(db);
-    EXPECT_EQ(schemaVersion(db), 1);
+    EXPECT_EQ(schemaVersion(db), 2);
     migrate(db);  // nothing to do the second time
     db.execute("PRAGMA user_version = 99");
     EXPECT_THROW(migrate(db), DatabaseError);

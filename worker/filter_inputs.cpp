@@ -1,0 +1,86 @@
+#include "worker/filter_inputs.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace pathfarm::farm {
+
+const TaskInput& findInput(const std::vector<TaskInput>& inputs, const std::function<bool(const TaskInput&)>& matches,
+                           const std::string& what) {
+  const auto found = std::find_if(inputs.begin(), inputs.end(), matches);
+  if (found == inputs.end()) throw std::runtime_error("the task lacks an input: " + what);
+  return *found;
+}
+
+const TaskInput& inputOf(const std::vector<TaskInput>& inputs, TaskKind kind, int64_t frame) {
+  return findInput(
+      inputs, [&](const TaskInput& input) { return input.kind == kind && input.params.frame() == frame; },
+      TaskKind_Name(kind) + " of frame " + std::to_string(frame));
+}
+
+const TaskInput& filteredKeyframe(const std::vector<TaskInput>& inputs, int64_t frame) {
+  const auto upsampled = std::find_if(inputs.begin(), inputs.end(), [&](const TaskInput& input) {
+    return input.kind == TASK_UPSAMPLE && input.params.frame() == frame;
+  });
+  return upsampled != inputs.end() ? *upsampled : inputOf(inputs, TASK_DENOISE, frame);
+}
+
+void writeMotionField(FrameImage& image, const std::string& name, const MotionField& field) {
+  image.addChannel(name + ".X") = field.x;
+  image.addChannel(name + ".Y") = field.y;
+  std::vector<float>& valid = image.addChannel(name + ".valid");
+  if (field.valid.empty()) {
+    std::fill(valid.begin(), valid.end(), 1.0f);
+  } else {
+    valid = field.valid;
+  }
+}
+
+MotionField readMotionField(const FrameImage& image, const std::string& name) {
+  MotionField field;
+  field.width = image.width();
+  field.height = image.height();
+  field.x = image.channel(name + ".X");
+  field.y = image.channel(name + ".Y");
+  field.valid = image.channel(name + ".valid");
+  return field;
+}
+
+std::string motionLayer(const std::string& component) { return component.empty() ? "primary" : component; }
+
+void requestRerender(const ShotSpec& spec, int64_t frame, const std::vector<uint8_t>& mask, TaskOutput& output) {
+  const int width = spec.width(), height = spec.height(), tile = spec.tile();
+  if (mask.size() != static_cast<size_t>(width) * static_cast<size_t>(height))
+    throw std::runtime_error("the re-render mask does not have the shot's resolution");
+  size_t flagged = 0;
+  for (int y0 = 0; y0 < height; y0 += tile) {
+    for (int x0 = 0; x0 < width; x0 += tile) {
+      const int x1 = std::min(x0 + tile, width), y1 = std::min(y0 + tile, height);
+      std::string pixels;
+      size_t inTile = 0;
+      for (int y = y0; y < y1; ++y) {
+        for (int x = x0; x < x1; ++x) {
+          const bool flag = mask[static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)] != 0;
+          pixels.push_back(flag ? 1 : 0);
+          inTile += flag;
+        }
+      }
+      if (inTile == 0) continue;
+      flagged += inTile;
+      TaskParams& params = output.followUps.emplace_back();
+      params.set_frame(frame);
+      params.set_role(ROLE_RERENDER);
+      params.set_spp(spec.spp());
+      params.set_pixel_mask(pixels);
+      PixelWindow* window = params.mutable_window();
+      window->set_x0(x0);
+      window->set_y0(y0);
+      window->set_x1(x1);
+      window->set_y1(y1);
+    }
+  }
+  output.metrics["rerender_pixels"] = static_cast<double>(flagged);
+  output.metrics["pixels"] = static_cast<double>(mask.size());
+}
+
+}  // namespace pathfarm::farm

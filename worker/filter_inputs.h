@@ -1,0 +1,32 @@
+#pragma once
+// Helpers the filter tasks share: finding inputs, motion fields in chunks, and turning a
+// re-render mask into render tiles.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "postproc/filters/warp.h"
+#include "worker/filter_tasks.h"
+
+namespace pathfarm::farm {
+
+// The first input `matches` accepts; throws std::runtime_error naming `what` when none does.
+const TaskInput& findInput(const std::vector<TaskInput>& inputs, const std::function<bool(const TaskInput&)>& matches,
+                           const std::string& what);
+// The output of `kind` for `frame`, as findInput.
+const TaskInput& inputOf(const std::vector<TaskInput>& inputs, TaskKind kind, int64_t frame);
+// A keyframe's filtered frame (upsample, else denoise output) for `frame`.
+const TaskInput& filteredKeyframe(const std::vector<TaskInput>& inputs, int64_t frame);
+
+// A motion field stored as `<name>.X`, `<name>.Y`, `<name>.valid`.
+void writeMotionField(FrameImage& image, const std::string& name, const MotionField& field);
+MotionField readMotionField(const FrameImage& image, const std::string& name);
+// The chunk layer of a component's motion: the component, or "primary" for "" (frame-wide).
+std::string motionLayer(const std::string& component);
+
+// Groups the flagged pixels of a frame (`mask`, one byte per pixel) into the shot's tiles:
+// one render task per tile with a flagged pixel, at the shot's spp, rendering just those
+// pixels. Adds "rerender_pixels" and "pixels" to `output.metrics`.
+void requestRerender(const ShotSpec& spec, int64_t frame, const std::vector<uint8_t>& mask, TaskOutput& output);
+
+}  // namespace pathfarm::farm

@@ -1,0 +1,44 @@
+#pragma once
+// The filtering pipelines' tasks (d, du, di, dui; scheduler/planner.h), each a function of
+// its decoded inputs: the postproc library does the work, these functions pick the inputs,
+// join the results into the task's output frame and say which pixels need re-rendering.
+// Channel layout of the intermediate chunks: docs/farm.md, "Task graphs".
+#include <map>
+#include <string>
+#include <vector>
+
+#include "image/frame_image.h"
+#include "pathfarm/worker_service.pb.h"
+
+namespace pathfarm::farm {
+
+// One input chunk: what made it and its image.
+struct TaskInput {
+  TaskKind kind;
+  TaskParams params;
+  FrameImage image;
+};
+
+struct TaskOutput {
+  std::string chunk;                      // the output chunk's bytes
+  std::vector<TaskParams> followUps;      // render tiles to add to the shot
+  std::map<std::string, double> metrics;  // figures for the shot's report
+};
+
+// Motion chained from keyframe_before to keyframe_after across the renders in between.
+TaskOutput runMotionTask(const Lease& lease, const std::vector<TaskInput>& inputs);
+// A keyframe denoised with its neighbouring keyframes (at half resolution when upsampling).
+TaskOutput runDenoiseTask(const Lease& lease, const std::vector<TaskInput>& inputs);
+// The denoised keyframe upsampled under its full-resolution features; negative pixels are
+// re-rendered.
+TaskOutput runUpsampleTask(const Lease& lease, const std::vector<TaskInput>& inputs);
+// One component's irradiance flow between two filtered keyframes.
+TaskOutput runFlowTask(const Lease& lease, const std::vector<TaskInput>& inputs);
+// An in-between frame from its keyframes; its re-render mask becomes render tiles.
+TaskOutput runInterpolateTask(const Lease& lease, const std::vector<TaskInput>& inputs);
+// A frame's final image: its stage output with the re-rendered pixels, denoised.
+TaskOutput runCompositeTask(const Lease& lease, const std::vector<TaskInput>& inputs);
+// relMSE and temporal error of every stage of the evaluation frames against the reference.
+TaskOutput runEvaluateTask(const Lease& lease, const std::vector<TaskInput>& inputs);
+
+}  // namespace pathfarm::farm

@@ -1,0 +1,115 @@
+// Motion between keyframes, irradiance flow and frame interpolation (worker/filter_tasks.h).
+#include <algorithm>
+#include <cmath>
+
+#include "image/exr_io.h"
+#include "postproc/filters/decomposed_frame.h"
+#include "postproc/interpolation/frame_interpolation.h"
+#include "worker/filter_inputs.h"
+
+namespace pathfarm::farm {
+namespace {
+
+// The layers of a motion chunk: every component, then "" (frame-wide).
+std::vector<std::string> motionKeys(const FrameImage& frame) {
+  std::vector<std::string> keys = decompositionComponents(frame);
+  keys.emplace_back();
+  return keys;
+}
+
+ComponentMotions readMotions(const FrameImage& chunk) {
+  ComponentMotions motions;
+  for (const std::string& key : motionKeys(chunk))
+    motions.components[key] = ComponentMotion(readMotionField(chunk, motionLayer(key) + ".forward"),
+                                              readMotionField(chunk, motionLayer(key) + ".backward"));
+  return motions;
+}
+
+bool isZero(const std::vector<float>& values) {
+  return std::all_of(values.begin(), values.end(), [](float v) { return v == 0.0f; });
+}
+
+bool componentIsEmpty(const FrameImage& frame, const std::string& component) {
+  for (const char* c : {"R", "G", "B"})
+    if (!isZero(frame.channel(component + ".irradiance." + c))) return false;
+  return true;
+}
+
+}  // namespace
+
+TaskOutput runMotionTask(const Lease& lease, const std::vector<TaskInput>& inputs) {
+  const int64_t first = lease.params().keyframe_before(), last = lease.params().keyframe_after();
+  std::vector<FrameImage> frames;
+  for (int64_t frame = first; frame <= last; ++frame) frames.push_back(inputOf(inputs, TASK_ASSEMBLE_FRAME, frame).image);
+  const ComponentMotions motions = concatenatePrimaryMotion(frames);
+  FrameImage chunk(frames.front().width(), frames.front().height());
+  chunk.attributes()["pathfarm.decomposition"] = frames.front().attributes().at("pathfarm.decomposition");
+  chunk.attributes()["pathfarm.motion"] = "frame " + std::to_string(first) + " to frame " + std::to_string(last);
+  for (const auto& [key, motion] : motions.components) {
+    writeMotionField(chunk, motionLayer(key) + ".forward", motion.forward);
+    writeMotionField(chunk, motionLayer(key) + ".backward", motion.backward);
+  }
+  TaskOutput output;
+  output.chunk = encodeExr(chunk);
+  return output;
+}
+
+TaskOutput runFlowTask(const Lease& lease, const std::vector<TaskInput>& inputs) {
+  const TaskParams& params = lease.params();
+  const std::string& component = params.component();
+  const FrameImage& k0 = filteredKeyframe(inputs, params.keyframe_before()).image;
+  const FrameImage& k1 = filteredKeyframe(inputs, params.keyframe_after()).image;
+  const ComponentMotions all = readMotions(inputOf(inputs, TASK_MOTION, params.keyframe_before()).image);
+  const auto primary = all.components.find(component);
+  if (primary == all.components.end()) throw std::runtime_error("the motion chunk has no component " + component);
+
+  ComponentMotions motions;
+  motions.components[component] = primary->second;
+  FrameImage chunk(k0.width(), k0.height());
+  // A component both keyframes lack has nothing to track: its (absent) flow is invalid
+  // everywhere and interpolation falls back to the primary motion.
+  if (componentIsEmpty(k0, component) && componentIsEmpty(k1, component)) {
+    ComponentMotion& motion = motions.components[component];
+    motion.irradianceForward = MotionField{k0.width(), k0.height(), std::vector<float>(k0.pixelCount(), 0.0f),
+                                           std::vector<float>(k0.pixelCount(), 0.0f),
+                                           std::vector<float>(k0.pixelCount(), 0.0f)};
+    motion.irradianceBackward = motion.irradianceForward;
+    chunk.attributes()["pathfarm.flow"] = "skipped: the component is empty in both keyframes";
+  } else {
+    addIrradianceFlow(motions, k0, k1, FlowSettings{});
+    chunk.attributes()["pathfarm.flow"] = "irradiance flow, log domain, bootstrapped by the primary motion";
+  }
+  const ComponentMotion& motion = motions.components.at(component);
+  writeMotionField(chunk, component + ".irradiance_forward", motion.irradianceForward);
+  writeMotionField(chunk, component + ".irradiance_backward", motion.irradianceBackward);
+  TaskOutput output;
+  output.chunk = encodeExr(chunk);
+  return output;
+}
+
+TaskOutput runInterpolateTask(const Lease& lease, const std::vector<TaskInput>& inputs) {
+  const TaskParams& params = lease.params();
+  const int64_t before = params.keyframe_before(), after = params.keyframe_after();
+  const FrameImage& k0 = filteredKeyframe(inputs, before).image;
+  const FrameImage& k1 = filteredKeyframe(inputs, after).image;
+  ComponentMotions motions = readMotions(inputOf(inputs, TASK_MOTION, before).image);
+  for (const TaskInput& input : inputs) {
+    if (input.kind != TASK_FLOW) continue;
+    ComponentMotion& motion = motions.components.at(input.params.component());
+    motion.irradianceForward = readMotionField(input.image, input.params.component() + ".irradiance_forward");
+    motion.irradianceBackward = readMotionField(input.image, input.params.component() + ".irradiance_backward");
+    motion.hasIrradianceMotion = true;
+  }
+  const float fraction = static_cast<float>(params.frame() - before) / static_cast<float>(after - before);
+  InterpolationResult result = interpolateFrameDetailed(k0, k1, motions, fraction);
+  for (const auto& [key, value] : k0.attributes()) result.frame.attributes().emplace(key, value);
+  result.frame.attributes()["pathfarm.frame"] = std::to_string(params.frame());
+  result.frame.attributes()["pathfarm.interpolated"] =
+      "between keyframes " + std::to_string(before) + " and " + std::to_string(after);
+  TaskOutput output;
+  requestRerender(lease.spec(), params.frame(), result.mask, output);
+  output.chunk = encodeExr(result.frame);
+  return output;
+}
+
+}  // namespace pathfarm::farm

@@ -1,0 +1,97 @@
+// Denoising and upsampling of keyframes (worker/filter_tasks.h).
+#include <algorithm>
+#include <optional>
+
+#include "image/exr_io.h"
+#include "postproc/filters/component_denoiser.h"
+#include "postproc/filters/component_upsampler.h"
+#include "postproc/filters/decomposed_frame.h"
+#include "renderer/decomposition/effective_irradiance.h"
+#include "scheduler/planner.h"
+#include "worker/filter_inputs.h"
+
+namespace pathfarm::farm {
+namespace {
+
+constexpr int kUpsampleFactor = 2;
+
+// The keyframe's motion towards a neighbouring keyframe more than one frame away is the
+// chained motion of a motion task; an adjacent neighbour's is the frame's own. `direction`
+// is "motion" (towards the next keyframe) or "motion_back". The component's motion_valid
+// then holds where both directions hold, as the denoiser reads one validity for both.
+void takeChainedMotion(FrameImage& keyframe, const FrameImage& chained, const std::string& chainedField,
+                       const std::string& direction) {
+  for (const std::string& component : decompositionComponents(keyframe)) {
+    const MotionField field = readMotionField(chained, motionLayer(component) + "." + chainedField);
+    keyframe.channel(component + "." + direction + ".X") = field.x;
+    keyframe.channel(component + "." + direction + ".Y") = field.y;
+    std::vector<float>& valid = keyframe.channel(component + ".motion_valid.Y");
+    for (size_t p = 0; p < valid.size(); ++p) valid[p] = std::min(valid[p], field.valid[p]);
+  }
+  const MotionField primary = readMotionField(chained, motionLayer("") + "." + chainedField);
+  keyframe.channel(direction + ".X") = primary.x;
+  keyframe.channel(direction + ".Y") = primary.y;
+}
+
+}  // namespace
+
+TaskOutput runDenoiseTask(const Lease& lease, const std::vector<TaskInput>& inputs) {
+  const int64_t frame = lease.params().frame();
+  const bool upsample = stagesOf(lease.spec().pipeline()).upsample;
+  const std::vector<int64_t> keyframes = keyframesOf(lease.spec());
+  const auto at = std::find(keyframes.begin(), keyframes.end(), frame);
+  if (at == keyframes.end()) throw std::runtime_error("frame " + std::to_string(frame) + " is not a keyframe");
+
+  FrameImage current = inputOf(inputs, TASK_ASSEMBLE_FRAME, frame).image;
+  std::optional<FrameImage> previous, next;
+  if (at != keyframes.begin()) {
+    const int64_t before = *(at - 1);
+    previous = inputOf(inputs, TASK_ASSEMBLE_FRAME, before).image;
+    if (frame - before > 1) takeChainedMotion(current, inputOf(inputs, TASK_MOTION, before).image, "backward", "motion_back");
+  }
+  if (at + 1 != keyframes.end()) {
+    const int64_t after = *(at + 1);
+    next = inputOf(inputs, TASK_ASSEMBLE_FRAME, after).image;
+    if (after - frame > 1) takeChainedMotion(current, inputOf(inputs, TASK_MOTION, frame).image, "forward", "motion");
+  }
+  if (upsample) {
+    current = boxDownsample(current, kUpsampleFactor);
+    if (previous) previous = boxDownsample(*previous, kUpsampleFactor);
+    if (next) next = boxDownsample(*next, kUpsampleFactor);
+  }
+  DenoiseSettings settings;
+  settings.label = "keyframe " + std::to_string(frame);
+  const FrameImage denoised = denoiseFrame(current, previous ? &*previous : nullptr, next ? &*next : nullptr, settings);
+  // The output keeps the keyframe's features and motion; its colors are the denoised ones
+  // and its effective irradiance follows from them, as the upsampler and interpolation read it.
+  current.paste(denoised, 0, 0);
+  for (const std::string& component : decompositionComponents(current)) {
+    for (const char* c : {"R", "G", "B"}) {
+      const std::vector<float>& color = current.channel(component + ".color." + c);
+      const std::vector<float>& reflectance = current.channel(component + ".reflectance." + c);
+      std::vector<float>& irradiance = current.channel(component + ".irradiance." + c);
+      for (size_t p = 0; p < irradiance.size(); ++p) irradiance[p] = effectiveIrradiance(color[p], reflectance[p]);
+    }
+  }
+  TaskOutput output;
+  output.chunk = encodeExr(current);
+  return output;
+}
+
+TaskOutput runUpsampleTask(const Lease& lease, const std::vector<TaskInput>& inputs) {
+  const int64_t frame = lease.params().frame();
+  const FrameImage& low = inputOf(inputs, TASK_DENOISE, frame).image;
+  FrameImage high = inputOf(inputs, TASK_ASSEMBLE_FRAME, frame).image;
+  UpsampleSettings settings;
+  settings.guided.factor = kUpsampleFactor;
+  high.paste(upsampleFrame(low, high, settings), 0, 0);
+  const std::vector<float>& flagged = high.channel("rerender.Y");
+  std::vector<uint8_t> mask(flagged.size());
+  std::transform(flagged.begin(), flagged.end(), mask.begin(), [](float v) { return v > 0.5f ? 1 : 0; });
+  TaskOutput output;
+  requestRerender(lease.spec(), frame, mask, output);
+  output.chunk = encodeExr(high);
+  return output;
+}
+
+}  // namespace pathfarm::farm
