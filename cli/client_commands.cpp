@@ -1,4 +1,4 @@
-// `pathfarm submit | status | watch | fetch | cancel | pause | resume | workers`: thin
+// `pathfarm submit | status | watch | fetch | report | cancel | pause | resume | workers`: thin
 // calls through FarmClient.
 #include <spdlog/spdlog.h>
 
@@ -11,6 +11,7 @@
 #include "renderer/scene/json_node.h"
 #include "scheduler/farm_client.h"
 #include "scheduler/shot_file.h"
+#include "scheduler/shot_report.h"
 
 namespace pathfarm {
 namespace {
@@ -21,6 +22,7 @@ struct ClientArguments {
   std::string shotFile;
   int64_t shotId = 0;
   std::string out;
+  bool json = false;
 };
 
 void addConnectionOptions(CLI::App* command, ClientArguments& arguments) {
@@ -104,6 +106,18 @@ std::vector<Command> addClientCommands(CLI::App& app) {
         if (summary.state() != farm::SHOT_DONE)
           spdlog::warn("shot {} is {}: fetched the {} frames finished so far", a.shotId,
                        farm::ShotState_Name(summary.state()), files.size());
+        return kExitOk;
+      });
+  add("report", "a shot's speed against error: core-seconds per stage, re-render rates, errors",
+      [](CLI::App* c, ClientArguments& a) {
+        c->add_option("id", a.shotId, "shot id")->required();
+        c->add_option("--out", a.out, "also write report.json and report.md into this folder");
+        c->add_flag("--json", a.json, "print JSON instead of Markdown");
+      },
+      [](farm::FarmClient& client, const ClientArguments& a) {
+        const farm::ShotReport report = client.report(a.shotId);
+        std::printf("%s", (a.json ? farm::reportJson(report) : farm::reportMarkdown(report)).c_str());
+        if (!a.out.empty()) farm::writeReportFiles(report, a.out);
         return kExitOk;
       });
   const auto control = [&](const char* name, const char* description, auto call) {

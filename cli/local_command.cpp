@@ -10,6 +10,7 @@
 #include "renderer/scene/json_node.h"
 #include "scheduler/local_farm.h"
 #include "scheduler/shot_file.h"
+#include "scheduler/shot_report.h"
 
 namespace pathfarm {
 namespace {
@@ -42,9 +43,13 @@ int runLocal(const LocalArguments& arguments) {
       summary = client.watch(id, [&](const farm::ShotSummary& s) { progress.update(s); });
     }
     const auto files = client.fetch(id, out);
+    const farm::ShotReport report = client.report(id);
     farm.stop();
+    farm::writeReportFiles(report, out);
     spdlog::info("{}", describeShot(summary));
-    spdlog::info("{} EXR frames in {}", files.size(), out.string());
+    spdlog::info("{} EXR frames in {}; report.md and report.json there too", files.size(), out.string());
+    spdlog::info("relative cost {:.3f} (resolution gain {:.2f}, overhead {:.2f}), re-render rate {:.1f}%",
+                 report.relative_cost(), report.resolution_gain(), report.overhead(), 100 * report.rerender_rate());
     return summary.state() == farm::SHOT_DONE ? kExitOk : kExitFailure;
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());

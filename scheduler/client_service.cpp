@@ -3,6 +3,7 @@
 
 #include "proto/wire/chunk_transfer.h"
 #include "scheduler/service_guard.h"
+#include "scheduler/shot_report.h"
 
 namespace pathfarm::farm {
 grpc::Status ClientServiceImpl::Submit(grpc::ServerContext* context, const SubmitRequest* request,
@@ -26,6 +27,16 @@ grpc::Status ClientServiceImpl::ListShots(grpc::ServerContext* context, const Li
 grpc::Status ClientServiceImpl::GetShot(grpc::ServerContext* context, const ShotRequest* request, ShotReply* reply) {
   return guarded(c_, context, [&] {
     *reply = c_.state.shot(request->shot_id(), wallClockSeconds());
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status ClientServiceImpl::GetReport(grpc::ServerContext* context, const ShotRequest* request,
+                                          ShotReport* reply) {
+  return guarded(c_, context, [&] {
+    const ShotSummary summary = c_.state.summary(request->shot_id(), wallClockSeconds());
+    const auto [spec, tasks] = c_.state.taskRecords(request->shot_id());
+    *reply = buildReport(summary, spec, tasks);
     return grpc::Status::OK;
   });
 }

@@ -54,6 +54,14 @@ ShotReply FarmClient::shot(int64_t id) {
   return reply;
 }
 
+ShotReport FarmClient::report(int64_t id) {
+  ShotRequest request;
+  request.set_shot_id(id);
+  ShotReport reply;
+  check(stub_->GetReport(context(false).get(), request, &reply));
+  return reply;
+}
+
 ShotSummary FarmClient::watch(int64_t id, const std::function<void(const ShotSummary&)>& update) {
   ShotRequest request;
   request.set_shot_id(id);

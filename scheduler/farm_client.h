@@ -29,6 +29,7 @@ class FarmClient {
   int64_t submit(const ShotSpec& spec);
   std::vector<ShotSummary> shots();
   ShotReply shot(int64_t id);
+  ShotReport report(int64_t id);
   // Calls `update` with each summary until the shot ends; returns the last one.
   ShotSummary watch(int64_t id, const std::function<void(const ShotSummary&)>& update);
   ShotSummary cancel(int64_t id);

@@ -38,6 +38,7 @@ class ClientServiceImpl final : public ClientService::Service {
   grpc::Status Submit(grpc::ServerContext*, const SubmitRequest*, SubmitReply*) override;
   grpc::Status ListShots(grpc::ServerContext*, const ListShotsRequest*, ListShotsReply*) override;
   grpc::Status GetShot(grpc::ServerContext*, const ShotRequest*, ShotReply*) override;
+  grpc::Status GetReport(grpc::ServerContext*, const ShotRequest*, ShotReport*) override;
   grpc::Status WatchShot(grpc::ServerContext*, const ShotRequest*, grpc::ServerWriter<ShotSummary>*) override;
   grpc::Status CancelShot(grpc::ServerContext*, const ShotRequest*, ControlReply*) override;
   grpc::Status PauseShot(grpc::ServerContext*, const ShotRequest*, ControlReply*) override;

@@ -4,10 +4,60 @@
 #include <sstream>
 
 #include "renderer/decomposition/auto_decomposition.h"
+#include "scheduler/keyframe_probe.h"
+#include "scheduler/planner.h"
 #include "renderer/scene/json_node.h"
 #include "renderer/scene/scene_loader.h"
 
 namespace pathfarm::farm {
+namespace {
+
+constexpr double kDefaultRerenderBound = 0.25;
+
+// The frames measured for the report: two neighbours in the middle of the shot (the first
+// an in-between frame when keyframes are k > 1 apart), so that the temporal error has a pair.
+std::vector<int64_t> defaultEvaluationFrames(const ShotSpec& spec) {
+  const int64_t middle = spec.frame_start() + (spec.frame_end() - spec.frame_start()) / 2;
+  const int64_t first = middle == spec.frame_start() && middle < spec.frame_end() ? middle + 1 : middle;
+  std::vector<int64_t> frames = {first};
+  if (first + 1 <= spec.frame_end()) frames.push_back(first + 1);
+  return frames;
+}
+
+void readFilteringKeys(const JsonNode& root, const Scene& scene, ShotSpec& spec) {
+  spec.set_feature_spp(root.has("feature_spp") ? root["feature_spp"].integer(1, 1 << 20) : 4);
+  if (!stagesOf(spec.pipeline()).interpolate) {
+    spec.set_keyframe_interval(1);
+    spec.set_keyframe_reason("k = 1: the pipeline does not interpolate");
+    return;
+  }
+  const double bound = root.has("rerender_bound") ? root["rerender_bound"].number(0.0, 1.0) : kDefaultRerenderBound;
+  const auto interval = root.optional("keyframe_interval");
+  if (interval && !(interval->isString() && interval->string() == "auto")) {
+    spec.set_keyframe_interval(interval->integer(1, 1000));
+    spec.set_keyframe_reason("k = " + std::to_string(spec.keyframe_interval()) + ": given in the shot file");
+    return;
+  }
+  const KeyframeChoice choice = chooseKeyframeInterval(scene, spec, bound);
+  spec.set_keyframe_interval(choice.interval);
+  spec.set_keyframe_reason(choice.reason);
+}
+
+void readEvaluationKeys(const JsonNode& root, ShotSpec& spec) {
+  spec.set_reference_spp(root.has("reference_spp") ? root["reference_spp"].integer(1, 1 << 24) : 0);
+  if (root.has("baseline_core_seconds")) spec.set_baseline_core_seconds(root["baseline_core_seconds"].number(1e-9, 1e12));
+  if (auto frames = root.optional("evaluation_frames")) {
+    for (const JsonNode& frame : frames->elements()) {
+      const int64_t value = frame.integer(0, 10'000'000);
+      if (value < spec.frame_start() || value > spec.frame_end()) frame.fail("not a frame of the shot");
+      spec.add_evaluation_frames(value);
+    }
+  } else if (isFilteringPipeline(spec.pipeline()) || spec.reference_spp() > 0) {
+    for (const int64_t frame : defaultEvaluationFrames(spec)) spec.add_evaluation_frames(frame);
+  }
+}
+
+}  // namespace
 
 ShotSpec loadShotFile(const std::filesystem::path& file) {
   const std::string label = file.string();
@@ -23,14 +73,16 @@ ShotSpec loadShotFile(const std::filesystem::path& file) {
   }
   const JsonNode root(document, "", label);
   root.expectKeys({"name", "scene", "frames", "resolution", "spp", "max_depth", "pipeline", "tile", "output",
-                   "priority", "max_attempts", "noop_tasks", "decompose"});
+                   "priority", "max_attempts", "noop_tasks", "decompose", "keyframe_interval", "rerender_bound",
+                   "feature_spp", "reference_spp", "evaluation_frames", "baseline_core_seconds"});
   const std::filesystem::path folder = std::filesystem::absolute(file).parent_path();
 
   ShotSpec spec;
   spec.set_name(root.has("name") ? root["name"].string() : file.stem().string());
-  spec.set_pipeline(root.has("pipeline") ? root["pipeline"].string() : "pt");
-  if (spec.pipeline() != "pt" && spec.pipeline() != "noop")
-    root["pipeline"].fail("unknown pipeline \"" + spec.pipeline() + "\" (this farm runs: pt, noop)");
+  spec.set_pipeline(root.has("pipeline") ? root["pipeline"].string() : "dui");
+  const bool filtering = isFilteringPipeline(spec.pipeline());
+  if (spec.pipeline() != "pt" && spec.pipeline() != "noop" && !filtering)
+    root["pipeline"].fail("unknown pipeline \"" + spec.pipeline() + "\" (this farm runs: pt, d, du, di, dui, noop)");
   spec.set_priority(root.has("priority") ? root["priority"].integer(-1000, 1000) : 0);
   spec.set_max_attempts(root.has("max_attempts") ? root["max_attempts"].integer(1, 100) : 3);
   spec.set_tile(root.has("tile") ? root["tile"].integer(8, 4096) : 64);
@@ -63,14 +115,24 @@ ShotSpec loadShotFile(const std::filesystem::path& file) {
   }
   spec.set_spp(root.has("spp") ? root["spp"].integer(1, 1 << 20) : scene.defaults.spp);
   spec.set_max_depth(root.has("max_depth") ? root["max_depth"].integer(0, 1024) : scene.defaults.maxDepth);
-  if (auto decompose = root.optional("decompose")) {
-    try {
-      // Resolved here, once: every worker then splits the frames the same way.
-      const auto decomposition = decompositionFor(scene, decompose->string());
-      spec.set_decompose(decomposition ? decomposition->describe() : "none");
-    } catch (const std::invalid_argument& e) {
-      decompose->fail(e.what());
-    }
+  // Resolved here, once: every worker then splits the frames the same way. Filtering
+  // pipelines split by default into what the scene can produce.
+  const auto decompose = root.optional("decompose");
+  const std::string decomposeText = decompose ? decompose->string() : filtering ? "auto" : "none";
+  try {
+    const auto decomposition = decompositionFor(scene, decomposeText);
+    spec.set_decompose(decomposition ? decomposition->describe() : "none");
+  } catch (const std::invalid_argument& e) {
+    if (!decompose) throw SceneError(label + ": decompose: " + e.what());
+    decompose->fail(e.what());
+  }
+  if (filtering && spec.decompose() == "none") root["decompose"].fail("the filtering pipelines need a decomposition");
+  if (filtering) readFilteringKeys(root, scene, spec);
+  readEvaluationKeys(root, spec);
+  try {
+    planShot(spec);  // a shot the farm cannot plan is refused here, naming the reason
+  } catch (const PlanError& e) {
+    root.fail(e.what());
   }
   return spec;
 }

@@ -8,6 +8,7 @@
 #include "postproc/filters/decomposed_frame.h"
 #include "renderer/decomposition/effective_irradiance.h"
 #include "scheduler/planner.h"
+#include "worker/direct_emission.h"
 #include "worker/filter_inputs.h"
 
 namespace pathfarm::farm {
@@ -54,6 +55,9 @@ TaskOutput runDenoiseTask(const Lease& lease, const std::vector<TaskInput>& inpu
     next = inputOf(inputs, TASK_ASSEMBLE_FRAME, after).image;
     if (after - frame > 1) takeChainedMotion(current, inputOf(inputs, TASK_MOTION, frame).image, "forward", "motion");
   }
+  const FrameImage emission = takeDirectEmission(current);
+  if (previous) takeDirectEmission(*previous);
+  if (next) takeDirectEmission(*next);
   if (upsample) {
     current = boxDownsample(current, kUpsampleFactor);
     if (previous) previous = boxDownsample(*previous, kUpsampleFactor);
@@ -73,6 +77,8 @@ TaskOutput runDenoiseTask(const Lease& lease, const std::vector<TaskInput>& inpu
       for (size_t p = 0; p < irradiance.size(); ++p) irradiance[p] = effectiveIrradiance(color[p], reflectance[p]);
     }
   }
+  // Upsampling adds the light back at full resolution (runUpsampleTask).
+  if (!upsample) addDirectEmission(current, emission);
   TaskOutput output;
   output.chunk = encodeExr(current);
   return output;
@@ -82,9 +88,11 @@ TaskOutput runUpsampleTask(const Lease& lease, const std::vector<TaskInput>& inp
   const int64_t frame = lease.params().frame();
   const FrameImage& low = inputOf(inputs, TASK_DENOISE, frame).image;
   FrameImage high = inputOf(inputs, TASK_ASSEMBLE_FRAME, frame).image;
+  const FrameImage emission = takeDirectEmission(high);
   UpsampleSettings settings;
   settings.guided.factor = kUpsampleFactor;
   high.paste(upsampleFrame(low, high, settings), 0, 0);
+  addDirectEmission(high, emission);
   const std::vector<float>& flagged = high.channel("rerender.Y");
   std::vector<uint8_t> mask(flagged.size());
   std::transform(flagged.begin(), flagged.end(), mask.begin(), [](float v) { return v > 0.5f ? 1 : 0; });

@@ -134,7 +134,7 @@ FrameImage upsampleFrame(const FrameImage& low, const FrameImage& highFeatures, 
   FrameImage out(width, height);
   out.attributes() = low.attributes();
   for (const char* name : kRgb) out.addChannel(name);
-  std::vector<float> rerender(out.pixelCount(), 0.0f);
+  std::vector<float> clamped(out.pixelCount(), 0.0f);  // color lost to clamping, summed over components
 
   for (size_t k = 0; k < components.size(); ++k) {
     const std::string& c = components[k];
@@ -145,8 +145,10 @@ FrameImage upsampleFrame(const FrameImage& low, const FrameImage& highFeatures, 
     for (const std::string& name : job.guide) guide.channels.push_back(highFeatures.channel(name));
 
     const GuidedUpsampleResult up = guidedUpsample(lowIrradiance, guide, settings.guided);
-    for (size_t i = 0; i < rerender.size(); ++i)
-      if (up.rerender[i] != 0.0f) rerender[i] = 1.0f;
+    // Green, the channel luminance weighs most, scales the lost irradiance to color.
+    const std::vector<float>& reflectanceG = highFeatures.channel(job.reflectance[1]);
+    for (size_t i = 0; i < clamped.size(); ++i)
+      if (up.rerender[i] != 0.0f) clamped[i] += modulateIrradiance(up.deficit[i], reflectanceG[i]);
     for (int j = 0; j < 3; ++j) {
       const std::vector<float>& irradiance = up.image.channels[static_cast<size_t>(j)];
       const std::vector<float>& reflectance = highFeatures.channel(job.reflectance[static_cast<size_t>(j)]);
@@ -160,8 +162,16 @@ FrameImage upsampleFrame(const FrameImage& low, const FrameImage& highFeatures, 
     }
   }
 
+  std::vector<float> rerender(out.pixelCount(), 0.0f);
   size_t rerenderPixels = 0;
-  for (const float flag : rerender) rerenderPixels += flag != 0.0f ? 1 : 0;
+  const std::vector<float>&r = out.channel("R"), &g = out.channel("G"), &b = out.channel("B");
+  for (size_t i = 0; i < rerender.size(); ++i) {
+    const float luminance = 0.2126f * r[i] + 0.7152f * g[i] + 0.0722f * b[i];
+    if (clamped[i] > settings.significance * std::max(luminance, 1e-6f)) {
+      rerender[i] = 1.0f;
+      ++rerenderPixels;
+    }
+  }
   out.addChannel("rerender.Y") = std::move(rerender);
   out.attributes()["pathfarm.rerender_pixels"] = std::to_string(rerenderPixels);
   out.attributes()["pathfarm.upsample"] = describeSettings(settings);

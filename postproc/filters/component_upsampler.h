@@ -17,6 +17,11 @@ struct UpsampleSettings {
   // The guide of component c: the channels of "<c>.<buffer>.*" in the full-resolution
   // features, for each buffer in this order (reflectance R G B, normal X Y Z, emission R G B).
   std::vector<std::string> guideBuffers = {"reflectance", "normal", "emission"};
+  // A pixel is flagged for re-rendering when the color clamped away from its components'
+  // negative upsampled irradiance (luminance, summed over the components) exceeds this
+  // fraction of its beauty's luminance: a linear fit's slight undershoot near zero costs
+  // no re-render, a real failure does.
+  float significance = 0.02f;
 };
 
 // Upsamples a decomposed frame by settings.guided.factor.
@@ -29,9 +34,9 @@ struct UpsampleSettings {
 // The result (full resolution) holds, in this order: beauty "R","G","B" (the sum of the
 // components), per component "<c>.color.R/G/B" = modulateIrradiance(upsampled irradiance,
 // full-resolution reflectance) and "<c>.irradiance.R/G/B" (upsampled), and "rerender.Y":
-// 1 where any component's upsampled irradiance came out negative (those channels are set to
-// 0). Attributes: those of `low`, "pathfarm.rerender_pixels" (the number of rerender
-// pixels) and "pathfarm.upsample" (the method and settings). Feature channels are not
+// 1 where the components' upsampled irradiance came out significantly negative (see
+// UpsampleSettings::significance; negative channels are set to 0 in any case). Attributes:
+// those of `low`, "pathfarm.rerender_pixels" (the number of rerender pixels) and "pathfarm.upsample" (the method and settings). Feature channels are not
 // copied; `FrameImage out = highFeatures; out.paste(result, 0, 0);` merges them.
 // Throws std::invalid_argument naming the missing channel, or when the sizes do not fit
 // the factor, or (from guidedUpsample) for settings out of range.

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <mutex>
 #include <stdexcept>
 #include <string>
@@ -279,17 +280,20 @@ class Upsampler {
       const double inverseCount = 1.0 / (static_cast<double>(columns) * rows);
       const size_t i = row + static_cast<size_t>(x);
       bool negative = false;
+      float deficit = 0.0f;
       for (int j = 0; j < m_; ++j) {
         double q = sums[n_ * m_ + j];
         for (int c = 0; c < n_; ++c) q += sums[c * m_ + j] * guide_.channels[static_cast<size_t>(c)][i];
         auto value = static_cast<float>(q * inverseCount);
         if (!(value >= 0.0f)) {  // negative or NaN
+          deficit = std::max(deficit, std::isnan(value) ? std::numeric_limits<float>::infinity() : -value);
           value = 0.0f;
           negative = true;
         }
         result_.image.channels[static_cast<size_t>(j)][i] = value;
       }
       result_.rerender[i] = negative ? 1.0f : 0.0f;
+      result_.deficit[i] = deficit;
     });
   }
 
@@ -325,6 +329,7 @@ GuidedUpsampleResult guidedUpsample(const Planes& low, const Planes& guide, cons
   GuidedUpsampleResult result;
   result.image = Planes(guide.width, guide.height, static_cast<int>(low.channels.size()));
   result.rerender.assign(guide.pixelCount(), 0.0f);
+  result.deficit.assign(guide.pixelCount(), 0.0f);
   if (guide.pixelCount() == 0) return result;
 
   const Upsampler upsampler(low, guide, settings, result);

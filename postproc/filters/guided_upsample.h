@@ -40,6 +40,7 @@ struct GuidedUpsampleResult {
   Planes image;                 // full resolution, the channels of `low`
   std::vector<float> rerender;  // per pixel, 1 where a channel came out negative or NaN
                                 // (those channels are then set to 0; the others are kept)
+  std::vector<float> deficit;   // per pixel, the largest amount clamped away (+inf for NaN)
   size_t negativePixels = 0;    // the number of pixels with rerender == 1
 };
 

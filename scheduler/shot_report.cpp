@@ -1,0 +1,218 @@
+#include "scheduler/shot_report.h"
+
+#include <google/protobuf/util/json_util.h>
+
+#include <array>
+#include <cstdio>
+#include <map>
+
+#include "image/atomic_file.h"
+#include "scheduler/planner.h"
+
+namespace pathfarm::farm {
+namespace {
+
+constexpr std::array<const char*, 6> kStages = {"render", "denoise", "upsample", "interpolate", "re-render", "composite"};
+constexpr const char* kMeasurement = "measurement";
+
+// The stage a task's cost belongs to; the baseline, the reference and the evaluation are
+// measurement, not part of the shot's cost.
+std::string stageOf(const TaskRecord& task) {
+  switch (task.kind) {
+    case TASK_RENDER_TILE:
+    case TASK_ASSEMBLE_FRAME:
+      switch (task.params.role()) {
+        case ROLE_RERENDER:
+          return "re-render";
+        case ROLE_BASELINE:
+        case ROLE_REFERENCE:
+          return kMeasurement;
+        default:
+          return "render";
+      }
+    case TASK_DENOISE:
+      return "denoise";
+    case TASK_UPSAMPLE:
+      return "upsample";
+    case TASK_MOTION:
+    case TASK_FLOW:
+    case TASK_INTERPOLATE:
+      return "interpolate";
+    case TASK_COMPOSITE:
+      return "composite";
+    default:
+      return kMeasurement;
+  }
+}
+
+double metric(const TaskRecord& task, const std::string& name) {
+  const auto found = task.metrics.find(name);
+  return found == task.metrics.end() ? 0.0 : found->second;
+}
+
+std::string format(const char* pattern, double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, pattern, value);
+  return text;
+}
+
+}  // namespace
+
+ShotReport buildReport(const ShotSummary& summary, const ShotSpec& spec, const std::vector<TaskRecord>& tasks) {
+  ShotReport report;
+  report.set_shot_id(summary.id());
+  report.set_name(spec.name());
+  report.set_state(summary.state());
+  report.set_pipeline(spec.pipeline());
+  report.set_frames(spec.frame_end() - spec.frame_start() + 1);
+  report.set_width(spec.width());
+  report.set_height(spec.height());
+  report.set_spp(spec.spp());
+  const bool filtering = isFilteringPipeline(spec.pipeline());
+  report.set_keyframes(filtering ? static_cast<int64_t>(keyframesOf(spec).size()) : report.frames());
+  report.set_keyframe_interval(filtering ? spec.keyframe_interval() : 1);
+  report.set_keyframe_reason(filtering ? spec.keyframe_reason() : "every frame is rendered");
+  report.set_tasks_total(static_cast<int64_t>(tasks.size()));
+  report.set_reference_spp(spec.reference_spp());
+  for (const int64_t frame : spec.evaluation_frames()) report.add_evaluation_frames(frame);
+
+  std::map<std::string, StageCost> stages;
+  double baselineSeconds = 0, interpolationRerender = 0, upsampleRerender = 0;
+  int64_t interpolated = 0, upsampled = 0;
+  std::map<int64_t, bool> baselineFrames;
+  std::map<std::string, double> errors;
+  for (const TaskRecord& task : tasks) {
+    if (!task.done) continue;
+    report.set_tasks_done(report.tasks_done() + 1);
+    const std::string stage = stageOf(task);
+    if (stage == kMeasurement) {
+      report.set_measurement_core_seconds(report.measurement_core_seconds() + task.coreSeconds);
+    } else {
+      StageCost& cost = stages[stage];
+      cost.set_tasks(cost.tasks() + 1);
+      cost.set_core_seconds(cost.core_seconds() + task.coreSeconds);
+      report.set_core_seconds(report.core_seconds() + task.coreSeconds);
+    }
+    if (task.kind == TASK_RENDER_TILE && stage != kMeasurement)
+      report.set_samples_traced(report.samples_traced() + metric(task, "samples"));
+    if (task.params.role() == ROLE_BASELINE) {
+      baselineSeconds += task.coreSeconds;
+      if (task.kind == TASK_ASSEMBLE_FRAME) baselineFrames[task.params.frame()] = true;
+    }
+    if (task.kind == TASK_INTERPOLATE) {
+      interpolationRerender += metric(task, "rerender_pixels");
+      ++interpolated;
+    }
+    if (task.kind == TASK_UPSAMPLE) {
+      upsampleRerender += metric(task, "rerender_pixels");
+      ++upsampled;
+    }
+    if (task.kind == TASK_COMPOSITE)
+      report.set_rerender_pixels(report.rerender_pixels() + static_cast<int64_t>(metric(task, "rerender_pixels")));
+    if (task.kind == TASK_EVALUATE) errors = task.metrics;
+  }
+
+  const double frames = static_cast<double>(report.frames());
+  const double pixels = static_cast<double>(spec.width()) * spec.height();
+  for (const char* name : kStages) {
+    if (!stages.count(name)) continue;
+    StageCost cost = stages.at(name);
+    cost.set_stage(name);
+    cost.set_core_seconds_per_frame(cost.core_seconds() / frames);
+    *report.add_stages() = cost;
+  }
+  report.set_core_seconds_per_frame(report.core_seconds() / frames);
+  if (!filtering) {
+    report.set_baseline_core_seconds_per_frame(report.core_seconds_per_frame());
+    report.set_baseline_source("the shot itself: plain path tracing");
+  } else if (spec.baseline_core_seconds() > 0) {
+    report.set_baseline_core_seconds_per_frame(spec.baseline_core_seconds());
+    report.set_baseline_source("given in the shot");
+  } else if (!baselineFrames.empty()) {
+    report.set_baseline_core_seconds_per_frame(baselineSeconds / static_cast<double>(baselineFrames.size()));
+    report.set_baseline_source("measured: pt at " + std::to_string(spec.spp()) + " spp on " +
+                               std::to_string(baselineFrames.size()) + " frame(s)");
+  } else {
+    report.set_baseline_source("not measured yet");
+  }
+  if (report.samples_traced() > 0)
+    report.set_resolution_gain(frames * pixels * spec.spp() / report.samples_traced());
+  if (report.baseline_core_seconds_per_frame() > 0) {
+    report.set_relative_cost(report.core_seconds_per_frame() / report.baseline_core_seconds_per_frame());
+    report.set_overhead(report.relative_cost() * report.resolution_gain());
+  }
+  report.set_rerender_rate(static_cast<double>(report.rerender_pixels()) / (frames * pixels));
+  if (interpolated > 0) report.set_interpolation_rerender_rate(interpolationRerender / (interpolated * pixels));
+  if (upsampled > 0) report.set_upsample_rerender_rate(upsampleRerender / (upsampled * pixels));
+
+  report.set_temporal_error(-1);
+  report.set_baseline_temporal_error(-1);
+  for (const char* stage : {"render", "denoise", "upsample", "interpolate", "final", "baseline"}) {
+    const auto found = errors.find(std::string("relmse.") + stage);
+    if (found == errors.end()) continue;
+    StageError* error = report.add_errors();
+    error->set_stage(stage);
+    error->set_relmse(found->second);
+  }
+  if (errors.count("temporal.final")) report.set_temporal_error(errors.at("temporal.final"));
+  if (errors.count("temporal.baseline")) report.set_baseline_temporal_error(errors.at("temporal.baseline"));
+  return report;
+}
+
+std::string reportJson(const ShotReport& report) {
+  std::string json;
+  google::protobuf::util::JsonPrintOptions options;
+  options.add_whitespace = true;
+  options.always_print_primitive_fields = true;
+  options.preserve_proto_field_names = true;
+  const auto status = google::protobuf::util::MessageToJsonString(report, &json, options);
+  if (!status.ok()) throw std::runtime_error("cannot write the report as JSON: " + status.ToString());
+  return json;
+}
+
+std::string reportMarkdown(const ShotReport& r) {
+  std::string md = "# Shot " + std::to_string(r.shot_id()) + " \"" + r.name() + "\": speed against error\n\n";
+  md += "Pipeline `" + r.pipeline() + "`, " + std::to_string(r.frames()) + " frames at " + std::to_string(r.width()) +
+        "x" + std::to_string(r.height()) + ", " + std::to_string(r.spp()) + " spp; state " + ShotState_Name(r.state()) +
+        ", " + std::to_string(r.tasks_done()) + " of " + std::to_string(r.tasks_total()) + " tasks done.\n\n";
+  md += "Keyframes: " + std::to_string(r.keyframes()) + " (" + r.keyframe_reason() + ").\n\n";
+  md += "| stage | tasks | core-seconds | core-seconds per frame | share |\n| --- | ---: | ---: | ---: | ---: |\n";
+  for (const StageCost& s : r.stages())
+    md += "| " + s.stage() + " | " + std::to_string(s.tasks()) + " | " + format("%.2f", s.core_seconds()) + " | " +
+          format("%.3f", s.core_seconds_per_frame()) + " | " +
+          format("%.1f%%", r.core_seconds() > 0 ? 100.0 * s.core_seconds() / r.core_seconds() : 0.0) + " |\n";
+  md += "| **total** | | " + format("%.2f", r.core_seconds()) + " | " + format("%.3f", r.core_seconds_per_frame()) +
+        " | |\n\n";
+  md += "| figure | value |\n| --- | ---: |\n";
+  md += "| plain pt core-seconds per frame (" + r.baseline_source() + ") | " +
+        format("%.3f", r.baseline_core_seconds_per_frame()) + " |\n";
+  md += "| resolution gain (pixel-samples of pt / traced) | " + format("%.2f", r.resolution_gain()) + " |\n";
+  md += "| overhead (relative cost x resolution gain) | " + format("%.2f", r.overhead()) + " |\n";
+  md += "| **relative cost** (core-seconds per frame / pt's) | " + format("%.3f", r.relative_cost()) + " |\n";
+  md += "| re-render rate, all frames | " + format("%.2f%%", 100 * r.rerender_rate()) + " |\n";
+  md += "| re-render rate, interpolated frames | " + format("%.2f%%", 100 * r.interpolation_rerender_rate()) + " |\n";
+  md += "| re-render rate, upsampled keyframes | " + format("%.2f%%", 100 * r.upsample_rerender_rate()) + " |\n";
+  md += "| measurement core-seconds (baseline, reference, evaluation; not in the cost) | " +
+        format("%.2f", r.measurement_core_seconds()) + " |\n\n";
+  if (r.errors().empty()) {
+    md += "No error figures: the shot names no `reference_spp`.\n";
+    return md;
+  }
+  md += "Errors against pt at " + std::to_string(r.reference_spp()) + " spp on frames";
+  for (const int64_t frame : r.evaluation_frames()) md += " " + std::to_string(frame);
+  md += " (relMSE of the beauty):\n\n| stage | relMSE |\n| --- | ---: |\n";
+  for (const StageError& e : r.errors()) md += "| " + e.stage() + " | " + format("%.5f", e.relmse()) + " |\n";
+  if (r.temporal_error() >= 0)
+    md += "| temporal error, final | " + format("%.5f", r.temporal_error()) + " |\n";
+  if (r.baseline_temporal_error() >= 0)
+    md += "| temporal error, baseline pt | " + format("%.5f", r.baseline_temporal_error()) + " |\n";
+  return md;
+}
+
+void writeReportFiles(const ShotReport& report, const std::filesystem::path& folder) {
+  std::filesystem::create_directories(folder);
+  writeFileAtomically(folder / "report.json", reportJson(report));
+  writeFileAtomically(folder / "report.md", reportMarkdown(report));
+}
+
+}  // namespace pathfarm::farm
