@@ -101,6 +101,8 @@ ShotReport buildReport(const ShotSummary& summary, const ShotSpec& spec, const s
     }
     if (task.kind == TASK_INTERPOLATE) {
       interpolationRerender += metric(task, "rerender_pixels");
+      for (const char* cause : {"holes", "silhouettes", "untracked", "illumination"})
+        (*report.mutable_interpolation_rerender_causes())[cause] += metric(task, std::string("rerender_") + cause);
       ++interpolated;
     }
     if (task.kind == TASK_UPSAMPLE) {
@@ -142,7 +144,10 @@ ShotReport buildReport(const ShotSummary& summary, const ShotSpec& spec, const s
     report.set_overhead(report.relative_cost() * report.resolution_gain());
   }
   report.set_rerender_rate(static_cast<double>(report.rerender_pixels()) / (frames * pixels));
-  if (interpolated > 0) report.set_interpolation_rerender_rate(interpolationRerender / (interpolated * pixels));
+  if (interpolated > 0) {
+    report.set_interpolation_rerender_rate(interpolationRerender / (interpolated * pixels));
+    for (auto& [cause, share] : *report.mutable_interpolation_rerender_causes()) share /= interpolated * pixels;
+  }
   if (upsampled > 0) report.set_upsample_rerender_rate(upsampleRerender / (upsampled * pixels));
 
   report.set_temporal_error(-1);
@@ -191,6 +196,8 @@ std::string reportMarkdown(const ShotReport& r) {
   md += "| **relative cost** (core-seconds per frame / pt's) | " + format("%.3f", r.relative_cost()) + " |\n";
   md += "| re-render rate, all frames | " + format("%.2f%%", 100 * r.rerender_rate()) + " |\n";
   md += "| re-render rate, interpolated frames | " + format("%.2f%%", 100 * r.interpolation_rerender_rate()) + " |\n";
+  for (const auto& [cause, share] : r.interpolation_rerender_causes())
+    md += "| &nbsp; of which " + cause + " | " + format("%.2f%%", 100 * share) + " |\n";
   md += "| re-render rate, upsampled keyframes | " + format("%.2f%%", 100 * r.upsample_rerender_rate()) + " |\n";
   md += "| measurement core-seconds (baseline, reference, evaluation; not in the cost) | " +
         format("%.2f", r.measurement_core_seconds()) + " |\n\n";

@@ -108,6 +108,11 @@ TaskOutput runInterpolateTask(const Lease& lease, const std::vector<TaskInput>& 
       "between keyframes " + std::to_string(before) + " and " + std::to_string(after);
   TaskOutput output;
   requestRerender(lease.spec(), params.frame(), result.mask, output);
+  // Why pixels were flagged (a pixel may have several causes).
+  output.metrics["rerender_holes"] = static_cast<double>(result.holePixels);
+  output.metrics["rerender_silhouettes"] = static_cast<double>(result.silhouettePixels);
+  output.metrics["rerender_untracked"] = static_cast<double>(result.untrackedPixels);
+  output.metrics["rerender_illumination"] = static_cast<double>(result.illuminationPixels);
   output.chunk = encodeExr(result.frame);
   return output;
 }

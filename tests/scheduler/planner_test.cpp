@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <map>
 #include <set>
 
 #include "scheduler/planner.h"
@@ -52,7 +53,9 @@ TEST(Planner, TilesCoverEachFrameOnceAndAssemblyWaitsForThem) {
 
 TEST(Planner, RefusesWhatItCannotRun) {
   ShotSpec spec = renderSpec();
-  spec.set_pipeline("dui");
+  spec.set_pipeline("tgpt-not-yet");
+  EXPECT_THROW(planShot(spec), PlanError);
+  spec.set_pipeline("dui");  // without a decomposition
   EXPECT_THROW(planShot(spec), PlanError);
   spec = renderSpec();
   spec.set_frame_end(2);
@@ -63,6 +66,180 @@ TEST(Planner, RefusesWhatItCannotRun) {
   spec.set_pipeline("noop");
   spec.set_noop_tasks(5);
   EXPECT_EQ(planShot(spec).size(), 5u);
+}
+
+// A filtering shot: frames 10..19 (10 frames) at 64x32 in 32-pixel tiles (2 per frame).
+ShotSpec filteringSpec(const std::string& pipeline, int interval) {
+  ShotSpec spec = renderSpec();
+  spec.set_pipeline(pipeline);
+  spec.set_frame_start(10);
+  spec.set_frame_end(19);
+  spec.set_width(64);
+  spec.set_height(32);
+  spec.set_spp(16);
+  spec.set_feature_spp(2);
+  spec.set_decompose("diffuse_direct=ED,diffuse_indirect=ED.+,reflection=ERD.*,residual");
+  spec.set_keyframe_interval(interval);
+  return spec;
+}
+
+std::map<TaskKind, int> countKinds(const std::vector<PlannedTask>& plan) {
+  std::map<TaskKind, int> counts;
+  for (const PlannedTask& task : plan) ++counts[task.kind];
+  return counts;
+}
+
+// The frames of the tasks `task` depends on that have kind `kind`.
+std::set<int64_t> dependencyFrames(const std::vector<PlannedTask>& plan, const PlannedTask& task, TaskKind kind) {
+  std::set<int64_t> frames;
+  for (const size_t d : task.dependencies)
+    if (plan[d].kind == kind) frames.insert(plan[d].params.frame());
+  return frames;
+}
+
+TEST(Planner, DuiGraphHasEveryStageWithItsEdges) {
+  // k = 4: keyframes 10, 14, 18 and the last frame 19; in-between 11-13 and 15-17.
+  const auto plan = planShot(filteringSpec("dui", 4));
+  auto counts = countKinds(plan);
+  EXPECT_EQ(counts[TASK_RENDER_TILE], 10 * 2);       // 4 keyframes + 6 feature frames
+  EXPECT_EQ(counts[TASK_ASSEMBLE_FRAME], 10);
+  EXPECT_EQ(counts[TASK_MOTION], 2);                  // (10,14), (14,18); 18 -> 19 is adjacent
+  EXPECT_EQ(counts[TASK_DENOISE], 4);
+  EXPECT_EQ(counts[TASK_UPSAMPLE], 4);
+  EXPECT_EQ(counts[TASK_FLOW], 2 * 3);                // diffuse_direct, diffuse_indirect, residual
+  EXPECT_EQ(counts[TASK_INTERPOLATE], 6);
+  EXPECT_EQ(counts[TASK_COMPOSITE], 10);
+  EXPECT_EQ(counts[TASK_EVALUATE], 0);                // no reference asked for
+  int outputs = 0;
+  for (size_t i = 0; i < plan.size(); ++i) {
+    const PlannedTask& task = plan[i];
+    for (const size_t d : task.dependencies) EXPECT_LT(d, i);
+    outputs += task.output;
+    EXPECT_EQ(task.output, task.kind == TASK_COMPOSITE);
+    if (task.kind == TASK_RENDER_TILE) {
+      const bool keyframe = task.params.role() == ROLE_KEYFRAME;
+      EXPECT_EQ(keyframe, task.params.frame() == 10 || task.params.frame() == 14 || task.params.frame() == 18 ||
+                              task.params.frame() == 19);
+      EXPECT_EQ(task.params.spp(), keyframe ? 4 : 2);  // a quarter of the samples; features at feature_spp
+    }
+    if (task.kind == TASK_MOTION) {
+      const int64_t k0 = task.params.keyframe_before();
+      std::set<int64_t> expected;
+      for (int64_t f = k0; f <= k0 + 4; ++f) expected.insert(f);
+      EXPECT_EQ(dependencyFrames(plan, task, TASK_ASSEMBLE_FRAME), expected);
+    }
+    if (task.kind == TASK_DENOISE && task.params.frame() == 14) {
+      EXPECT_EQ(dependencyFrames(plan, task, TASK_ASSEMBLE_FRAME), (std::set<int64_t>{10, 14, 18}));
+      EXPECT_EQ(dependencyFrames(plan, task, TASK_MOTION), (std::set<int64_t>{10, 14}));
+    }
+    if (task.kind == TASK_DENOISE && task.params.frame() == 19) {
+      EXPECT_EQ(dependencyFrames(plan, task, TASK_ASSEMBLE_FRAME), (std::set<int64_t>{18, 19}));
+      EXPECT_TRUE(dependencyFrames(plan, task, TASK_MOTION).empty());
+    }
+    if (task.kind == TASK_INTERPOLATE && task.params.frame() == 16) {
+      EXPECT_EQ(task.params.keyframe_before(), 14);
+      EXPECT_EQ(task.params.keyframe_after(), 18);
+      EXPECT_EQ(dependencyFrames(plan, task, TASK_UPSAMPLE), (std::set<int64_t>{14, 18}));
+      EXPECT_EQ(dependencyFrames(plan, task, TASK_FLOW), (std::set<int64_t>{14}));  // flows are keyed by K0
+      EXPECT_EQ(countKinds([&] {
+                  std::vector<PlannedTask> deps;
+                  for (const size_t d : task.dependencies) deps.push_back(plan[d]);
+                  return deps;
+                }())[TASK_FLOW],
+                3);
+    }
+    if (task.kind == TASK_COMPOSITE) {
+      ASSERT_EQ(task.dependencies.size(), 1u);
+      const TaskKind stage = plan[task.dependencies[0]].kind;
+      const int64_t frame = task.params.frame();
+      const bool keyframe = frame == 10 || frame == 14 || frame == 18 || frame == 19;
+      EXPECT_EQ(stage, keyframe ? TASK_UPSAMPLE : TASK_INTERPOLATE) << "frame " << frame;
+    }
+  }
+  EXPECT_EQ(outputs, 10);
+}
+
+TEST(Planner, EachPipelinePlansOnlyItsStages) {
+  const auto d = countKinds(planShot(filteringSpec("d", 4)));
+  EXPECT_EQ(d.count(TASK_UPSAMPLE) + d.count(TASK_INTERPOLATE) + d.count(TASK_MOTION) + d.count(TASK_FLOW), 0u);
+  EXPECT_EQ(d.at(TASK_DENOISE), 10);  // every frame is a keyframe
+  EXPECT_EQ(d.at(TASK_COMPOSITE), 10);
+  const auto du = countKinds(planShot(filteringSpec("du", 4)));
+  EXPECT_EQ(du.at(TASK_UPSAMPLE), 10);
+  EXPECT_EQ(du.count(TASK_INTERPOLATE), 0u);
+  const auto di = countKinds(planShot(filteringSpec("di", 4)));
+  EXPECT_EQ(di.count(TASK_UPSAMPLE), 0u);
+  EXPECT_EQ(di.at(TASK_INTERPOLATE), 6);
+  for (const PlannedTask& task : planShot(filteringSpec("di", 4)))
+    if (task.kind == TASK_RENDER_TILE && task.params.role() == ROLE_KEYFRAME) EXPECT_EQ(task.params.spp(), 16);
+  // Upsampling needs an even resolution.
+  ShotSpec odd = filteringSpec("du", 4);
+  odd.set_width(63);
+  EXPECT_THROW(planShot(odd), PlanError);
+  odd.set_pipeline("di");
+  EXPECT_NO_THROW(planShot(odd));
+}
+
+TEST(Planner, OneFrameAndShortShotsAreHandled) {
+  ShotSpec one = filteringSpec("dui", 8);
+  one.set_frame_end(10);
+  const auto single = countKinds(planShot(one));
+  EXPECT_EQ(single.at(TASK_DENOISE), 1);
+  EXPECT_EQ(single.at(TASK_COMPOSITE), 1);
+  EXPECT_EQ(single.count(TASK_MOTION) + single.count(TASK_INTERPOLATE), 0u);
+
+  // Shorter than one interval: the first and the last frame are the keyframes.
+  ShotSpec shortShot = filteringSpec("dui", 8);
+  shortShot.set_frame_end(14);
+  EXPECT_EQ(keyframesOf(shortShot), (std::vector<int64_t>{10, 14}));
+  const auto shortCounts = countKinds(planShot(shortShot));
+  EXPECT_EQ(shortCounts.at(TASK_MOTION), 1);
+  EXPECT_EQ(shortCounts.at(TASK_INTERPOLATE), 3);
+  EXPECT_EQ(shortCounts.at(TASK_COMPOSITE), 5);
+
+  // k = 1 interpolates nothing.
+  const auto everyFrame = countKinds(planShot(filteringSpec("dui", 1)));
+  EXPECT_EQ(everyFrame.count(TASK_INTERPOLATE) + everyFrame.count(TASK_MOTION), 0u);
+  EXPECT_EQ(everyFrame.at(TASK_UPSAMPLE), 10);
+}
+
+TEST(Planner, EvaluationAddsBaselineReferenceAndOneEvaluateTask) {
+  ShotSpec spec = filteringSpec("dui", 4);
+  spec.add_evaluation_frames(12);
+  spec.add_evaluation_frames(13);
+  // Without a reference: the baseline's cost is measured on the evaluation frames.
+  auto counts = countKinds(planShot(spec));
+  EXPECT_EQ(counts.count(TASK_EVALUATE), 0u);
+  int baseline = 0;
+  for (const PlannedTask& task : planShot(spec))
+    if (task.params.role() == ROLE_BASELINE) {
+      ++baseline;
+      EXPECT_TRUE(task.params.beauty_only() || task.kind == TASK_ASSEMBLE_FRAME);
+      if (task.kind == TASK_RENDER_TILE) EXPECT_EQ(task.params.spp(), 16);
+    }
+  EXPECT_EQ(baseline, 2 * 3);  // two frames of 2 tiles + assembly
+  spec.set_baseline_core_seconds(12.5);
+  for (const PlannedTask& task : planShot(spec)) EXPECT_NE(task.params.role(), ROLE_BASELINE);
+
+  spec.set_reference_spp(256);
+  const auto plan = planShot(spec);
+  counts = countKinds(plan);
+  ASSERT_EQ(counts.at(TASK_EVALUATE), 1);
+  const PlannedTask& evaluate = plan.back();
+  ASSERT_EQ(evaluate.kind, TASK_EVALUATE);
+  std::map<TaskRole, std::set<int64_t>> byRole;
+  std::set<TaskKind> kinds;
+  for (const size_t d : evaluate.dependencies) {
+    byRole[plan[d].params.role()].insert(plan[d].params.frame());
+    kinds.insert(plan[d].kind);
+  }
+  EXPECT_EQ(byRole[ROLE_REFERENCE], (std::set<int64_t>{12, 13}));
+  EXPECT_EQ(byRole[ROLE_BASELINE], (std::set<int64_t>{12, 13}));
+  EXPECT_EQ(kinds, (std::set<TaskKind>{TASK_ASSEMBLE_FRAME, TASK_INTERPOLATE, TASK_COMPOSITE}));
+
+  spec.clear_evaluation_frames();
+  spec.add_evaluation_frames(25);  // not in the shot
+  EXPECT_THROW(planShot(spec), PlanError);
 }
 
 }  // namespace

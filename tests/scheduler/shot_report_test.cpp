@@ -1,0 +1,105 @@
+#include "scheduler/shot_report.h"
+
+#include <gtest/gtest.h>
+
+namespace pathfarm::farm {
+namespace {
+
+TaskRecord record(TaskKind kind, TaskRole role, int64_t frame, double coreSeconds, bool done = true) {
+  TaskRecord task;
+  task.kind = kind;
+  task.params.set_role(role);
+  task.params.set_frame(frame);
+  task.coreSeconds = coreSeconds;
+  task.done = done;
+  return task;
+}
+
+ShotSpec spec() {
+  ShotSpec s;
+  s.set_name("shot");
+  s.set_pipeline("dui");
+  s.set_frame_start(0);
+  s.set_frame_end(3);
+  s.set_width(10);
+  s.set_height(10);
+  s.set_spp(8);
+  s.set_keyframe_interval(3);
+  s.add_evaluation_frames(1);
+  return s;
+}
+
+TEST(ShotReport, CostsRatesAndErrorsFollowFromTheTasks) {
+  std::vector<TaskRecord> tasks;
+  tasks.push_back(record(TASK_RENDER_TILE, ROLE_KEYFRAME, 0, 2.0));
+  tasks.back().metrics["samples"] = 200;
+  tasks.push_back(record(TASK_ASSEMBLE_FRAME, ROLE_KEYFRAME, 0, 1.0));
+  tasks.push_back(record(TASK_DENOISE, ROLE_UNSPECIFIED, 0, 0.5));
+  tasks.push_back(record(TASK_UPSAMPLE, ROLE_UNSPECIFIED, 0, 9.0, false));  // not done: counts nothing
+  tasks.push_back(record(TASK_INTERPOLATE, ROLE_UNSPECIFIED, 1, 1.0));
+  tasks.back().metrics = {{"rerender_pixels", 10}, {"rerender_holes", 4}};
+  tasks.push_back(record(TASK_RENDER_TILE, ROLE_RERENDER, 1, 0.5));
+  tasks.back().metrics["samples"] = 80;
+  tasks.push_back(record(TASK_COMPOSITE, ROLE_UNSPECIFIED, 1, 0.5));
+  tasks.back().metrics["rerender_pixels"] = 10;
+  tasks.push_back(record(TASK_RENDER_TILE, ROLE_BASELINE, 1, 3.0));
+  tasks.back().metrics["samples"] = 800;  // measurement: not traced for the output
+  tasks.push_back(record(TASK_ASSEMBLE_FRAME, ROLE_BASELINE, 1, 1.0));
+  tasks.push_back(record(TASK_EVALUATE, ROLE_UNSPECIFIED, 0, 0.25));
+  tasks.back().metrics = {{"relmse.final", 0.01}, {"relmse.baseline", 0.03}, {"temporal.final", 0.02}};
+
+  ShotSummary summary;
+  summary.set_id(7);
+  summary.set_state(SHOT_DONE);
+  const ShotReport report = buildReport(summary, spec(), tasks);
+
+  EXPECT_EQ(report.tasks_done(), 9);
+  EXPECT_EQ(report.tasks_total(), 10);
+  EXPECT_EQ(report.keyframes(), 2);  // frames 0 and 3
+  const double total = 2.0 + 1.0 + 0.5 + 1.0 + 0.5 + 0.5;
+  EXPECT_DOUBLE_EQ(report.core_seconds(), total);
+  EXPECT_DOUBLE_EQ(report.core_seconds_per_frame(), total / 4);
+  EXPECT_DOUBLE_EQ(report.baseline_core_seconds_per_frame(), 4.0);  // (3 + 1) core-seconds for 1 frame
+  EXPECT_DOUBLE_EQ(report.relative_cost(), total / 4 / 4.0);
+  EXPECT_DOUBLE_EQ(report.samples_traced(), 280);
+  EXPECT_DOUBLE_EQ(report.resolution_gain(), 4.0 * 100 * 8 / 280);
+  EXPECT_DOUBLE_EQ(report.overhead(), report.relative_cost() * report.resolution_gain());
+  EXPECT_DOUBLE_EQ(report.measurement_core_seconds(), 3.0 + 1.0 + 0.25);
+  EXPECT_DOUBLE_EQ(report.rerender_rate(), 10.0 / 400);
+  EXPECT_DOUBLE_EQ(report.interpolation_rerender_rate(), 10.0 / 100);
+  EXPECT_DOUBLE_EQ(report.interpolation_rerender_causes().at("holes"), 0.04);
+  ASSERT_EQ(report.stages_size(), 5);  // render, denoise, interpolate, re-render, composite: no upsample done
+  EXPECT_EQ(report.stages(0).stage(), "render");
+  EXPECT_DOUBLE_EQ(report.stages(0).core_seconds(), 3.0);
+  EXPECT_EQ(report.stages(3).stage(), "re-render");
+  ASSERT_EQ(report.errors_size(), 2);
+  EXPECT_EQ(report.errors(0).stage(), "final");
+  EXPECT_DOUBLE_EQ(report.errors(0).relmse(), 0.01);
+  EXPECT_DOUBLE_EQ(report.temporal_error(), 0.02);
+  EXPECT_EQ(report.baseline_temporal_error(), -1);
+
+  const std::string md = reportMarkdown(report);
+  EXPECT_NE(md.find("| **relative cost**"), std::string::npos);
+  EXPECT_NE(md.find("| final | 0.01000 |"), std::string::npos);
+  EXPECT_NE(reportJson(report).find("\"relative_cost\""), std::string::npos);
+}
+
+TEST(ShotReport, APtShotIsItsOwnBaselineAndAGivenCostIsUsed) {
+  ShotSpec pt = spec();
+  pt.set_pipeline("pt");
+  std::vector<TaskRecord> tasks = {record(TASK_RENDER_TILE, ROLE_OUTPUT, 0, 6.0),
+                                   record(TASK_ASSEMBLE_FRAME, ROLE_OUTPUT, 0, 2.0)};
+  tasks[0].metrics["samples"] = 3200;
+  const ShotReport own = buildReport({}, pt, tasks);
+  EXPECT_DOUBLE_EQ(own.relative_cost(), 1.0);
+  EXPECT_DOUBLE_EQ(own.resolution_gain(), 1.0);
+
+  ShotSpec given = spec();
+  given.set_baseline_core_seconds(8.0);
+  const ShotReport report = buildReport({}, given, tasks);
+  EXPECT_EQ(report.baseline_source(), "given in the shot");
+  EXPECT_DOUBLE_EQ(report.relative_cost(), 8.0 / 4 / 8.0);
+}
+
+}  // namespace
+}  // namespace pathfarm::farm
