@@ -6,7 +6,7 @@ source "$(dirname "$0")/cli_test_support.sh"
 
 cat > "$work/shot.json" <<JSON
 {"name": "tiny", "scene": "$source_dir/scenes/cornell/scene.json", "frames": {"start": 1, "end": 2},
- "resolution": [40, 30], "spp": 2, "max_depth": 6, "tile": 16, "output": "farm_out"}
+ "resolution": [40, 30], "spp": 2, "max_depth": 6, "tile": 16, "output": "farm_out", "pipeline": "pt"}
 JSON
 "$pathfarm" local "$work/shot.json" --workers 2 --threads 1 > "$work/log" 2>&1 || fail "local failed: $(cat "$work/log")"
 "$pathfarm" render "$source_dir/scenes/cornell/scene.json" --frames 1:2 --res 40x30 --spp 2 --max-depth 6 \
@@ -20,7 +20,8 @@ pgrep -f "$work/farm_out/farm/cache" > /dev/null && fail "workers left running"
 # A decomposed shot: every component's buffers come back from the tiles unchanged.
 cat > "$work/decomposed.json" <<JSON
 {"name": "split", "scene": "$source_dir/scenes/cornell/scene.json", "frames": {"start": 2, "end": 2},
- "resolution": [40, 30], "spp": 2, "max_depth": 6, "tile": 16, "output": "split_out", "decompose": "default"}
+ "resolution": [40, 30], "spp": 2, "max_depth": 6, "tile": 16, "output": "split_out", "decompose": "default",
+ "pipeline": "pt"}
 JSON
 "$pathfarm" local "$work/decomposed.json" --workers 2 --threads 1 > "$work/log" 2>&1 || fail "decomposed local failed: $(cat "$work/log")"
 "$pathfarm" render "$source_dir/scenes/cornell/scene.json" --frames 2:2 --res 40x30 --spp 2 --max-depth 6 \

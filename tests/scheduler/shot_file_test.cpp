@@ -38,7 +38,16 @@ TEST(ShotFile, FillsDefaultsFromTheSceneAndMakesPathsAbsolute) {
   const ShotSpec spec = loadShotFile(file);
   std::filesystem::remove(file);
   EXPECT_EQ(spec.name(), "test_defaults");
-  EXPECT_EQ(spec.pipeline(), "pt");
+  EXPECT_EQ(spec.pipeline(), "dui");
+  // The filtering pipelines split into what the scene can produce, and measure the middle pair.
+  EXPECT_EQ(spec.decompose(), "diffuse_direct=ED,diffuse_indirect=ED.+,reflection=ERD.*,transmission=ETTD.*,residual");
+  EXPECT_EQ(spec.evaluation_frames_size(), 2);
+  EXPECT_EQ(spec.evaluation_frames(0), 4);
+  EXPECT_EQ(spec.reference_spp(), 0);
+  EXPECT_EQ(spec.feature_spp(), 4);
+  // Three frames allow only k = 2, which the probe accepts or refuses with its prediction.
+  EXPECT_TRUE(spec.keyframe_interval() == 1 || spec.keyframe_interval() == 2);
+  EXPECT_NE(spec.keyframe_reason().find("k = 2: "), std::string::npos) << spec.keyframe_reason();
   EXPECT_EQ(spec.scene(), (file.parent_path() / "cornell/scene.json").string());
   EXPECT_EQ(spec.frame_start(), 3);
   EXPECT_EQ(spec.frame_end(), 5);
@@ -64,8 +73,44 @@ TEST(ShotFile, BadShotsAreRefusedWithFileAndKey) {
             std::string::npos);
 }
 
+TEST(ShotFile, ReadsTheFilteringAndEvaluationKeys) {
+  const auto file = writeShot("filtering", R"({"scene": "cornell/scene.json", "pipeline": "di", "keyframe_interval": 3,
+    "reference_spp": 512, "evaluation_frames": [2, 7], "feature_spp": 2, "baseline_core_seconds": 4.5})");
+  const ShotSpec spec = loadShotFile(file);
+  std::filesystem::remove(file);
+  EXPECT_EQ(spec.keyframe_interval(), 3);
+  EXPECT_EQ(spec.keyframe_reason(), "k = 3: given in the shot file");
+  EXPECT_EQ(spec.reference_spp(), 512);
+  ASSERT_EQ(spec.evaluation_frames_size(), 2);
+  EXPECT_EQ(spec.evaluation_frames(1), 7);
+  EXPECT_EQ(spec.feature_spp(), 2);
+  EXPECT_EQ(spec.baseline_core_seconds(), 4.5);
+
+  const auto du = writeShot("du", R"({"scene": "cornell/scene.json", "pipeline": "du", "keyframe_interval": 3})");
+  EXPECT_EQ(loadShotFile(du).keyframe_interval(), 1);  // nothing is interpolated
+  std::filesystem::remove(du);
+  const auto pt = writeShot("pt", R"({"scene": "cornell/scene.json", "pipeline": "pt"})");
+  EXPECT_EQ(loadShotFile(pt).decompose(), "none");
+  EXPECT_EQ(loadShotFile(pt).evaluation_frames_size(), 0);  // nothing to measure without a reference
+  std::filesystem::remove(pt);
+}
+
+TEST(ShotFile, BadFilteringShotsAreRefused) {
+  EXPECT_NE(errorOf(R"({"scene": "cornell/scene.json", "keyframe_interval": 0})").find("keyframe_interval: 0 is out of range"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"scene": "cornell/scene.json", "keyframe_interval": "often"})").find("keyframe_interval"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"scene": "cornell/scene.json", "evaluation_frames": [99]})").find("evaluation_frames[0]: not a frame of the shot"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"scene": "cornell/scene.json", "decompose": "none"})").find("decompose: the filtering pipelines need"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"scene": "cornell/scene.json", "pipeline": "du", "resolution": [65, 64]})").find("even width and height"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"scene": "cornell/scene.json", "rerender_bound": 2})").find("rerender_bound"), std::string::npos);
+}
+
 TEST(ShotFile, ResolvesTheDecompositionOnceForEveryWorker) {
-  const auto file = writeShot("split", R"({"scene": "cornell/scene.json", "decompose": "default"})");
+  const auto file = writeShot("split", R"({"scene": "cornell/scene.json", "pipeline": "pt", "decompose": "default"})");
   EXPECT_EQ(loadShotFile(file).decompose(),
             "diffuse_direct=ED,diffuse_indirect=ED.+,reflection=ERD.*,transmission=ETTD.*,residual");
   std::filesystem::remove(file);

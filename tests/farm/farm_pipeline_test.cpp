@@ -1,0 +1,93 @@
+// The DUI pipeline on a multi-process farm (issue: the shot planner and the DUI pipeline):
+// a small Cornell animation filtered end to end, judged against renders made apart from
+// the farm, and the same shot with a worker killed midway, which must not change a byte.
+#include <map>
+
+#include "farm/farm_fixture.h"
+#include "image/exr_io.h"
+#include "postproc/metrics/image_metrics.h"
+
+namespace pathfarm::farmtest {
+namespace {
+
+constexpr int kSpp = 32;  // keyframes get a quarter: 8 spp at full resolution
+
+fs::path writeDuiShot(const fs::path& folder) {
+  const fs::path file = folder / "dui.shot.json";
+  writeFile(file, "{\"name\": \"dui\", \"scene\": \"" + cornellScene().string() +
+                      "\", \"frames\": {\"start\": 0, \"end\": 4}, \"resolution\": [64, 64], \"spp\": " +
+                      std::to_string(kSpp) +
+                      ", \"max_depth\": 6, \"pipeline\": \"dui\", \"keyframe_interval\": 4, \"tile\": 32,"
+                      " \"evaluation_frames\": [2], \"baseline_core_seconds\": 1}\n");
+  return file;
+}
+
+// Mean relMSE of the beauty of frames 0..4 in `folder` against those in `reference`.
+double meanRelMse(const fs::path& folder, const fs::path& reference) {
+  double sum = 0;
+  for (int64_t frame = 0; frame <= 4; ++frame) {
+    const std::string name = farm::frameFileName(frame);
+    sum += compareImages(readExr(folder / name), readExr(reference / name), {"R", "G", "B"}).relMse;
+  }
+  return sum / 5;
+}
+
+TEST_F(FarmTest, DuiShotIsFilteredEndToEndAndAKilledWorkerChangesNoByte) {
+  const auto renderPt = [&](int spp, const std::string& folder) {
+    const fs::path out = dir() / folder;
+    const CommandResult rendered = runPathfarm({"render", cornellScene().string(), "--frames", "0:4", "--res", "64x64",
+                                                "--spp", std::to_string(spp), "--max-depth", "6", "--out", out.string()},
+                                               {}, 120s);
+    if (rendered.status != 0) throw std::runtime_error("`pathfarm render` failed:\n" + rendered.output);
+    return out;
+  };
+  const fs::path shot = writeDuiShot(dir());
+  const fs::path undisturbed = dir() / "undisturbed";
+  const CommandResult local =
+      runPathfarm({"local", shot.string(), "--workers", "2", "--threads", "1", "--out", undisturbed.string()}, {}, 300s);
+  ASSERT_EQ(local.status, 0) << local.output;
+  for (int64_t frame = 0; frame <= 4; ++frame)
+    ASSERT_TRUE(fs::exists(undisturbed / farm::frameFileName(frame))) << "frame " << frame << " is missing";
+  EXPECT_TRUE(fs::exists(undisturbed / "report.md"));
+  EXPECT_TRUE(contains(readFile(undisturbed / "report.json"), "\"pipeline\": \"dui\""));
+
+  // Better than plain path tracing at the keyframes' budget, against a 512-spp reference.
+  const fs::path reference = renderPt(512, "reference");
+  const double dui = meanRelMse(undisturbed, reference);
+  const double keyframeBudget = meanRelMse(renderPt(kSpp / 4, "pt-keyframe-budget"), reference);
+  EXPECT_LT(dui, keyframeBudget) << "dui relMSE " << dui << ", pt at " << kSpp / 4 << " spp " << keyframeBudget;
+
+  // The same shot on a farm whose first worker is killed while it holds a task.
+  SchedulerConfig config;
+  config.leaseSeconds = 1.5;
+  startScheduler(config);
+  const CommandResult submitted = runPathfarm({"submit", shot.string(), "--scheduler", address()});
+  ASSERT_EQ(submitted.status, 0) << submitted.output;
+  const int64_t id = shotIdFrom(submitted);
+  farm::ChildProcess& victim = startWorker("victim");
+  const FarmDatabase db = database();
+  ASSERT_TRUE(waitUntil(
+      [&] {
+        return db.integer("SELECT COUNT(*) FROM attempts a JOIN workers w ON w.id = a.worker_id "
+                          "WHERE w.name = 'victim' AND a.state = 0") > 0 &&
+               db.integer("SELECT COUNT(*) FROM tasks WHERE state = 3") > 3;
+      },
+      30s))
+      << "the victim never held a task midway through the shot";
+  victim.signal(SIGKILL);
+  ASSERT_EQ(victim.wait(5s), 128 + SIGKILL);
+  ASSERT_LT(db.integer("SELECT COUNT(*) FROM tasks WHERE state = 3"), db.integer("SELECT COUNT(*) FROM tasks"))
+      << "the shot ended before the worker was killed";
+  startWorker("survivor");
+  const farm::ShotSummary summary = waitForShot(id, 120s);
+  ASSERT_EQ(summary.state(), farm::SHOT_DONE) << describe(summary);
+  EXPECT_GT(db.integer("SELECT COUNT(*) FROM attempts WHERE state = 3"), 0) << "no lease expired: nothing was lost";
+  const fs::path disturbed = fetchFrames(id, "disturbed");
+  for (int64_t frame = 0; frame <= 4; ++frame) {
+    const std::string name = farm::frameFileName(frame);
+    EXPECT_EQ(readFile(disturbed / name), readFile(undisturbed / name)) << name << " differs after the kill";
+  }
+}
+
+}  // namespace
+}  // namespace pathfarm::farmtest
