@@ -15,10 +15,10 @@
 
 namespace pathfarm {
 
-std::string encodeExr(const FrameImage& frame) {
+std::string encodeExr(const FrameImage& frame, ExrCompression compression) {
   try {
     Imf::Header header(frame.width(), frame.height());
-    header.compression() = Imf::ZIP_COMPRESSION;
+    header.compression() = compression == ExrCompression::Small ? Imf::ZIP_COMPRESSION : Imf::RLE_COMPRESSION;
     for (const auto& [name, value] : frame.attributes()) header.insert(name, Imf::StringAttribute(value));
     Imf::FrameBuffer buffer;
     for (const std::string& name : frame.channelNames()) {

@@ -1,6 +1,7 @@
 #pragma once
 // Multi-layer OpenEXR frames: every channel of a FrameImage as 32-bit float, ZIP
-// compressed, attributes as string header attributes. The same bytes go to files and
+// compressed (or RLE, for the farm's intermediate chunks), attributes as string header
+// attributes. The same bytes go to files and
 // over the wire (farm chunks). File writes are atomic (a temporary file, fsynced and
 // renamed into place), so a reader never sees half a frame.
 #include <filesystem>
@@ -16,7 +17,11 @@ class ExrError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-std::string encodeExr(const FrameImage& frame);
+// Small: ZIP, for frames people keep. Fast: RLE, for chunks a farm task writes for another
+// to read: about 3x faster to write and 1.7x to read than ZIP, about 2x larger.
+enum class ExrCompression { Small, Fast };
+
+std::string encodeExr(const FrameImage& frame, ExrCompression compression = ExrCompression::Small);
 // `label` names the bytes' origin (a file, a chunk) in error messages.
 FrameImage decodeExr(const std::string& bytes, const std::string& label);
 

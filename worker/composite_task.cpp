@@ -13,6 +13,8 @@
 namespace pathfarm::farm {
 namespace {
 
+constexpr int kRerenderSearchRadius = 5;
+
 // The channels the final frame keeps: the beauty and every component's color.
 std::vector<std::string> colorChannels(const FrameImage& frame) {
   std::vector<std::string> names = {"R", "G", "B"};
@@ -57,14 +59,21 @@ TaskOutput runCompositeTask(const Lease& lease, const std::vector<TaskInput>& in
     if (input.image.width() != w.x1() - w.x0() || input.image.height() != w.y1() - w.y0())
       throw std::runtime_error("a re-render tile of frame " + std::to_string(frame) + " does not have its window's size");
     sparse.paste(input.image, w.x0(), w.y0());
+    PixelWindow flagged;  // the bounding box of the tile's rendered pixels
+    flagged.set_x0(w.x1());
+    flagged.set_y0(w.y1());
     for (int y = w.y0(); y < w.y1(); ++y)
       for (int x = w.x0(); x < w.x1(); ++x) {
         const size_t local = static_cast<size_t>(y - w.y0()) * static_cast<size_t>(w.x1() - w.x0()) +
                              static_cast<size_t>(x - w.x0());
-        if (input.params.pixel_mask().empty() || input.params.pixel_mask()[local] != 0)
-          mask[static_cast<size_t>(y) * static_cast<size_t>(staged.width()) + static_cast<size_t>(x)] = 1;
+        if (!input.params.pixel_mask().empty() && input.params.pixel_mask()[local] == 0) continue;
+        mask[static_cast<size_t>(y) * static_cast<size_t>(staged.width()) + static_cast<size_t>(x)] = 1;
+        flagged.set_x0(std::min(flagged.x0(), x));
+        flagged.set_y0(std::min(flagged.y0(), y));
+        flagged.set_x1(std::max(flagged.x1(), x + 1));
+        flagged.set_y1(std::max(flagged.y1(), y + 1));
       }
-    windows.push_back(w);
+    if (flagged.x1() > flagged.x0()) windows.push_back(flagged);
     for (const auto& [key, value] : input.image.attributes()) sparse.attributes()[key] = value;
   }
   std::vector<float>& rerendered = result.addChannel("rerender.Y");
@@ -72,6 +81,8 @@ TaskOutput runCompositeTask(const Lease& lease, const std::vector<TaskInput>& in
     invalidateUnrendered(sparse, mask);
     DenoiseSettings settings;
     settings.label = "re-rendered pixels of frame " + std::to_string(frame);
+    // They have the shot's full samples: a smaller search window than a keyframe's suffices.
+    settings.spatialRadius = kRerenderSearchRadius;
     // Each tile is denoised with a margin wide enough for every patch its pixels compare.
     const int margin = settings.spatialRadius + settings.patch;
     for (const PixelWindow& w : windows) {

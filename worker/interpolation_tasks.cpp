@@ -50,7 +50,7 @@ TaskOutput runMotionTask(const Lease& lease, const std::vector<TaskInput>& input
     writeMotionField(chunk, motionLayer(key) + ".backward", motion.backward);
   }
   TaskOutput output;
-  output.chunk = encodeExr(chunk);
+  output.chunk = encodeExr(chunk, ExrCompression::Fast);
   return output;
 }
 
@@ -83,7 +83,7 @@ TaskOutput runFlowTask(const Lease& lease, const std::vector<TaskInput>& inputs)
   writeMotionField(chunk, component + ".irradiance_forward", motion.irradianceForward);
   writeMotionField(chunk, component + ".irradiance_backward", motion.irradianceBackward);
   TaskOutput output;
-  output.chunk = encodeExr(chunk);
+  output.chunk = encodeExr(chunk, ExrCompression::Fast);
   return output;
 }
 
@@ -113,7 +113,7 @@ TaskOutput runInterpolateTask(const Lease& lease, const std::vector<TaskInput>& 
   output.metrics["rerender_silhouettes"] = static_cast<double>(result.silhouettePixels);
   output.metrics["rerender_untracked"] = static_cast<double>(result.untrackedPixels);
   output.metrics["rerender_illumination"] = static_cast<double>(result.illuminationPixels);
-  output.chunk = encodeExr(result.frame);
+  output.chunk = encodeExr(result.frame, ExrCompression::Fast);
   return output;
 }
 

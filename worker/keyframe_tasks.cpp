@@ -80,7 +80,7 @@ TaskOutput runDenoiseTask(const Lease& lease, const std::vector<TaskInput>& inpu
   // Upsampling adds the light back at full resolution (runUpsampleTask).
   if (!upsample) addDirectEmission(current, emission);
   TaskOutput output;
-  output.chunk = encodeExr(current);
+  output.chunk = encodeExr(current, ExrCompression::Fast);
   return output;
 }
 
@@ -98,7 +98,7 @@ TaskOutput runUpsampleTask(const Lease& lease, const std::vector<TaskInput>& inp
   std::transform(flagged.begin(), flagged.end(), mask.begin(), [](float v) { return v > 0.5f ? 1 : 0; });
   TaskOutput output;
   requestRerender(lease.spec(), frame, mask, output);
-  output.chunk = encodeExr(high);
+  output.chunk = encodeExr(high, ExrCompression::Fast);
   return output;
 }
 

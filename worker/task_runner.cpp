@@ -88,7 +88,7 @@ TaskOutput TaskRunner::renderTile(const Lease& lease, std::atomic<double>& progr
       },
       &stats, only.empty() ? nullptr : &only);
   TaskOutput output;
-  output.chunk = encodeExr(tile);
+  output.chunk = encodeExr(tile, ExrCompression::Fast);
   output.metrics["samples"] = static_cast<double>(stats.samples);
   return output;
 }
@@ -138,7 +138,9 @@ std::string TaskRunner::assembleFrame(const Lease& lease, const ChunkFetcher& fe
     progress = static_cast<double>(i + 1) / static_cast<double>(lease.inputs_size());
   }
   frame.attributes()["pathfarm.nonfinite_samples"] = std::to_string(nonFinite);
-  return encodeExr(frame);
+  // A shot's frame is kept; a keyframe or a measurement's frame is read by the next task.
+  const bool kept = lease.params().role() == ROLE_OUTPUT || lease.params().role() == ROLE_UNSPECIFIED;
+  return encodeExr(frame, kept ? ExrCompression::Small : ExrCompression::Fast);
 }
 
 }  // namespace pathfarm::farm
