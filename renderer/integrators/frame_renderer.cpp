@@ -10,6 +10,7 @@
 #include "renderer/accel/shot_geometry.h"
 #include "renderer/decomposition/decomposed_film.h"
 #include "renderer/decomposition/primary_motion.h"
+#include "renderer/decomposition/specular_motion.h"
 
 namespace pathfarm {
 
@@ -61,6 +62,11 @@ SampleExtras extrasOf(const PathRecord& record, const Ray& ray, float time, cons
   return extras;
 }
 
+std::optional<Vec2f> toFloat(const std::optional<Vec2d>& v) {
+  if (!v) return std::nullopt;
+  return Vec2f{static_cast<float>(v->x), static_cast<float>(v->y)};
+}
+
 struct TileCounters {
   uint64_t samples = 0, nonFinite = 0;
   RayCounts rays;
@@ -91,6 +97,8 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
   for (int c = 0; c < 6; ++c) channels[c] = image.addChannel(names[c]).data();
   std::optional<DecomposedFilm> film;
   if (decomposition) film.emplace(image, *decomposition);
+  std::optional<SpecularMotion> specular;
+  if (decomposition) specular.emplace(*geometry, *decomposition, settings_.width, settings_.height);
 
   const int tilesX = (width + tile - 1) / tile, tilesY = (height + tile - 1) / tile;
   const size_t tileCount = static_cast<size_t>(tilesX) * static_cast<size_t>(tilesY);
@@ -149,7 +157,14 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
           channels[c][pixel] = static_cast<float>(mean);
           channels[3 + c][pixel] = static_cast<float>(variance);
         }
-        if (film) film->write(pixel, *sums);
+        if (film) {
+          for (int k = 0; k < decomposition->size(); ++k) {
+            if (!specular->isSpecular(k)) continue;
+            const SpecularTrack track = specular->track(x, y, k);
+            sums->setSpecularMotion(k, toFloat(track.forward), toFloat(track.backward));
+          }
+          film->write(pixel, *sums);
+        }
       }
     }
     const size_t done = ++tilesDone;
