@@ -38,51 +38,60 @@ std::optional<PreciseShape::LocalHit> PreciseShape::intersectSphere(Vec3d o, Vec
   return hit;
 }
 
+PreciseShape::PreciseShape(const SceneObject& object) : object_(object) {
+  if (object.type != ShapeType::Sphere) bvh_.emplace(*object.mesh);
+}
+
 std::optional<PreciseShape::LocalHit> PreciseShape::intersectMesh(Vec3d o, Vec3d d, double minDistance) const {
-  const TriangleMesh& mesh = *object_.mesh;
-  double best = std::numeric_limits<double>::infinity();
+  double nearest = std::numeric_limits<double>::infinity();
   std::optional<LocalHit> hit;
-  for (size_t tri = 0; tri < mesh.triangleCount(); ++tri) {
-    const uint32_t i0 = mesh.indices[3 * tri], i1 = mesh.indices[3 * tri + 1], i2 = mesh.indices[3 * tri + 2];
-    const Vec3d p0(mesh.positions[i0]);
-    const Vec3d e1 = Vec3d(mesh.positions[i1]) - p0, e2 = Vec3d(mesh.positions[i2]) - p0;
-    const Vec3d faceNormal = cross(e1, e2);
-    // Zero-area triangles have no plane to hit (and no tangents to differentiate).
-    if (!(dot(faceNormal, faceNormal) > 1e-24 * dot(e1, e1) * dot(e2, e2))) continue;
-    // Moller-Trumbore.
-    const Vec3d p = cross(d, e2);
-    const double det = dot(e1, p);
-    if (det == 0) continue;
-    const Vec3d toOrigin = o - p0;
-    // Barycentrics get a rounding's worth of slack, so that a ray along the edge two
-    // triangles share hits one of them.
-    const double u = dot(toOrigin, p) / det;
-    if (!(u >= -kEdgeSlack && u <= 1 + kEdgeSlack)) continue;
-    const Vec3d q = cross(toOrigin, e1);
-    const double v = dot(d, q) / det;
-    if (!(v >= -kEdgeSlack && u + v <= 1 + kEdgeSlack)) continue;
-    const double s = dot(e2, q) / det;
-    if (!(s > minDistance && s < best)) continue;
-    best = s;
-    LocalHit h;
-    h.position = p0 + e1 * u + e2 * v;
-    h.dpdu = e1;
-    h.dpdv = e2;
-    h.primitive = static_cast<uint32_t>(tri);
-    h.normal = normalize(faceNormal);
-    if (!mesh.normals.empty()) {
-      const Vec3d n0(mesh.normals[i0]), n1(mesh.normals[i1]), n2(mesh.normals[i2]);
-      const Vec3d interpolated = n0 * (1 - u - v) + n1 * u + n2 * v;
-      const double l = length(interpolated);
-      if (l > 0) {
-        h.normal = interpolated / l;
-        h.dndu = rejectFrom(n1 - n0, h.normal) / l;
-        h.dndv = rejectFrom(n2 - n0, h.normal) / l;
-      }
-    }
-    hit = h;
-  }
+  bvh_->forEachCandidate(o, d, minDistance, nearest, [&](uint32_t triangle) {
+    if (auto h = intersectTriangle(triangle, o, d, minDistance, nearest)) hit = h;
+  });
   return hit;
+}
+
+std::optional<PreciseShape::LocalHit> PreciseShape::intersectTriangle(uint32_t triangle, Vec3d o, Vec3d d,
+                                                                      double minDistance, double& nearest) const {
+  const TriangleMesh& mesh = *object_.mesh;
+  const uint32_t i0 = mesh.indices[3 * triangle], i1 = mesh.indices[3 * triangle + 1],
+                 i2 = mesh.indices[3 * triangle + 2];
+  const Vec3d p0(mesh.positions[i0]);
+  const Vec3d e1 = Vec3d(mesh.positions[i1]) - p0, e2 = Vec3d(mesh.positions[i2]) - p0;
+  const Vec3d faceNormal = cross(e1, e2);
+  // Zero-area triangles have no plane to hit (and no tangents to differentiate).
+  if (!(dot(faceNormal, faceNormal) > 1e-24 * dot(e1, e1) * dot(e2, e2))) return std::nullopt;
+  // Moller-Trumbore. Barycentrics get a rounding's worth of slack, so that a ray along
+  // the edge two triangles share hits one of them.
+  const Vec3d p = cross(d, e2);
+  const double det = dot(e1, p);
+  if (det == 0) return std::nullopt;
+  const Vec3d toOrigin = o - p0;
+  const double u = dot(toOrigin, p) / det;
+  if (!(u >= -kEdgeSlack && u <= 1 + kEdgeSlack)) return std::nullopt;
+  const Vec3d q = cross(toOrigin, e1);
+  const double v = dot(d, q) / det;
+  if (!(v >= -kEdgeSlack && u + v <= 1 + kEdgeSlack)) return std::nullopt;
+  const double s = dot(e2, q) / det;
+  if (!(s > minDistance && s < nearest)) return std::nullopt;
+  nearest = s;
+  LocalHit h;
+  h.position = p0 + e1 * u + e2 * v;
+  h.dpdu = e1;
+  h.dpdv = e2;
+  h.primitive = triangle;
+  h.normal = normalize(faceNormal);
+  if (!mesh.normals.empty()) {
+    const Vec3d n0(mesh.normals[i0]), n1(mesh.normals[i1]), n2(mesh.normals[i2]);
+    const Vec3d interpolated = n0 * (1 - u - v) + n1 * u + n2 * v;
+    const double l = length(interpolated);
+    if (l > 0) {
+      h.normal = interpolated / l;
+      h.dndu = rejectFrom(n1 - n0, h.normal) / l;
+      h.dndv = rejectFrom(n2 - n0, h.normal) / l;
+    }
+  }
+  return h;
 }
 
 std::optional<SurfaceDifferentials> PreciseShape::intersect(Vec3d origin, Vec3d direction, double minDistance,

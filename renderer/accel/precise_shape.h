@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <optional>
 
+#include "renderer/accel/triangle_bvh.h"
 #include "renderer/math/affine_motion.h"
 #include "renderer/scene/scene.h"
 
@@ -25,7 +26,7 @@ struct SurfaceDifferentials {
 
 class PreciseShape {
  public:
-  explicit PreciseShape(const SceneObject& object) : object_(object) {}
+  explicit PreciseShape(const SceneObject& object);
 
   bool isAnimated() const { return object_.transform.isAnimated(); }
   AffineMotion placementAt(double seconds) const { return object_.transform.motionAt(seconds); }
@@ -41,8 +42,12 @@ class PreciseShape {
   };
   std::optional<LocalHit> intersectSphere(Vec3d origin, Vec3d direction, double minDistance) const;
   std::optional<LocalHit> intersectMesh(Vec3d origin, Vec3d direction, double minDistance) const;
+  // The triangle's hit nearer than `nearest`, which it then lowers.
+  std::optional<LocalHit> intersectTriangle(uint32_t triangle, Vec3d origin, Vec3d direction, double minDistance,
+                                            double& nearest) const;
 
   const SceneObject& object_;
+  std::optional<TriangleBvh> bvh_;  // meshes
 };
 
 }  // namespace pathfarm
