@@ -103,7 +103,8 @@ int main(int argc, char** argv) {
     EmbreeDevice device;
     const ShotGeometry shot(scene, device);
     const FrameGeometry geometry(shot, frame);
-    const SpecularMotion motion(geometry, decomposition, width, height);
+    const std::vector<PreciseShape> shapes = preciseShapesOf(scene);
+    const SpecularMotion motion(geometry, shapes, decomposition, width, height);
     Tally tally;
     std::vector<double> times, processorTimes;
     for (int i = 0; i < repeat; ++i) {

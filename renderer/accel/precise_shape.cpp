@@ -124,4 +124,11 @@ std::optional<SurfaceDifferentials> PreciseShape::intersect(Vec3d origin, Vec3d 
   return s;
 }
 
+std::vector<PreciseShape> preciseShapesOf(const Scene& scene) {
+  std::vector<PreciseShape> shapes;
+  shapes.reserve(scene.objects.size());
+  for (const SceneObject& object : scene.objects) shapes.emplace_back(object);
+  return shapes;
+}
+
 }  // namespace pathfarm

@@ -6,6 +6,7 @@
 // specular manifold walk differentiates through these (Jakob 2013, Section 4.3.1).
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "renderer/accel/triangle_bvh.h"
 #include "renderer/math/affine_motion.h"
@@ -15,12 +16,12 @@ namespace pathfarm {
 
 struct SurfaceDifferentials {
   Vec3d position;
-  Vec3d dpdu, dpdv;        // tangents of the surface parametrization at the point
-  Vec3d normal;            // unit shading normal, on the object's outward side
-  Vec3d dndu, dndv;        // its derivatives along u and v
-  Vec3d velocity;          // d(position)/dt at fixed (u, v): the object's motion
-  Vec3d dndt;              // d(normal)/dt at fixed (u, v)
-  Vec3d shapePosition;     // the point in object space
+  Vec3d dpdu, dpdv;     // tangents of the surface parametrization at the point
+  Vec3d normal;         // unit shading normal, on the object's outward side
+  Vec3d dndu, dndv;     // its derivatives along u and v
+  Vec3d velocity;       // d(position)/dt at fixed (u, v): the object's motion
+  Vec3d dndt;           // d(normal)/dt at fixed (u, v)
+  Vec3d shapePosition;  // the point in object space
   uint32_t primitive = 0;
 };
 
@@ -49,5 +50,8 @@ class PreciseShape {
   const SceneObject& object_;
   std::optional<TriangleBvh> bvh_;  // meshes
 };
+
+// One per scene object, in the scene's order.
+std::vector<PreciseShape> preciseShapesOf(const Scene& scene);
 
 }  // namespace pathfarm

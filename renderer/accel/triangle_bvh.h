@@ -35,8 +35,7 @@ class TriangleBvh {
 };
 
 template <class Visit>
-void TriangleBvh::forEachCandidate(Vec3d o, Vec3d d, double minDistance, const double& maxDistance,
-                                   Visit visit) const {
+void TriangleBvh::forEachCandidate(Vec3d o, Vec3d d, double minDistance, const double& maxDistance, Visit visit) const {
   if (nodes_.empty()) return;
   const Vec3d inverse{1 / d.x, 1 / d.y, 1 / d.z};
   uint32_t stack[64];

@@ -178,7 +178,8 @@ std::optional<ChainPath> walkInTime(const ChainTracer& tracer, const ChainPath& 
   while (path.seconds != targetSeconds) {
     if (++counts.outer > kMaxOuter || std::abs(step) < kMinTimeFraction * std::abs(whole)) return std::nullopt;
     // Land exactly on the target time rather than next to it through rounding.
-    const double seconds = std::abs(targetSeconds - path.seconds) <= std::abs(step) ? targetSeconds : path.seconds + step;
+    const double seconds =
+        std::abs(targetSeconds - path.seconds) <= std::abs(step) ? targetSeconds : path.seconds + step;
     if (auto moved = converge(tracer, path, tracer.endpointTarget(anchor, seconds), seconds, counts)) {
       path = std::move(*moved);
       step *= 2;

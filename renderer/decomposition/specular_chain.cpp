@@ -5,7 +5,9 @@
 namespace pathfarm {
 namespace {
 
-bool isDielectric(MaterialType type) { return type == MaterialType::Dielectric || type == MaterialType::RoughDielectric; }
+bool isDielectric(MaterialType type) {
+  return type == MaterialType::Dielectric || type == MaterialType::RoughDielectric;
+}
 
 // Snell's law for a unit direction arriving at a surface with unit normal n (outward)
 // and interior index `ior`; nothing under total internal reflection.
@@ -42,7 +44,8 @@ struct ChainSearch {
     SurfaceHit hit;
     if (!geometry.intersect(ray, time, hit)) return false;
     const Scene& scene = geometry.shot().scene();
-    const Material& material = scene.materials[static_cast<size_t>(scene.objects[static_cast<size_t>(hit.object)].material)];
+    const Material& material =
+        scene.materials[static_cast<size_t>(scene.objects[static_cast<size_t>(hit.object)].material)];
     const LobeList lobes = Bsdf(material, Rgb(), scene.roughnessThreshold).lobes();
     bool diffuse = false;
     for (int l = 0; l < lobes.count; ++l) diffuse |= lobes.lobes[l].symbol == LobeSymbol::D;

@@ -4,13 +4,13 @@
 
 namespace pathfarm {
 
-SpecularMotion::SpecularMotion(const FrameGeometry& geometry, const Decomposition& decomposition, int width,
-                               int height)
+SpecularMotion::SpecularMotion(const FrameGeometry& geometry, const std::vector<PreciseShape>& shapes,
+                               const Decomposition& decomposition, int width, int height)
     : geometry_(geometry),
       automaton_(decomposition.automaton()),
+      shapes_(shapes),
       camera_(geometry.shot().scene().camera, width, height) {
   const Scene& scene = geometry.shot().scene();
-  for (const SceneObject& object : scene.objects) shapes_.emplace_back(object);
   const int eye = automaton_.next(automaton_.initial(), PathSymbol::E);
   for (int k = 0; k < decomposition.size(); ++k) {
     const bool named = k != decomposition.residual();
@@ -35,9 +35,9 @@ SpecularTrack SpecularMotion::track(int x, int y, int component) const {
   if (!chain) return result;
   result.hasChain = true;
   const auto moves = [&](int object) { return shapes_[static_cast<size_t>(object)].isAnimated(); };
-  const bool chainMoves = camera_.isAnimated() || moves(chain->endpoint) ||
-                          std::any_of(chain->links.begin(), chain->links.end(),
-                                      [&](const ChainLink& link) { return moves(link.object); });
+  const bool chainMoves =
+      camera_.isAnimated() || moves(chain->endpoint) ||
+      std::any_of(chain->links.begin(), chain->links.end(), [&](const ChainLink& link) { return moves(link.object); });
   if (!chainMoves) {  // nothing to walk: every frame sees the same path
     result.forward = result.backward = Vec2d{0, 0};
     return result;

@@ -30,7 +30,9 @@ class SpecularMotion {
   // The shutter point of the representative paths, as a fraction of the shutter.
   static constexpr float kShutterFraction = 0.5f;
 
-  SpecularMotion(const FrameGeometry& geometry, const Decomposition& decomposition, int width, int height);
+  // `shapes`: preciseShapesOf(the scene), built once per shot (meshes get a BVH).
+  SpecularMotion(const FrameGeometry& geometry, const std::vector<PreciseShape>& shapes,
+                 const Decomposition& decomposition, int width, int height);
 
   // A component is specular when its expression cannot take the camera's first vertex
   // as its non-specular one (reflection ERD.*, transmission ETTD.*, ETTTTD.*, ...).
@@ -42,8 +44,8 @@ class SpecularMotion {
  private:
   const FrameGeometry& geometry_;
   const LpeAutomaton& automaton_;
+  const std::vector<PreciseShape>& shapes_;
   PinholeCamera camera_;
-  std::vector<PreciseShape> shapes_;
   std::vector<uint8_t> specular_;
   double now_, next_, previous_;  // seconds
 };

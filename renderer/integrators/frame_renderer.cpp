@@ -27,12 +27,16 @@ struct FrameRenderer::Shot {
   EmbreeDevice device;
   ShotGeometry geometry;
   LightSampler lights;
+  std::vector<PreciseShape> preciseShapes;  // for the specular motion of a decomposition
 
-  explicit Shot(const Scene& scene) : geometry(scene, device), lights(geometry) {}
+  Shot(const Scene& scene, bool decomposing)
+      : geometry(scene, device),
+        lights(geometry),
+        preciseShapes(decomposing ? preciseShapesOf(scene) : std::vector<PreciseShape>{}) {}
 };
 
 FrameRenderer::FrameRenderer(const Scene& scene, RenderSettings settings)
-    : scene_(scene), settings_(settings), shot_(std::make_unique<Shot>(scene)) {}
+    : scene_(scene), settings_(settings), shot_(std::make_unique<Shot>(scene, settings.decomposition != nullptr)) {}
 
 FrameRenderer::~FrameRenderer() = default;
 
@@ -98,7 +102,8 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
   std::optional<DecomposedFilm> film;
   if (decomposition) film.emplace(image, *decomposition);
   std::optional<SpecularMotion> specular;
-  if (decomposition) specular.emplace(*geometry, *decomposition, settings_.width, settings_.height);
+  if (decomposition)
+    specular.emplace(*geometry, shot_->preciseShapes, *decomposition, settings_.width, settings_.height);
 
   const int tilesX = (width + tile - 1) / tile, tilesY = (height + tile - 1) / tile;
   const size_t tileCount = static_cast<size_t>(tilesX) * static_cast<size_t>(tilesY);

@@ -9,8 +9,8 @@ namespace pathfarm {
 struct AffineMotion {
   Mat3d linear = Mat3d::identity();
   Vec3d translation;
-  Mat3d linearRate;        // d(linear)/dt
-  Vec3d translationRate;   // d(translation)/dt
+  Mat3d linearRate;       // d(linear)/dt
+  Vec3d translationRate;  // d(translation)/dt
 
   Vec3d point(Vec3d p) const { return linear * p + translation; }
   Vec3d vector(Vec3d v) const { return linear * v; }

@@ -19,7 +19,8 @@ std::optional<Vec2d> PinholeCamera::project(Vec3d point, double seconds) const {
   const AffineMotion toWorld = desc_.transform.motionAt(seconds);
   const Vec3d v = toWorld.linear.inverse() * (point - toWorld.translation);
   if (!(v.z < 0)) return std::nullopt;  // behind the camera, or not a number
-  return Vec2d{(v.x / -v.z / (tanHalfFov_ * aspect_) + 1) * 0.5 * width_, (1 - v.y / -v.z / tanHalfFov_) * 0.5 * height_};
+  return Vec2d{(v.x / -v.z / (tanHalfFov_ * aspect_) + 1) * 0.5 * width_,
+               (1 - v.y / -v.z / tanHalfFov_) * 0.5 * height_};
 }
 
 }  // namespace pathfarm

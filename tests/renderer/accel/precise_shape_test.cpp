@@ -55,7 +55,9 @@ std::shared_ptr<const TriangleMesh> bumpyGrid(int n) {
     for (int i = 0; i <= n; ++i) {
       const double x = -1 + 2.0 * i / n, y = -1 + 2.0 * j / n;
       mesh->positions.push_back(Vec3d{x, y, height(x, y)}.toFloat());
-      mesh->normals.push_back(normalize(Vec3d{-0.3 * std::cos(3 * x) * std::cos(2 * y), 0.2 * std::sin(3 * x) * std::sin(2 * y), 1}).toFloat());
+      mesh->normals.push_back(
+          normalize(Vec3d{-0.3 * std::cos(3 * x) * std::cos(2 * y), 0.2 * std::sin(3 * x) * std::sin(2 * y), 1})
+              .toFloat());
     }
   }
   for (int j = 0; j < n; ++j) {
@@ -71,12 +73,15 @@ std::shared_ptr<const TriangleMesh> bumpyGrid(int n) {
 // against the analytic differentials, for a ray from `origin` towards `target`.
 void expectDifferentialsMatch(const PreciseShape& shape, const SceneObject& object, Vec3d origin, Vec3d target,
                               double seconds) {
-  const auto hitToward = [&](Vec3d point, double t) { return shape.intersect(origin, normalize(point - origin), 0, t); };
+  const auto hitToward = [&](Vec3d point, double t) {
+    return shape.intersect(origin, normalize(point - origin), 0, t);
+  };
   const auto hit = hitToward(target, seconds);
   ASSERT_TRUE(hit.has_value());
   const double h = 1e-5;
   for (const auto& [tangent, dn] : {std::pair{hit->dpdu, hit->dndu}, std::pair{hit->dpdv, hit->dndv}}) {
-    const auto plus = hitToward(hit->position + tangent * h, seconds), minus = hitToward(hit->position - tangent * h, seconds);
+    const auto plus = hitToward(hit->position + tangent * h, seconds),
+               minus = hitToward(hit->position - tangent * h, seconds);
     ASSERT_TRUE(plus && minus);
     expectNearD((plus->position - minus->position) / (2 * h), tangent, 1e-4, "tangent");
     expectNearD((plus->normal - minus->normal) / (2 * h), dn, 1e-4, "normal derivative");
@@ -126,7 +131,8 @@ TEST(PreciseShape, BvhFindsWhatTestingEveryTriangleFinds) {
   int hits = 0;
   for (int i = 0; i < 400; ++i) {
     const Vec3d o{2 * test_support::hashed(1, 0, i, 0) - 1, 2 * test_support::hashed(1, 1, i, 0) - 1, 2};
-    const Vec3d d = normalize(Vec3d{test_support::hashed(1, 2, i, 0) - 0.5, test_support::hashed(1, 3, i, 0) - 0.5, -2});
+    const Vec3d d =
+        normalize(Vec3d{test_support::hashed(1, 2, i, 0) - 0.5, test_support::hashed(1, 3, i, 0) - 0.5, -2});
     // Every triangle, by its plane and the signs of the edge functions.
     double nearest = 1e30;
     for (size_t t = 0; t < mesh.triangleCount(); ++t) {

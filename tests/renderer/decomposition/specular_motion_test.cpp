@@ -26,8 +26,9 @@ class TrackedScene {
       : scene_(test_support::sceneFromJson(json)),
         shot_(scene_, device_),
         geometry_(shot_, 1),
+        shapes_(preciseShapesOf(scene_)),
         decomposition_(std::move(decomposition)),
-        motion_(geometry_, decomposition_, width, height),
+        motion_(geometry_, shapes_, decomposition_, width, height),
         width_(width),
         height_(height) {}
 
@@ -44,6 +45,7 @@ class TrackedScene {
   EmbreeDevice device_;
   ShotGeometry shot_;
   FrameGeometry geometry_;
+  std::vector<PreciseShape> shapes_;
   Decomposition decomposition_;
   SpecularMotion motion_;
   int width_, height_;
@@ -84,12 +86,14 @@ Vec2d minus(Vec2d a, Vec2d b) { return {a.x - b.x, a.y - b.y}; }
 std::string mirrorScene(const std::string& cameraAnimation, const std::string& mirrorAnimation) {
   return R"({
     "fps": 1,
-    "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0], "fov": 30)" + cameraAnimation + R"(},
+    "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0], "fov": 30)" +
+         cameraAnimation + R"(},
     "materials": {"mirror": {"type": "conductor", "specular_color": 1},
                   "card": {"type": "diffuse", "reflectance": 0.5}},
     "shapes": [
       {"type": "rectangle", "size": [10, 6], "material": "mirror",
-       "transform": {"rotate": {"axis": [0, 1, 0], "angle": 45}})" + mirrorAnimation + R"(},
+       "transform": {"rotate": {"axis": [0, 1, 0], "angle": 45}})" +
+         mirrorAnimation + R"(},
       {"type": "rectangle", "size": [8, 8], "material": "card",
        "transform": {"translate": [3, 0, 0], "rotate": {"axis": [0, 1, 0], "angle": -90}}}]
   })";
@@ -111,7 +115,7 @@ TEST(SpecularMotion, MovingPlanarMirrorMatchesTheMirrorImage) {
   const int width = 40, height = 30;
   const TrackedScene scene(mirrorScene("", R"(, "animation": {"translate": [
       {"frame": 0, "value": [-0.1, 0.05, 0.2]}, {"frame": 2, "value": [0.1, -0.05, -0.1]}]})"),
-                    width, height);
+                           width, height);
   const TestCamera camera{{0, 0, 5}, 30, width, height};
   const Vec3d mirrorAt[3] = {{-0.1, 0.05, 0.2}, {0, 0, 0.05}, {0.1, -0.05, -0.1}};  // frames 0, 1, 2
   int tracked = 0;
@@ -128,8 +132,9 @@ TEST(SpecularMotion, MovingPlanarMirrorMatchesTheMirrorImage) {
 TEST(SpecularMotion, StaticMirrorWithMovingCameraMatchesTheMirrorImage) {
   const int width = 40, height = 30;
   const TrackedScene scene(mirrorScene(R"(, "animation": {"translate": [
-      {"frame": 0, "value": [-0.3, 0.2, 5.2]}, {"frame": 2, "value": [0.3, -0.2, 4.8]}]})", ""),
-                    width, height);
+      {"frame": 0, "value": [-0.3, 0.2, 5.2]}, {"frame": 2, "value": [0.3, -0.2, 4.8]}]})",
+                                       ""),
+                           width, height);
   const TestCamera now{{0, 0, 5}, 30, width, height};
   const TestCamera next{{0.3, -0.2, 4.8}, 30, width, height}, previous{{-0.3, 0.2, 5.2}, 30, width, height};
   int tracked = 0;
@@ -173,14 +178,16 @@ TEST(SpecularMotion, GlassSlabShiftMatchesSnellsLaw) {
       {"type": "rectangle", "size": [12, 12], "material": "card",
        "animation": {"translate": [{"frame": 0, "value": [-0.2, 0.1, -2]}, {"frame": 2, "value": [0.2, -0.1, -2]}]}}]
   })",
-                    width, height);
+                           width, height);
   const TestCamera view{{0, 0, 5}, 20, width, height};
   int tracked = 0;
   scene.forEachChain(kTransmission, [&](int x, int y, const SpecularTrack& track) {
     const Vec3d d = view.direction(pixelCentre(x, y));
     const double theta = std::acos(-d.z), rho = slabReach(theta), lateral = std::hypot(d.x, d.y);
     const Vec3d p{d.x / lateral * rho, d.y / lateral * rho, -2};
-    const auto seen = [&](Vec3d shift) { return view.project(view.position + throughSlabTowards(view.position, p + shift)); };
+    const auto seen = [&](Vec3d shift) {
+      return view.project(view.position + throughSlabTowards(view.position, p + shift));
+    };
     const Vec2d now = seen({});
     expectMotion(track.forward, minus(seen({0.2, -0.1, 0}), now), 1e-3, x, y);
     expectMotion(track.backward, minus(seen({-0.2, 0.1, 0}), now), 1e-3, x, y);
@@ -276,7 +283,7 @@ std::optional<Vec2d> bruteForceFilm(const std::function<std::optional<std::vecto
 // Every solved path at t + 1 satisfies the specular constraints (generalized half vector
 // along the analytic normal) and lands on its target; its motion agrees with the search.
 void expectCurvedCaseMatchesBruteForce(const std::string& shapes, const std::vector<TestSphere>& spheres, int component,
-                                      Decomposition decomposition = Decomposition::standard()) {
+                                       Decomposition decomposition = Decomposition::standard()) {
   const int width = 32, height = 24;
   const TrackedScene scene(R"({
     "fps": 1,
@@ -290,7 +297,7 @@ void expectCurvedCaseMatchesBruteForce(const std::string& shapes, const std::vec
       {"type": "sphere", "radius": 20, "material": "room",
        "animation": {"rotate": [{"frame": 0, "axis": [0, 1, 0], "angle": -6}, {"frame": 2, "axis": [0, 1, 0], "angle": 6}]}},
       )" + shapes + "]}",
-                    width, height, std::move(decomposition));
+                           width, height, std::move(decomposition));
   const TestCamera camera{{0, 0, 5}, 32, width, height};
   int tracked = 0, reachable = 0, chains = 0;
   scene.forEachChain(component, [&](int x, int y, const SpecularTrack& track) {
@@ -305,9 +312,9 @@ void expectCurvedCaseMatchesBruteForce(const std::string& shapes, const std::vec
     for (const int frames : {+1, -1}) {
       const int frame = 1 + frames;
       const Vec3d target = turnedRoomPoint(start, frames);
-      const auto reference = bruteForceFilm(
-          [&](Vec2d f) { return traceSpheres(spheres, frame, camera.position, camera.direction(f)); }, now->size(),
-          target, width, height);
+      const auto reference =
+          bruteForceFilm([&](Vec2d f) { return traceSpheres(spheres, frame, camera.position, camera.direction(f)); },
+                         now->size(), target, width, height);
       found += reference.has_value();
       const std::optional<ChainPath>& solved = frames > 0 ? track.next : track.previous;
       if (!solved) continue;
@@ -372,7 +379,6 @@ TEST(SpecularMotion, NestedDielectricWithFourTransmissionsMatchesBruteForceSearc
 TEST(SpecularMotion, IndexOfRefractionNearOneIsTrackedLikeAnyGlass) {
   expectCurvedCaseMatchesBruteForce(sphereShape(1, "thin"), {movingSphere(1, 1.0001)}, kTransmission);
 }
-
 
 // ---------------------------------------------------------------------------------------
 // Hard inputs: flags, never NaN, and every walk ends (the iteration bounds).
@@ -538,7 +544,8 @@ TEST(SpecularMotion, FilmChannelsHoldTheWalkAndDoNotDependOnTiles) {
   settings.tileSize = 5;
   const FrameImage b = FrameRenderer(parsed, settings).render(1);
   const TrackedScene scene(json, width, height);
-  for (const auto& [component, name] : {std::pair{kReflection, "reflection"}, std::pair{kTransmission, "transmission"}}) {
+  for (const auto& [component, name] :
+       {std::pair{kReflection, "reflection"}, std::pair{kTransmission, "transmission"}}) {
     int tracked = 0;
     for (const char* buffer : {".motion.X", ".motion.Y", ".motion_back.X", ".motion_back.Y", ".motion_valid.Y"})
       EXPECT_EQ(a.channel(name + std::string(buffer)), b.channel(name + std::string(buffer))) << name << buffer;
