@@ -38,7 +38,8 @@ std::optional<PreciseShape::LocalHit> PreciseShape::intersectSphere(Vec3d o, Vec
   return hit;
 }
 
-PreciseShape::PreciseShape(const SceneObject& object) : object_(object) {
+PreciseShape::PreciseShape(const SceneObject& object)
+    : object_(object), animated_(object.transform.isAnimated()), still_(object.transform.motionAt(0)) {
   if (object.type != ShapeType::Sphere) bvh_.emplace(*object.mesh);
 }
 

@@ -29,8 +29,10 @@ class PreciseShape {
  public:
   explicit PreciseShape(const SceneObject& object);
 
-  bool isAnimated() const { return object_.transform.isAnimated(); }
-  AffineMotion placementAt(double seconds) const { return object_.transform.motionAt(seconds); }
+  bool isAnimated() const { return animated_; }
+  AffineMotion placementAt(double seconds) const {
+    return animated_ ? object_.transform.motionAt(seconds) : still_;
+  }
   // The nearest hit along origin + s * direction with s > minDistance, at `seconds`.
   // Degenerate (zero-area) triangles are never hit.
   std::optional<SurfaceDifferentials> intersect(Vec3d origin, Vec3d direction, double minDistance,
@@ -48,6 +50,8 @@ class PreciseShape {
                                             double& nearest) const;
 
   const SceneObject& object_;
+  bool animated_;
+  AffineMotion still_;  // the placement of an object that does not move
   std::optional<TriangleBvh> bvh_;  // meshes
 };
 

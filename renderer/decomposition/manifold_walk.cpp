@@ -84,7 +84,7 @@ std::optional<ChainPath> manifoldStep(const ChainTracer& tracer, const ChainPath
   }
   const SurfaceDifferentials& first = path.vertices.front().surface;
   const Vec3d moved = first.position + first.dpdu * du + first.dpdv * dv + first.velocity * dt;
-  const auto film = tracer.camera().project(moved, seconds);
+  const auto film = tracer.camera().at(seconds).project(moved);
   if (!film || !std::isfinite(film->x) || !std::isfinite(film->y)) return std::nullopt;
   auto traced = tracer.trace(*film, seconds);
   if (!traced || !sameSides(*traced, path)) return std::nullopt;

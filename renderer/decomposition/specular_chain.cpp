@@ -88,9 +88,10 @@ std::optional<ChainPath> ChainTracer::trace(Vec2d film, double seconds) const {
   ChainPath path;
   path.seconds = seconds;
   path.film = film;
-  path.eye = camera_.position(seconds);
-  path.eyeVelocity = camera_.velocity(seconds);
-  Vec3d origin = path.eye, direction = camera_.direction(film, seconds);
+  const PinholeCamera::Placed camera = camera_.at(seconds);
+  path.eye = camera.position();
+  path.eyeVelocity = camera.velocity();
+  Vec3d origin = path.eye, direction = camera.direction(film);
   double minDistance = 0;
   const auto visit = [&](int object) {
     const auto hit = shapes_[static_cast<size_t>(object)].intersect(origin, direction, minDistance, seconds);

@@ -9,28 +9,23 @@ SpecularMotion::SpecularMotion(const FrameGeometry& geometry, const std::vector<
     : geometry_(geometry),
       automaton_(decomposition.automaton()),
       shapes_(shapes),
-      camera_(geometry.shot().scene().camera, width, height) {
-  const Scene& scene = geometry.shot().scene();
+      camera_(geometry.shot().scene().camera, width, height),
+      now_(geometry.shot().scene().timeAt(geometry.frame(), kShutterFraction)),
+      next_(geometry.shot().scene().timeAt(geometry.frame() + 1, kShutterFraction)),
+      previous_(geometry.shot().scene().timeAt(geometry.frame() - 1, kShutterFraction)),
+      cameraNow_(camera_.at(now_)) {
   const int eye = automaton_.next(automaton_.initial(), PathSymbol::E);
   for (int k = 0; k < decomposition.size(); ++k) {
     const bool named = k != decomposition.residual();
     specular_.push_back(named && automaton_.alive(eye, k) && !automaton_.alive(automaton_.next(eye, PathSymbol::D), k));
   }
-  const int64_t frame = geometry.frame();
-  now_ = scene.timeAt(frame, kShutterFraction);
-  next_ = scene.timeAt(frame + 1, kShutterFraction);
-  previous_ = scene.timeAt(frame - 1, kShutterFraction);
-}
-
-bool SpecularMotion::anySpecular() const {
-  return std::any_of(specular_.begin(), specular_.end(), [](uint8_t s) { return s != 0; });
 }
 
 SpecularTrack SpecularMotion::track(int x, int y, int component) const {
   SpecularTrack result;
   if (!isSpecular(component)) return result;
   const Vec2d film{x + 0.5, y + 0.5};
-  const Ray ray{camera_.position(now_).toFloat(), normalize(camera_.direction(film, now_).toFloat())};
+  const Ray ray{cameraNow_.position().toFloat(), normalize(cameraNow_.direction(film).toFloat())};
   auto chain = findSpecularChain(geometry_, automaton_, component, ray, kShutterFraction);
   if (!chain) return result;
   result.hasChain = true;

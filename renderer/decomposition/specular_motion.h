@@ -33,11 +33,12 @@ class SpecularMotion {
   // `shapes`: preciseShapesOf(the scene), built once per shot (meshes get a BVH).
   SpecularMotion(const FrameGeometry& geometry, const std::vector<PreciseShape>& shapes,
                  const Decomposition& decomposition, int width, int height);
+  SpecularMotion(const SpecularMotion&) = delete;  // cameraNow_ refers to camera_
+  SpecularMotion& operator=(const SpecularMotion&) = delete;
 
   // A component is specular when its expression cannot take the camera's first vertex
   // as its non-specular one (reflection ERD.*, transmission ETTD.*, ETTTTD.*, ...).
   bool isSpecular(int component) const { return specular_[static_cast<size_t>(component)] != 0; }
-  bool anySpecular() const;
   // Frame pixel (x, y).
   SpecularTrack track(int x, int y, int component) const;
 
@@ -46,8 +47,9 @@ class SpecularMotion {
   const LpeAutomaton& automaton_;
   const std::vector<PreciseShape>& shapes_;
   PinholeCamera camera_;
-  std::vector<uint8_t> specular_;
   double now_, next_, previous_;  // seconds
+  PinholeCamera::Placed cameraNow_;
+  std::vector<uint8_t> specular_;
 };
 
 }  // namespace pathfarm
