@@ -7,15 +7,6 @@ namespace {
 
 constexpr double kEdgeSlack = 1e-12;
 
-// Two unit tangents completing the unit normal n to a right-handed frame (Duff et al. 2017).
-void tangentsOf(Vec3d n, Vec3d& s, Vec3d& t) {
-  const double sign = std::copysign(1.0, n.z);
-  const double a = -1.0 / (sign + n.z);
-  const double b = n.x * n.y * a;
-  s = {1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x};
-  t = {b, sign + n.y * n.y * a, -n.y};
-}
-
 }  // namespace
 
 std::optional<PreciseShape::LocalHit> PreciseShape::intersectSphere(Vec3d o, Vec3d d, double minDistance) const {
@@ -32,7 +23,9 @@ std::optional<PreciseShape::LocalHit> PreciseShape::intersectSphere(Vec3d o, Vec
   LocalHit hit;
   hit.normal = normalize(o + d * s);
   hit.position = hit.normal * r;  // back onto the sphere: more precise than o + s d
-  tangentsOf(hit.normal, hit.dpdu, hit.dpdv);
+  const Tangents tangents = tangentsOf(hit.normal);
+  hit.dpdu = tangents.s;
+  hit.dpdv = tangents.t;
   hit.dndu = hit.dpdu / r;
   hit.dndv = hit.dpdv / r;
   return hit;

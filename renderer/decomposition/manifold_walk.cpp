@@ -31,10 +31,9 @@ class VertexConstraint {
       etaPrevious_ = dot(toPrevious_, n_) > 0 ? 1 : link.ior;
       etaNext_ = dot(toNext_, n_) > 0 ? 1 : link.ior;
     }
-    const double sign = std::copysign(1.0, n_.z);
-    const double a = -1.0 / (sign + n_.z), b = n_.x * n_.y * a;
-    s_ = {1.0 + sign * n_.x * n_.x * a, sign * b, -sign * n_.x};
-    t_ = {b, sign + n_.y * n_.y * a, -n_.y};
+    const Tangents frame = tangentsOf(n_);
+    s_ = frame.s;
+    t_ = frame.t;
     normalPart_ = dot(halfVector(), n_);
   }
 

@@ -41,6 +41,17 @@ inline double maxAbs(Vec3d a) { return std::max({std::abs(a.x), std::abs(a.y), s
 // The part of v orthogonal to the unit vector n.
 constexpr Vec3d rejectFrom(Vec3d v, Vec3d n) { return v - n * dot(v, n); }
 
+// Two unit tangents completing the unit normal n to a right-handed frame (Duff et al.
+// 2017, as Frame::fromNormal does in float).
+struct Tangents {
+  Vec3d s, t;
+};
+inline Tangents tangentsOf(Vec3d n) {
+  const double sign = std::copysign(1.0, n.z);
+  const double a = -1.0 / (sign + n.z), b = n.x * n.y * a;
+  return {{1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x}, {b, sign + n.y * n.y * a, -n.y}};
+}
+
 // A 3x3 matrix, row-major.
 struct Mat3d {
   double m[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
