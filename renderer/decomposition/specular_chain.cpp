@@ -121,6 +121,23 @@ Vec3d ChainTracer::endpointTarget(Vec3d shapePosition, double seconds) const {
   return shapes_[static_cast<size_t>(chain_.endpoint)].placementAt(seconds).point(shapePosition);
 }
 
+bool isUnoccluded(const ChainPath& path, const FrameGeometry& geometry, float time) {
+  Vec3f from = path.eye.toFloat();
+  for (const ChainVertex& vertex : path.vertices) {
+    const Vec3f to = vertex.surface.position.toFloat();
+    const Vec3f along = to - from;
+    const float distance = length(along);
+    // Start and stop a little off the surfaces at both ends, which the segment touches.
+    const float startGap = surfaceEpsilon(from), endGap = surfaceEpsilon(to);
+    if (distance > startGap + endGap) {
+      const Vec3f direction = along / distance;
+      if (geometry.occluded(from + direction * startGap, direction, distance - startGap - endGap, time)) return false;
+    }
+    from = to;
+  }
+  return true;
+}
+
 bool sameSides(const ChainPath& a, const ChainPath& b) {
   if (a.vertices.size() != b.vertices.size()) return false;
   for (size_t i = 0; i < a.vertices.size(); ++i)

@@ -73,6 +73,11 @@ class ChainTracer {
   SpecularChain chain_;
 };
 
+// Whether nothing lies between consecutive vertices of `path` in `geometry` (Embree, at
+// shutter fraction `time`): re-tracing sees the chain's own objects only, so a path
+// walked to another frame is checked against the whole scene there.
+bool isUnoccluded(const ChainPath& path, const FrameGeometry& geometry, float time);
+
 // Whether two paths of a chain arrive on the same side of every surface: otherwise the
 // chain has changed type (say from entering the glass to leaving it) between them.
 bool sameSides(const ChainPath& a, const ChainPath& b);

@@ -18,7 +18,7 @@ struct SpecularTrack {
   bool walked = false;    // false where nothing on the chain moves: motion exactly zero
   // Pixels moved to the next and from the previous frame; nothing where the walk failed.
   std::optional<Vec2d> forward, backward;
-  // The solved paths now and in the next and previous frames (when walked).
+  // The paths now and in the next and previous frames (where anything in the scene moves).
   std::optional<ChainPath> now, next, previous;
   WalkCounts counts;  // both walks together
 
@@ -44,11 +44,13 @@ class SpecularMotion {
 
  private:
   const FrameGeometry& geometry_;
+  FrameGeometry nextGeometry_, previousGeometry_;  // for the paths' visibility there
   const LpeAutomaton& automaton_;
   const std::vector<PreciseShape>& shapes_;
   PinholeCamera camera_;
   double now_, next_, previous_;  // seconds
   PinholeCamera::Placed cameraNow_;
+  bool sceneMoves_;
   std::vector<uint8_t> specular_;
 };
 

@@ -512,6 +512,43 @@ TEST(SpecularMotion, StaticChainIsZeroWithoutWalkingWhileOtherObjectsMove) {
   EXPECT_EQ(chains, 16 * 12);
 }
 
+TEST(SpecularMotion, PathHiddenInTheNextFrameIsFlagged) {
+  // A card (1 x 1, in the plane x = 1.5) drops between the static mirror and the card it
+  // shows during frame 1 to 2: the paths through its square are hidden in frame 2.
+  const std::string json = mirrorScene("", "");
+  const int width = 32, height = 24;
+  const TrackedScene scene(json.substr(0, json.rfind(']')) + R"(,
+      {"type": "rectangle", "size": [1, 1], "material": "card",
+       "transform": {"rotate": {"axis": [0, 1, 0], "angle": -90}},
+       "animation": {"translate": [{"frame": 1, "value": [1.5, 5, 0]}, {"frame": 2, "value": [1.5, 0, 0]}]}}]})",
+                           width, height);
+  const TestCamera camera{{0, 0, 5}, 30, width, height};
+  int hidden = 0, seen = 0;
+  scene.forEachChain(kReflection, [&](int x, int y, const SpecularTrack& track) {
+    // Where the path crosses the plane x = 1.5, on its way to the mirror or from it.
+    const Vec3d p = cardPointSeen(camera, pixelCentre(x, y), {});
+    const Vec3d d = camera.direction(pixelCentre(x, y));
+    const Vec3d x1 = camera.position + d * (dot(-camera.position, kMirrorNormal) / dot(d, kMirrorNormal));
+    const auto margin = [&](Vec3d a, Vec3d b) {  // > 0 inside the square, < 0 outside
+      if ((a.x - 1.5) * (b.x - 1.5) > 0) return -1.0;
+      const Vec3d c = a + (b - a) * ((1.5 - a.x) / (b.x - a.x));
+      return 0.5 - std::max(std::abs(c.y), std::abs(c.z));
+    };
+    const double m = std::max(margin(camera.position, x1), margin(x1, p));
+    if (std::abs(m) < 0.02) return;  // too close to the square's edge to say
+    EXPECT_TRUE(track.backward.has_value()) << "pixel " << x << "," << y;
+    if (m > 0) {
+      ++hidden;
+      EXPECT_FALSE(track.forward.has_value()) << "pixel " << x << "," << y;
+    } else {
+      ++seen;
+      expectMotion(track.forward, {0, 0}, 0, x, y);
+    }
+  });
+  EXPECT_GT(hidden, 10);
+  EXPECT_GT(seen, 100);
+}
+
 // ---------------------------------------------------------------------------------------
 // The decomposed film carries the walk's result, the same bits for any tiling.
 
