@@ -201,16 +201,26 @@ TEST(SpecularMotion, GlassSlabShiftMatchesSnellsLaw) {
 // turns about y by 6 degrees per frame, so the endpoints move too. The test traces spheres
 // itself and searches film positions for the one whose path lands on the moved point.
 
+// Every test sphere moves with kSphereAnimation (below): two keyed segments, so the walk
+// crosses a key between frames. The keys are exact in float, as the scene stores them.
+const char* kSphereAnimation = R"("animation": {"translate": [{"frame": 0, "value": [-0.25, 0, 0]},
+    {"frame": 1.5, "value": [0.25, 0.125, 0.125]}, {"frame": 2, "value": [0.25, -0.125, 0.375]}]})";
+
+Vec3d sphereCenterAt(double seconds) {
+  const Vec3d a{-0.25, 0, 0}, b{0.25, 0.125, 0.125}, c{0.25, -0.125, 0.375};
+  return seconds < 1.5 ? a + (b - a) * (seconds / 1.5) : b + (c - b) * ((seconds - 1.5) / 0.5);
+}
+
 struct TestSphere {
-  Vec3d center[3];  // at frames 0, 1, 2
   double radius;
   double ior;  // 0: a mirror
 };
 
 constexpr double kRoomRadius = 20;
 
-Vec3d turnedRoomPoint(Vec3d p, int frames) {
-  const double a = 6 * kDegrees * frames;
+// A point of the room carried along by its turning over `seconds`.
+Vec3d turnedRoomPoint(Vec3d p, double seconds) {
+  const double a = 6 * kDegrees * seconds;
   return {p.x * std::cos(a) + p.z * std::sin(a), p.y, -p.x * std::sin(a) + p.z * std::cos(a)};
 }
 
@@ -222,20 +232,22 @@ double sphereHit(Vec3d o, Vec3d d, Vec3d center, double radius, double minDistan
   return near > minDistance ? near : (far > minDistance ? far : -1);
 }
 
-// The path from `o` along `d` at frame `frame`: specular vertices, then the room point.
-std::optional<std::vector<Vec3d>> traceSpheres(const std::vector<TestSphere>& spheres, int frame, Vec3d o, Vec3d d) {
+// The path from `o` along `d` at `seconds`: specular vertices, then the room point.
+std::optional<std::vector<Vec3d>> traceSpheres(const std::vector<TestSphere>& spheres, double seconds, Vec3d o,
+                                               Vec3d d) {
+  const Vec3d center = sphereCenterAt(seconds);
   std::vector<Vec3d> vertices;
   for (int bounce = 0; bounce < 10; ++bounce) {
     double nearest = sphereHit(o, d, {}, kRoomRadius, 1e-9);
     const TestSphere* hit = nullptr;
     for (const TestSphere& s : spheres) {
-      const double t = sphereHit(o, d, s.center[frame], s.radius, 1e-9);
+      const double t = sphereHit(o, d, center, s.radius, 1e-9);
       if (t > 0 && t < nearest) nearest = t, hit = &s;
     }
     o = o + d * nearest;
     vertices.push_back(o);
     if (!hit) return vertices;
-    Vec3d n = (o - hit->center[frame]) / hit->radius;
+    Vec3d n = (o - center) / hit->radius;
     if (hit->ior == 0) {
       d = d - n * (2 * dot(d, n));
       continue;
@@ -280,12 +292,9 @@ std::optional<Vec2d> bruteForceFilm(const std::function<std::optional<std::vecto
   return best;
 }
 
-// Every solved path at t + 1 satisfies the specular constraints (generalized half vector
-// along the analytic normal) and lands on its target; its motion agrees with the search.
-void expectCurvedCaseMatchesBruteForce(const std::string& shapes, const std::vector<TestSphere>& spheres, int component,
-                                       Decomposition decomposition = Decomposition::standard()) {
-  const int width = 32, height = 24;
-  const TrackedScene scene(R"({
+// The spheres `shapes` inside the turning room, seen by a camera at (0, 0, 5).
+std::string curvedScene(const std::string& shapes) {
+  return R"({
     "fps": 1,
     "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0], "fov": 32},
     "materials": {"mirror": {"type": "conductor", "specular_color": 1},
@@ -296,8 +305,21 @@ void expectCurvedCaseMatchesBruteForce(const std::string& shapes, const std::vec
     "shapes": [
       {"type": "sphere", "radius": 20, "material": "room",
        "animation": {"rotate": [{"frame": 0, "axis": [0, 1, 0], "angle": -6}, {"frame": 2, "axis": [0, 1, 0], "angle": 6}]}},
-      )" + shapes + "]}",
-                           width, height, std::move(decomposition));
+      )" +
+         shapes + "]}";
+}
+
+std::string sphereShape(double radius, const char* material) {
+  return R"({"type": "sphere", "radius": )" + std::to_string(radius) + R"(, "material": ")" + material + R"(", )" +
+         kSphereAnimation + "}";
+}
+
+// Every solved path at t + 1 satisfies the specular constraints (generalized half vector
+// along the analytic normal) and lands on its target; its motion agrees with the search.
+void expectCurvedCaseMatchesBruteForce(const std::string& shapes, const std::vector<TestSphere>& spheres, int component,
+                                       Decomposition decomposition = Decomposition::standard()) {
+  const int width = 32, height = 24;
+  const TrackedScene scene(curvedScene(shapes), width, height, std::move(decomposition));
   const TestCamera camera{{0, 0, 5}, 32, width, height};
   int tracked = 0, reachable = 0, chains = 0;
   scene.forEachChain(component, [&](int x, int y, const SpecularTrack& track) {
@@ -329,9 +351,9 @@ void expectCurvedCaseMatchesBruteForce(const std::string& shapes, const std::vec
         const Vec3d wi = normalize(previous - xi), wo = normalize(solved->vertices[i + 1].surface.position - xi);
         const TestSphere* on = nullptr;
         for (const TestSphere& s : spheres)
-          if (std::abs(length(xi - s.center[frame]) - s.radius) < 1e-9) on = &s;
+          if (std::abs(length(xi - sphereCenterAt(frame)) - s.radius) < 1e-9) on = &s;
         ASSERT_NE(on, nullptr) << "vertex " << i << " is on no sphere";
-        const Vec3d n = (xi - on->center[frame]) / on->radius;
+        const Vec3d n = (xi - sphereCenterAt(frame)) / on->radius;
         const auto eta = [&](Vec3d w) { return on->ior == 0 || dot(w, n) > 0 ? 1 : on->ior; };
         const Vec3d h = wi * eta(wi) + wo * eta(wo);
         EXPECT_LT(length(h - n * dot(h, n)), 1e-6) << "pixel " << x << "," << y << " vertex " << i;
@@ -346,38 +368,65 @@ void expectCurvedCaseMatchesBruteForce(const std::string& shapes, const std::vec
   EXPECT_GT(tracked, 40);
 }
 
-// The spheres move along two keyed segments, so the walk crosses a key between frames.
-// The keys are exact in float, as the scene stores them.
-const char* kSphereAnimation = R"("animation": {"translate": [{"frame": 0, "value": [-0.25, 0, 0]},
-    {"frame": 1.5, "value": [0.25, 0.125, 0.125]}, {"frame": 2, "value": [0.25, -0.125, 0.375]}]})";
-const Vec3d kSphereCenters[3] = {
-    {-0.25, 0, 0}, Vec3d{-0.25, 0, 0} + Vec3d{0.5, 0.125, 0.125} * (1 / 1.5), {0.25, -0.125, 0.375}};
-
-TestSphere movingSphere(double radius, double ior) {
-  return {{kSphereCenters[0], kSphereCenters[1], kSphereCenters[2]}, radius, ior};
-}
-
-std::string sphereShape(double radius, const char* material) {
-  return R"({"type": "sphere", "radius": )" + std::to_string(radius) + R"(, "material": ")" + material + R"(", )" +
-         kSphereAnimation + "}";
-}
-
 TEST(SpecularMotion, MirrorSphereMatchesBruteForceSearch) {
-  expectCurvedCaseMatchesBruteForce(sphereShape(1, "mirror"), {movingSphere(1, 0)}, kReflection);
+  expectCurvedCaseMatchesBruteForce(sphereShape(1, "mirror"), {{1, 0}}, kReflection);
 }
 
 TEST(SpecularMotion, GlassSphereMatchesBruteForceSearch) {
-  expectCurvedCaseMatchesBruteForce(sphereShape(1, "glass"), {movingSphere(1, 1.5)}, kTransmission);
+  expectCurvedCaseMatchesBruteForce(sphereShape(1, "glass"), {{1, 1.5}}, kTransmission);
 }
 
 TEST(SpecularMotion, NestedDielectricWithFourTransmissionsMatchesBruteForceSearch) {
-  expectCurvedCaseMatchesBruteForce(sphereShape(1, "glass") + "," + sphereShape(0.5, "water"),
-                                    {movingSphere(1, 1.5), movingSphere(0.5, 1.33)}, 0,
-                                    Decomposition::parse("deep=ETTTTD.*"));
+  expectCurvedCaseMatchesBruteForce(sphereShape(1, "glass") + "," + sphereShape(0.5, "water"), {{1, 1.5}, {0.5, 1.33}},
+                                    0, Decomposition::parse("deep=ETTTTD.*"));
 }
 
 TEST(SpecularMotion, IndexOfRefractionNearOneIsTrackedLikeAnyGlass) {
-  expectCurvedCaseMatchesBruteForce(sphereShape(1, "thin"), {movingSphere(1, 1.0001)}, kTransmission);
+  expectCurvedCaseMatchesBruteForce(sphereShape(1, "thin"), {{1, 1.0001}}, kTransmission);
+}
+
+// The manifold's tangent (the implicit function theorem on the constraint Jacobian)
+// against central differences of paths the search solves: how the first vertex moves as
+// time advances with the endpoint on its object point, and as the endpoint slides along u.
+TEST(SpecularMotion, ManifoldTangentMatchesFiniteDifferencesOfSolvedPaths) {
+  const int width = 32, height = 24;
+  const TrackedScene scene(curvedScene(sphereShape(1, "glass")), width, height);
+  const std::vector<TestSphere> spheres{{1, 1.5}};
+  const TestCamera camera{{0, 0, 5}, 32, width, height};
+  const SpecularChain chain{{{1, true, 1.5}, {1, true, 1.5}}, 0};  // through the glass to the room
+  // The first vertex of the path the search finds through `target` at `seconds`.
+  const auto firstVertex = [&](Vec3d target, double seconds) {
+    const auto trace = [&](Vec2d f) { return traceSpheres(spheres, seconds, camera.position, camera.direction(f)); };
+    const auto film = bruteForceFilm(trace, 3, target, width, height);
+    EXPECT_TRUE(film.has_value());
+    return film ? trace(*film)->front() : Vec3d{};
+  };
+  const auto expectClose = [](Vec3d difference, Vec3d predicted, const char* what) {
+    EXPECT_LT(length(difference - predicted), 1e-3 * length(predicted) + 1e-7)
+        << what << ": " << difference.x << " " << difference.y << " " << difference.z << " against " << predicted.x
+        << " " << predicted.y << " " << predicted.z;
+  };
+  for (const auto& [x, y] : {std::pair{14, 12}, std::pair{19, 8}, std::pair{10, 15}}) {
+    const SpecularTrack track = scene.track(x, y, kTransmission);
+    ASSERT_TRUE(track.now.has_value());
+    const auto tangent = manifoldTangent(*track.now, chain);
+    ASSERT_TRUE(tangent.has_value());
+    const SurfaceDifferentials &first = track.now->vertices.front().surface, &end = track.now->endpoint().surface;
+    const auto predicted = [&](int column) {
+      return first.dpdu * tangent->du[column] + first.dpdv * tangent->dv[column] +
+             (column == 2 ? first.velocity : Vec3d{});
+    };
+    const double h = 1e-3;
+    expectClose(
+        (firstVertex(turnedRoomPoint(end.position, h), 1 + h) - firstVertex(turnedRoomPoint(end.position, -h), 1 - h)) /
+            (2 * h),
+        predicted(2), "in time");
+    const auto onRoom = [](Vec3d p) { return p * (kRoomRadius / length(p)); };
+    expectClose(
+        (firstVertex(onRoom(end.position + end.dpdu * h), 1) - firstVertex(onRoom(end.position - end.dpdu * h), 1)) /
+            (2 * h),
+        predicted(0), "along u");
+  }
 }
 
 // ---------------------------------------------------------------------------------------
