@@ -16,14 +16,6 @@ struct AffineMotion {
   Vec3d vector(Vec3d v) const { return linear * v; }
   // The velocity of the world point that sits at object-space `p`.
   Vec3d velocity(Vec3d p) const { return linearRate * p + translationRate; }
-  bool isStill() const;
 };
-
-inline bool AffineMotion::isStill() const {
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      if (linearRate.m[i][j] != 0) return false;
-  return translationRate.x == 0 && translationRate.y == 0 && translationRate.z == 0;
-}
 
 }  // namespace pathfarm

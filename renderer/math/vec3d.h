@@ -21,7 +21,6 @@ struct Vec3d {
 
   constexpr double operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
   constexpr Vec3d operator-() const { return {-x, -y, -z}; }
-  constexpr Vec3d& operator+=(Vec3d o) { x += o.x; y += o.y; z += o.z; return *this; }
   Vec3f toFloat() const { return {static_cast<float>(x), static_cast<float>(y), static_cast<float>(z)}; }
 };
 
@@ -81,12 +80,6 @@ struct Mat3d {
     Mat3d r;
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) r.m[i][j] = m[i][j] + o.m[i][j];
-    return r;
-  }
-  Mat3d operator*(double s) const {
-    Mat3d r;
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) r.m[i][j] = m[i][j] * s;
     return r;
   }
   Mat3d transposed() const {
