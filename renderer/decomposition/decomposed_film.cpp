@@ -120,6 +120,14 @@ void DecomposedFilm::Pixel::add(const SampleComponents& sample, const SampleExtr
   }
 }
 
+void DecomposedFilm::Pixel::setSpecularMotion(int component, std::optional<Vec2f> forward,
+                                              std::optional<Vec2f> backward) {
+  Component& c = components_[static_cast<size_t>(component)];
+  c.specular = true;
+  c.specularMotion = forward;
+  c.specularMotionBack = backward;
+}
+
 void DecomposedFilm::write(size_t p, const Pixel& sums) const {
   const double n = sums.samples_;
   for (size_t k = 0; k < components_.size(); ++k) {
@@ -141,12 +149,21 @@ void DecomposedFilm::write(size_t p, const Pixel& sums) const {
     for (int i = 0; i < 3; ++i) out.normal[i][p] = length > 0 ? static_cast<float>(c.normal[i] / length) : 0.0f;
     out.objectId[p] = static_cast<float>(c.objectId);
     out.primitive[p] = static_cast<float>(c.primitive);
+    for (int i = 0; i < 2; ++i) out.uv[i][p] = static_cast<float>(c.uv[i] / features);
+    out.depth[p] = static_cast<float>(c.depth / features);
+    if (c.specular) {
+      const bool valid = c.specularMotion && c.specularMotionBack;
+      out.motion[0][p] = valid ? c.specularMotion->x : 0.0f;
+      out.motion[1][p] = valid ? c.specularMotion->y : 0.0f;
+      out.motionBack[0][p] = valid ? c.specularMotionBack->x : 0.0f;
+      out.motionBack[1][p] = valid ? c.specularMotionBack->y : 0.0f;
+      out.motionValid[p] = valid ? 1.0f : 0.0f;
+      continue;
+    }
     for (int i = 0; i < 2; ++i) {
-      out.uv[i][p] = static_cast<float>(c.uv[i] / features);
       out.motion[i][p] = static_cast<float>(c.motion[i] / moving);
       out.motionBack[i][p] = static_cast<float>(c.motionBack[i] / moving);
     }
-    out.depth[p] = static_cast<float>(c.depth / features);
     out.motionValid[p] = c.moving > 0 ? 1.0f : 0.0f;
   }
   depth_[p] = sums.hits_ > 0 ? static_cast<float>(sums.depth_ / sums.hits_) : 0.0f;

@@ -37,6 +37,10 @@ class DecomposedFilm {
    public:
     explicit Pixel(int components);
     void add(const SampleComponents& components, const SampleExtras& extras);
+    // A specular component's motion from the manifold walk (specular_motion.h), which
+    // replaces the samples' primary motion; nothing where the walk found none. Valid only
+    // with both directions.
+    void setSpecularMotion(int component, std::optional<Vec2f> forward, std::optional<Vec2f> backward);
 
    private:
     friend class DecomposedFilm;
@@ -46,6 +50,8 @@ class DecomposedFilm {
       double reflectance[3] = {}, normal[3] = {}, uv[2] = {}, depth = 0, emission[3] = {};
       double motion[2] = {}, motionBack[2] = {};
       uint32_t objectId = 0, primitive = 0;
+      bool specular = false;
+      std::optional<Vec2f> specularMotion, specularMotionBack;
     };
     std::vector<Component> components_;
     int samples_ = 0, hits_ = 0, moving_ = 0;

@@ -10,6 +10,7 @@
 #include "renderer/accel/shot_geometry.h"
 #include "renderer/decomposition/decomposed_film.h"
 #include "renderer/decomposition/primary_motion.h"
+#include "renderer/decomposition/specular_motion.h"
 
 namespace pathfarm {
 
@@ -26,15 +27,26 @@ struct FrameRenderer::Shot {
   EmbreeDevice device;
   ShotGeometry geometry;
   LightSampler lights;
+  bool decomposing;
+  std::vector<PreciseShape> preciseShapes;  // for the specular motion of a decomposition
 
-  explicit Shot(const Scene& scene) : geometry(scene, device), lights(geometry) {}
+  Shot(const Scene& scene, bool decomposes)
+      : geometry(scene, device),
+        lights(geometry),
+        decomposing(decomposes),
+        preciseShapes(decomposes ? preciseShapesOf(scene) : std::vector<PreciseShape>{}) {}
 };
 
 FrameRenderer::FrameRenderer(const Scene& scene, RenderSettings settings)
-    : scene_(scene), settings_(settings), shot_(std::make_shared<Shot>(scene)) {}
+    : scene_(scene), settings_(settings), shot_(std::make_shared<Shot>(scene, settings.decomposition != nullptr)) {}
 
+// A decomposing renderer needs the precise shapes, which a base renderer without a
+// decomposition did not build: then it builds its own shot.
 FrameRenderer::FrameRenderer(const FrameRenderer& shot, RenderSettings settings)
-    : scene_(shot.scene_), settings_(settings), shot_(shot.shot_) {}
+    : scene_(shot.scene_),
+      settings_(settings),
+      shot_(settings.decomposition && !shot.shot_->decomposing ? std::make_shared<Shot>(shot.scene_, true)
+                                                               : shot.shot_) {}
 
 FrameRenderer::~FrameRenderer() = default;
 
@@ -62,6 +74,11 @@ SampleExtras extrasOf(const PathRecord& record, const Ray& ray, float time, cons
   extras.motion = moved.forward;
   extras.motionBack = moved.backward;
   return extras;
+}
+
+std::optional<Vec2f> toFloat(const std::optional<Vec2d>& v) {
+  if (!v) return std::nullopt;
+  return Vec2f{static_cast<float>(v->x), static_cast<float>(v->y)};
 }
 
 struct TileCounters {
@@ -96,6 +113,9 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
   for (int c = 0; c < 6; ++c) channels[c] = image.addChannel(names[c]).data();
   std::optional<DecomposedFilm> film;
   if (decomposition) film.emplace(image, *decomposition);
+  std::optional<SpecularMotion> specular;
+  if (decomposition)
+    specular.emplace(*geometry, shot_->preciseShapes, *decomposition, settings_.width, settings_.height);
 
   const int tilesX = (width + tile - 1) / tile, tilesY = (height + tile - 1) / tile;
   const size_t tileCount = static_cast<size_t>(tilesX) * static_cast<size_t>(tilesY);
@@ -155,7 +175,14 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
           channels[c][pixel] = static_cast<float>(mean);
           channels[3 + c][pixel] = static_cast<float>(variance);
         }
-        if (film) film->write(pixel, *sums);
+        if (film) {
+          for (int k = 0; k < decomposition->size(); ++k) {
+            if (!specular->isSpecular(k)) continue;
+            const SpecularTrack track = specular->track(x, y, k);
+            sums->setSpecularMotion(k, toFloat(track.forward), toFloat(track.backward));
+          }
+          film->write(pixel, *sums);
+        }
       }
     }
     const size_t done = ++tilesDone;

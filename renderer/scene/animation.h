@@ -4,6 +4,7 @@
 // track holds its first/last value outside its keys. Times are in seconds.
 #include <vector>
 
+#include "renderer/math/affine_motion.h"
 #include "renderer/math/transform.h"
 
 namespace pathfarm {
@@ -30,6 +31,10 @@ class AnimatedTrs {
 
   Trs at(double seconds) const;
   Transform transformAt(double seconds) const { return Transform::fromTrs(at(seconds)); }
+  // The same placement in double precision with its time derivative (per second), for
+  // solvers that differentiate through the animation. At a key the derivative is the
+  // following segment's; outside the keys it is zero.
+  AffineMotion motionAt(double seconds) const;
   bool isAnimated() const;
   // True when some key lies strictly inside (t0, t1): the motion there is not one
   // linear segment.

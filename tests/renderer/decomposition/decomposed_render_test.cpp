@@ -114,7 +114,10 @@ TEST(DecomposedRender, MirrorEnergyGoesToReflectionNotToTheDiffuseComponents) {
   EXPECT_EQ(image.channel("reflection.objectid.Y")[centre], 3.0f);
   EXPECT_NEAR(image.channel("reflection.normal.Z")[centre], -1.0f, 1e-2f);
   EXPECT_GT(image.channel("reflection.emission.G")[centre], 4.9f);
-  EXPECT_EQ(image.channel("reflection.motion_valid.Y")[centre], 0.0f);  // the manifold walk's job
+  // Nothing moves: the mirror's path is tracked with exactly zero motion, without a walk.
+  EXPECT_EQ(image.channel("reflection.motion_valid.Y")[centre], 1.0f);
+  EXPECT_EQ(image.channel("reflection.motion.X")[centre], 0.0f);
+  EXPECT_EQ(image.channel("reflection.motion_back.Y")[centre], 0.0f);
 }
 
 TEST(DecomposedRender, SeeThroughGlassEnergyGoesToTransmission) {
