@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs dependencies, builds, and renders the demo animation (the animated Cornell
-# box, scenes/cornell/shot.json) on an embedded local farm: a scheduler and two worker
-# processes on this machine.
+# box, scenes/cornell/shot.json) with the DUI pipeline on an embedded local farm: a
+# scheduler and two worker processes on this machine. Prints the shot's report.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./deploy/setup.sh
@@ -10,6 +10,9 @@ OUT=${PATHFARM_DEMO_OUT:-demo-output/cornell}
 "$BUILD_DIR/bin/pathfarm" local scenes/cornell/shot.json --workers 2 --out "$OUT"
 "$BUILD_DIR/bin/pathfarm" preview "$OUT"
 echo
-echo "EXR frames (beauty in R,G,B; per-pixel variance in variance.R/G/B): $OUT/frame_0000.exr .. frame_0023.exr"
+cat "$OUT/report.md"
+echo
+echo "EXR frames (beauty in R,G,B; every component's color):             $OUT/frame_0000.exr .. frame_0023.exr"
 echo "PNG previews:                                                      $OUT/frame_0000.png .. frame_0023.png"
+echo "Speed against error (above):                                       $OUT/report.md, report.json"
 echo "The farm's database, chunks and worker logs:                       $OUT/farm/"
