@@ -46,22 +46,6 @@ std::vector<ShotSummary> FarmClient::shots() {
   return {reply.shots().begin(), reply.shots().end()};
 }
 
-ShotReply FarmClient::shot(int64_t id) {
-  ShotRequest request;
-  request.set_shot_id(id);
-  ShotReply reply;
-  check(stub_->GetShot(context(false).get(), request, &reply));
-  return reply;
-}
-
-ShotReport FarmClient::report(int64_t id) {
-  ShotRequest request;
-  request.set_shot_id(id);
-  ShotReport reply;
-  check(stub_->GetReport(context(false).get(), request, &reply));
-  return reply;
-}
-
 ShotSummary FarmClient::watch(int64_t id, const std::function<void(const ShotSummary&)>& update) {
   ShotRequest request;
   request.set_shot_id(id);
@@ -73,18 +57,27 @@ ShotSummary FarmClient::watch(int64_t id, const std::function<void(const ShotSum
   return summary;
 }
 
-template <class Method>
-ShotSummary FarmClient::controlShot(Method method, int64_t id) {
+template <class Reply, class Method>
+Reply FarmClient::aboutShot(Method method, int64_t id) {
   ShotRequest request;
   request.set_shot_id(id);
-  ControlReply reply;
+  Reply reply;
   check((stub_.get()->*method)(context(false).get(), request, &reply));
-  return reply.summary();
+  return reply;
 }
 
-ShotSummary FarmClient::cancel(int64_t id) { return controlShot(&ClientService::Stub::CancelShot, id); }
-ShotSummary FarmClient::pause(int64_t id) { return controlShot(&ClientService::Stub::PauseShot, id); }
-ShotSummary FarmClient::resume(int64_t id) { return controlShot(&ClientService::Stub::ResumeShot, id); }
+ShotReply FarmClient::shot(int64_t id) { return aboutShot<ShotReply>(&ClientService::Stub::GetShot, id); }
+ShotReport FarmClient::report(int64_t id) { return aboutShot<ShotReport>(&ClientService::Stub::GetReport, id); }
+
+ShotSummary FarmClient::cancel(int64_t id) {
+  return aboutShot<ControlReply>(&ClientService::Stub::CancelShot, id).summary();
+}
+ShotSummary FarmClient::pause(int64_t id) {
+  return aboutShot<ControlReply>(&ClientService::Stub::PauseShot, id).summary();
+}
+ShotSummary FarmClient::resume(int64_t id) {
+  return aboutShot<ControlReply>(&ClientService::Stub::ResumeShot, id).summary();
+}
 
 std::vector<std::filesystem::path> FarmClient::fetch(int64_t id, const std::filesystem::path& folder) {
   ShotRequest request;

@@ -41,8 +41,9 @@ class FarmClient {
 
  private:
   std::unique_ptr<grpc::ClientContext> context(bool stream) const;
-  template <class Method>
-  ShotSummary controlShot(Method method, int64_t id);
+  // One unary call about a shot.
+  template <class Reply, class Method>
+  Reply aboutShot(Method method, int64_t id);
   std::unique_ptr<ClientService::Stub> stub_;
   std::string token_;
 };
