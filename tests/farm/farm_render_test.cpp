@@ -46,6 +46,12 @@ TEST_F(FarmTest, ThreeWorkersRenderTheFramesThatRenderWritesLocally) {
   EXPECT_EQ(status.status, 0) << status.output;
   EXPECT_TRUE(contains(status.output, "SHOT_DONE")) << status.output;
 
+  // The report: a pt shot is its own baseline; an unknown shot is bad input.
+  const CommandResult report = runPathfarm({"report", std::to_string(id), "--scheduler", scheduler, "--json"});
+  EXPECT_EQ(report.status, 0) << report.output;
+  EXPECT_TRUE(contains(report.output, "\"relative_cost\": 1")) << report.output;
+  EXPECT_EQ(runPathfarm({"report", "999", "--scheduler", scheduler}).status, 2);
+
   const fs::path fetched = fetchFrames(id, "fetched");
   expectSameFrames(fetched, renderLocally(spec), spec);
 
