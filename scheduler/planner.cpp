@@ -1,6 +1,7 @@
 #include "scheduler/planner.h"
 
 #include <algorithm>
+#include <functional>
 #include <map>
 #include <string>
 
@@ -23,9 +24,9 @@ void checkRenderSpec(const ShotSpec& spec) {
 }
 
 // Appends the tiles of one frame's render and the task assembling them; returns the
-// assemble task's index.
+// assemble task's index. `adjust` may add to every tile's parameters.
 size_t planFrameRender(const ShotSpec& spec, int64_t frame, TaskRole role, int spp, bool beautyOnly,
-                       std::vector<PlannedTask>& plan) {
+                       std::vector<PlannedTask>& plan, const std::function<void(TaskParams&)>& adjust = {}) {
   const int tile = spec.tile();
   PlannedTask assemble{TASK_ASSEMBLE_FRAME, {}, {}, role == ROLE_OUTPUT};
   assemble.params.set_frame(frame);
@@ -37,6 +38,7 @@ size_t planFrameRender(const ShotSpec& spec, int64_t frame, TaskRole role, int s
       render.params.set_role(role);
       render.params.set_spp(spp);
       render.params.set_beauty_only(beautyOnly);
+      if (adjust) adjust(render.params);
       PixelWindow* window = render.params.mutable_window();
       window->set_x0(x);
       window->set_y0(y);
@@ -117,23 +119,16 @@ void planFiltering(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
 
   const std::vector<int64_t> keyframes = keyframesOf(spec);
   const int keyframeSpp = stages.upsample ? std::max(1, spec.spp() / 4) : spec.spp();
-  const int featureSpp = std::clamp(spec.feature_spp(), 1, spec.spp());
-  std::map<int64_t, size_t> rendered;  // frame -> its assembled render (keyframe or features)
-  for (const int64_t frame : keyframes) rendered[frame] = planFrameRender(spec, frame, ROLE_KEYFRAME, keyframeSpp, false, plan);
-  for (size_t i = 1; i < keyframes.size(); ++i)
-    for (int64_t frame = keyframes[i - 1] + 1; frame < keyframes[i]; ++frame)
-      rendered[frame] = planFrameRender(spec, frame, ROLE_FEATURES, featureSpp, false, plan);
-
-  // Motion chained across the frames between two keyframes more than one frame apart.
-  std::map<int64_t, size_t> motionFrom;  // keyframe K0 -> the motion task of (K0, next keyframe)
-  for (size_t i = 1; i < keyframes.size(); ++i) {
-    const int64_t k0 = keyframes[i - 1], k1 = keyframes[i];
-    if (k1 - k0 < 2) continue;
-    PlannedTask motion = task(TASK_MOTION, k0, {});
-    for (int64_t frame = k0; frame <= k1; ++frame) motion.dependencies.push_back(rendered.at(frame));
-    motion.params.set_keyframe_before(k0);
-    motion.params.set_keyframe_after(k1);
-    motionFrom[k0] = push(std::move(motion), plan);
+  std::map<int64_t, size_t> rendered;  // keyframe -> its assembled render
+  for (size_t i = 0; i < keyframes.size(); ++i) {
+    // Its motion vectors reach the neighbouring keyframes directly (one frame at the ends).
+    const int forward = i + 1 < keyframes.size() ? static_cast<int>(keyframes[i + 1] - keyframes[i]) : 1;
+    const int backward = i > 0 ? static_cast<int>(keyframes[i] - keyframes[i - 1]) : 1;
+    rendered[keyframes[i]] = planFrameRender(spec, keyframes[i], ROLE_KEYFRAME, keyframeSpp, false, plan,
+                                             [&](TaskParams& params) {
+                                               params.set_motion_forward(forward);
+                                               params.set_motion_backward(backward);
+                                             });
   }
 
   StageOutputs evaluated;
@@ -141,34 +136,30 @@ void planFiltering(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
   for (size_t i = 0; i < keyframes.size(); ++i) {
     const int64_t frame = keyframes[i];
     PlannedTask denoise = task(TASK_DENOISE, frame, {rendered.at(frame)});
-    if (i > 0) {
-      denoise.dependencies.push_back(rendered.at(keyframes[i - 1]));
-      if (motionFrom.count(keyframes[i - 1])) denoise.dependencies.push_back(motionFrom.at(keyframes[i - 1]));
-    }
-    if (i + 1 < keyframes.size()) {
-      denoise.dependencies.push_back(rendered.at(keyframes[i + 1]));
-      if (motionFrom.count(frame)) denoise.dependencies.push_back(motionFrom.at(frame));
-    }
+    if (i > 0) denoise.dependencies.push_back(rendered.at(keyframes[i - 1]));
+    if (i + 1 < keyframes.size()) denoise.dependencies.push_back(rendered.at(keyframes[i + 1]));
     finalOf[frame] = push(std::move(denoise), plan);
     if (stages.upsample) finalOf[frame] = push(task(TASK_UPSAMPLE, frame, {finalOf[frame], rendered.at(frame)}), plan);
     evaluated[frame] = {rendered.at(frame), finalOf[frame]};
   }
 
-  for (const auto& [k0, motion] : motionFrom) {
-    const int64_t k1 = plan[motion].params.keyframe_after();
-    std::vector<size_t> interpolationInputs = {finalOf.at(k0), finalOf.at(k1), motion};
+  for (size_t i = 1; i < keyframes.size(); ++i) {
+    const int64_t k0 = keyframes[i - 1], k1 = keyframes[i];
+    if (k1 - k0 < 2) continue;
+    const auto between = [&](TaskKind kind, int64_t frame, std::vector<size_t> dependencies) {
+      PlannedTask planned = task(kind, frame, std::move(dependencies));
+      planned.params.set_keyframe_before(k0);
+      planned.params.set_keyframe_after(k1);
+      return planned;
+    };
+    std::vector<size_t> interpolationInputs = {finalOf.at(k0), finalOf.at(k1)};
     for (const std::string& component : components) {
-      PlannedTask flow = task(TASK_FLOW, k0, {finalOf.at(k0), finalOf.at(k1), motion});
-      flow.params.set_keyframe_before(k0);
-      flow.params.set_keyframe_after(k1);
+      PlannedTask flow = between(TASK_FLOW, k0, {finalOf.at(k0), finalOf.at(k1)});
       flow.params.set_component(component);
       interpolationInputs.push_back(push(std::move(flow), plan));
     }
     for (int64_t frame = k0 + 1; frame < k1; ++frame) {
-      PlannedTask interpolate = task(TASK_INTERPOLATE, frame, interpolationInputs);
-      interpolate.params.set_keyframe_before(k0);
-      interpolate.params.set_keyframe_after(k1);
-      finalOf[frame] = push(std::move(interpolate), plan);
+      finalOf[frame] = push(between(TASK_INTERPOLATE, frame, interpolationInputs), plan);
       evaluated[frame] = {finalOf[frame]};
     }
   }

@@ -3,9 +3,10 @@
 //   pt    every frame split into tiles, and an assemble task per frame that depends on
 //         that frame's tiles and joins them into the frame's EXR (a worker does the joining,
 //         so the scheduler never decodes images);
-//   d, du, di, dui  the filtering pipelines (Zimmer et al. 2015): keyframes rendered and
-//         filtered, in-between frames interpolated, a composite per frame; re-render tiles
-//         are added while the shot runs (FarmState::complete);
+//   d, du, di, dui  the filtering pipelines (Zimmer et al. 2015): keyframes rendered (with
+//         motion vectors reaching the neighbouring keyframes) and filtered, in-between
+//         frames interpolated, a composite per frame; re-render tiles are added while the
+//         shot runs (FarmState::complete);
 //   noop  independent tasks that do nothing, for measuring the farm itself.
 // Every render pipeline adds the evaluation tasks the report needs: the baseline (plain pt
 // at the shot's spp) and, with reference_spp, the reference of the evaluation frames and

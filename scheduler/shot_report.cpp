@@ -34,7 +34,6 @@ std::string stageOf(const TaskRecord& task) {
       return "denoise";
     case TASK_UPSAMPLE:
       return "upsample";
-    case TASK_MOTION:
     case TASK_FLOW:
     case TASK_INTERPOLATE:
       return "interpolate";
@@ -197,7 +196,7 @@ std::string reportMarkdown(const ShotReport& r) {
   md += "| re-render rate, all frames | " + format("%.2f%%", 100 * r.rerender_rate()) + " |\n";
   md += "| re-render rate, interpolated frames | " + format("%.2f%%", 100 * r.interpolation_rerender_rate()) + " |\n";
   for (const auto& [cause, share] : r.interpolation_rerender_causes())
-    md += "| &nbsp; of which " + cause + " | " + format("%.2f%%", 100 * share) + " |\n";
+    md += std::string("| &nbsp; of which ").append(cause) + " | " + format("%.2f%%", 100 * share) + " |\n";
   md += "| re-render rate, upsampled keyframes | " + format("%.2f%%", 100 * r.upsample_rerender_rate()) + " |\n";
   md += "| measurement core-seconds (baseline, reference, evaluation; not in the cost) | " +
         format("%.2f", r.measurement_core_seconds()) + " |\n\n";
@@ -206,7 +205,7 @@ std::string reportMarkdown(const ShotReport& r) {
     return md;
   }
   md += "Errors against pt at " + std::to_string(r.reference_spp()) + " spp on frames";
-  for (const int64_t frame : r.evaluation_frames()) md += " " + std::to_string(frame);
+  for (const int64_t frame : r.evaluation_frames()) md.append(" ").append(std::to_string(frame));
   md += " (relMSE of the beauty):\n\n| stage | relMSE |\n| --- | ---: |\n";
   for (const StageError& e : r.errors()) md += "| " + e.stage() + " | " + format("%.5f", e.relmse()) + " |\n";
   if (r.temporal_error() >= 0)

@@ -46,8 +46,6 @@ MotionField readMotionField(const FrameImage& image, const std::string& name) {
   return field;
 }
 
-std::string motionLayer(const std::string& component) { return component.empty() ? "primary" : component; }
-
 void requestRerender(const ShotSpec& spec, int64_t frame, const std::vector<uint8_t>& mask, TaskOutput& output) {
   const int width = spec.width(), height = spec.height(), tile = spec.tile();
   if (mask.size() != static_cast<size_t>(width) * static_cast<size_t>(height))

@@ -21,8 +21,6 @@ const TaskInput& filteredKeyframe(const std::vector<TaskInput>& inputs, int64_t 
 // A motion field stored as `<name>.X`, `<name>.Y`, `<name>.valid`.
 void writeMotionField(FrameImage& image, const std::string& name, const MotionField& field);
 MotionField readMotionField(const FrameImage& image, const std::string& name);
-// The chunk layer of a component's motion: the component, or "primary" for "" (frame-wide).
-std::string motionLayer(const std::string& component);
 
 // Groups the flagged pixels of a frame (`mask`, one byte per pixel) into the shot's tiles:
 // one render task per tile with a flagged pixel, at the shot's spp, rendering just those

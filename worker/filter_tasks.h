@@ -25,8 +25,6 @@ struct TaskOutput {
   std::map<std::string, double> metrics;  // figures for the shot's report
 };
 
-// Motion chained from keyframe_before to keyframe_after across the renders in between.
-TaskOutput runMotionTask(const Lease& lease, const std::vector<TaskInput>& inputs);
 // A keyframe denoised with its neighbouring keyframes (at half resolution when upsampling).
 TaskOutput runDenoiseTask(const Lease& lease, const std::vector<TaskInput>& inputs);
 // The denoised keyframe upsampled under its full-resolution features; negative pixels are

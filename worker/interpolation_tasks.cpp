@@ -1,4 +1,4 @@
-// Motion between keyframes, irradiance flow and frame interpolation (worker/filter_tasks.h).
+// Irradiance flow and frame interpolation between two keyframes (worker/filter_tasks.h).
 #include <algorithm>
 #include <cmath>
 
@@ -10,18 +10,17 @@
 namespace pathfarm::farm {
 namespace {
 
-// The layers of a motion chunk: every component, then "" (frame-wide).
-std::vector<std::string> motionKeys(const FrameImage& frame) {
-  std::vector<std::string> keys = decompositionComponents(frame);
-  keys.emplace_back();
-  return keys;
-}
-
-ComponentMotions readMotions(const FrameImage& chunk) {
+// Each component's motion between the keyframes, and the frame-wide one (""): forward
+// from k0's motion vectors, backward from k1's, which reach each other (planner.h).
+ComponentMotions keyframeMotions(const FrameImage& k0, const FrameImage& k1) {
+  std::vector<std::string> layers = decompositionComponents(k0);
+  layers.emplace_back();
   ComponentMotions motions;
-  for (const std::string& key : motionKeys(chunk))
-    motions.components[key] = ComponentMotion(readMotionField(chunk, motionLayer(key) + ".forward"),
-                                              readMotionField(chunk, motionLayer(key) + ".backward"));
+  for (const std::string& layer : layers) {
+    const std::string prefix = layer.empty() ? "" : layer + ".";
+    motions.components[layer] = ComponentMotion(motionTowards(k0, NeighbourFrame::Next, prefix, "keyframe 0"),
+                                                motionTowards(k1, NeighbourFrame::Previous, prefix, "keyframe 1"));
+  }
   return motions;
 }
 
@@ -37,31 +36,14 @@ bool componentIsEmpty(const FrameImage& frame, const std::string& component) {
 
 }  // namespace
 
-TaskOutput runMotionTask(const Lease& lease, const std::vector<TaskInput>& inputs) {
-  const int64_t first = lease.params().keyframe_before(), last = lease.params().keyframe_after();
-  std::vector<FrameImage> frames;
-  for (int64_t frame = first; frame <= last; ++frame) frames.push_back(inputOf(inputs, TASK_ASSEMBLE_FRAME, frame).image);
-  const ComponentMotions motions = concatenatePrimaryMotion(frames);
-  FrameImage chunk(frames.front().width(), frames.front().height());
-  chunk.attributes()["pathfarm.decomposition"] = frames.front().attributes().at("pathfarm.decomposition");
-  chunk.attributes()["pathfarm.motion"] = "frame " + std::to_string(first) + " to frame " + std::to_string(last);
-  for (const auto& [key, motion] : motions.components) {
-    writeMotionField(chunk, motionLayer(key) + ".forward", motion.forward);
-    writeMotionField(chunk, motionLayer(key) + ".backward", motion.backward);
-  }
-  TaskOutput output;
-  output.chunk = encodeExr(chunk, ExrCompression::Fast);
-  return output;
-}
-
 TaskOutput runFlowTask(const Lease& lease, const std::vector<TaskInput>& inputs) {
   const TaskParams& params = lease.params();
   const std::string& component = params.component();
   const FrameImage& k0 = filteredKeyframe(inputs, params.keyframe_before()).image;
   const FrameImage& k1 = filteredKeyframe(inputs, params.keyframe_after()).image;
-  const ComponentMotions all = readMotions(inputOf(inputs, TASK_MOTION, params.keyframe_before()).image);
+  const ComponentMotions all = keyframeMotions(k0, k1);
   const auto primary = all.components.find(component);
-  if (primary == all.components.end()) throw std::runtime_error("the motion chunk has no component " + component);
+  if (primary == all.components.end()) throw std::runtime_error("the keyframes have no component " + component);
 
   ComponentMotions motions;
   motions.components[component] = primary->second;
@@ -92,7 +74,7 @@ TaskOutput runInterpolateTask(const Lease& lease, const std::vector<TaskInput>& 
   const int64_t before = params.keyframe_before(), after = params.keyframe_after();
   const FrameImage& k0 = filteredKeyframe(inputs, before).image;
   const FrameImage& k1 = filteredKeyframe(inputs, after).image;
-  ComponentMotions motions = readMotions(inputOf(inputs, TASK_MOTION, before).image);
+  ComponentMotions motions = keyframeMotions(k0, k1);
   for (const TaskInput& input : inputs) {
     if (input.kind != TASK_FLOW) continue;
     ComponentMotion& motion = motions.components.at(input.params.component());

@@ -16,24 +16,6 @@ namespace {
 
 constexpr int kUpsampleFactor = 2;
 
-// The keyframe's motion towards a neighbouring keyframe more than one frame away is the
-// chained motion of a motion task; an adjacent neighbour's is the frame's own. `direction`
-// is "motion" (towards the next keyframe) or "motion_back". The component's motion_valid
-// then holds where both directions hold, as the denoiser reads one validity for both.
-void takeChainedMotion(FrameImage& keyframe, const FrameImage& chained, const std::string& chainedField,
-                       const std::string& direction) {
-  for (const std::string& component : decompositionComponents(keyframe)) {
-    const MotionField field = readMotionField(chained, motionLayer(component) + "." + chainedField);
-    keyframe.channel(component + "." + direction + ".X") = field.x;
-    keyframe.channel(component + "." + direction + ".Y") = field.y;
-    std::vector<float>& valid = keyframe.channel(component + ".motion_valid.Y");
-    for (size_t p = 0; p < valid.size(); ++p) valid[p] = std::min(valid[p], field.valid[p]);
-  }
-  const MotionField primary = readMotionField(chained, motionLayer("") + "." + chainedField);
-  keyframe.channel(direction + ".X") = primary.x;
-  keyframe.channel(direction + ".Y") = primary.y;
-}
-
 }  // namespace
 
 TaskOutput runDenoiseTask(const Lease& lease, const std::vector<TaskInput>& inputs) {
@@ -43,18 +25,11 @@ TaskOutput runDenoiseTask(const Lease& lease, const std::vector<TaskInput>& inpu
   const auto at = std::find(keyframes.begin(), keyframes.end(), frame);
   if (at == keyframes.end()) throw std::runtime_error("frame " + std::to_string(frame) + " is not a keyframe");
 
+  // The keyframe's motion vectors reach its neighbouring keyframes (planner.h).
   FrameImage current = inputOf(inputs, TASK_ASSEMBLE_FRAME, frame).image;
   std::optional<FrameImage> previous, next;
-  if (at != keyframes.begin()) {
-    const int64_t before = *(at - 1);
-    previous = inputOf(inputs, TASK_ASSEMBLE_FRAME, before).image;
-    if (frame - before > 1) takeChainedMotion(current, inputOf(inputs, TASK_MOTION, before).image, "backward", "motion_back");
-  }
-  if (at + 1 != keyframes.end()) {
-    const int64_t after = *(at + 1);
-    next = inputOf(inputs, TASK_ASSEMBLE_FRAME, after).image;
-    if (after - frame > 1) takeChainedMotion(current, inputOf(inputs, TASK_MOTION, frame).image, "forward", "motion");
-  }
+  if (at != keyframes.begin()) previous = inputOf(inputs, TASK_ASSEMBLE_FRAME, *(at - 1)).image;
+  if (at + 1 != keyframes.end()) next = inputOf(inputs, TASK_ASSEMBLE_FRAME, *(at + 1)).image;
   const FrameImage emission = takeDirectEmission(current);
   if (previous) takeDirectEmission(*previous);
   if (next) takeDirectEmission(*next);

@@ -76,6 +76,8 @@ TaskOutput TaskRunner::renderTile(const Lease& lease, std::atomic<double>& progr
   RenderSettings settings = shot->renderer->settings();
   if (params.spp() > 0) settings.spp = params.spp();
   if (params.beauty_only()) settings.decomposition = nullptr;
+  if (params.motion_forward() > 0) settings.motionSpan.forward = params.motion_forward();
+  if (params.motion_backward() > 0) settings.motionSpan.backward = params.motion_backward();
   const FrameRenderer renderer(*shot->renderer, settings);
   const PixelWindow& w = params.window();
   const std::vector<uint8_t> only(params.pixel_mask().begin(), params.pixel_mask().end());
@@ -96,9 +98,8 @@ TaskOutput TaskRunner::renderTile(const Lease& lease, std::atomic<double>& progr
 TaskOutput TaskRunner::filter(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress) {
   using Filter = TaskOutput (*)(const Lease&, const std::vector<TaskInput>&);
   const std::map<TaskKind, Filter> filters = {
-      {TASK_MOTION, runMotionTask},           {TASK_DENOISE, runDenoiseTask},     {TASK_UPSAMPLE, runUpsampleTask},
-      {TASK_FLOW, runFlowTask},               {TASK_INTERPOLATE, runInterpolateTask},
-      {TASK_COMPOSITE, runCompositeTask},     {TASK_EVALUATE, runEvaluateTask}};
+      {TASK_DENOISE, runDenoiseTask},     {TASK_UPSAMPLE, runUpsampleTask},   {TASK_FLOW, runFlowTask},
+      {TASK_INTERPOLATE, runInterpolateTask}, {TASK_COMPOSITE, runCompositeTask}, {TASK_EVALUATE, runEvaluateTask}};
   const auto found = filters.find(lease.kind());
   if (found == filters.end())
     throw std::runtime_error("this worker cannot run tasks of kind " + std::to_string(lease.kind()));

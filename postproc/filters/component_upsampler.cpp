@@ -144,7 +144,18 @@ FrameImage upsampleFrame(const FrameImage& low, const FrameImage& highFeatures, 
     Planes guide(width, height, 0);
     for (const std::string& name : job.guide) guide.channels.push_back(highFeatures.channel(name));
 
-    const GuidedUpsampleResult up = guidedUpsample(lowIrradiance, guide, settings.guided);
+    GuidedUpsampleResult up = guidedUpsample(lowIrradiance, guide, settings.guided);
+    // Where no sample of the full-resolution render found the component (its normal is
+    // zero), there is none of it: the fit must not spill its neighbours' light there.
+    if (highFeatures.hasChannel(c + ".normal.X")) {
+      const std::vector<float>&nx = highFeatures.channel(c + ".normal.X"), &ny = highFeatures.channel(c + ".normal.Y"),
+      &nz = highFeatures.channel(c + ".normal.Z");
+      for (size_t i = 0; i < nx.size(); ++i) {
+        if (nx[i] != 0.0f || ny[i] != 0.0f || nz[i] != 0.0f) continue;
+        for (std::vector<float>& channel : up.image.channels) channel[i] = 0.0f;
+        up.rerender[i] = 0.0f;
+      }
+    }
     // Green, the channel luminance weighs most, scales the lost irradiance to color.
     const std::vector<float>& reflectanceG = highFeatures.channel(job.reflectance[1]);
     for (size_t i = 0; i < clamped.size(); ++i)

@@ -33,7 +33,8 @@ struct UpsampleSettings {
 //                 "<c>.emission.R/G/B"); "<c>.reflectance.R/G/B" is always needed
 // The result (full resolution) holds, in this order: beauty "R","G","B" (the sum of the
 // components), per component "<c>.color.R/G/B" = modulateIrradiance(upsampled irradiance,
-// full-resolution reflectance) and "<c>.irradiance.R/G/B" (upsampled), and "rerender.Y":
+// full-resolution reflectance) and "<c>.irradiance.R/G/B" (upsampled; 0 where the
+// features' "<c>.normal.X/Y/Z" is (0, 0, 0): no sample found the component), and "rerender.Y":
 // 1 where the components' upsampled irradiance came out significantly negative (see
 // UpsampleSettings::significance; negative channels are set to 0 in any case). Attributes:
 // those of `low`, "pathfarm.rerender_pixels" (the number of rerender pixels) and "pathfarm.upsample" (the method and settings). Feature channels are not

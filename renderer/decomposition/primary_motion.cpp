@@ -26,7 +26,7 @@ MotionPair PrimaryMotion::ofSurface(const SurfaceHit& hit, float time) const {
     return camera_.project(point, seconds);
   };
   const auto now = imageAt(0);
-  return {difference(now, imageAt(+1)), difference(now, imageAt(-1))};
+  return {difference(now, imageAt(span_.forward)), difference(now, imageAt(-span_.backward))};
 }
 
 MotionPair PrimaryMotion::ofBackground(Vec3f direction, float time) const {
@@ -36,7 +36,7 @@ MotionPair PrimaryMotion::ofBackground(Vec3f direction, float time) const {
     return camera_.projectDirection(direction, scene.timeAt(frame_ + offset, time));
   };
   const auto now = imageAt(0);
-  return {difference(now, imageAt(+1)), difference(now, imageAt(-1))};
+  return {difference(now, imageAt(span_.forward)), difference(now, imageAt(-span_.backward))};
 }
 
 }  // namespace pathfarm

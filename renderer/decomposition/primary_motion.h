@@ -10,16 +10,24 @@
 
 namespace pathfarm {
 
-// Pixels moved to the next and from the previous frame; nothing where the point's image
-// is behind the camera in one of them.
+// Pixels moved to the frame `forward` frames on and from the frame `backward` frames
+// back (MotionSpan); nothing where the point's image is behind the camera in one of them.
 struct MotionPair {
   std::optional<Vec2f> forward, backward;
 };
 
+// How many frames away the motion vectors reach: the neighbouring frames by default, the
+// neighbouring keyframes in a keyframe render. Motion over a span is computed directly,
+// not chained frame by frame, so a point hidden in the frames between keeps its motion.
+struct MotionSpan {
+  int forward = 1;
+  int backward = 1;
+};
+
 class PrimaryMotion {
  public:
-  PrimaryMotion(const FrameGeometry& geometry, const Camera& camera, int64_t frame)
-      : geometry_(geometry), camera_(camera), frame_(frame) {}
+  PrimaryMotion(const FrameGeometry& geometry, const Camera& camera, int64_t frame, MotionSpan span = {})
+      : geometry_(geometry), camera_(camera), frame_(frame), span_(span) {}
 
   // The point `hit` saw at shutter time `time`.
   MotionPair ofSurface(const SurfaceHit& hit, float time) const;
@@ -30,6 +38,7 @@ class PrimaryMotion {
   const FrameGeometry& geometry_;
   const Camera& camera_;
   int64_t frame_;
+  MotionSpan span_;
 };
 
 }  // namespace pathfarm

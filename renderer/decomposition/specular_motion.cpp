@@ -5,16 +5,16 @@
 namespace pathfarm {
 
 SpecularMotion::SpecularMotion(const FrameGeometry& geometry, const std::vector<PreciseShape>& shapes,
-                               const Decomposition& decomposition, int width, int height)
+                               const Decomposition& decomposition, int width, int height, MotionSpan span)
     : geometry_(geometry),
-      nextGeometry_(geometry.shot(), geometry.frame() + 1),
-      previousGeometry_(geometry.shot(), geometry.frame() - 1),
+      nextGeometry_(geometry.shot(), geometry.frame() + span.forward),
+      previousGeometry_(geometry.shot(), geometry.frame() - span.backward),
       automaton_(decomposition.automaton()),
       shapes_(shapes),
       camera_(geometry.shot().scene().camera, width, height),
       now_(geometry.shot().scene().timeAt(geometry.frame(), kShutterFraction)),
-      next_(geometry.shot().scene().timeAt(geometry.frame() + 1, kShutterFraction)),
-      previous_(geometry.shot().scene().timeAt(geometry.frame() - 1, kShutterFraction)),
+      next_(geometry.shot().scene().timeAt(geometry.frame() + span.forward, kShutterFraction)),
+      previous_(geometry.shot().scene().timeAt(geometry.frame() - span.backward, kShutterFraction)),
       cameraNow_(camera_.at(now_)),
       sceneMoves_(camera_.isAnimated() ||
                   std::any_of(shapes.begin(), shapes.end(), [](const PreciseShape& s) { return s.isAnimated(); })) {

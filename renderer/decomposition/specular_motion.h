@@ -2,7 +2,7 @@
 // Motion vectors of the specular components (Zimmer et al. 2015, Section 4.1): per pixel
 // and component, the representative path (the pixel-centre ray through its specular
 // chain, at the middle of the shutter) is walked to the same point of the shutter in the
-// next and the previous frame, keeping its non-specular endpoint on the same object
+// next and the previous frame (or those a MotionSpan away), keeping its non-specular endpoint on the same object
 // point; the motion is the change of the path's film position. A pure function of
 // (scene, frame, pixel, component): no sampling, independent of tiles and threads.
 #include <optional>
@@ -10,6 +10,7 @@
 
 #include "renderer/decomposition/decomposition.h"
 #include "renderer/decomposition/manifold_walk.h"
+#include "renderer/decomposition/primary_motion.h"
 
 namespace pathfarm {
 
@@ -32,7 +33,7 @@ class SpecularMotion {
 
   // `shapes`: preciseShapesOf(the scene), built once per shot (meshes get a BVH).
   SpecularMotion(const FrameGeometry& geometry, const std::vector<PreciseShape>& shapes,
-                 const Decomposition& decomposition, int width, int height);
+                 const Decomposition& decomposition, int width, int height, MotionSpan span = {});
   SpecularMotion(const SpecularMotion&) = delete;  // cameraNow_ refers to camera_
   SpecularMotion& operator=(const SpecularMotion&) = delete;
 

@@ -99,7 +99,7 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
   const PathTracer tracer(*geometry, shot_->lights, {settings_.maxDepth});
   const Camera camera(scene_.camera, settings_.width, settings_.height);
   const Decomposition* decomposition = settings_.decomposition.get();
-  const PrimaryMotion motion(*geometry, camera, frame);
+  const PrimaryMotion motion(*geometry, camera, frame, settings_.motionSpan);
 
   if (window.x0 < 0 || window.y0 < 0 || window.x1 > settings_.width || window.y1 > settings_.height ||
       window.width() <= 0 || window.height() <= 0)
@@ -115,7 +115,8 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
   if (decomposition) film.emplace(image, *decomposition);
   std::optional<SpecularMotion> specular;
   if (decomposition)
-    specular.emplace(*geometry, shot_->preciseShapes, *decomposition, settings_.width, settings_.height);
+    specular.emplace(*geometry, shot_->preciseShapes, *decomposition, settings_.width, settings_.height,
+                     settings_.motionSpan);
 
   const int tilesX = (width + tile - 1) / tile, tilesY = (height + tile - 1) / tile;
   const size_t tileCount = static_cast<size_t>(tilesX) * static_cast<size_t>(tilesY);

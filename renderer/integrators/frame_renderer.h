@@ -11,6 +11,7 @@
 
 #include "image/frame_image.h"
 #include "renderer/decomposition/decomposition.h"
+#include "renderer/decomposition/primary_motion.h"
 #include "renderer/integrators/path_tracer.h"
 #include "renderer/scene/scene.h"
 
@@ -32,6 +33,8 @@ struct RenderSettings {
   int threads = 0;  // 0: every core
   // Split every pixel into these path-space components (null: beauty only).
   std::shared_ptr<const Decomposition> decomposition;
+  // How far the components' motion vectors reach (a keyframe's: its neighbouring keyframes).
+  MotionSpan motionSpan;
 
   static RenderSettings defaultsOf(const Scene& scene);
 };

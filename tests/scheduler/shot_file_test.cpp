@@ -44,7 +44,6 @@ TEST(ShotFile, FillsDefaultsFromTheSceneAndMakesPathsAbsolute) {
   EXPECT_EQ(spec.evaluation_frames_size(), 2);
   EXPECT_EQ(spec.evaluation_frames(0), 4);
   EXPECT_EQ(spec.reference_spp(), 0);
-  EXPECT_EQ(spec.feature_spp(), 4);
   // Three frames allow only k = 2, which the probe accepts or refuses with its prediction.
   EXPECT_TRUE(spec.keyframe_interval() == 1 || spec.keyframe_interval() == 2);
   EXPECT_NE(spec.keyframe_reason().find("k = 2: "), std::string::npos) << spec.keyframe_reason();
@@ -75,7 +74,7 @@ TEST(ShotFile, BadShotsAreRefusedWithFileAndKey) {
 
 TEST(ShotFile, ReadsTheFilteringAndEvaluationKeys) {
   const auto file = writeShot("filtering", R"({"scene": "cornell/scene.json", "pipeline": "di", "keyframe_interval": 3,
-    "reference_spp": 512, "evaluation_frames": [2, 7], "feature_spp": 2, "baseline_core_seconds": 4.5})");
+    "reference_spp": 512, "evaluation_frames": [2, 7], "baseline_core_seconds": 4.5})");
   const ShotSpec spec = loadShotFile(file);
   std::filesystem::remove(file);
   EXPECT_EQ(spec.keyframe_interval(), 3);
@@ -83,7 +82,6 @@ TEST(ShotFile, ReadsTheFilteringAndEvaluationKeys) {
   EXPECT_EQ(spec.reference_spp(), 512);
   ASSERT_EQ(spec.evaluation_frames_size(), 2);
   EXPECT_EQ(spec.evaluation_frames(1), 7);
-  EXPECT_EQ(spec.feature_spp(), 2);
   EXPECT_EQ(spec.baseline_core_seconds(), 4.5);
 
   const auto du = writeShot("du", R"({"scene": "cornell/scene.json", "pipeline": "du", "keyframe_interval": 3})");
