@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "renderer/scene/json_node.h"
 #include "scheduler/shot_file.h"
@@ -19,6 +20,11 @@ std::filesystem::path writeShot(const std::string& name, const std::string& json
   const auto file = folder / ("test_" + name + ".json");
   std::ofstream(file) << json;
   return file;
+}
+
+std::string readText(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
 std::string errorOf(const std::string& json) {
@@ -91,6 +97,22 @@ TEST(ShotFile, ReadsTheFilteringAndEvaluationKeys) {
   EXPECT_EQ(loadShotFile(pt).decompose(), "none");
   EXPECT_EQ(loadShotFile(pt).evaluation_frames_size(), 0);  // nothing to measure without a reference
   std::filesystem::remove(pt);
+}
+
+TEST(ShotFile, AStaticSceneGetsTheLongestKeyframeIntervalTheProbeTries) {
+  // The demo scene without its animations: nothing moves, little needs re-rendering.
+  nlohmann::json scene = nlohmann::json::parse(readText(test_support::sourceDir() / "scenes/cornell/scene.json"));
+  for (auto& shape : scene["shapes"]) shape.erase("animation");
+  const auto folder = writeShot("static-scene-folder", "{}").parent_path();
+  std::ofstream(folder / "static_scene.json") << scene.dump();
+  const auto file = writeShot("static", R"({"scene": "static_scene.json", "frames": {"start": 0, "end": 11},
+    "resolution": [64, 64], "spp": 8})");
+  const ShotSpec spec = loadShotFile(file);
+  std::filesystem::remove(file);
+  EXPECT_EQ(spec.keyframe_interval(), 8) << spec.keyframe_reason();
+  // Only the edges of the spheres, where samples see a specular chain the pixel centre
+  // does not, count as untracked at the probe's 16x16.
+  EXPECT_EQ(spec.keyframe_reason().rfind("k = 8: the largest interval", 0), 0u) << spec.keyframe_reason();
 }
 
 TEST(ShotFile, BadFilteringShotsAreRefused) {
