@@ -32,6 +32,8 @@ GradientFrame GradientFrame::fromImage(const FrameImage& image, const std::strin
   if (!image.hasChannel("temporal.valid.Y")) return frame;
 
   frame.temporal = colorLayer(image, "temporal", label);
+  frame.mixedX = colorLayer(image, "mixed_x", label);
+  frame.mixedY = colorLayer(image, "mixed_y", label);
   const auto& valid = image.channel("temporal.valid.Y");
   const auto& tx = required(image, "temporal.target.X", label);
   const auto& ty = required(image, "temporal.target.Y", label);

@@ -9,6 +9,10 @@
 //   temporal.c     I_next(target(p)) - I(p), stored at p of this frame
 //   temporal.target.X/Y  the integer pixel target(p) of the next frame
 //   temporal.valid.Y     1 where p has a one-to-one correspondence, else 0
+//   mixed_x.c      the next frame's difference minus this frame's, from the temporal
+//                  offset frame's own spatial differences:
+//                  (I_next(target(p) + x) - I_next(target(p))) - (I(p + x) - I(p)),
+//                  meaningful where target(p + x) = target(p) + x; mixed_y.c likewise
 #include <array>
 #include <cstdint>
 #include <string>
@@ -25,14 +29,14 @@ struct GradientFrame {
 
   int width = 0, height = 0;
   Color primal, gradientX, gradientY, directEmission;
-  Color temporal;                      // empty without a temporal layer
+  Color temporal, mixedX, mixedY;      // empty without a temporal layer
   std::vector<int32_t> temporalTarget;  // pixel index in the next frame, -1 for none
 
   size_t pixelCount() const { return static_cast<size_t>(width) * static_cast<size_t>(height); }
   bool hasTemporal() const { return !temporalTarget.empty(); }
 
-  // Reads the layers above; throws std::invalid_argument naming `label` and the first
-  // missing channel. Targets outside the image, non-finite temporal values and targets
+  // Reads the layers above (a temporal layer needs its mixed layers); throws
+  // std::invalid_argument naming `label` and the first missing channel. Targets outside the image, non-finite temporal values and targets
   // claimed by more than one pixel (all but the first in scanline order) are invalid.
   static GradientFrame fromImage(const FrameImage& image, const std::string& label);
 };

@@ -57,12 +57,22 @@ PoissonSystem::PoissonSystem(const std::vector<const GradientFrame*>& frames, si
       }
     }
   }
-  // A mixed row needs both temporal rows it differences.
+  // A mixed row needs both temporal rows it differences, rigidly apart in both frames.
+  for (auto& shift : mixedShift_) shift.assign(n, 0.0f);
   forEach(n, [&](size_t g) {
-    const size_t p = g % pixels_;
+    const size_t f = g / pixels_, p = g % pixels_;
     if (base_[Temporal][g] == 0) return;
-    if (p % w + 1 < w && base_[Temporal][g + 1] > 0) base_[MixedX][g] = 1.0f;
-    if (p / w + 1 < static_cast<size_t>(height_) && base_[Temporal][g + w] > 0) base_[MixedY][g] = 1.0f;
+    const auto& targets = targets_[Temporal];
+    const auto add = [&](Block block, size_t step, const GradientFrame::Color& mixed) {
+      const size_t other = g + step;
+      if (base_[Temporal][other] == 0 || next_[other] != next_[g] + static_cast<int32_t>(step)) return;
+      const float shift = targets[other] - targets[g] - mixed[channel][p];
+      if (!std::isfinite(shift)) return;
+      base_[block][g] = 1.0f;
+      mixedShift_[block == MixedX ? 0 : 1][g] = shift;
+    };
+    if (p % w + 1 < w) add(MixedX, 1, frames[f]->mixedX);
+    if (p / w + 1 < static_cast<size_t>(height_)) add(MixedY, w, frames[f]->mixedY);
   });
   weights_ = base_;
 }
@@ -92,10 +102,12 @@ void PoissonSystem::gather(const std::vector<float>& x, bool withTargets, std::v
     const auto& wx = weights_[MixedX];
     const auto& wy = weights_[MixedY];
     float v = weights_[Temporal][g] * r3[g];
-    if (wx[g] > 0) v -= wx[g] * (r3[g + 1] - r3[g]);
-    if (p % w > 0 && wx[g - 1] > 0) v += wx[g - 1] * (r3[g] - r3[g - 1]);
-    if (wy[g] > 0) v -= wy[g] * (r3[g + w] - r3[g]);
-    if (p / w > 0 && wy[g - w] > 0) v += wy[g - w] * (r3[g] - r3[g - w]);
+    const auto mixedX = [&](size_t i) { return wx[i] * (r3[i + 1] - r3[i] + s * mixedShift_[0][i]); };
+    const auto mixedY = [&](size_t i) { return wy[i] * (r3[i + w] - r3[i] + s * mixedShift_[1][i]); };
+    if (wx[g] > 0) v -= mixedX(g);
+    if (p % w > 0 && wx[g - 1] > 0) v += mixedX(g - 1);
+    if (wy[g] > 0) v -= mixedY(g);
+    if (p / w > 0 && wy[g - w] > 0) v += mixedY(g - w);
     z[g] = v;
   });
   out.resize(n);
@@ -155,8 +167,8 @@ std::array<std::vector<float>, PoissonSystem::kBlocks> PoissonSystem::residuals(
     r[Data][g] = x[g] - targets_[Data][g];
     if (base_[SpatialX][g] > 0) r[SpatialX][g] = x[g + 1] - x[g] - targets_[SpatialX][g];
     if (base_[SpatialY][g] > 0) r[SpatialY][g] = x[g + w] - x[g] - targets_[SpatialY][g];
-    if (base_[MixedX][g] > 0) r[MixedX][g] = r[Temporal][g + 1] - r[Temporal][g];
-    if (base_[MixedY][g] > 0) r[MixedY][g] = r[Temporal][g + w] - r[Temporal][g];
+    if (base_[MixedX][g] > 0) r[MixedX][g] = r[Temporal][g + 1] - r[Temporal][g] + mixedShift_[0][g];
+    if (base_[MixedY][g] > 0) r[MixedY][g] = r[Temporal][g + w] - r[Temporal][g] + mixedShift_[1][g];
   });
   return r;
 }

@@ -6,8 +6,8 @@
 //   data      I_f(p)                                  = primal_f(p)      weight alpha^2
 //   spatial   I_f(p + x) - I_f(p), I_f(p + y) - I_f(p) = gradient_x/y_f(p)
 //   temporal  I_f+1(m(p)) - I_f(p)                     = temporal_f(p)    (m: the target map)
-//   mixed     the temporal row at p + x (p + y) minus the one at p, i.e. the spatial
-//             difference of the temporal difference, targets from the temporal layer
+//   mixed     (I_f+1(m(p + x)) - I_f+1(m(p))) - (I_f(p + x) - I_f(p)) = mixed_x_f(p) where
+//             m(p + x) = m(p) + x (the motion is locally rigid), and likewise for y
 // The transpose gathers through the inverse map m^-1, which exists because the
 // correspondence is one-to-one (gradient_frame.h).
 #include <array>
@@ -52,6 +52,9 @@ class PoissonSystem {
   size_t frames_, pixels_;
   std::vector<int32_t> next_, previous_;  // m and m^-1 as global indices, -1 for none
   std::array<std::vector<float>, 4> targets_;  // data, spatial x, spatial y, temporal
+  // A mixed row's residual is the difference of the two temporal rows' residuals plus
+  // this (their targets' difference minus the mixed target), per axis.
+  std::array<std::vector<float>, 2> mixedShift_;
   std::array<std::vector<float>, kBlocks> base_, weights_;
 };
 

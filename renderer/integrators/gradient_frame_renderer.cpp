@@ -49,6 +49,7 @@ struct PixelSums {
   uint32_t samples = 0;  // finite samples accumulated
   Moments direct, own, temporal;  // own: the base's parts of its pixel, averaged over the 4 pairs
   std::array<Moments, 4> offset, difference;
+  std::array<Moments, 4> mixed;  // the temporal offset's difference minus the base's, per direction
 };
 
 const char* const kChannels[3] = {"R", "G", "B"};
@@ -177,24 +178,29 @@ FrameImage GradientFrameRenderer::render(int64_t frame, const ProgressCallback& 
       const auto rayThrough = [&](int px, int py, double at) {
         return camera.generateRay({static_cast<float>(px) + jitter.x, static_cast<float>(py) + jitter.y}, lens, at);
       };
-      std::array<std::optional<Ray>, 4> offsets;
-      for (size_t k = 0; k < 4; ++k) {
-        const int nx = x + kShiftDirections[k][0], ny = y + kShiftDirections[k][1];
-        if (nx >= 0 && ny >= 0 && nx < width && ny < height) offsets[k] = rayThrough(nx, ny, seconds);
-      }
-      const GradientSample g = tracer.trace(rayThrough(x, y, seconds), offsets, time, stream, local.rays);
+      const auto offsetRays = [&](int cx, int cy, double at) {
+        std::array<std::optional<Ray>, 4> rays;
+        for (size_t k = 0; k < 4; ++k) {
+          const int nx = cx + kShiftDirections[k][0], ny = cy + kShiftDirections[k][1];
+          if (nx >= 0 && ny >= 0 && nx < width && ny < height) rays[k] = rayThrough(nx, ny, at);
+        }
+        return rays;
+      };
+      const GradientSample g = tracer.trace(rayThrough(x, y, seconds), offsetRays(x, y, seconds), time, stream,
+                                            local.rays);
       ++local.samples;
-      Rgb temporal;
+      std::optional<GradientSample> later;
       if (nextGeometry && correspondence[p] >= 0) {
-        // The temporal offset: the same random numbers one frame later.
+        // The temporal offset: the same random numbers one frame later, through the
+        // corresponding pixel, with its own spatial offsets for the mixed differences.
         SampleStream replay(key);
         for (int d = 0; d < 5; ++d) replay.next1D();
         const int tx = correspondence[p] % width, ty = correspondence[p] / width;
-        temporal = nextTracer.trace(rayThrough(tx, ty, scene_.timeAt(frame + 1, time)), {}, time, replay, local.rays)
-                       .radiance -
-                   g.radiance;
+        const double nextSeconds = scene_.timeAt(frame + 1, time);
+        later = nextTracer.trace(rayThrough(tx, ty, nextSeconds), offsetRays(tx, ty, nextSeconds), time, replay,
+                                 local.rays);
       }
-      if (!isFinite(g) || !temporal.isFinite()) {
+      if (!isFinite(g) || (later && !isFinite(*later))) {
         ++local.nonFinite;
         continue;
       }
@@ -206,7 +212,10 @@ FrameImage GradientFrameRenderer::render(int64_t frame, const ProgressCallback& 
         s.difference[k].add(g.difference[k]);
       }
       s.own.add(own);
-      s.temporal.add(temporal);
+      if (later) {
+        s.temporal.add(later->radiance - g.radiance);
+        for (size_t k = 0; k < 4; ++k) s.mixed[k].add(later->difference[k] - g.difference[k]);
+      }
       ++s.samples;
     }
     s.drawn += count;
@@ -270,6 +279,28 @@ FrameImage GradientFrameRenderer::render(int64_t frame, const ProgressCallback& 
       for (size_t p = 0; p < pixels; ++p) {
         temporal[p] = static_cast<float>(sums[p].temporal.mean(c, sums[p].samples));
         variance[p] = static_cast<float>(sums[p].temporal.varianceOfMean(c, sums[p].samples));
+      }
+    }
+    // Mixed differences where the motion is rigid across the pair: like the spatial
+    // differences, p's forward part minus its neighbour's backward part.
+    const auto rigid = [&](size_t p, size_t k) {
+      const size_t n = layers.neighbour(p, k);
+      const int step = kShiftDirections[k][0] + kShiftDirections[k][1] * width;
+      return n != SIZE_MAX && correspondence[p] >= 0 && correspondence[n] == correspondence[p] + step &&
+             (k != 0 || correspondence[p] % width + 1 < width);
+    };
+    for (size_t k : {size_t{0}, size_t{2}}) {
+      const std::string layer = k == 0 ? "mixed_x." : "mixed_y.";
+      for (size_t c = 0; c < 3; ++c) {
+        auto& mixed = image.addChannel(layer + kChannels[c]);
+        auto& variance = image.addChannel(layer + "variance." + kChannels[c]);
+        for (size_t p = 0; p < pixels; ++p) {
+          if (!rigid(p, k)) continue;
+          const PixelSums &a = sums[p], &b = sums[layers.neighbour(p, k)];
+          mixed[p] = static_cast<float>(a.mixed[k].mean(c, a.samples) - b.mixed[k ^ 1].mean(c, b.samples));
+          variance[p] = static_cast<float>(a.mixed[k].varianceOfMean(c, a.samples) +
+                                           b.mixed[k ^ 1].varianceOfMean(c, b.samples));
+        }
       }
     }
     auto& tx = image.addChannel("temporal.target.X");

@@ -36,13 +36,22 @@ inline GradientFrame exactFrame(int w, int h, const Image& clean, const Image* n
   }
   if (!next) return f;
   f.temporalTarget.assign(n, -1);
-  for (auto& t : f.temporal) t.assign(n, 0.0f);
+  for (auto* layer : {&f.temporal, &f.mixedX, &f.mixedY})
+    for (auto& plane : *layer) plane.assign(n, 0.0f);
+  // I_next(target(p)) - I(p) where p = (x, y) has a target.
+  const auto temporal = [&](int c, int x, int y) { return (*next)(c, x + shift, y) - clean(c, x, y); };
+  const auto inside = [&](int x) { return x + shift >= 0 && x + shift < w; };  // else no correspondence
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
-      if (x + shift < 0 || x + shift >= w) continue;  // leaves the image: no correspondence
+      if (!inside(x)) continue;
       const size_t p = static_cast<size_t>(y * w + x);
       f.temporalTarget[p] = y * w + x + shift;
-      for (int c = 0; c < 3; ++c) f.temporal[static_cast<size_t>(c)][p] = (*next)(c, x + shift, y) - clean(c, x, y);
+      for (int c = 0; c < 3; ++c) {
+        const auto i = static_cast<size_t>(c);
+        f.temporal[i][p] = temporal(c, x, y);
+        if (x + 1 < w && inside(x + 1)) f.mixedX[i][p] = temporal(c, x + 1, y) - temporal(c, x, y);
+        if (y + 1 < h) f.mixedY[i][p] = temporal(c, x, y + 1) - temporal(c, x, y);
+      }
     }
   return f;
 }

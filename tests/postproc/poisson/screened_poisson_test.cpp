@@ -85,13 +85,16 @@ std::vector<double> denseSolve(const std::vector<const GradientFrame*>& frames, 
         const auto t = temporalRow(x, y);
         if (!t) continue;
         system.addRow(t->first, t->second, 1);
-        for (const auto& other : {x + 1 < w ? temporalRow(x + 1, y) : std::nullopt,
-                                  y + 1 < h ? temporalRow(x, y + 1) : std::nullopt}) {
-          if (!other) continue;
-          std::map<size_t, double> mixed = other->first;
-          for (const auto& [i, a] : t->first) mixed[i] -= a;
-          system.addRow(mixed, other->second - t->second, 1);
-        }
+        // Mixed rows where the neighbour's target is the target's neighbour.
+        const size_t target = static_cast<size_t>(frame.temporalTarget[p]);
+        if (x + 1 < w && frame.temporalTarget[p + 1] == static_cast<int32_t>(target + 1) && f + 1 < frames.size())
+          system.addRow({{at(f + 1, 0, 0) + target + 1, 1.0}, {at(f + 1, 0, 0) + target, -1.0},
+                         {at(f, x + 1, y), -1.0}, {at(f, x, y), 1.0}},
+                        frame.mixedX[c][p], 1);
+        if (y + 1 < h && frame.temporalTarget[p + static_cast<size_t>(w)] == static_cast<int32_t>(target) + w)
+          system.addRow({{at(f + 1, 0, 0) + target + static_cast<size_t>(w), 1.0}, {at(f + 1, 0, 0) + target, -1.0},
+                         {at(f, x, y + 1), -1.0}, {at(f, x, y), 1.0}},
+                        frame.mixedY[c][p], 1);
       }
   }
   return system.solve();
@@ -122,7 +125,11 @@ GradientFrame noisyFrame(int w, int h, uint32_t seed, const Image* next, int shi
   poisson_test::addZeroMeanNoise(f.primal, 0.2f, seed);
   poisson_test::addZeroMeanNoise(f.gradientX, 0.1f, seed + 1);
   poisson_test::addZeroMeanNoise(f.gradientY, 0.1f, seed + 2);
-  if (next) poisson_test::addZeroMeanNoise(f.temporal, 0.1f, seed + 3);
+  if (next) {
+    poisson_test::addZeroMeanNoise(f.temporal, 0.1f, seed + 3);
+    poisson_test::addZeroMeanNoise(f.mixedX, 0.1f, seed + 4);
+    poisson_test::addZeroMeanNoise(f.mixedY, 0.1f, seed + 5);
+  }
   return f;
 }
 
@@ -139,7 +146,9 @@ TEST(ScreenedPoisson, OneFrameWindowEqualsTheDense2DLeastSquaresSolution) {
 TEST(ScreenedPoisson, ThreeFrameWindowWithMotionEqualsTheDenseSolution) {
   // Moving one pixel right per frame; the pixels leaving the image have no correspondence.
   const GradientFrame f0 = noisyFrame(5, 4, 21, &kSmooth, 1);
-  const GradientFrame f1 = noisyFrame(5, 4, 31, &kSmooth, 1);
+  GradientFrame f1 = noisyFrame(5, 4, 31, &kSmooth, 1);
+  // Two pixels trading targets: the motion is not rigid there, so no mixed rows.
+  std::swap(f1.temporalTarget[5], f1.temporalTarget[7]);
   const GradientFrame f2 = noisyFrame(5, 4, 41, nullptr, 0);
   expectMatchesDense({&f0, &f1, &f2}, 0.2f);
 }
@@ -168,10 +177,10 @@ TEST(ScreenedPoisson, PixelsWithoutCorrespondenceIgnoreTheirTemporalValues) {
   const int w = 8, h = 6;
   FrameImage image(w, h);
   GradientFrame exact = exactFrame(w, h, kSmooth, &kSmooth, 0);
-  const char* layers[] = {"primal", "gradient_x", "gradient_y", "direct_emission", "temporal"};
-  const GradientFrame::Color* colors[] = {&exact.primal, &exact.gradientX, &exact.gradientY, &exact.directEmission,
-                                          &exact.temporal};
-  for (size_t l = 0; l < 5; ++l)
+  const char* layers[] = {"primal", "gradient_x", "gradient_y", "direct_emission", "temporal", "mixed_x", "mixed_y"};
+  const GradientFrame::Color* colors[] = {&exact.primal,   &exact.gradientX, &exact.gradientY, &exact.directEmission,
+                                          &exact.temporal, &exact.mixedX,    &exact.mixedY};
+  for (size_t l = 0; l < 7; ++l)
     for (size_t c = 0; c < 3; ++c)
       image.addChannel(std::string(layers[l]) + "." + kColorChannels[c]) = (*colors[l])[c];
   auto& valid = image.addChannel("temporal.valid.Y");
@@ -249,6 +258,13 @@ TEST(ScreenedPoisson, L1KeepsAFireflyAndOutlierGradientsFromSmearing) {
   const auto robustOutlier = reconstructWindow({&outlier}, l1);
   EXPECT_LE(ringDeviation(robustFirefly[0], w, c, c), 1e-2);
   EXPECT_LE(poisson_test::relativeError(robustOutlier[0], flat, w, h), 1e-2);
+  // An outlier temporal difference between two clean frames.
+  GradientFrame first = exactFrame(w, h, flat, &flat, 0);
+  first.temporal[0][static_cast<size_t>(c * w + c)] = 50.0f;
+  const GradientFrame second = exactFrame(w, h, flat);
+  for (const auto& frame : reconstructWindow({&first, &second}, l1))
+    EXPECT_LE(poisson_test::relativeError(frame, flat, w, h), 1e-2);
+  EXPECT_GT(poisson_test::relativeError(reconstructWindow({&first, &second}, PoissonSettings{})[0], flat, w, h), 0.5);
   // The same data under L2 does smear: the test can tell the two apart.
   const auto smeared = reconstructWindow({&firefly}, PoissonSettings{});
   EXPECT_GT(ringDeviation(smeared[0], w, c, c), 0.1);

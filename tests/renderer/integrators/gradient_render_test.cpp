@@ -114,9 +114,9 @@ TEST(GradientRender, L2ReconstructionIsUnbiased) {
   }
 }
 
-// Each pixel's temporal difference, averaged over many seeds, against converged path
-// traced images of both frames, compared through the pixel's correspondence.
-TEST(GradientRender, TemporalDifferencesAreUnbiased) {
+// Each pixel's temporal and mixed differences, averaged over many seeds, against converged
+// path-traced images of both frames, compared through the pixel's correspondence.
+TEST(GradientRender, TemporalAndMixedDifferencesAreUnbiased) {
   Scene scene = cornellForStatistics();
   const int w = 8, h = 8, seeds = 32;
   const RenderSettings settings = small(w, h, 8, 4);
@@ -126,41 +126,56 @@ TEST(GradientRender, TemporalDifferencesAreUnbiased) {
   GradientSettings tgpt;
   tgpt.temporal = true;
   const size_t pixels = static_cast<size_t>(w * h);
-  std::vector<double> sum(3 * pixels, 0.0), squares(3 * pixels, 0.0);
-  std::vector<float> target;
+  // Per layer (temporal, mixed x, mixed y), channel and pixel: sums over seeds.
+  std::vector<double> sum(9 * pixels, 0.0), squares(9 * pixels, 0.0);
+  std::vector<int32_t> target;
   for (int seed = 0; seed < seeds; ++seed) {
     scene.seed = 3000 + static_cast<uint64_t>(seed);
-    const FrameImage image = GradientFrameRenderer(scene, settings, tgpt).render(6);
-    const GradientFrame frame = GradientFrame::fromImage(image, "tgpt");
+    const GradientFrame frame =
+        GradientFrame::fromImage(GradientFrameRenderer(scene, settings, tgpt).render(6), "tgpt");
+    target = frame.temporalTarget;
     for (size_t c = 0; c < 3; ++c)
-      for (size_t p = 0; p < pixels; ++p) {
-        sum[c * pixels + p] += frame.temporal[c][p];
-        squares[c * pixels + p] += static_cast<double>(frame.temporal[c][p]) * frame.temporal[c][p];
-      }
-    if (target.empty())
-      for (int32_t t : frame.temporalTarget) target.push_back(static_cast<float>(t));
+      for (size_t p = 0; p < pixels; ++p)
+        for (size_t l = 0; l < 3; ++l) {
+          const double v = (l == 0 ? frame.temporal : l == 1 ? frame.mixedX : frame.mixedY)[c][p];
+          sum[(3 * l + c) * pixels + p] += v;
+          squares[(3 * l + c) * pixels + p] += v * v;
+        }
   }
   double chiSquare = 0;
-  int terms = 0;
+  int terms = 0, mixedTerms = 0;
   for (size_t c = 0; c < 3; ++c) {
     const std::string channel = kColorChannels[c];
+    const auto &b = before.channel(channel), &a = after.channel(channel);
+    const auto &bv = before.channel("variance." + channel), &av = after.channel("variance." + channel);
     for (size_t p = 0; p < pixels; ++p) {
       if (target[p] < 0) continue;
       const auto q = static_cast<size_t>(target[p]);
-      const double mean = sum[c * pixels + p] / seeds;
-      const double variance = (squares[c * pixels + p] - seeds * mean * mean) / (seeds - 1) / seeds;
-      const double expected = after.channel(channel)[q] - before.channel(channel)[p];
-      const double total =
-          variance + after.channel("variance." + channel)[q] + before.channel("variance." + channel)[p];
-      if (total == 0) {
-        EXPECT_EQ(mean, expected);
-        continue;
+      for (size_t l = 0; l < 3; ++l) {
+        // The mixed rows' neighbour: where the correspondence moves p's neighbour rigidly.
+        const size_t step = l == 1 ? 1 : static_cast<size_t>(w);
+        double expected = a[q] - b[p], refVariance = av[q] + bv[p];
+        if (l > 0) {
+          if ((l == 1 && (p % w + 1 == static_cast<size_t>(w) || q % w + 1 == static_cast<size_t>(w))) ||
+              p + step >= pixels || target[p + step] != static_cast<int32_t>(q + step))
+            continue;
+          expected = (a[q + step] - a[q]) - (b[p + step] - b[p]);
+          refVariance = av[q + step] + av[q] + bv[p + step] + bv[p];
+          ++mixedTerms;
+        }
+        const size_t i = (3 * l + c) * pixels + p;
+        const double mean = sum[i] / seeds;
+        const double total = (squares[i] - seeds * mean * mean) / (seeds - 1) / seeds + refVariance;
+        if (total == 0) {
+          EXPECT_EQ(mean, expected);
+          continue;
+        }
+        chiSquare += (mean - expected) * (mean - expected) / total;
+        ++terms;
       }
-      chiSquare += (mean - expected) * (mean - expected) / total;
-      ++terms;
     }
   }
-  ASSERT_GT(terms, 100);
+  ASSERT_GT(mixedTerms, 100);
   EXPECT_LT(chiSquare / terms, 1.3);
   EXPECT_GT(chiSquare / terms, 0.7);
 }
@@ -234,7 +249,8 @@ TEST(GradientRender, TemporalOffsetsOfAStillSceneReplayTheirBaseSamples) {
   const FrameImage image = GradientFrameRenderer(scene, small(10, 8, 2, 4), tgpt).render(2);
   for (float v : image.channel("temporal.valid.Y")) ASSERT_EQ(v, 1.0f);
   for (const char* c : {"R", "G", "B"})
-    for (float t : image.channel(std::string("temporal.") + c)) ASSERT_EQ(t, 0.0f);
+    for (const std::string layer : {"temporal.", "mixed_x.", "mixed_y."})
+      for (float t : image.channel(layer + c)) ASSERT_EQ(t, 0.0f) << layer << c;
   const auto& tx = image.channel("temporal.target.X");
   for (size_t p = 0; p < tx.size(); ++p) EXPECT_EQ(tx[p], static_cast<float>(p % 10));
 }
