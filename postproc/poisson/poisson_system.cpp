@@ -82,21 +82,22 @@ void PoissonSystem::setWeightFactors(const std::array<std::vector<float>, kBlock
     forEach(size(), [&](size_t g) { weights_[k][g] = base_[k][g] * factors[k][g]; });
 }
 
-std::vector<float> PoissonSystem::temporalResiduals(const std::vector<float>& x, bool withTargets) const {
-  std::vector<float> r(size(), 0.0f);
+void PoissonSystem::temporalResiduals(const std::vector<float>& x, bool withTargets, std::vector<float>& r) const {
+  r.resize(size());
   forEach(size(), [&](size_t g) {
-    if (next_[g] < 0) return;
-    r[g] = x[static_cast<size_t>(next_[g])] - x[g] - (withTargets ? targets_[Temporal][g] : 0.0f);
+    r[g] = next_[g] < 0 ? 0.0f
+                        : x[static_cast<size_t>(next_[g])] - x[g] - (withTargets ? targets_[Temporal][g] : 0.0f);
   });
-  return r;
 }
 
 void PoissonSystem::gather(const std::vector<float>& x, bool withTargets, std::vector<float>& out) const {
   const size_t n = size(), w = static_cast<size_t>(width_);
   const float s = withTargets ? 1.0f : 0.0f;
-  const std::vector<float> r3 = temporalResiduals(x, withTargets);
+  temporalResiduals(x, withTargets, r3_);
+  const std::vector<float>& r3 = r3_;
   // z: the temporal rows' weighted residuals plus what the mixed rows add to them.
-  std::vector<float> z(n);
+  std::vector<float>& z = z_;
+  z.resize(n);
   forEach(n, [&](size_t g) {
     const size_t p = g % pixels_;
     const auto& wx = weights_[MixedX];
@@ -162,7 +163,7 @@ std::array<std::vector<float>, PoissonSystem::kBlocks> PoissonSystem::residuals(
   const size_t n = size(), w = static_cast<size_t>(width_);
   std::array<std::vector<float>, kBlocks> r;
   for (auto& block : r) block.assign(n, 0.0f);
-  r[Temporal] = temporalResiduals(x, true);
+  temporalResiduals(x, true, r[Temporal]);
   forEach(n, [&](size_t g) {
     r[Data][g] = x[g] - targets_[Data][g];
     if (base_[SpatialX][g] > 0) r[SpatialX][g] = x[g + 1] - x[g] - targets_[SpatialX][g];

@@ -46,7 +46,7 @@ class PoissonSystem {
   // out = A^T W (A x - s b) with s = 0 or 1: one code path for the operator and the
   // right-hand side.
   void gather(const std::vector<float>& x, bool withTargets, std::vector<float>& out) const;
-  std::vector<float> temporalResiduals(const std::vector<float>& x, bool withTargets) const;
+  void temporalResiduals(const std::vector<float>& x, bool withTargets, std::vector<float>& r) const;
 
   int width_, height_;
   size_t frames_, pixels_;
@@ -56,6 +56,8 @@ class PoissonSystem {
   // this (their targets' difference minus the mixed target), per axis.
   std::array<std::vector<float>, 2> mixedShift_;
   std::array<std::vector<float>, kBlocks> base_, weights_;
+  // Scratch of gather(), kept between calls: a window's vectors are large.
+  mutable std::vector<float> r3_, z_;
 };
 
 }  // namespace pathfarm

@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -11,20 +12,26 @@
 namespace pathfarm {
 namespace {
 
-// A dot product summed in fixed chunks and then in chunk order: the same bits for any
-// thread count.
-double dot(const std::vector<float>& a, const std::vector<float>& b) {
-  constexpr size_t kChunk = 16384;
-  std::vector<double> partial((a.size() + kChunk - 1) / kChunk, 0.0);
-  tbb::parallel_for(size_t{0}, partial.size(), [&](size_t c) {
-    double sum = 0;
-    const size_t end = std::min(a.size(), (c + 1) * kChunk);
-    for (size_t i = c * kChunk; i < end; ++i) sum += static_cast<double>(a[i]) * b[i];
-    partial[c] = sum;
-  });
-  double total = 0;
-  for (double p : partial) total += p;
+constexpr size_t kChunk = 16384;
+
+// Runs body(begin, end) over fixed chunks of [0, n) in parallel and returns the chunks'
+// results summed in chunk order: the same bits for any thread count.
+template <size_t K, class Body>
+std::array<double, K> reduce(size_t n, Body body) {
+  std::vector<std::array<double, K>> partial((n + kChunk - 1) / kChunk);
+  tbb::parallel_for(size_t{0}, partial.size(), [&](size_t c) { partial[c] = body(c * kChunk, std::min(n, (c + 1) * kChunk)); });
+  std::array<double, K> total{};
+  for (const auto& p : partial)
+    for (size_t k = 0; k < K; ++k) total[k] += p[k];
   return total;
+}
+
+double dot(const std::vector<float>& a, const std::vector<float>& b) {
+  return reduce<1>(a.size(), [&](size_t begin, size_t end) {
+    double sum = 0;
+    for (size_t i = begin; i < end; ++i) sum += static_cast<double>(a[i]) * b[i];
+    return std::array<double, 1>{sum};
+  })[0];
 }
 
 template <class Body>
@@ -34,37 +41,49 @@ void forEach(size_t n, Body body) {
   });
 }
 
-// Jacobi-preconditioned conjugate gradients on A^T W A x = A^T W b, from x as given.
-// Returns the relative residual reached.
+// Jacobi-preconditioned conjugate gradients on A^T W A x = A^T W b, from x as given, with
+// the vector updates of an iteration fused into two passes. Returns the relative residual.
 double conjugateGradients(const PoissonSystem& system, std::vector<float>& x, int maxIterations, float tolerance,
                           int& iterations) {
   const size_t n = system.size();
   const std::vector<float> b = system.rightHandSide();
-  const std::vector<float> diagonal = system.diagonal();
+  std::vector<float> inverseDiagonal = system.diagonal();
+  for (float& d : inverseDiagonal) d = d > 0 ? 1 / d : 0;
   const double bNorm = std::sqrt(dot(b, b));
-  std::vector<float> r(n), z(n), p(n), q(n);
+  std::vector<float> r(n), p(n), q(n);
   system.applyNormal(x, q);
-  forEach(n, [&](size_t i) { r[i] = b[i] - q[i]; });
-  const auto precondition = [&] { forEach(n, [&](size_t i) { z[i] = diagonal[i] > 0 ? r[i] / diagonal[i] : 0; }); };
-  precondition();
-  p = z;
-  double rz = dot(r, z), rNorm = std::sqrt(dot(r, r));
+  const auto [rz0, rr0] = reduce<2>(n, [&](size_t begin, size_t end) {
+    std::array<double, 2> sums{};
+    for (size_t i = begin; i < end; ++i) {
+      r[i] = b[i] - q[i];
+      p[i] = r[i] * inverseDiagonal[i];
+      sums[0] += static_cast<double>(r[i]) * p[i];
+      sums[1] += static_cast<double>(r[i]) * r[i];
+    }
+    return sums;
+  });
+  double rz = rz0, rNorm = std::sqrt(rr0);
   if (bNorm == 0) return rNorm == 0 ? 0 : 1;  // no data at all: nothing to fit
   for (int k = 0; k < maxIterations && rNorm > tolerance * bNorm; ++k) {
     system.applyNormal(p, q);
     const double pq = dot(p, q);
     if (!(pq > 0)) break;
     const auto a = static_cast<float>(rz / pq);
-    forEach(n, [&](size_t i) {
-      x[i] += a * p[i];
-      r[i] -= a * q[i];
+    // x += a p, r -= a q, and the next r.z and r.r; z = D^-1 r is recomputed below.
+    const auto [rzNext, rr] = reduce<2>(n, [&](size_t begin, size_t end) {
+      std::array<double, 2> sums{};
+      for (size_t i = begin; i < end; ++i) {
+        x[i] += a * p[i];
+        r[i] -= a * q[i];
+        sums[0] += static_cast<double>(r[i]) * r[i] * inverseDiagonal[i];
+        sums[1] += static_cast<double>(r[i]) * r[i];
+      }
+      return sums;
     });
-    precondition();
-    const double rzNext = dot(r, z);
     const auto beta = static_cast<float>(rzNext / rz);
     rz = rzNext;
-    forEach(n, [&](size_t i) { p[i] = z[i] + beta * p[i]; });
-    rNorm = std::sqrt(dot(r, r));
+    forEach(n, [&](size_t i) { p[i] = r[i] * inverseDiagonal[i] + beta * p[i]; });
+    rNorm = std::sqrt(rr);
     ++iterations;
   }
   return rNorm / bNorm;
