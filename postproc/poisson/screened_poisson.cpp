@@ -26,12 +26,17 @@ std::array<double, K> reduce(size_t n, Body body) {
   return total;
 }
 
-double dot(const std::vector<float>& a, const std::vector<float>& b) {
-  return reduce<1>(a.size(), [&](size_t begin, size_t end) {
-    double sum = 0;
-    for (size_t i = begin; i < end; ++i) sum += static_cast<double>(a[i]) * b[i];
-    return std::array<double, 1>{sum};
-  })[0];
+using Channels = std::array<double, 3>;
+
+// Per color channel, the sum over the interleaved vectors of a[i] * b[i] * c[i].
+Channels dot3(const std::vector<float>& a, const std::vector<float>& b) {
+  const auto sums = reduce<3>(a.size() / 3, [&](size_t begin, size_t end) {
+    std::array<double, 3> partial{};
+    for (size_t g = begin; g < end; ++g)
+      for (size_t c = 0; c < 3; ++c) partial[c] += static_cast<double>(a[3 * g + c]) * b[3 * g + c];
+    return partial;
+  });
+  return sums;
 }
 
 template <class Body>
@@ -41,52 +46,61 @@ void forEach(size_t n, Body body) {
   });
 }
 
-// Jacobi-preconditioned conjugate gradients on A^T W A x = A^T W b, from x as given, with
-// the vector updates of an iteration fused into two passes. Returns the relative residual.
+// Jacobi-preconditioned conjugate gradients on A^T W A x = A^T W b, from x as given, one
+// independent solve per color channel run side by side (scalars per channel), with the
+// vector updates of an iteration fused into two passes. Stops when every channel's
+// residual is below the tolerance; returns the largest relative residual.
 double conjugateGradients(const PoissonSystem& system, std::vector<float>& x, int maxIterations, float tolerance,
                           int& iterations) {
-  const size_t n = system.size();
+  const size_t n = system.size(), rows = n / 3;
   const std::vector<float> b = system.rightHandSide();
   std::vector<float> inverseDiagonal = system.diagonal();
   for (float& d : inverseDiagonal) d = d > 0 ? 1 / d : 0;
-  const double bNorm = std::sqrt(dot(b, b));
+  const Channels bb = dot3(b, b);
   std::vector<float> r(n), p(n), q(n);
   system.applyNormal(x, q);
-  const auto [rz0, rr0] = reduce<2>(n, [&](size_t begin, size_t end) {
-    std::array<double, 2> sums{};
-    for (size_t i = begin; i < end; ++i) {
+  const auto start = reduce<6>(rows, [&](size_t begin, size_t end) {
+    std::array<double, 6> sums{};
+    for (size_t i = 3 * begin; i < 3 * end; ++i) {
       r[i] = b[i] - q[i];
       p[i] = r[i] * inverseDiagonal[i];
-      sums[0] += static_cast<double>(r[i]) * p[i];
-      sums[1] += static_cast<double>(r[i]) * r[i];
+      sums[i % 3] += static_cast<double>(r[i]) * p[i];
+      sums[3 + i % 3] += static_cast<double>(r[i]) * r[i];
     }
     return sums;
   });
-  double rz = rz0, rNorm = std::sqrt(rr0);
-  if (bNorm == 0) return rNorm == 0 ? 0 : 1;  // no data at all: nothing to fit
-  for (int k = 0; k < maxIterations && rNorm > tolerance * bNorm; ++k) {
+  Channels rz{start[0], start[1], start[2]}, rr{start[3], start[4], start[5]};
+  const auto relative = [&] {
+    double worst = 0;
+    for (size_t c = 0; c < 3; ++c) worst = std::max(worst, bb[c] > 0 ? std::sqrt(rr[c] / bb[c]) : (rr[c] > 0 ? 1 : 0));
+    return worst;
+  };
+  for (int k = 0; k < maxIterations && relative() > tolerance; ++k) {
     system.applyNormal(p, q);
-    const double pq = dot(p, q);
-    if (!(pq > 0)) break;
-    const auto a = static_cast<float>(rz / pq);
+    const Channels pq = dot3(p, q);
+    std::array<float, 3> a{};
+    for (size_t c = 0; c < 3; ++c) a[c] = pq[c] > 0 && rz[c] > 0 ? static_cast<float>(rz[c] / pq[c]) : 0.0f;
     // x += a p, r -= a q, and the next r.z and r.r; z = D^-1 r is recomputed below.
-    const auto [rzNext, rr] = reduce<2>(n, [&](size_t begin, size_t end) {
-      std::array<double, 2> sums{};
-      for (size_t i = begin; i < end; ++i) {
-        x[i] += a * p[i];
-        r[i] -= a * q[i];
-        sums[0] += static_cast<double>(r[i]) * r[i] * inverseDiagonal[i];
-        sums[1] += static_cast<double>(r[i]) * r[i];
+    const auto sums = reduce<6>(rows, [&](size_t begin, size_t end) {
+      std::array<double, 6> partial{};
+      for (size_t i = 3 * begin; i < 3 * end; ++i) {
+        x[i] += a[i % 3] * p[i];
+        r[i] -= a[i % 3] * q[i];
+        partial[i % 3] += static_cast<double>(r[i]) * r[i] * inverseDiagonal[i];
+        partial[3 + i % 3] += static_cast<double>(r[i]) * r[i];
       }
-      return sums;
+      return partial;
     });
-    const auto beta = static_cast<float>(rzNext / rz);
-    rz = rzNext;
-    forEach(n, [&](size_t i) { p[i] = r[i] * inverseDiagonal[i] + beta * p[i]; });
-    rNorm = std::sqrt(rr);
+    std::array<float, 3> beta{};
+    for (size_t c = 0; c < 3; ++c) {
+      beta[c] = rz[c] > 0 ? static_cast<float>(sums[c] / rz[c]) : 0.0f;
+      rz[c] = sums[c];
+      rr[c] = sums[3 + c];
+    }
+    forEach(n, [&](size_t i) { p[i] = r[i] * inverseDiagonal[i] + beta[i % 3] * p[i]; });
     ++iterations;
   }
-  return rNorm / bNorm;
+  return relative();
 }
 
 // IRLS weights for the L1 norm: a row's squared error, weighted by 1 / |scaled residual|,
@@ -97,7 +111,7 @@ void reweightForL1(PoissonSystem& system, const std::vector<float>& x, float alp
     const float scale = k == PoissonSystem::Data ? alpha : 1.0f;
     forEach(factors[k].size(), [&](size_t i) { factors[k][i] = 1.0f / std::max(scale * std::abs(factors[k][i]), epsilon); });
   }
-  system.setWeightFactors(factors);
+  system.setWeightFactors(std::move(factors));
 }
 
 }  // namespace
@@ -114,28 +128,26 @@ std::vector<GradientFrame::Color> reconstructWindow(const std::vector<const Grad
   if (!(settings.alpha > 0)) throw std::invalid_argument("alpha must be positive");
   std::vector<GradientFrame::Color> result(frames.size());
   PoissonStats total;
-  for (size_t c = 0; c < 3; ++c) {
-    PoissonSystem system(frames, c, settings.alpha);
-    std::vector<float> x = system.primal();
-    // Non-finite samples must not poison the whole window: start from 0 there.
-    for (float& v : x)
-      if (!std::isfinite(v)) v = 0;
-    double residual = 0;
-    if (settings.norm == PoissonNorm::L2) {
-      residual = conjugateGradients(system, x, settings.maxIterations, settings.tolerance, total.iterations);
-    } else {
+  PoissonSystem system(frames, settings.alpha);
+  std::vector<float> x = system.primal();
+  double residual = 0;
+  if (settings.norm == PoissonNorm::L2) {
+    residual = conjugateGradients(system, x, settings.maxIterations, settings.tolerance, total.iterations);
+  } else {
+    residual = conjugateGradients(system, x, settings.irlsIterations, settings.tolerance, total.iterations);
+    for (int round = 1; round < settings.irlsRounds; ++round) {
+      reweightForL1(system, x, settings.alpha, settings.irlsEpsilon);
       residual = conjugateGradients(system, x, settings.irlsIterations, settings.tolerance, total.iterations);
-      for (int round = 1; round < settings.irlsRounds; ++round) {
-        reweightForL1(system, x, settings.alpha, settings.irlsEpsilon);
-        residual = conjugateGradients(system, x, settings.irlsIterations, settings.tolerance, total.iterations);
-      }
     }
-    total.relativeResidual = std::max(total.relativeResidual, residual);
-    const size_t pixels = frames[0]->pixelCount();
-    for (size_t f = 0; f < frames.size(); ++f)
-      result[f][c].assign(x.begin() + static_cast<std::ptrdiff_t>(f * pixels),
-                          x.begin() + static_cast<std::ptrdiff_t>((f + 1) * pixels));
   }
+  total.relativeResidual = residual;
+  const size_t pixels = frames[0]->pixelCount();
+  for (size_t f = 0; f < frames.size(); ++f)
+    for (size_t c = 0; c < 3; ++c) {
+      auto& plane = result[f][c];
+      plane.resize(pixels);
+      for (size_t p = 0; p < pixels; ++p) plane[p] = x[3 * (f * pixels + p) + c];
+    }
   if (stats) *stats = total;
   return result;
 }

@@ -275,7 +275,7 @@ TEST(ScreenedPoisson, OperatorIsSymmetric) {
   // <M u, v> = <u, M v> for the matrix-free A^T W A, motion and mixed rows included.
   const GradientFrame f0 = noisyFrame(7, 5, 1, &kSmooth, -2), f1 = noisyFrame(7, 5, 2, &kSmooth, 1);
   const GradientFrame f2 = noisyFrame(7, 5, 3, nullptr, 0);
-  const PoissonSystem system({&f0, &f1, &f2}, 0, 0.3f);
+  const PoissonSystem system({&f0, &f1, &f2}, 0.3f);
   std::vector<float> u(system.size()), v(system.size()), mu, mv;
   for (size_t i = 0; i < u.size(); ++i) {
     u[i] = test_support::hashed(5, 0, static_cast<int>(i), 0);
