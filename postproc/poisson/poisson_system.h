@@ -47,13 +47,18 @@ class PoissonSystem {
   const std::vector<float>& primal() const { return targets_[Data]; }
 
  private:
+  bool present(Block block, size_t row) const { return (presence_[row] >> block) & 1u; }
   float weight(Block block, size_t row, size_t c) const {
-    return factors_[block].empty() ? base_[block][row] : base_[block][row] * factors_[block][3 * row + c];
+    if (!present(block, row)) return 0;
+    const float base = block == Data ? alphaSquared_ : 1.0f;
+    return factors_[block].empty() ? base : base * factors_[block][3 * row + c];
   }
-  // out = A^T W (A x - s b) with s = 0 or 1: one code path for the operator and the
-  // right-hand side.
-  void gather(const std::vector<float>& x, bool withTargets, std::vector<float>& out) const;
-  void temporalResiduals(const std::vector<float>& x, bool withTargets, std::vector<float>& r) const;
+  // out = A^T W (A x - b) with the targets b, or A^T W A x without them: one code path
+  // for the operator and the right-hand side.
+  template <bool kWithTargets>
+  void gather(const std::vector<float>& x, std::vector<float>& out) const;
+  template <bool kWithTargets>
+  void temporalResiduals(const std::vector<float>& x, std::vector<float>& r) const;
 
   int width_, height_;
   size_t frames_, pixels_, rows_;  // rows_: pixels of the window (rows of one block)
@@ -62,7 +67,8 @@ class PoissonSystem {
   // A mixed row's residual is the difference of the two temporal rows' residuals plus
   // this (their targets' difference minus the mixed target), per axis (3 per row).
   std::array<std::vector<float>, 2> mixedShift_;
-  std::array<std::vector<float>, kBlocks> base_;     // one per row, shared by the channels
+  float alphaSquared_;
+  std::vector<uint8_t> presence_;                // per row, bit k: block k's row exists
   std::array<std::vector<float>, kBlocks> factors_;  // 3 per row, or empty
   // Scratch of gather(), kept between calls: a window's vectors are large.
   mutable std::vector<float> r3_, z_;
