@@ -124,6 +124,187 @@ int reconstruction(const std::string& norm, const std::string& input, int width,
   return 0;
 }
 
+// One way of spending the same render time, and how its frames are reconstructed.
+struct Method {
+  std::string name;
+  std::string integrator;  // pt, gpt, tgpt
+  bool motion = true;
+  int batches = 1;
+  PoissonNorm norm = PoissonNorm::L2;
+  size_t window = 1, overlap = 0;
+};
+
+struct Outcome {
+  int spp = 0;
+  double costRatio = 1;  // seconds per sample per pixel, relative to PT
+  double renderSeconds = 0, reconstructSeconds = 0, relMse = 0, temporalError = 0;
+};
+
+using Sequence = std::vector<FrameImage>;
+
+// Mean over consecutive frames of the relative squared error of the frame-to-frame change
+// against the reference's change: flicker the reference does not have.
+double temporalError(const Sequence& frames, const Sequence& reference) {
+  double sum = 0;
+  size_t count = 0;
+  for (size_t f = 0; f + 1 < frames.size(); ++f)
+    for (const char* c : {"R", "G", "B"}) {
+      const auto &a0 = frames[f].channel(c), &a1 = frames[f + 1].channel(c);
+      const auto &r0 = reference[f].channel(c), &r1 = reference[f + 1].channel(c);
+      for (size_t p = 0; p < a0.size(); ++p) {
+        const double change = (a1[p] - a0[p]) - (r1[p] - r0[p]);
+        sum += change * change / (static_cast<double>(r0[p]) * r0[p] + 0.01);
+        ++count;
+      }
+    }
+  return count ? sum / static_cast<double>(count) : 0;
+}
+
+Sequence renderSequence(const Scene& scene, RenderSettings settings, const Method& m, int64_t first, int64_t last,
+                        double* seconds) {
+  Sequence frames;
+  *seconds = bench::seconds([&] {
+    if (m.integrator == "pt") {
+      const FrameRenderer renderer(scene, settings);
+      for (int64_t f = first; f <= last; ++f) frames.push_back(renderer.render(f));
+    } else {
+      const GradientFrameRenderer renderer(scene, settings, {m.integrator == "tgpt", m.motion, m.batches});
+      for (int64_t f = first; f <= last; ++f) frames.push_back(renderer.render(f));
+    }
+  });
+  return frames;
+}
+
+Sequence reconstructSequenceOf(const Sequence& rendered, const Method& m, double* seconds) {
+  Sequence out(rendered.size());
+  PoissonSettings settings;
+  settings.norm = m.norm;
+  *seconds = bench::seconds([&] {
+    reconstructSequence(
+        rendered.size(), [&](size_t f) { return GradientFrame::fromImage(rendered[f], "frame"); },
+        [&](size_t f, const GradientFrame::Color& color) {
+          out[f] = FrameImage(rendered[f].width(), rendered[f].height());
+          for (size_t c = 0; c < 3; ++c) out[f].addChannel(kColorChannels[c]) = color[c];
+        },
+        m.window, m.overlap, settings);
+  });
+  return out;
+}
+
+// The table as grouped bars, relMSE and temporal error side by side, on a log scale.
+void writeSvg(const std::string& file, const std::vector<Method>& methods, const std::vector<Outcome>& outcomes,
+              const std::string& caption) {
+  const double left = 210, barHeight = 9, rowHeight = 26, top = 50, width = 360;
+  double low = 1e30, high = 0;
+  for (const Outcome& o : outcomes)
+    for (double v : {o.relMse, o.temporalError}) {
+      low = std::min(low, v);
+      high = std::max(high, v);
+    }
+  const double lo = std::floor(std::log10(low)), hi = std::ceil(std::log10(high));
+  const auto x = [&](double v) { return left + width * (std::log10(v) - lo) / (hi - lo); };
+  std::ofstream svg(file);
+  const double height = top + rowHeight * static_cast<double>(methods.size()) + 40;
+  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << left + width + 30 << "\" height=\"" << height
+      << "\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+      << "<text x=\"10\" y=\"18\" font-size=\"13\">" << caption << "</text>\n"
+      << "<rect x=\"" << left << "\" y=\"28\" width=\"10\" height=\"8\" fill=\"#4477aa\"/><text x=\"" << left + 14
+      << "\" y=\"36\">relMSE</text><rect x=\"" << left + 80 << "\" y=\"28\" width=\"10\" height=\"8\" fill=\"#ee7733\"/>"
+      << "<text x=\"" << left + 94 << "\" y=\"36\">temporal error</text>\n";
+  for (double e = lo; e <= hi; ++e) {
+    svg << "<line x1=\"" << x(std::pow(10, e)) << "\" y1=\"" << top - 5 << "\" x2=\"" << x(std::pow(10, e))
+        << "\" y2=\"" << height - 30 << "\" stroke=\"#ccc\"/><text x=\"" << x(std::pow(10, e)) - 12 << "\" y=\""
+        << height - 16 << "\">1e" << e << "</text>\n";
+  }
+  for (size_t i = 0; i < methods.size(); ++i) {
+    const double y = top + rowHeight * static_cast<double>(i);
+    svg << "<text x=\"10\" y=\"" << y + 2 * barHeight - 2 << "\">" << methods[i].name << "</text>\n";
+    svg << "<rect x=\"" << left << "\" y=\"" << y << "\" width=\"" << x(outcomes[i].relMse) - left << "\" height=\""
+        << barHeight << "\" fill=\"#4477aa\"/>\n";
+    svg << "<rect x=\"" << left << "\" y=\"" << y + barHeight << "\" width=\"" << x(outcomes[i].temporalError) - left
+        << "\" height=\"" << barHeight << "\" fill=\"#ee7733\"/>\n";
+  }
+  svg << "</svg>\n";
+}
+
+int equalTime(const std::string& scenePath, const std::string& frames, int width, int height, int ptSpp,
+              int referenceSpp, const std::string& svgFile) {
+  const Scene scene = loadScene(scenePath);
+  int64_t first = 0, last = 0;
+  if (std::sscanf(frames.c_str(), "%ld:%ld", &first, &last) != 2 || last < first) return 2;
+  RenderSettings settings;
+  settings.width = width;
+  settings.height = height;
+  settings.maxDepth = scene.defaults.maxDepth;
+  const std::vector<Method> methods{
+      {"PT", "pt"},
+      {"GPT, L2", "gpt"},
+      {"GPT, L1", "gpt", true, 1, PoissonNorm::L1},
+      {"TGPT, L2", "tgpt", true, 1, PoissonNorm::L2, 10, 5},
+      {"TGPT, L1", "tgpt", true, 1, PoissonNorm::L1, 10, 5},
+      {"TGPT, L1, no motion vectors", "tgpt", false, 1, PoissonNorm::L1, 10, 5},
+      {"TGPT, L2, adaptive", "tgpt", true, 4, PoissonNorm::L2, 10, 5},
+      {"TGPT, L1, adaptive", "tgpt", true, 4, PoissonNorm::L1, 10, 5},
+  };
+
+  // Cost per sample per pixel of each way of rendering, on the middle frame.
+  const int64_t middle = (first + last) / 2;
+  std::map<std::string, double> cost;
+  for (const Method& m : methods) {
+    const std::string key = m.integrator + (m.motion ? "" : "-still") + (m.batches > 1 ? "-adaptive" : "");
+    if (cost.count(key)) continue;
+    RenderSettings calibration = settings;
+    calibration.spp = 8;
+    double seconds = 0;
+    renderSequence(scene, calibration, m, middle, middle, &seconds);
+    cost[key] = seconds / 8;
+  }
+  RenderSettings reference = settings;
+  reference.spp = referenceSpp;
+  double referenceSeconds = 0;
+  const Sequence truth = renderSequence(scene, reference, methods[0], first, last, &referenceSeconds);
+  std::printf("reference: %d spp, %.1f s\n", referenceSpp, referenceSeconds);
+
+  std::vector<Outcome> outcomes;
+  std::map<std::string, std::pair<Sequence, Outcome>> renders;  // shared by methods that differ in norm only
+  for (const Method& m : methods) {
+    const std::string key = m.integrator + (m.motion ? "" : "-still") + (m.batches > 1 ? "-adaptive" : "");
+    if (!renders.count(key)) {
+      Outcome o;
+      o.costRatio = cost[key] / cost["pt"];
+      o.spp = std::max(m.batches, static_cast<int>(std::lround(ptSpp / o.costRatio)));
+      RenderSettings s = settings;
+      s.spp = o.spp;
+      Sequence frames = renderSequence(scene, s, m, first, last, &o.renderSeconds);
+      renders[key] = {std::move(frames), o};
+    }
+    const auto& [rendered, base] = renders[key];
+    Outcome o = base;
+    const Sequence result = m.integrator == "pt" ? rendered : reconstructSequenceOf(rendered, m, &o.reconstructSeconds);
+    for (size_t f = 0; f < result.size(); ++f) o.relMse += relMse(result[f], truth[f]) / static_cast<double>(result.size());
+    o.temporalError = temporalError(result, truth);
+    outcomes.push_back(o);
+  }
+
+  std::printf("\n%s, frames %ld..%ld at %dx%d, equal render time with PT at %d spp\n\n", scenePath.c_str(), first, last,
+              width, height, ptSpp);
+  std::printf("| method | cost per sample (PT = 1) | spp | render s | reconstruction s | relMSE | temporal error |\n");
+  std::printf("| --- | --- | --- | --- | --- | --- | --- |\n");
+  for (size_t i = 0; i < methods.size(); ++i) {
+    const Outcome& o = outcomes[i];
+    std::printf("| %s | %.2f | %d | %.1f | %.1f | %.4f | %.4f |\n", methods[i].name.c_str(), o.costRatio, o.spp,
+                o.renderSeconds, o.reconstructSeconds, o.relMse, o.temporalError);
+  }
+  if (!svgFile.empty()) {
+    char caption[200];
+    std::snprintf(caption, sizeof caption, "Equal render time (PT %d spp), %dx%d, frames %ld-%ld", ptSpp, width,
+                  height, first, last);
+    writeSvg(svgFile, methods, outcomes, caption);
+    std::printf("\nplot: %s\n", svgFile.c_str());
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -136,9 +317,18 @@ int main(int argc, char** argv) {
   solve->add_option("--input", input, "folder of frame_NNNN.exr from render --integrator tgpt");
   solve->add_option("--res", resolution);
   solve->add_option("--frames", frames);
+  std::string scene = "scenes/cornell/scene.json", range = "0:23", svg, equalResolution = "128x128";
+  int ptSpp = 16, referenceSpp = 1024;
+  CLI::App* compare = app.add_subcommand("equal-time", "PT, GPT and TGPT at equal render time");
+  compare->add_option("--scene", scene);
+  compare->add_option("--frames", range);
+  compare->add_option("--res", equalResolution);
+  compare->add_option("--pt-spp", ptSpp);
+  compare->add_option("--reference-spp", referenceSpp);
+  compare->add_option("--svg", svg);
   CLI11_PARSE(app, argc, argv);
   int width = 0, height = 0;
-  if (std::sscanf(resolution.c_str(), "%dx%d", &width, &height) != 2) return 2;
+  if (std::sscanf((solve->parsed() ? resolution : equalResolution).c_str(), "%dx%d", &width, &height) != 2) return 2;
   if (solve->parsed()) return reconstruction(norm, input, width, height, frames);
-  return 2;
+  return equalTime(scene, range, width, height, ptSpp, referenceSpp, svg);
 }
