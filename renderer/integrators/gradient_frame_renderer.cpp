@@ -147,11 +147,16 @@ FrameImage GradientFrameRenderer::render(int64_t frame, const ProgressCallback& 
   const Camera camera(scene_.camera, width, height);
   const PathTracerSettings tracerSettings{settings_.maxDepth};
   const GradientPathTracer tracer(geometry, shot_->lights, tracerSettings);
+  tbb::task_arena arena(settings_.threads > 0 ? settings_.threads : tbb::task_arena::automatic);
   std::unique_ptr<const FrameGeometry> nextGeometry;
+  std::optional<GradientPathTracer> nextTracer;
   std::vector<int32_t> correspondence;
   if (gradient_.temporal) {
     nextGeometry = std::make_unique<const FrameGeometry>(shot_->geometry, frame + 1);
-    correspondence = temporalCorrespondence(geometry, *nextGeometry, camera, width, height, gradient_.motionVectors);
+    nextTracer.emplace(*nextGeometry, shot_->lights, tracerSettings);
+    arena.execute([&] {
+      correspondence = temporalCorrespondence(geometry, *nextGeometry, camera, width, height, gradient_.motionVectors);
+    });
   }
 
   std::vector<PixelSums> sums(pixels);
@@ -160,13 +165,10 @@ FrameImage GradientFrameRenderer::render(int64_t frame, const ProgressCallback& 
   const int batches = gradient_.batches;
   std::atomic<size_t> tilesDone{0};
   tbb::enumerable_thread_specific<Counters> counters;
-  tbb::task_arena arena(settings_.threads > 0 ? settings_.threads : tbb::task_arena::automatic);
 
   auto renderPixel = [&](int x, int y, uint32_t count, Counters& local) {
     const size_t p = static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
     PixelSums& s = sums[p];
-    const GradientPathTracer nextTracer =
-        nextGeometry ? GradientPathTracer(*nextGeometry, shot_->lights, tracerSettings) : tracer;
     for (uint32_t i = 0; i < count; ++i) {
       const SampleKey key{scene_.seed, frame, x, y, s.drawn + i};
       SampleStream stream(key);
@@ -190,14 +192,14 @@ FrameImage GradientFrameRenderer::render(int64_t frame, const ProgressCallback& 
                                             local.rays);
       ++local.samples;
       std::optional<GradientSample> later;
-      if (nextGeometry && correspondence[p] >= 0) {
+      if (nextTracer && correspondence[p] >= 0) {
         // The temporal offset: the same random numbers one frame later, through the
         // corresponding pixel, with its own spatial offsets for the mixed differences.
         SampleStream replay(key);
         for (int d = 0; d < 5; ++d) replay.next1D();
         const int tx = correspondence[p] % width, ty = correspondence[p] / width;
         const double nextSeconds = scene_.timeAt(frame + 1, time);
-        later = nextTracer.trace(rayThrough(tx, ty, nextSeconds), offsetRays(tx, ty, nextSeconds), time, replay,
+        later = nextTracer->trace(rayThrough(tx, ty, nextSeconds), offsetRays(tx, ty, nextSeconds), time, replay,
                                  local.rays);
       }
       if (!isFinite(g) || (later && !isFinite(*later))) {
