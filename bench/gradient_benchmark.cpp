@@ -116,11 +116,12 @@ int reconstruction(const std::string& norm, const std::string& input, int width,
   const double seconds = bench::seconds([&] { reconstructWindow(pointers, settings, &stats); });
   const rusage after = usageNow();
   // ru_maxrss is in KiB.
-  std::printf("%s, %zu frames of %dx%d (%s): %.2f s (%.2f CPU s), %d CG iterations (all channels), relative "
-              "residual %.1e, peak resident memory %.2f GiB\n",
-              norm.c_str(), window.size(), window[0].width, window[0].height, input.empty() ? "synthetic" : input.c_str(),
-              seconds, cpuSeconds(after) - cpuBefore, stats.iterations, stats.relativeResidual,
-              static_cast<double>(after.ru_maxrss) / (1024.0 * 1024.0));
+  std::printf(
+      "%s, %zu frames of %dx%d (%s): %.2f s (%.2f CPU s), %d CG iterations (all channels), relative "
+      "residual %.1e, peak resident memory %.2f GiB\n",
+      norm.c_str(), window.size(), window[0].width, window[0].height, input.empty() ? "synthetic" : input.c_str(),
+      seconds, cpuSeconds(after) - cpuBefore, stats.iterations, stats.relativeResidual,
+      static_cast<double>(after.ru_maxrss) / (1024.0 * 1024.0));
   return 0;
 }
 
@@ -209,7 +210,8 @@ void writeSvg(const std::string& file, const std::vector<Method>& methods, const
       << "\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
       << "<text x=\"10\" y=\"18\" font-size=\"13\">" << caption << "</text>\n"
       << "<rect x=\"" << left << "\" y=\"28\" width=\"10\" height=\"8\" fill=\"#4477aa\"/><text x=\"" << left + 14
-      << "\" y=\"36\">relMSE</text><rect x=\"" << left + 80 << "\" y=\"28\" width=\"10\" height=\"8\" fill=\"#ee7733\"/>"
+      << "\" y=\"36\">relMSE</text><rect x=\"" << left + 80
+      << "\" y=\"28\" width=\"10\" height=\"8\" fill=\"#ee7733\"/>"
       << "<text x=\"" << left + 94 << "\" y=\"36\">temporal error</text>\n";
   for (double e = lo; e <= hi; ++e) {
     svg << "<line x1=\"" << x(std::pow(10, e)) << "\" y1=\"" << top - 5 << "\" x2=\"" << x(std::pow(10, e))
@@ -281,7 +283,8 @@ int equalTime(const std::string& scenePath, const std::string& frames, int width
     const auto& [rendered, base] = renders[key];
     Outcome o = base;
     const Sequence result = m.integrator == "pt" ? rendered : reconstructSequenceOf(rendered, m, &o.reconstructSeconds);
-    for (size_t f = 0; f < result.size(); ++f) o.relMse += relMse(result[f], truth[f]) / static_cast<double>(result.size());
+    for (size_t f = 0; f < result.size(); ++f)
+      o.relMse += relMse(result[f], truth[f]) / static_cast<double>(result.size());
     o.temporalError = temporalError(result, truth);
     outcomes.push_back(o);
   }
@@ -297,8 +300,8 @@ int equalTime(const std::string& scenePath, const std::string& frames, int width
   }
   if (!svgFile.empty()) {
     char caption[200];
-    std::snprintf(caption, sizeof caption, "Equal render time (PT %d spp), %dx%d, frames %ld-%ld", ptSpp, width,
-                  height, first, last);
+    std::snprintf(caption, sizeof caption, "Equal render time (PT %d spp), %dx%d, frames %ld-%ld", ptSpp, width, height,
+                  first, last);
     writeSvg(svgFile, methods, outcomes, caption);
     std::printf("\nplot: %s\n", svgFile.c_str());
   }

@@ -69,8 +69,7 @@ int runPoisson(PoissonArguments& a) {
         [&](size_t i) {
           const FrameImage image = readExr(frames[i].file);
           if (image.width() != first.width() || image.height() != first.height())
-            throw std::invalid_argument(frames[i].file.string() + ": differs in size from " +
-                                        frames[0].file.string());
+            throw std::invalid_argument(frames[i].file.string() + ": differs in size from " + frames[0].file.string());
           attributes = image.attributes();
           return GradientFrame::fromImage(image, frames[i].file.string());
         },
@@ -97,14 +96,17 @@ std::vector<Command> addPoissonCommand(CLI::App& app) {
   CLI::App* poisson = app.add_subcommand(
       "poisson", "screened Poisson reconstruction of gradient-domain frames over windows (Manzi et al. 2016)");
   poisson->add_option("dir", arguments->in, "folder of frame_NNNN.exr from render --integrator gpt|tgpt")->required();
-  poisson->add_option("--window", arguments->window, "frames per window")->check(CLI::Range(1, 1000))
+  poisson->add_option("--window", arguments->window, "frames per window")
+      ->check(CLI::Range(1, 1000))
       ->capture_default_str();
   poisson->add_option("--overlap", arguments->overlap, "frames shared by consecutive windows")
-      ->check(CLI::Range(0, 999))->capture_default_str();
+      ->check(CLI::Range(0, 999))
+      ->capture_default_str();
   poisson->add_option("--norm", arguments->norm, "l2 (conjugate gradients) or l1 (reweighted least squares)")
       ->capture_default_str();
   poisson->add_option("--alpha", arguments->settings.alpha, "weight of the primal image")
-      ->check(CLI::Range(1e-4, 1e4))->capture_default_str();
+      ->check(CLI::Range(1e-4, 1e4))
+      ->capture_default_str();
   poisson->add_option("--out", arguments->out, "output folder for the reconstructed frame_NNNN.exr")->required();
   return {{poisson, [arguments] { return runPoisson(*arguments); }}};
 }

@@ -29,15 +29,15 @@ struct GradientFrame {
 
   int width = 0, height = 0;
   Color primal, gradientX, gradientY, directEmission;
-  Color temporal, mixedX, mixedY;      // empty without a temporal layer
+  Color temporal, mixedX, mixedY;       // empty without a temporal layer
   std::vector<int32_t> temporalTarget;  // pixel index in the next frame, -1 for none
 
   size_t pixelCount() const { return static_cast<size_t>(width) * static_cast<size_t>(height); }
   bool hasTemporal() const { return !temporalTarget.empty(); }
 
   // Reads the layers above (a temporal layer needs its mixed layers); throws
-  // std::invalid_argument naming `label` and the first missing channel. Targets outside the image, non-finite temporal values and targets
-  // claimed by more than one pixel (all but the first in scanline order) are invalid.
+  // std::invalid_argument naming `label` and the first missing channel. Targets outside the image, non-finite temporal
+  // values and targets claimed by more than one pixel (all but the first in scanline order) are invalid.
   static GradientFrame fromImage(const FrameImage& image, const std::string& label);
 };
 

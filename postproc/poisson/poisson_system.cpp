@@ -34,8 +34,12 @@ bool finite3(const float* v) { return std::isfinite(v[0]) && std::isfinite(v[1])
 }  // namespace
 
 PoissonSystem::PoissonSystem(const std::vector<const GradientFrame*>& frames, float alpha)
-    : width_(frames.at(0)->width), height_(frames.at(0)->height), frames_(frames.size()),
-      pixels_(frames.at(0)->pixelCount()), rows_(frames_ * pixels_), alphaSquared_(alpha * alpha) {
+    : width_(frames.at(0)->width),
+      height_(frames.at(0)->height),
+      frames_(frames.size()),
+      pixels_(frames.at(0)->pixelCount()),
+      rows_(frames_ * pixels_),
+      alphaSquared_(alpha * alpha) {
   const size_t n = rows_, w = static_cast<size_t>(width_), h = static_cast<size_t>(height_);
   next_.assign(n, -1);
   previous_.assign(n, -1);

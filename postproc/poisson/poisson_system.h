@@ -61,14 +61,14 @@ class PoissonSystem {
   void temporalResiduals(const std::vector<float>& x, std::vector<float>& r) const;
 
   int width_, height_;
-  size_t frames_, pixels_, rows_;  // rows_: pixels of the window (rows of one block)
-  std::vector<int32_t> next_, previous_;  // m and m^-1 as window pixel indices, -1 for none
+  size_t frames_, pixels_, rows_;              // rows_: pixels of the window (rows of one block)
+  std::vector<int32_t> next_, previous_;       // m and m^-1 as window pixel indices, -1 for none
   std::array<std::vector<float>, 4> targets_;  // data, spatial x, spatial y, temporal (3 per row)
   // A mixed row's residual is the difference of the two temporal rows' residuals plus
   // this (their targets' difference minus the mixed target), per axis (3 per row).
   std::array<std::vector<float>, 2> mixedShift_;
   float alphaSquared_;
-  std::vector<uint8_t> presence_;                // per row, bit k: block k's row exists
+  std::vector<uint8_t> presence_;                    // per row, bit k: block k's row exists
   std::array<std::vector<float>, kBlocks> factors_;  // 3 per row, or empty
   // Scratch of gather(), kept between calls: a window's vectors are large.
   mutable std::vector<float> r3_, z_;

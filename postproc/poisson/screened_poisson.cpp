@@ -19,7 +19,8 @@ constexpr size_t kChunk = 16384;
 template <size_t K, class Body>
 std::array<double, K> reduce(size_t n, Body body) {
   std::vector<std::array<double, K>> partial((n + kChunk - 1) / kChunk);
-  tbb::parallel_for(size_t{0}, partial.size(), [&](size_t c) { partial[c] = body(c * kChunk, std::min(n, (c + 1) * kChunk)); });
+  tbb::parallel_for(size_t{0}, partial.size(),
+                    [&](size_t c) { partial[c] = body(c * kChunk, std::min(n, (c + 1) * kChunk)); });
   std::array<double, K> total{};
   for (const auto& p : partial)
     for (size_t k = 0; k < K; ++k) total[k] += p[k];
@@ -109,7 +110,8 @@ void reweightForL1(PoissonSystem& system, const std::vector<float>& x, float alp
   auto factors = system.residuals(x);
   for (size_t k = 0; k < PoissonSystem::kBlocks; ++k) {
     const float scale = k == PoissonSystem::Data ? alpha : 1.0f;
-    forEach(factors[k].size(), [&](size_t i) { factors[k][i] = 1.0f / std::max(scale * std::abs(factors[k][i]), epsilon); });
+    forEach(factors[k].size(),
+            [&](size_t i) { factors[k][i] = 1.0f / std::max(scale * std::abs(factors[k][i]), epsilon); });
   }
   system.setWeightFactors(std::move(factors));
 }

@@ -26,16 +26,16 @@ PoissonNorm parsePoissonNorm(const std::string& text);  // "l1" or "l2"; throws 
 struct PoissonSettings {
   float alpha = 0.2f;
   PoissonNorm norm = PoissonNorm::L2;
-  int maxIterations = 400;   // conjugate-gradient iterations (L2); the channels are solved side by side
-  float tolerance = 1e-5f;   // stop when |residual| <= tolerance * |right-hand side|
-  int irlsRounds = 12;       // L1
-  int irlsIterations = 40;   // CG iterations per L1 round
-  float irlsEpsilon = 1e-3f; // L1: residuals below this weigh like this
+  int maxIterations = 400;    // conjugate-gradient iterations (L2); the channels are solved side by side
+  float tolerance = 1e-5f;    // stop when |residual| <= tolerance * |right-hand side|
+  int irlsRounds = 12;        // L1
+  int irlsIterations = 40;    // CG iterations per L1 round
+  float irlsEpsilon = 1e-3f;  // L1: residuals below this weigh like this
 };
 
 struct PoissonStats {
-  int iterations = 0;            // CG iterations (all three channels at once), over all rounds
-  double relativeResidual = 0;   // the last solve's, largest over channels
+  int iterations = 0;           // CG iterations (all three channels at once), over all rounds
+  double relativeResidual = 0;  // the last solve's, largest over channels
 };
 
 // The reconstruction of each frame of the window (without direct emission), per channel.

@@ -24,8 +24,8 @@ float hannWeight(size_t index, size_t count) {
   return static_cast<float>(s * s);
 }
 
-void reconstructSequence(size_t frames, const FrameLoader& load, const FrameSink& sink, size_t window,
-                         size_t overlap, const PoissonSettings& settings, PoissonStats* stats) {
+void reconstructSequence(size_t frames, const FrameLoader& load, const FrameSink& sink, size_t window, size_t overlap,
+                         const PoissonSettings& settings, PoissonStats* stats) {
   const std::vector<PoissonWindow> windows = planWindows(frames, window, overlap);
   struct Blend {
     GradientFrame::Color sum;

@@ -31,7 +31,7 @@ using FrameLoader = std::function<GradientFrame(size_t index)>;
 
 // Reconstructs `frames` frames window by window, loading each frame when a window needs
 // it and handing every frame to `sink` as soon as the last window covering it is done.
-void reconstructSequence(size_t frames, const FrameLoader& load, const FrameSink& sink, size_t window,
-                         size_t overlap, const PoissonSettings& settings, PoissonStats* stats = nullptr);
+void reconstructSequence(size_t frames, const FrameLoader& load, const FrameSink& sink, size_t window, size_t overlap,
+                         const PoissonSettings& settings, PoissonStats* stats = nullptr);
 
 }  // namespace pathfarm

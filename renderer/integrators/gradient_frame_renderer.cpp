@@ -45,8 +45,8 @@ struct Moments {
 };
 
 struct PixelSums {
-  uint32_t drawn = 0;    // sample indices used so far
-  uint32_t samples = 0;  // finite samples accumulated
+  uint32_t drawn = 0;             // sample indices used so far
+  uint32_t samples = 0;           // finite samples accumulated
   Moments direct, own, temporal;  // own: the base's parts of its pixel, averaged over the 4 pairs
   std::array<Moments, 4> offset, difference;
   std::array<Moments, 4> mixed;  // the temporal offset's difference minus the base's, per direction
@@ -188,8 +188,8 @@ FrameImage GradientFrameRenderer::render(int64_t frame, const ProgressCallback& 
         }
         return rays;
       };
-      const GradientSample g = tracer.trace(rayThrough(x, y, seconds), offsetRays(x, y, seconds), time, stream,
-                                            local.rays);
+      const GradientSample g =
+          tracer.trace(rayThrough(x, y, seconds), offsetRays(x, y, seconds), time, stream, local.rays);
       ++local.samples;
       std::optional<GradientSample> later;
       if (nextTracer && correspondence[p] >= 0) {
@@ -200,7 +200,7 @@ FrameImage GradientFrameRenderer::render(int64_t frame, const ProgressCallback& 
         const int tx = correspondence[p] % width, ty = correspondence[p] / width;
         const double nextSeconds = scene_.timeAt(frame + 1, time);
         later = nextTracer->trace(rayThrough(tx, ty, nextSeconds), offsetRays(tx, ty, nextSeconds), time, replay,
-                                 local.rays);
+                                  local.rays);
       }
       if (!isFinite(g) || (later && !isFinite(*later))) {
         ++local.nonFinite;
@@ -227,8 +227,8 @@ FrameImage GradientFrameRenderer::render(int64_t frame, const ProgressCallback& 
   for (int batch = 0; batch < batches; ++batch) {
     if (batch > 0) {
       const uint64_t budget = static_cast<uint64_t>(settings_.spp) * pixels / static_cast<uint64_t>(batches);
-      allocation = allocateSamples(samplingDensity(FrameLayers(sums, width, height).relativeVariance(), width, height),
-                                   budget);
+      allocation =
+          allocateSamples(samplingDensity(FrameLayers(sums, width, height).relativeVariance(), width, height), budget);
     }
     arena.execute([&] {
       tbb::parallel_for(tbb::blocked_range<size_t>(0, tileCount, 1), [&](const tbb::blocked_range<size_t>& r) {
@@ -238,7 +238,8 @@ FrameImage GradientFrameRenderer::render(int64_t frame, const ProgressCallback& 
           const int y0 = static_cast<int>(index / static_cast<size_t>(tilesX)) * tile;
           for (int y = y0; y < std::min(y0 + tile, height); ++y)
             for (int x = x0; x < std::min(x0 + tile, width); ++x)
-              renderPixel(x, y, allocation[static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)],
+              renderPixel(x, y,
+                          allocation[static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)],
                           local);
           const size_t done = ++tilesDone;
           if (progress) progress(done, tileCount * static_cast<size_t>(batches));
@@ -300,8 +301,8 @@ FrameImage GradientFrameRenderer::render(int64_t frame, const ProgressCallback& 
           if (!rigid(p, k)) continue;
           const PixelSums &a = sums[p], &b = sums[layers.neighbour(p, k)];
           mixed[p] = static_cast<float>(a.mixed[k].mean(c, a.samples) - b.mixed[k ^ 1].mean(c, b.samples));
-          variance[p] = static_cast<float>(a.mixed[k].varianceOfMean(c, a.samples) +
-                                           b.mixed[k ^ 1].varianceOfMean(c, b.samples));
+          variance[p] =
+              static_cast<float>(a.mixed[k].varianceOfMean(c, a.samples) + b.mixed[k ^ 1].varianceOfMean(c, b.samples));
         }
       }
     }

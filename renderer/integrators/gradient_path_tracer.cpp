@@ -14,10 +14,10 @@ namespace {
 // so the MIS weight compares p(x) with p(y) J in the base path's measure.
 struct OffsetPath {
   enum class Mode { Replay, Reconnected, Dead } mode = Mode::Dead;
-  Ray ray;              // replay: the ray that reached the current vertex
-  SurfaceHit hit;       // replay: the current vertex
-  bool found = false;   // replay: whether the ray hit anything
-  Vec3f incoming;       // direction the current vertex was reached along
+  Ray ray;                   // replay: the ray that reached the current vertex
+  SurfaceHit hit;            // replay: the current vertex
+  bool found = false;        // replay: whether the ray hit anything
+  Vec3f incoming;            // direction the current vertex was reached along
   bool firstShared = false;  // reconnected, and the current vertex is the first shared one
   Rgb throughput{1.0f};
   float ratio = 1;
@@ -100,9 +100,8 @@ GradientSample GradientPathTracer::trace(const Ray& cameraRay, const std::array<
         const SurfaceHit& offsetHit = replay ? o.hit : hit;
         const float offsetLightPdf = o.stepDelta ? 0 : lightPdfOf(offsetFound, offsetHit, o.previousPosition);
         const float scale = o.ratioBefore * o.stepJacobian;
-        addWeighted(out, k,
-                    misWeight(previousPdf, lightPdf, previousPdf, scale * offsetLightPdf, scale * o.stepPdf), base,
-                    o.throughput * emissionAt(offsetFound, offsetHit, o.incoming));
+        addWeighted(out, k, misWeight(previousPdf, lightPdf, previousPdf, scale * offsetLightPdf, scale * o.stepPdf),
+                    base, o.throughput * emissionAt(offsetFound, offsetHit, o.incoming));
       }
     }
     if (!found || depth >= settings_.maxDepth) break;
@@ -129,9 +128,10 @@ GradientSample GradientPathTracer::trace(const Ray& cameraRay, const std::array<
         bool visible = false;
         if (!f.isBlack()) {
           ++counts.shadow;
-          visible = std::isinf(light->distance)
-                        ? geometry_.escapes(vertex.hit, light->direction, time)
-                        : geometry_.connects(vertex.hit, vertex.hit.position + light->direction * light->distance, time);
+          visible =
+              std::isinf(light->distance)
+                  ? geometry_.escapes(vertex.hit, light->direction, time)
+                  : geometry_.connects(vertex.hit, vertex.hit.position + light->direction * light->distance, time);
         }
         const Rgb base = visible ? throughput * f * light->radiance / light->pdf : Rgb();
         out.radiance += base * powerHeuristic(light->pdf, bsdfPdf);
@@ -157,18 +157,17 @@ GradientSample GradientPathTracer::trace(const Ray& cameraRay, const std::array<
           bool offsetVisible = visible;
           if (o.mode == OffsetPath::Mode::Replay && !offsetF.isBlack()) {
             ++counts.shadow;
-            offsetVisible = std::isinf(offsetLight->distance)
-                                ? geometry_.escapes(y.hit, offsetLight->direction, time)
-                                : geometry_.connects(y.hit, y.hit.position + offsetLight->direction * offsetLight->distance,
-                                                     time);
+            offsetVisible =
+                std::isinf(offsetLight->distance)
+                    ? geometry_.escapes(y.hit, offsetLight->direction, time)
+                    : geometry_.connects(y.hit, y.hit.position + offsetLight->direction * offsetLight->distance, time);
           }
-          const Rgb offset =
-              offsetVisible ? o.throughput * offsetF * offsetLight->radiance / offsetLight->pdf : Rgb();
+          const Rgb offset = offsetVisible ? o.throughput * offsetF * offsetLight->radiance / offsetLight->pdf : Rgb();
           const float scale = o.ratio * jacobian;
-          addWeighted(out, k,
-                      misWeight(light->pdf, light->pdf, bsdfPdf, scale * offsetLight->pdf,
-                                scale * y.bsdf.pdf(y.wo, offsetWi)),
-                      base, offset);
+          addWeighted(
+              out, k,
+              misWeight(light->pdf, light->pdf, bsdfPdf, scale * offsetLight->pdf, scale * y.bsdf.pdf(y.wo, offsetWi)),
+              base, offset);
         }
       }
     }
@@ -186,8 +185,7 @@ GradientSample GradientPathTracer::trace(const Ray& cameraRay, const std::array<
     const Ray next{offsetRayOrigin(vertex.hit, direction), direction};
     SurfaceHit nextHit;
     const bool nextFound = intersect(next, nextHit);
-    const bool nextConnectable =
-        !nextFound || isConnectable(ShadedVertex(scene, nextHit, direction).bsdf);
+    const bool nextConnectable = !nextFound || isConnectable(ShadedVertex(scene, nextHit, direction).bsdf);
 
     for (size_t k = 0; k < 4; ++k) {
       OffsetPath& o = offsets[k];
@@ -214,9 +212,8 @@ GradientSample GradientPathTracer::trace(const Ray& cameraRay, const std::array<
         o.incoming = direction;
       } else if (connectable && isConnectable(y.bsdf) && nextConnectable) {
         // Reconnect to the base's next vertex (or follow it out into the environment).
-        std::optional<Reconnection> link =
-            nextFound ? reconnect(y.hit.position, vertex.hit.position, nextHit)
-                      : std::optional<Reconnection>(Reconnection{direction, 0, 1});
+        std::optional<Reconnection> link = nextFound ? reconnect(y.hit.position, vertex.hit.position, nextHit)
+                                                     : std::optional<Reconnection>(Reconnection{direction, 0, 1});
         ++counts.shadow;
         const bool open = link && (nextFound ? geometry_.connects(y.hit, nextHit.position, time)
                                              : geometry_.escapes(y.hit, direction, time));

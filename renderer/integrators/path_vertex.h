@@ -20,8 +20,7 @@ struct BounceSamples {
   float roulette;
 
   explicit BounceSamples(SampleStream& s)
-      : light(s.next1D()), lightPoint(s.next2D()), lobe(s.next1D()), direction(s.next2D()),
-        roulette(s.next1D()) {}
+      : light(s.next1D()), lightPoint(s.next2D()), lobe(s.next1D()), direction(s.next2D()), roulette(s.next1D()) {}
 };
 
 inline Rgb albedoAt(const Scene& scene, const Material& material, Vec2f uv) {
@@ -44,7 +43,10 @@ struct ShadedVertex {
   Bsdf bsdf;
 
   ShadedVertex(const Scene& scene, const SurfaceHit& surface, Vec3f incoming)
-      : hit(surface), normal(surface.shadingNormal), frame(), wo(),
+      : hit(surface),
+        normal(surface.shadingNormal),
+        frame(),
+        wo(),
         bsdf(materialOf(scene, surface), albedoAt(scene, materialOf(scene, surface), surface.uv),
              scene.roughnessThreshold) {
     if (!isTransmissive(materialOf(scene, surface).type) && dot(incoming, hit.geometricNormal) > 0) {

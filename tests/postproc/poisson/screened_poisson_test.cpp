@@ -88,12 +88,16 @@ std::vector<double> denseSolve(const std::vector<const GradientFrame*>& frames, 
         // Mixed rows where the neighbour's target is the target's neighbour.
         const size_t target = static_cast<size_t>(frame.temporalTarget[p]);
         if (x + 1 < w && frame.temporalTarget[p + 1] == static_cast<int32_t>(target + 1) && f + 1 < frames.size())
-          system.addRow({{at(f + 1, 0, 0) + target + 1, 1.0}, {at(f + 1, 0, 0) + target, -1.0},
-                         {at(f, x + 1, y), -1.0}, {at(f, x, y), 1.0}},
+          system.addRow({{at(f + 1, 0, 0) + target + 1, 1.0},
+                         {at(f + 1, 0, 0) + target, -1.0},
+                         {at(f, x + 1, y), -1.0},
+                         {at(f, x, y), 1.0}},
                         frame.mixedX[c][p], 1);
         if (y + 1 < h && frame.temporalTarget[p + static_cast<size_t>(w)] == static_cast<int32_t>(target) + w)
-          system.addRow({{at(f + 1, 0, 0) + target + static_cast<size_t>(w), 1.0}, {at(f + 1, 0, 0) + target, -1.0},
-                         {at(f, x, y + 1), -1.0}, {at(f, x, y), 1.0}},
+          system.addRow({{at(f + 1, 0, 0) + target + static_cast<size_t>(w), 1.0},
+                         {at(f + 1, 0, 0) + target, -1.0},
+                         {at(f, x, y + 1), -1.0},
+                         {at(f, x, y), 1.0}},
                         frame.mixedY[c][p], 1);
       }
   }
@@ -115,7 +119,8 @@ void expectMatchesDense(const std::vector<const GradientFrame*>& frames, float a
   for (size_t c = 0; c < 3; ++c) {
     const std::vector<double> reference = denseSolve(frames, c, alpha);
     for (size_t f = 0; f < frames.size(); ++f)
-      for (size_t p = 0; p < pixels; ++p) ASSERT_NEAR(solved[f][c][p], reference[f * pixels + p], 1e-4) << f << " " << p;
+      for (size_t p = 0; p < pixels; ++p)
+        ASSERT_NEAR(solved[f][c][p], reference[f * pixels + p], 1e-4) << f << " " << p;
   }
 }
 
@@ -181,8 +186,7 @@ TEST(ScreenedPoisson, PixelsWithoutCorrespondenceIgnoreTheirTemporalValues) {
   const GradientFrame::Color* colors[] = {&exact.primal,   &exact.gradientX, &exact.gradientY, &exact.directEmission,
                                           &exact.temporal, &exact.mixedX,    &exact.mixedY};
   for (size_t l = 0; l < 7; ++l)
-    for (size_t c = 0; c < 3; ++c)
-      image.addChannel(std::string(layers[l]) + "." + kColorChannels[c]) = (*colors[l])[c];
+    for (size_t c = 0; c < 3; ++c) image.addChannel(std::string(layers[l]) + "." + kColorChannels[c]) = (*colors[l])[c];
   auto& valid = image.addChannel("temporal.valid.Y");
   auto& tx = image.addChannel("temporal.target.X");
   auto& ty = image.addChannel("temporal.target.Y");

@@ -46,7 +46,9 @@ TEST(TemporalCorrespondence, FollowsTheMotionOneToOne) {
 
   // The wall far from the sphere stays; the sphere's centre moves with its projection.
   EXPECT_EQ(target[2 * w + 2], 2 * w + 2);
-  const auto centreAt = [&](int64_t frame) { return *camera.project(Vec3f{-1 + 0.2f * frame, 0, 0}, scene.timeAt(frame, 0)); };
+  const auto centreAt = [&](int64_t frame) {
+    return *camera.project(Vec3f{-1 + 0.2f * frame, 0, 0}, scene.timeAt(frame, 0));
+  };
   const Vec2f from = centreAt(4), to = centreAt(5);
   const int px = static_cast<int>(from.x), py = static_cast<int>(from.y);
   const int32_t moved = target[static_cast<size_t>(py * w + px)];

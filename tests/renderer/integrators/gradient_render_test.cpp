@@ -49,10 +49,11 @@ TEST(GradientRender, ConstantRadianceSceneHasZeroDifferences) {
 Scene cornellForStatistics() {
   std::ifstream file(test_support::sourceDir() / "scenes/cornell/scene.json");
   std::string json{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
-  for (const auto& [from, to] : {std::pair<std::string, std::string>{"\"look_at\": [0, 1, 0]", "\"look_at\": [0, 0.3, 0]"},
-                                 {"\"size\": [0.5, 0.4]", "\"size\": [1.4, 1.4]"},
-                                 {"\"emission\": [17, 12, 4]", "\"emission\": [3, 2.4, 1]"},
-                                 {"\"type\": \"dielectric\", \"ior\": 1.5", "\"type\": \"rough_dielectric\", \"alpha\": 0.3"}}) {
+  for (const auto& [from, to] :
+       {std::pair<std::string, std::string>{"\"look_at\": [0, 1, 0]", "\"look_at\": [0, 0.3, 0]"},
+        {"\"size\": [0.5, 0.4]", "\"size\": [1.4, 1.4]"},
+        {"\"emission\": [17, 12, 4]", "\"emission\": [3, 2.4, 1]"},
+        {"\"type\": \"dielectric\", \"ior\": 1.5", "\"type\": \"rough_dielectric\", \"alpha\": 0.3"}}) {
     const size_t at = json.find(from);
     EXPECT_NE(at, std::string::npos) << from;
     json.replace(at, from.size(), to);
@@ -122,7 +123,8 @@ TEST(GradientRender, TemporalAndMixedDifferencesAreUnbiased) {
   const RenderSettings settings = small(w, h, 8, 4);
   RenderSettings reference = settings;
   reference.spp = 16384;
-  const FrameImage before = FrameRenderer(scene, reference).render(6), after = FrameRenderer(scene, reference).render(7);
+  const FrameImage before = FrameRenderer(scene, reference).render(6),
+                   after = FrameRenderer(scene, reference).render(7);
   GradientSettings tgpt;
   tgpt.temporal = true;
   const size_t pixels = static_cast<size_t>(w * h);
