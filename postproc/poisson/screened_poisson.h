@@ -28,8 +28,8 @@ struct PoissonSettings {
   PoissonNorm norm = PoissonNorm::L2;
   int maxIterations = 400;    // conjugate-gradient iterations (L2); the channels are solved side by side
   float tolerance = 1e-5f;    // stop when |residual| <= tolerance * |right-hand side|
-  int irlsRounds = 12;        // L1
-  int irlsIterations = 40;    // CG iterations per L1 round
+  int irlsRounds = 10;        // L1
+  int irlsIterations = 20;    // CG iterations per L1 round
   float irlsEpsilon = 1e-3f;  // L1: residuals below this weigh like this
 };
 
