@@ -3,7 +3,8 @@
 //
 //   build/bin/gradient_benchmark reconstruction --norm l2|l1 [--input DIR] [--res 1280x720] [--frames 10]
 //   build/bin/gradient_benchmark equal-time [--scene scenes/cornell/scene.json] [--frames 0:23]
-//        [--res 128x128] [--pt-spp 16] [--reference-spp 512] [--svg docs/figures/gradient_equal_time.svg]
+//        [--res 128x128] [--pt-spp 16] [--reference-spp 512] [--reference-dir DIR]
+//        [--svg docs/figures/gradient_equal_time.svg]
 //
 // `reconstruction` solves one window of frames, read from DIR's first frame_NNNN.exr files
 // (a `pathfarm render --integrator tgpt` output) or, without DIR, a synthetic window (a
@@ -12,12 +13,14 @@
 // per process: the peak is the process's.
 //
 // `equal-time` first measures each method's cost per sample per pixel on one frame, gives
-// every method the samples that take as long as --pt-spp path-traced samples, renders the
+// every method the samples that take at most as long as --pt-spp path-traced samples, renders the
 // frames, reconstructs, and prints relMSE and temporal error against a path-traced
 // reference as a Markdown table; with --svg it also writes the table as a bar chart.
 #include <sys/resource.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -230,7 +233,7 @@ void writeSvg(const std::string& file, const std::vector<Method>& methods, const
 }
 
 int equalTime(const std::string& scenePath, const std::string& frames, int width, int height, int ptSpp,
-              int referenceSpp, const std::string& svgFile) {
+              int referenceSpp, const std::string& referenceDir, const std::string& svgFile) {
   const Scene scene = loadScene(scenePath);
   int64_t first = 0, last = 0;
   if (std::sscanf(frames.c_str(), "%ld:%ld", &first, &last) != 2 || last < first) return 2;
@@ -249,32 +252,48 @@ int equalTime(const std::string& scenePath, const std::string& frames, int width
       {"TGPT, L1, adaptive", "tgpt", true, 4, PoissonNorm::L1, 10, 5},
   };
 
-  // Cost per sample per pixel of each way of rendering, on the middle frame.
+  // Cost per sample per pixel of each way of rendering (motion vectors or not cost the
+  // same), the median of three renders of the middle frame.
+  const auto costKey = [](const Method& m) { return m.integrator + (m.batches > 1 ? "-adaptive" : ""); };
   const int64_t middle = (first + last) / 2;
   std::map<std::string, double> cost;
   for (const Method& m : methods) {
-    const std::string key = m.integrator + (m.motion ? "" : "-still") + (m.batches > 1 ? "-adaptive" : "");
-    if (cost.count(key)) continue;
+    if (cost.count(costKey(m))) continue;
     RenderSettings calibration = settings;
     calibration.spp = 8;
-    double seconds = 0;
-    renderSequence(scene, calibration, m, middle, middle, &seconds);
-    cost[key] = seconds / 8;
+    std::array<double, 3> runs{};
+    for (double& seconds : runs) renderSequence(scene, calibration, m, middle, middle, &seconds);
+    std::sort(runs.begin(), runs.end());
+    cost[costKey(m)] = runs[1] / 8;
   }
-  RenderSettings reference = settings;
-  reference.spp = referenceSpp;
-  double referenceSeconds = 0;
-  const Sequence truth = renderSequence(scene, reference, methods[0], first, last, &referenceSeconds);
-  std::printf("reference: %d spp, %.1f s\n", referenceSpp, referenceSeconds);
+  Sequence truth;
+  if (!referenceDir.empty() && std::filesystem::exists(referenceDir)) {
+    for (int64_t f = first; f <= last; ++f)
+      truth.push_back(readExr(std::filesystem::path(referenceDir) / ("frame_" + std::to_string(f) + ".exr")));
+    std::printf("reference: read from %s\n", referenceDir.c_str());
+  } else {
+    RenderSettings reference = settings;
+    reference.spp = referenceSpp;
+    double referenceSeconds = 0;
+    truth = renderSequence(scene, reference, methods[0], first, last, &referenceSeconds);
+    std::printf("reference: %d spp, %.1f s\n", referenceSpp, referenceSeconds);
+    if (!referenceDir.empty()) {
+      std::filesystem::create_directories(referenceDir);
+      for (int64_t f = first; f <= last; ++f)
+        writeExr(std::filesystem::path(referenceDir) / ("frame_" + std::to_string(f) + ".exr"),
+                 truth[static_cast<size_t>(f - first)]);
+    }
+  }
 
   std::vector<Outcome> outcomes;
   std::map<std::string, std::pair<Sequence, Outcome>> renders;  // shared by methods that differ in norm only
   for (const Method& m : methods) {
-    const std::string key = m.integrator + (m.motion ? "" : "-still") + (m.batches > 1 ? "-adaptive" : "");
+    const std::string key = costKey(m) + (m.motion ? "" : "-still");
     if (!renders.count(key)) {
       Outcome o;
-      o.costRatio = cost[key] / cost["pt"];
-      o.spp = std::max(m.batches, static_cast<int>(std::lround(ptSpp / o.costRatio)));
+      o.costRatio = cost[costKey(m)] / cost["pt"];
+      // Never more time than PT's: the samples are rounded down.
+      o.spp = std::max(m.batches, static_cast<int>(std::floor(ptSpp / o.costRatio)));
       RenderSettings s = settings;
       s.spp = o.spp;
       Sequence frames = renderSequence(scene, s, m, first, last, &o.renderSeconds);
@@ -329,9 +348,11 @@ int main(int argc, char** argv) {
   compare->add_option("--pt-spp", ptSpp);
   compare->add_option("--reference-spp", referenceSpp);
   compare->add_option("--svg", svg);
+  std::string referenceDir;
+  compare->add_option("--reference-dir", referenceDir, "keeps the reference frames here and reuses them");
   CLI11_PARSE(app, argc, argv);
   int width = 0, height = 0;
   if (std::sscanf((solve->parsed() ? resolution : equalResolution).c_str(), "%dx%d", &width, &height) != 2) return 2;
   if (solve->parsed()) return reconstruction(norm, input, width, height, frames);
-  return equalTime(scene, range, width, height, ptSpp, referenceSpp, svg);
+  return equalTime(scene, range, width, height, ptSpp, referenceSpp, referenceDir, svg);
 }
