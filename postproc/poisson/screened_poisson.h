@@ -8,8 +8,8 @@
 //   L1: iteratively reweighted least squares: each round solves the L2 problem with row
 //       weights 1 / max(|residual|, epsilon) from the previous round, so a row weighs by
 //       its absolute rather than its squared error. This is the standard IRLS
-//       majorizer of the L1 norm (every round lowers the L1 objective), warm-started,
-//       with a few CG iterations per round.
+//       majorizer of the L1 norm (a round solved exactly never raises the L1
+//       objective), warm-started, with a few CG iterations per round.
 // Emitters seen directly from the camera are added back afterwards.
 #include <array>
 #include <string>
