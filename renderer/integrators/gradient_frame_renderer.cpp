@@ -188,6 +188,8 @@ FrameImage GradientFrameRenderer::render(int64_t frame, const ProgressCallback& 
         }
         return rays;
       };
+      // The temporal offset replays the path's random numbers from here on.
+      SampleStream replay = stream;
       const GradientSample g =
           tracer.trace(rayThrough(x, y, seconds), offsetRays(x, y, seconds), time, stream, local.rays);
       ++local.samples;
@@ -195,8 +197,6 @@ FrameImage GradientFrameRenderer::render(int64_t frame, const ProgressCallback& 
       if (nextTracer && correspondence[p] >= 0) {
         // The temporal offset: the same random numbers one frame later, through the
         // corresponding pixel, with its own spatial offsets for the mixed differences.
-        SampleStream replay(key);
-        for (int d = 0; d < 5; ++d) replay.next1D();
         const int tx = correspondence[p] % width, ty = correspondence[p] / width;
         const double nextSeconds = scene_.timeAt(frame + 1, time);
         later = nextTracer->trace(rayThrough(tx, ty, nextSeconds), offsetRays(tx, ty, nextSeconds), time, replay,
