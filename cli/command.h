@@ -40,5 +40,6 @@ std::vector<Command> addMetricsCommands(CLI::App& app);  // compare, compare-seq
 std::vector<Command> addFilterCommands(CLI::App& app);   // denoise, upsample
 std::vector<Command> addFlowCommand(CLI::App& app);
 std::vector<Command> addInterpolationCommands(CLI::App& app);  // interpolate, motionblur
+std::vector<Command> addPoissonCommand(CLI::App& app);
 
 }  // namespace pathfarm

@@ -14,7 +14,7 @@ int main(int argc, char** argv) {
   for (auto add : {pathfarm::addRenderCommand, pathfarm::addFarmProcessCommands, pathfarm::addClientCommands,
                    pathfarm::addLocalCommand, pathfarm::addPreviewCommand, pathfarm::addMetricsCommands,
                    pathfarm::addFilterCommands, pathfarm::addFlowCommand,
-                   pathfarm::addInterpolationCommands}) {
+                   pathfarm::addInterpolationCommands, pathfarm::addPoissonCommand}) {
     for (pathfarm::Command& command : add(app)) commands.push_back(std::move(command));
   }
   try {

@@ -12,6 +12,7 @@
 #include "image/png_preview.h"
 #include "renderer/decomposition/auto_decomposition.h"
 #include "renderer/integrators/frame_renderer.h"
+#include "renderer/integrators/gradient_frame_renderer.h"
 #include "renderer/scene/scene_loader.h"
 
 namespace pathfarm {
@@ -28,6 +29,9 @@ struct RenderOptions {
   bool png = false;
   float exposure = 1;
   std::string decompose = "none";
+  std::string integrator = "pt";
+  int batches = 1;
+  bool noMotion = false;
 };
 
 class UsageError : public std::runtime_error {
@@ -94,6 +98,16 @@ int runRender(const RenderOptions& options) {
     spdlog::error("--decompose: {}", e.what());
     return kExitBadInput;
   }
+  const bool gradient = options.integrator != "pt";
+  if (gradient && options.decompose != "none") {
+    spdlog::error("--integrator {} renders no path-space components: leave out --decompose", options.integrator);
+    return kExitBadInput;
+  }
+  if (!gradient && (options.batches != 1 || options.noMotion)) {
+    spdlog::error("--batches and --no-motion apply to --integrator gpt and tgpt only");
+    return kExitBadInput;
+  }
+  const GradientSettings gradientSettings{options.integrator == "tgpt", !options.noMotion, options.batches};
   if (options.spp) settings.spp = *options.spp;
   if (options.maxDepth) settings.maxDepth = *options.maxDepth;
   settings.threads = options.threads;
@@ -109,13 +123,19 @@ int runRender(const RenderOptions& options) {
   spdlog::info("rendering {} frames {}..{} at {}x{}, {} spp, max depth {}", options.scene, frames.first,
                frames.second, settings.width, settings.height, settings.spp, settings.maxDepth);
   try {
-    const FrameRenderer renderer(scene, settings);
+    std::optional<FrameRenderer> renderer;
+    std::optional<GradientFrameRenderer> gradientRenderer;
+    if (gradient)
+      gradientRenderer.emplace(scene, settings, gradientSettings);
+    else
+      renderer.emplace(scene, settings);
     for (int64_t frame = frames.first; frame <= frames.second; ++frame) {
       RenderStats stats;
       FrameImage image;
       {
         ProgressBar bar("frame " + std::to_string(frame));
-        image = renderer.render(frame, [&](size_t done, size_t total) { bar.update(done, total); }, &stats);
+        const ProgressCallback update = [&](size_t done, size_t total) { bar.update(done, total); };
+        image = gradient ? gradientRenderer->render(frame, update, &stats) : renderer->render(frame, update, &stats);
       }
       const auto exr = out / frameName(frame, "exr");
       writeExr(exr, image);
@@ -152,6 +172,17 @@ std::vector<Command> addRenderCommand(CLI::App& app) {
   render->add_option("--decompose", options->decompose,
                      "path-space components: none, default, auto, or \"name=EXPR,...\" (docs/decomposition.md)")
       ->capture_default_str();
+  render->add_option("--integrator", options->integrator,
+                     "pt (path tracing), gpt (gradient-domain) or tgpt (temporal gradient-domain); gpt and tgpt "
+                     "frames are reconstructed by `pathfarm poisson` (docs/gradient-domain.md)")
+      ->check(CLI::IsMember({"pt", "gpt", "tgpt"}))
+      ->capture_default_str();
+  render->add_option("--batches", options->batches,
+                     "gpt/tgpt: sampling batches; after a uniform first batch the others follow the relative variance "
+                     "of the differences")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  render->add_flag("--no-motion", options->noMotion, "tgpt: temporal offsets keep their pixel instead of following the motion");
   render->add_option("--exposure", options->exposure, "exposure multiplier of the PNG previews")
       ->check(CLI::Range(1e-6, 1e6));
   return {{render, [options] { return runRender(*options); }}};

@@ -1,36 +1,9 @@
 #include "renderer/integrators/path_tracer.h"
 
-#include "renderer/materials/bsdf.h"
-#include "renderer/math/frame.h"
+#include "renderer/integrators/path_vertex.h"
 #include "renderer/math/sampling.h"
 
 namespace pathfarm {
-namespace {
-
-Rgb albedoAt(const Scene& scene, const Material& material, Vec2f uv) {
-  if (material.reflectanceTexture < 0) return material.reflectance;
-  return scene.textures[static_cast<size_t>(material.reflectanceTexture)].lookup(uv);
-}
-
-bool isTransmissive(MaterialType type) {
-  return type == MaterialType::Dielectric || type == MaterialType::RoughDielectric;
-}
-
-// The uniform numbers one bounce consumes, drawn together so every bounce uses the same
-// number of dimensions whatever happens in it.
-struct BounceSamples {
-  float light;
-  Vec2f lightPoint;
-  float lobe;
-  Vec2f direction;
-  float roulette;
-
-  explicit BounceSamples(SampleStream& s)
-      : light(s.next1D()), lightPoint(s.next2D()), lobe(s.next1D()), direction(s.next2D()),
-        roulette(s.next1D()) {}
-};
-
-}  // namespace
 
 Rgb PathTracer::radiance(Ray ray, float time, SampleStream& stream, RayCounts& counts, PathRecord* record) const {
   const Scene& scene = geometry_.shot().scene();
@@ -69,17 +42,12 @@ Rgb PathTracer::radiance(Ray ray, float time, SampleStream& stream, RayCounts& c
     if (depth >= settings_.maxDepth) break;
 
     const BounceSamples u(stream);
-    const Material& material = scene.materials[static_cast<size_t>(object.material)];
-    // Opaque surfaces are two-sided: shade the side the ray arrived on. Dielectrics keep
-    // the outward normal so that the BSDF knows whether the ray is inside.
-    Vec3f normal = hit.shadingNormal;
-    if (!isTransmissive(material.type) && dot(ray.direction, hit.geometricNormal) > 0) {
-      normal = -normal;
-      hit.geometricNormal = -hit.geometricNormal;
-    }
-    const Frame frame = Frame::fromNormal(normal);
-    const Vec3f wo = frame.toLocal(-ray.direction);
-    const Bsdf bsdf(material, albedoAt(scene, material, hit.uv), scene.roughnessThreshold);
+    const ShadedVertex shaded(scene, hit, ray.direction);
+    hit = shaded.hit;
+    const Vec3f normal = shaded.normal;
+    const Frame& frame = shaded.frame;
+    const Vec3f wo = shaded.wo;
+    const Bsdf& bsdf = shaded.bsdf;
     const LobeList lobes = decomposer ? bsdf.lobes() : LobeList{};
 
     if (bsdf.hasNonDeltaLobe() && !lights_.empty()) {

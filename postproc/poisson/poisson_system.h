@@ -1,0 +1,77 @@
+#pragma once
+// The screened Poisson problem over a window of frames (Manzi et al. 2016, Eq. (2)), as a
+// weighted least-squares system min_I sum_k w_k (A_k I - b_k)^2 per color channel, never
+// assembled: A^T W A is applied row block by row block on the fly. The three channels
+// are solved side by side (unknowns interleaved R, G, B per pixel), so the row structure
+// is read once for all three. Row blocks, each one row per pixel p of frame f (absent
+// rows have weight 0):
+//   data      I_f(p)                                  = primal_f(p)      weight alpha^2
+//   spatial   I_f(p + x) - I_f(p), I_f(p + y) - I_f(p) = gradient_x/y_f(p)
+//   temporal  I_f+1(m(p)) - I_f(p)                     = temporal_f(p)    (m: the target map)
+//   mixed     (I_f+1(m(p + x)) - I_f+1(m(p))) - (I_f(p + x) - I_f(p)) = mixed_x_f(p) where
+//             m(p + x) = m(p) + x (the motion is locally rigid), and likewise for y
+// The transpose gathers through the inverse map m^-1, which exists because the
+// correspondence is one-to-one (gradient_frame.h). A row with a non-finite value in any
+// channel constrains nothing.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "postproc/poisson/gradient_frame.h"
+
+namespace pathfarm {
+
+class PoissonSystem {
+ public:
+  enum Block { Data, SpatialX, SpatialY, Temporal, MixedX, MixedY, kBlocks };
+
+  // `frames` all have one size; temporal rows of the last frame are left out.
+  PoissonSystem(const std::vector<const GradientFrame*>& frames, float alpha);
+
+  // Unknowns: 3 per pixel of every frame, index 3 * (frame * pixels + pixel) + channel.
+  size_t size() const { return 3 * rows_; }
+  // out = A^T W A x.
+  void applyNormal(const std::vector<float>& x, std::vector<float>& out) const;
+  // A^T W b.
+  std::vector<float> rightHandSide() const;
+  // The diagonal of A^T W A (Jacobi preconditioner).
+  std::vector<float> diagonal() const;
+  // Residuals A_k x - b_k of every block, indexed like the unknowns (0 for absent rows).
+  std::array<std::vector<float>, kBlocks> residuals(const std::vector<float>& x) const;
+
+  // Row weights: the unweighted system's (alpha^2 for data, 1 or 0 elsewhere) times
+  // `factors` per block, indexed like the unknowns; for iteratively reweighted least
+  // squares. Without factors every channel weighs alike.
+  void setWeightFactors(std::array<std::vector<float>, kBlocks> factors);
+  // The data rows' target: the primal images of the window, indexed like the unknowns.
+  const std::vector<float>& primal() const { return targets_[Data]; }
+
+ private:
+  bool present(Block block, size_t row) const { return (presence_[row] >> block) & 1u; }
+  float weight(Block block, size_t row, size_t c) const {
+    if (!present(block, row)) return 0;
+    const float base = block == Data ? alphaSquared_ : 1.0f;
+    return factors_[block].empty() ? base : base * factors_[block][3 * row + c];
+  }
+  // out = A^T W (A x - b) with the targets b, or A^T W A x without them: one code path
+  // for the operator and the right-hand side.
+  template <bool kWithTargets>
+  void gather(const std::vector<float>& x, std::vector<float>& out) const;
+  template <bool kWithTargets>
+  void temporalResiduals(const std::vector<float>& x, std::vector<float>& r) const;
+
+  int width_, height_;
+  size_t frames_, pixels_, rows_;              // rows_: pixels of the window (rows of one block)
+  std::vector<int32_t> next_, previous_;       // m and m^-1 as window pixel indices, -1 for none
+  std::array<std::vector<float>, 4> targets_;  // data, spatial x, spatial y, temporal (3 per row)
+  // A mixed row's residual is the difference of the two temporal rows' residuals plus
+  // this (their targets' difference minus the mixed target), per axis (3 per row).
+  std::array<std::vector<float>, 2> mixedShift_;
+  float alphaSquared_;
+  std::vector<uint8_t> presence_;                    // per row, bit k: block k's row exists
+  std::array<std::vector<float>, kBlocks> factors_;  // 3 per row, or empty
+  // Scratch of gather(), kept between calls: a window's vectors are large.
+  mutable std::vector<float> r3_, z_;
+};
+
+}  // namespace pathfarm

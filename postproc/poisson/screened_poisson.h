@@ -1,0 +1,45 @@
+#pragma once
+// Screened Poisson reconstruction of a window of frames (Manzi et al. 2016, Section 5):
+//   min_I  || alpha (I - I_g) ||_p^p + || H I - G ||_p^p
+// with H the spatial, temporal and mixed difference operators (poisson_system.h), I_g
+// the primal images and G the sampled differences, per color channel.
+//   L2: conjugate gradients on the normal equations with a Jacobi preconditioner,
+//       starting from the primal images.
+//   L1: iteratively reweighted least squares: each round solves the L2 problem with row
+//       weights 1 / max(|residual|, epsilon) from the previous round, so a row weighs by
+//       its absolute rather than its squared error. This is the standard IRLS
+//       majorizer of the L1 norm (a round solved exactly never raises the L1
+//       objective), warm-started, with a few CG iterations per round.
+// Emitters seen directly from the camera are added back afterwards.
+#include <array>
+#include <string>
+#include <vector>
+
+#include "postproc/poisson/gradient_frame.h"
+
+namespace pathfarm {
+
+enum class PoissonNorm { L1, L2 };
+
+PoissonNorm parsePoissonNorm(const std::string& text);  // "l1" or "l2"; throws std::invalid_argument
+
+struct PoissonSettings {
+  float alpha = 0.2f;
+  PoissonNorm norm = PoissonNorm::L2;
+  int maxIterations = 400;    // conjugate-gradient iterations (L2); the channels are solved side by side
+  float tolerance = 1e-5f;    // stop when |residual| <= tolerance * |right-hand side|
+  int irlsRounds = 10;        // L1
+  int irlsIterations = 20;    // CG iterations per L1 round
+  float irlsEpsilon = 1e-3f;  // L1: residuals below this weigh like this
+};
+
+struct PoissonStats {
+  int iterations = 0;           // CG iterations (all three channels at once), over all rounds
+  double relativeResidual = 0;  // the last solve's, largest over channels
+};
+
+// The reconstruction of each frame of the window (without direct emission), per channel.
+std::vector<GradientFrame::Color> reconstructWindow(const std::vector<const GradientFrame*>& frames,
+                                                    const PoissonSettings& settings, PoissonStats* stats = nullptr);
+
+}  // namespace pathfarm

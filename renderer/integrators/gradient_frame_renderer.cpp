@@ -1,0 +1,343 @@
+#include "renderer/integrators/gradient_frame_renderer.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <array>
+#include <chrono>
+#include <stdexcept>
+
+#include "renderer/accel/shot_geometry.h"
+#include "renderer/gradient/adaptive_sampling.h"
+#include "renderer/gradient/temporal_correspondence.h"
+#include "renderer/integrators/gradient_path_tracer.h"
+
+namespace pathfarm {
+
+struct GradientFrameRenderer::Shot {
+  EmbreeDevice device;
+  ShotGeometry geometry;
+  LightSampler lights;
+
+  explicit Shot(const Scene& scene) : geometry(scene, device), lights(geometry) {}
+};
+
+namespace {
+
+// A sum of samples and of their squares, per color channel.
+struct Moments {
+  std::array<double, 3> sum{}, squares{};
+
+  void add(const Rgb& v) {
+    for (int c = 0; c < 3; ++c) {
+      sum[static_cast<size_t>(c)] += v[c];
+      squares[static_cast<size_t>(c)] += static_cast<double>(v[c]) * v[c];
+    }
+  }
+  double mean(size_t c, uint32_t n) const { return n > 0 ? sum[c] / n : 0.0; }
+  // The variance of the mean of n samples.
+  double varianceOfMean(size_t c, uint32_t n) const {
+    if (n < 2) return 0;
+    const double m = sum[c] / n;
+    return std::max(0.0, squares[c] - n * m * m) / (static_cast<double>(n - 1) * n);
+  }
+};
+
+struct PixelSums {
+  uint32_t drawn = 0;             // sample indices used so far
+  uint32_t samples = 0;           // finite samples accumulated
+  Moments direct, own, temporal;  // own: the base's parts of its pixel, averaged over the 4 pairs
+  std::array<Moments, 4> offset, difference;
+  std::array<Moments, 4> mixed;  // the temporal offset's difference minus the base's, per direction
+};
+
+const char* const kChannels[3] = {"R", "G", "B"};
+
+struct Counters {
+  uint64_t samples = 0, nonFinite = 0;
+  RayCounts rays;
+};
+
+bool isFinite(const GradientSample& g) {
+  Rgb total = g.direct + g.radiance;
+  for (size_t k = 0; k < 4; ++k) total += g.base[k] + g.offset[k] + g.difference[k];
+  return total.isFinite();
+}
+
+// The frame's layers from the per-pixel sums: each pair (p, p + d) is estimated from
+// both pixels' samples, so this is where neighbours meet.
+class FrameLayers {
+ public:
+  FrameLayers(const std::vector<PixelSums>& sums, int width, int height)
+      : sums_(sums), width_(width), height_(height) {}
+
+  size_t neighbour(size_t p, size_t k) const {
+    const int x = static_cast<int>(p % static_cast<size_t>(width_)) + kShiftDirections[k][0];
+    const int y = static_cast<int>(p / static_cast<size_t>(width_)) + kShiftDirections[k][1];
+    if (x < 0 || y < 0 || x >= width_ || y >= height_) return SIZE_MAX;
+    return static_cast<size_t>(y) * static_cast<size_t>(width_) + static_cast<size_t>(x);
+  }
+  // The primal estimate: for each of the 4 pairs the pixel is in, its own samples' part
+  // plus the neighbour's offsets' part, averaged over the pairs.
+  double primal(size_t p, size_t c, double* variance) const {
+    const PixelSums& s = sums_[p];
+    double value = s.own.mean(c, s.samples), v = s.own.varianceOfMean(c, s.samples);
+    for (size_t k = 0; k < 4; ++k) {
+      const size_t n = neighbour(p, k);
+      if (n == SIZE_MAX) continue;
+      const Moments& m = sums_[n].offset[k ^ 1];
+      value += 0.25 * m.mean(c, sums_[n].samples);
+      v += 0.0625 * m.varianceOfMean(c, sums_[n].samples);
+    }
+    if (variance) *variance = v;
+    return value;
+  }
+  // I(p + d) - I(p) for d = +x (k = 0) or +y (k = 2): p's forward differences minus the
+  // neighbour's backward ones (which estimate I(p) - I(p + d)).
+  double gradient(size_t p, size_t k, size_t c, double* variance) const {
+    const size_t n = neighbour(p, k);
+    if (n == SIZE_MAX) {
+      if (variance) *variance = 0;
+      return 0;
+    }
+    const Moments& forward = sums_[p].difference[k];
+    const Moments& backward = sums_[n].difference[k ^ 1];
+    if (variance)
+      *variance = forward.varianceOfMean(c, sums_[p].samples) + backward.varianceOfMean(c, sums_[n].samples);
+    return forward.mean(c, sums_[p].samples) - backward.mean(c, sums_[n].samples);
+  }
+  // What adaptive sampling follows: the spatial differences' variance relative to the
+  // squared primal value (relMSE's denominator).
+  std::vector<float> relativeVariance() const {
+    std::vector<float> out(sums_.size());
+    for (size_t p = 0; p < sums_.size(); ++p) {
+      double total = 0;
+      for (size_t c = 0; c < 3; ++c) {
+        double vx = 0, vy = 0;
+        gradient(p, 0, c, &vx);
+        gradient(p, 2, c, &vy);
+        const double value = primal(p, c, nullptr);
+        total += (vx + vy) / (value * value + 0.01);
+      }
+      out[p] = static_cast<float>(total);
+    }
+    return out;
+  }
+
+ private:
+  const std::vector<PixelSums>& sums_;
+  int width_, height_;
+};
+
+}  // namespace
+
+GradientFrameRenderer::GradientFrameRenderer(const Scene& scene, RenderSettings settings, GradientSettings gradient)
+    : scene_(scene), settings_(settings), gradient_(gradient), shot_(std::make_unique<Shot>(scene)) {
+  if (gradient_.batches < 1) throw std::invalid_argument("adaptive sampling needs at least one batch");
+}
+
+GradientFrameRenderer::~GradientFrameRenderer() = default;
+
+FrameImage GradientFrameRenderer::render(int64_t frame, const ProgressCallback& progress, RenderStats* stats) const {
+  const auto start = std::chrono::steady_clock::now();
+  const int width = settings_.width, height = settings_.height, tile = settings_.tileSize;
+  const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
+  const FrameGeometry geometry(shot_->geometry, frame);
+  const Camera camera(scene_.camera, width, height);
+  const PathTracerSettings tracerSettings{settings_.maxDepth};
+  const GradientPathTracer tracer(geometry, shot_->lights, tracerSettings);
+  tbb::task_arena arena(settings_.threads > 0 ? settings_.threads : tbb::task_arena::automatic);
+  std::unique_ptr<const FrameGeometry> nextGeometry;
+  std::optional<GradientPathTracer> nextTracer;
+  std::vector<int32_t> correspondence;
+  if (gradient_.temporal) {
+    nextGeometry = std::make_unique<const FrameGeometry>(shot_->geometry, frame + 1);
+    nextTracer.emplace(*nextGeometry, shot_->lights, tracerSettings);
+    arena.execute([&] {
+      correspondence = temporalCorrespondence(geometry, *nextGeometry, camera, width, height, gradient_.motionVectors);
+    });
+  }
+
+  std::vector<PixelSums> sums(pixels);
+  const int tilesX = (width + tile - 1) / tile, tilesY = (height + tile - 1) / tile;
+  const size_t tileCount = static_cast<size_t>(tilesX) * static_cast<size_t>(tilesY);
+  const int batches = gradient_.batches;
+  std::atomic<size_t> tilesDone{0};
+  tbb::enumerable_thread_specific<Counters> counters;
+
+  auto renderPixel = [&](int x, int y, uint32_t count, Counters& local) {
+    const size_t p = static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
+    PixelSums& s = sums[p];
+    for (uint32_t i = 0; i < count; ++i) {
+      const SampleKey key{scene_.seed, frame, x, y, s.drawn + i};
+      SampleStream stream(key);
+      // Fixed order of the first dimensions, as in FrameRenderer: pixel position, time, lens.
+      const Vec2f jitter = stream.next2D();
+      const float time = stream.next1D();
+      const Vec2f lens = stream.next2D();
+      const double seconds = scene_.timeAt(frame, time);
+      const auto rayThrough = [&](int px, int py, double at) {
+        return camera.generateRay({static_cast<float>(px) + jitter.x, static_cast<float>(py) + jitter.y}, lens, at);
+      };
+      const auto offsetRays = [&](int cx, int cy, double at) {
+        std::array<std::optional<Ray>, 4> rays;
+        for (size_t k = 0; k < 4; ++k) {
+          const int nx = cx + kShiftDirections[k][0], ny = cy + kShiftDirections[k][1];
+          if (nx >= 0 && ny >= 0 && nx < width && ny < height) rays[k] = rayThrough(nx, ny, at);
+        }
+        return rays;
+      };
+      // The temporal offset replays the path's random numbers from here on.
+      SampleStream replay = stream;
+      const GradientSample g =
+          tracer.trace(rayThrough(x, y, seconds), offsetRays(x, y, seconds), time, stream, local.rays);
+      ++local.samples;
+      std::optional<GradientSample> later;
+      if (nextTracer && correspondence[p] >= 0) {
+        // The temporal offset: the same random numbers one frame later, through the
+        // corresponding pixel, with its own spatial offsets for the mixed differences.
+        const int tx = correspondence[p] % width, ty = correspondence[p] / width;
+        const double nextSeconds = scene_.timeAt(frame + 1, time);
+        later = nextTracer->trace(rayThrough(tx, ty, nextSeconds), offsetRays(tx, ty, nextSeconds), time, replay,
+                                  local.rays);
+      }
+      if (!isFinite(g) || (later && !isFinite(*later))) {
+        ++local.nonFinite;
+        continue;
+      }
+      s.direct.add(g.direct);
+      Rgb own;
+      for (size_t k = 0; k < 4; ++k) {
+        own += g.base[k] * 0.25f;
+        s.offset[k].add(g.offset[k]);
+        s.difference[k].add(g.difference[k]);
+      }
+      s.own.add(own);
+      if (later) {
+        s.temporal.add(later->radiance - g.radiance);
+        for (size_t k = 0; k < 4; ++k) s.mixed[k].add(later->difference[k] - g.difference[k]);
+      }
+      ++s.samples;
+    }
+    s.drawn += count;
+  };
+
+  std::vector<uint32_t> allocation(pixels, static_cast<uint32_t>(std::max(1, settings_.spp / batches)));
+  for (int batch = 0; batch < batches; ++batch) {
+    if (batch > 0) {
+      const uint64_t budget = static_cast<uint64_t>(settings_.spp) * pixels / static_cast<uint64_t>(batches);
+      allocation =
+          allocateSamples(samplingDensity(FrameLayers(sums, width, height).relativeVariance(), width, height), budget);
+    }
+    arena.execute([&] {
+      tbb::parallel_for(tbb::blocked_range<size_t>(0, tileCount, 1), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t index = r.begin(); index != r.end(); ++index) {
+          Counters& local = counters.local();
+          const int x0 = static_cast<int>(index % static_cast<size_t>(tilesX)) * tile;
+          const int y0 = static_cast<int>(index / static_cast<size_t>(tilesX)) * tile;
+          for (int y = y0; y < std::min(y0 + tile, height); ++y)
+            for (int x = x0; x < std::min(x0 + tile, width); ++x)
+              renderPixel(x, y,
+                          allocation[static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)],
+                          local);
+          const size_t done = ++tilesDone;
+          if (progress) progress(done, tileCount * static_cast<size_t>(batches));
+        }
+      });
+    });
+  }
+
+  FrameImage image(width, height);
+  const FrameLayers layers(sums, width, height);
+  for (size_t c = 0; c < 3; ++c) {
+    const std::string ch = kChannels[c];
+    auto& beauty = image.addChannel(ch);
+    auto& beautyVariance = image.addChannel("variance." + ch);
+    auto& primal = image.addChannel("primal." + ch);
+    auto& primalVariance = image.addChannel("primal.variance." + ch);
+    auto& gx = image.addChannel("gradient_x." + ch);
+    auto& gxVariance = image.addChannel("gradient_x.variance." + ch);
+    auto& gy = image.addChannel("gradient_y." + ch);
+    auto& gyVariance = image.addChannel("gradient_y.variance." + ch);
+    auto& direct = image.addChannel("direct_emission." + ch);
+    for (size_t p = 0; p < pixels; ++p) {
+      double v = 0;
+      primal[p] = static_cast<float>(layers.primal(p, c, &v));
+      primalVariance[p] = static_cast<float>(v);
+      gx[p] = static_cast<float>(layers.gradient(p, 0, c, &v));
+      gxVariance[p] = static_cast<float>(v);
+      gy[p] = static_cast<float>(layers.gradient(p, 2, c, &v));
+      gyVariance[p] = static_cast<float>(v);
+      direct[p] = static_cast<float>(sums[p].direct.mean(c, sums[p].samples));
+      beauty[p] = primal[p] + direct[p];
+      beautyVariance[p] = primalVariance[p] + static_cast<float>(sums[p].direct.varianceOfMean(c, sums[p].samples));
+    }
+  }
+  if (gradient_.temporal) {
+    for (size_t c = 0; c < 3; ++c) {
+      const std::string ch = kChannels[c];
+      auto& temporal = image.addChannel("temporal." + ch);
+      auto& variance = image.addChannel("temporal.variance." + ch);
+      for (size_t p = 0; p < pixels; ++p) {
+        temporal[p] = static_cast<float>(sums[p].temporal.mean(c, sums[p].samples));
+        variance[p] = static_cast<float>(sums[p].temporal.varianceOfMean(c, sums[p].samples));
+      }
+    }
+    // Mixed differences where the motion is rigid across the pair: like the spatial
+    // differences, p's forward part minus its neighbour's backward part.
+    const auto rigid = [&](size_t p, size_t k) {
+      const size_t n = layers.neighbour(p, k);
+      const int step = kShiftDirections[k][0] + kShiftDirections[k][1] * width;
+      return n != SIZE_MAX && correspondence[p] >= 0 && correspondence[n] == correspondence[p] + step &&
+             (k != 0 || correspondence[p] % width + 1 < width);
+    };
+    for (size_t k : {size_t{0}, size_t{2}}) {
+      const std::string layer = k == 0 ? "mixed_x." : "mixed_y.";
+      for (size_t c = 0; c < 3; ++c) {
+        auto& mixed = image.addChannel(layer + kChannels[c]);
+        auto& variance = image.addChannel(layer + "variance." + kChannels[c]);
+        for (size_t p = 0; p < pixels; ++p) {
+          if (!rigid(p, k)) continue;
+          const PixelSums &a = sums[p], &b = sums[layers.neighbour(p, k)];
+          mixed[p] = static_cast<float>(a.mixed[k].mean(c, a.samples) - b.mixed[k ^ 1].mean(c, b.samples));
+          variance[p] =
+              static_cast<float>(a.mixed[k].varianceOfMean(c, a.samples) + b.mixed[k ^ 1].varianceOfMean(c, b.samples));
+        }
+      }
+    }
+    auto& tx = image.addChannel("temporal.target.X");
+    auto& ty = image.addChannel("temporal.target.Y");
+    auto& valid = image.addChannel("temporal.valid.Y");
+    for (size_t p = 0; p < pixels; ++p) {
+      const int32_t q = correspondence[p];
+      tx[p] = q >= 0 ? static_cast<float>(q % width) : -1.0f;
+      ty[p] = q >= 0 ? static_cast<float>(q / width) : -1.0f;
+      valid[p] = q >= 0 ? 1.0f : 0.0f;
+    }
+  }
+  auto& sampleCount = image.addChannel("sample_count.Y");
+  for (size_t p = 0; p < pixels; ++p) sampleCount[p] = static_cast<float>(sums[p].drawn);
+
+  RenderStats total;
+  for (const Counters& c : counters) {
+    total.samples += c.samples;
+    total.nonFiniteSamples += c.nonFinite;
+    total.rays.closestHit += c.rays.closestHit;
+    total.rays.shadow += c.rays.shadow;
+  }
+  total.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  auto& attributes = image.attributes();
+  attributes["pathfarm.scene"] = scene_.file.filename().string();
+  attributes["pathfarm.frame"] = std::to_string(frame);
+  attributes["pathfarm.spp"] = std::to_string(settings_.spp);
+  attributes["pathfarm.max_depth"] = std::to_string(settings_.maxDepth);
+  attributes["pathfarm.seed"] = std::to_string(scene_.seed);
+  attributes["pathfarm.nonfinite_samples"] = std::to_string(total.nonFiniteSamples);
+  attributes["pathfarm.integrator"] = gradient_.temporal ? "tgpt" : "gpt";
+  attributes["pathfarm.adaptive_batches"] = std::to_string(batches);
+  if (stats) *stats = total;
+  return image;
+}
+
+}  // namespace pathfarm

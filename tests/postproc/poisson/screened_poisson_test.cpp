@@ -1,0 +1,299 @@
+// The screened Poisson reconstruction against independent answers: a dense least-squares
+// solve written from the row definitions, clean images behind exact differences, and
+// the L1 norm's robustness to outliers.
+#include "postproc/poisson/screened_poisson.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include "poisson_test_support.h"
+#include "postproc/poisson/poisson_system.h"
+
+namespace pathfarm {
+namespace {
+
+using poisson_test::exactFrame;
+using poisson_test::Image;
+
+const Image kSmooth = [](int c, int x, int y) {
+  return 0.5f + 0.3f * std::sin(0.4f * static_cast<float>(x) + static_cast<float>(c)) +
+         0.2f * std::cos(0.3f * static_cast<float>(y));
+};
+
+// Minimizes sum of weight * (row . I - target)^2 by Gaussian elimination on the dense
+// normal equations, in double: the reference the matrix-free solver must match.
+struct DenseLeastSquares {
+  size_t n;
+  std::vector<std::vector<double>> normal;
+  std::vector<double> rhs;
+
+  explicit DenseLeastSquares(size_t unknowns) : n(unknowns), normal(n, std::vector<double>(n, 0.0)), rhs(n, 0.0) {}
+
+  void addRow(const std::map<size_t, double>& row, double target, double weight) {
+    for (const auto& [i, a] : row) {
+      rhs[i] += weight * a * target;
+      for (const auto& [j, b] : row) normal[i][j] += weight * a * b;
+    }
+  }
+
+  std::vector<double> solve() {
+    for (size_t k = 0; k < n; ++k) {
+      size_t pivot = k;
+      for (size_t i = k + 1; i < n; ++i)
+        if (std::abs(normal[i][k]) > std::abs(normal[pivot][k])) pivot = i;
+      std::swap(normal[k], normal[pivot]);
+      std::swap(rhs[k], rhs[pivot]);
+      for (size_t i = k + 1; i < n; ++i) {
+        const double factor = normal[i][k] / normal[k][k];
+        for (size_t j = k; j < n; ++j) normal[i][j] -= factor * normal[k][j];
+        rhs[i] -= factor * rhs[k];
+      }
+    }
+    std::vector<double> x(n);
+    for (size_t k = n; k-- > 0;) {
+      double sum = rhs[k];
+      for (size_t j = k + 1; j < n; ++j) sum -= normal[k][j] * x[j];
+      x[k] = sum / normal[k][k];
+    }
+    return x;
+  }
+};
+
+// The rows of docs/gradient-domain.md for channel c, written out one by one.
+std::vector<double> denseSolve(const std::vector<const GradientFrame*>& frames, size_t c, double alpha) {
+  const int w = frames[0]->width, h = frames[0]->height;
+  const size_t pixels = frames[0]->pixelCount();
+  DenseLeastSquares system(frames.size() * pixels);
+  const auto at = [&](size_t f, int x, int y) { return f * pixels + static_cast<size_t>(y * w + x); };
+  for (size_t f = 0; f < frames.size(); ++f) {
+    const GradientFrame& frame = *frames[f];
+    const auto temporalRow = [&](int x, int y) -> std::optional<std::pair<std::map<size_t, double>, double>> {
+      const size_t p = static_cast<size_t>(y * w + x);
+      if (f + 1 >= frames.size() || !frame.hasTemporal() || frame.temporalTarget[p] < 0) return std::nullopt;
+      const size_t target = (f + 1) * pixels + static_cast<size_t>(frame.temporalTarget[p]);
+      return std::pair{std::map<size_t, double>{{target, 1.0}, {at(f, x, y), -1.0}}, frame.temporal[c][p]};
+    };
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const size_t p = static_cast<size_t>(y * w + x);
+        system.addRow({{at(f, x, y), 1.0}}, frame.primal[c][p], alpha * alpha);
+        if (x + 1 < w) system.addRow({{at(f, x + 1, y), 1.0}, {at(f, x, y), -1.0}}, frame.gradientX[c][p], 1);
+        if (y + 1 < h) system.addRow({{at(f, x, y + 1), 1.0}, {at(f, x, y), -1.0}}, frame.gradientY[c][p], 1);
+        const auto t = temporalRow(x, y);
+        if (!t) continue;
+        system.addRow(t->first, t->second, 1);
+        // Mixed rows where the neighbour's target is the target's neighbour.
+        const size_t target = static_cast<size_t>(frame.temporalTarget[p]);
+        if (x + 1 < w && frame.temporalTarget[p + 1] == static_cast<int32_t>(target + 1) && f + 1 < frames.size())
+          system.addRow({{at(f + 1, 0, 0) + target + 1, 1.0},
+                         {at(f + 1, 0, 0) + target, -1.0},
+                         {at(f, x + 1, y), -1.0},
+                         {at(f, x, y), 1.0}},
+                        frame.mixedX[c][p], 1);
+        if (y + 1 < h && frame.temporalTarget[p + static_cast<size_t>(w)] == static_cast<int32_t>(target) + w)
+          system.addRow({{at(f + 1, 0, 0) + target + static_cast<size_t>(w), 1.0},
+                         {at(f + 1, 0, 0) + target, -1.0},
+                         {at(f, x, y + 1), -1.0},
+                         {at(f, x, y), 1.0}},
+                        frame.mixedY[c][p], 1);
+      }
+  }
+  return system.solve();
+}
+
+PoissonSettings precise(float alpha, PoissonNorm norm = PoissonNorm::L2) {
+  PoissonSettings settings;
+  settings.alpha = alpha;
+  settings.norm = norm;
+  settings.maxIterations = 4000;
+  settings.tolerance = 1e-7f;
+  return settings;
+}
+
+void expectMatchesDense(const std::vector<const GradientFrame*>& frames, float alpha) {
+  const auto solved = reconstructWindow(frames, precise(alpha));
+  const size_t pixels = frames[0]->pixelCount();
+  for (size_t c = 0; c < 3; ++c) {
+    const std::vector<double> reference = denseSolve(frames, c, alpha);
+    for (size_t f = 0; f < frames.size(); ++f)
+      for (size_t p = 0; p < pixels; ++p)
+        ASSERT_NEAR(solved[f][c][p], reference[f * pixels + p], 1e-4) << f << " " << p;
+  }
+}
+
+// Inconsistent, noisy data: the least-squares answer is not any of the inputs.
+GradientFrame noisyFrame(int w, int h, uint32_t seed, const Image* next, int shift) {
+  GradientFrame f = exactFrame(w, h, kSmooth, next, shift);
+  poisson_test::addZeroMeanNoise(f.primal, 0.2f, seed);
+  poisson_test::addZeroMeanNoise(f.gradientX, 0.1f, seed + 1);
+  poisson_test::addZeroMeanNoise(f.gradientY, 0.1f, seed + 2);
+  if (next) {
+    poisson_test::addZeroMeanNoise(f.temporal, 0.1f, seed + 3);
+    poisson_test::addZeroMeanNoise(f.mixedX, 0.1f, seed + 4);
+    poisson_test::addZeroMeanNoise(f.mixedY, 0.1f, seed + 5);
+  }
+  return f;
+}
+
+TEST(ScreenedPoisson, OneFrameWindowEqualsTheDense2DLeastSquaresSolution) {
+  const GradientFrame frame = noisyFrame(6, 5, 11, nullptr, 0);
+  expectMatchesDense({&frame}, 0.2f);
+  // A frame's temporal layer has no next frame to reach inside a one-frame window.
+  const GradientFrame withTemporal = noisyFrame(6, 5, 11, &kSmooth, 1);
+  const auto a = reconstructWindow({&frame}, precise(0.2f));
+  const auto b = reconstructWindow({&withTemporal}, precise(0.2f));
+  EXPECT_EQ(a[0][1], b[0][1]);
+}
+
+TEST(ScreenedPoisson, ThreeFrameWindowWithMotionEqualsTheDenseSolution) {
+  // Moving one pixel right per frame; the pixels leaving the image have no correspondence.
+  const GradientFrame f0 = noisyFrame(5, 4, 21, &kSmooth, 1);
+  GradientFrame f1 = noisyFrame(5, 4, 31, &kSmooth, 1);
+  // Two pixels trading targets: the motion is not rigid there, so no mixed rows.
+  std::swap(f1.temporalTarget[5], f1.temporalTarget[7]);
+  const GradientFrame f2 = noisyFrame(5, 4, 41, nullptr, 0);
+  expectMatchesDense({&f0, &f1, &f2}, 0.2f);
+}
+
+TEST(ScreenedPoisson, ExactDifferencesRecoverTheCleanImageFromANoisyPrimal) {
+  // Differences fix everything but the image mean, which the zero-mean noise keeps; the
+  // rest of the noise is damped by alpha^2 / (alpha^2 + lambda), lambda >= 0.04 the
+  // Laplacian's smallest other eigenvalue here, so a small alpha removes it.
+  const int w = 16, h = 12;
+  for (size_t frameCount : {size_t{1}, size_t{3}}) {
+    std::vector<GradientFrame> frames;
+    for (size_t f = 0; f < frameCount; ++f) {
+      frames.push_back(exactFrame(w, h, kSmooth, f + 1 < frameCount ? &kSmooth : nullptr, 0));
+      poisson_test::addZeroMeanNoise(frames.back().primal, 0.1f, static_cast<uint32_t>(f));
+    }
+    std::vector<const GradientFrame*> window;
+    for (const auto& f : frames) window.push_back(&f);
+    PoissonStats stats;
+    const auto solved = reconstructWindow(window, precise(0.01f), &stats);
+    for (const auto& frame : solved) EXPECT_LE(poisson_test::relativeError(frame, kSmooth, w, h), 1e-4);
+    EXPECT_LE(stats.relativeResidual, 1e-4);
+  }
+}
+
+TEST(ScreenedPoisson, PixelsWithoutCorrespondenceIgnoreTheirTemporalValues) {
+  const int w = 8, h = 6;
+  FrameImage image(w, h);
+  GradientFrame exact = exactFrame(w, h, kSmooth, &kSmooth, 0);
+  const char* layers[] = {"primal", "gradient_x", "gradient_y", "direct_emission", "temporal", "mixed_x", "mixed_y"};
+  const GradientFrame::Color* colors[] = {&exact.primal,   &exact.gradientX, &exact.gradientY, &exact.directEmission,
+                                          &exact.temporal, &exact.mixedX,    &exact.mixedY};
+  for (size_t l = 0; l < 7; ++l)
+    for (size_t c = 0; c < 3; ++c) image.addChannel(std::string(layers[l]) + "." + kColorChannels[c]) = (*colors[l])[c];
+  auto& valid = image.addChannel("temporal.valid.Y");
+  auto& tx = image.addChannel("temporal.target.X");
+  auto& ty = image.addChannel("temporal.target.Y");
+  for (int p = 0; p < w * h; ++p) {
+    tx[static_cast<size_t>(p)] = static_cast<float>(p % w);
+    ty[static_cast<size_t>(p)] = static_cast<float>(p / w);
+    valid[static_cast<size_t>(p)] = p % 3 == 0 ? 0.0f : 1.0f;
+  }
+  const GradientFrame clean = GradientFrame::fromImage(image, "clean");
+  // Garbage where there is no correspondence, and a non-finite value where there is one.
+  for (int p = 0; p < w * h; p += 3) image.channel("temporal.G")[static_cast<size_t>(p)] = 1e6f;
+  image.channel("temporal.R")[1] = std::numeric_limits<float>::quiet_NaN();
+  const GradientFrame garbage = GradientFrame::fromImage(image, "garbage");
+  EXPECT_EQ(garbage.temporalTarget[1], -1);
+  EXPECT_EQ(clean.temporalTarget[1], 1);
+  EXPECT_EQ(garbage.temporalTarget[0], -1);
+  const GradientFrame last = exactFrame(w, h, kSmooth);
+  const auto a = reconstructWindow({&clean, &last}, precise(0.2f));
+  const auto b = reconstructWindow({&garbage, &last}, precise(0.2f));
+  for (size_t f = 0; f < 2; ++f) {
+    EXPECT_LE(poisson_test::relativeError(b[f], kSmooth, w, h), 1e-5);
+    for (size_t c = 0; c < 3; ++c)
+      for (size_t p = 0; p < a[f][c].size(); ++p) EXPECT_NEAR(a[f][c][p], b[f][c][p], 1e-5);
+  }
+  // Missing layers are named.
+  FrameImage partial(w, h);
+  partial.addChannel("primal.R");
+  try {
+    GradientFrame::fromImage(partial, "x.exr");
+    FAIL() << "a frame without gradients was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("x.exr: missing channel \"primal.G\""), std::string::npos) << e.what();
+  }
+}
+
+TEST(ScreenedPoisson, ZeroVarianceRegionsComeOutExactly) {
+  const Image black = [](int, int, int) { return 0.0f; };
+  const Image grey = [](int c, int, int) { return 0.25f * static_cast<float>(c + 1); };
+  for (PoissonNorm norm : {PoissonNorm::L2, PoissonNorm::L1}) {
+    for (const Image* image : {&black, &grey}) {
+      const GradientFrame a = exactFrame(9, 7, *image, image, 0), b = exactFrame(9, 7, *image);
+      const auto solved = reconstructWindow({&a, &b}, precise(0.2f, norm));
+      for (const auto& frame : solved)
+        for (size_t c = 0; c < 3; ++c)
+          for (size_t p = 0; p < frame[c].size(); ++p) ASSERT_EQ(frame[c][p], (*image)(static_cast<int>(c), 0, 0));
+    }
+  }
+}
+
+// The largest |I - 1| over the pixels at distance 1 to 3 (Chebyshev) from (cx, cy).
+double ringDeviation(const GradientFrame::Color& image, int w, int cx, int cy) {
+  double worst = 0;
+  for (int dy = -3; dy <= 3; ++dy)
+    for (int dx = -3; dx <= 3; ++dx) {
+      if (dx == 0 && dy == 0) continue;
+      worst = std::max(worst, std::abs(image[0][static_cast<size_t>((cy + dy) * w + cx + dx)] - 1.0));
+    }
+  return worst;
+}
+
+TEST(ScreenedPoisson, L1KeepsAFireflyAndOutlierGradientsFromSmearing) {
+  const int w = 15, h = 15, c = 7;
+  const Image flat = [](int, int, int) { return 1.0f; };
+  GradientFrame firefly = exactFrame(w, h, flat);
+  firefly.primal[0][static_cast<size_t>(c * w + c)] = 200.0f;
+  // An outlier difference elsewhere: one sample claims a step of 50.
+  GradientFrame outlier = exactFrame(w, h, flat);
+  outlier.gradientX[0][static_cast<size_t>(3 * w + 3)] = 50.0f;
+
+  PoissonSettings l1;
+  l1.norm = PoissonNorm::L1;
+  const auto robustFirefly = reconstructWindow({&firefly}, l1);
+  const auto robustOutlier = reconstructWindow({&outlier}, l1);
+  EXPECT_LE(ringDeviation(robustFirefly[0], w, c, c), 1e-2);
+  EXPECT_LE(poisson_test::relativeError(robustOutlier[0], flat, w, h), 1e-2);
+  // An outlier temporal difference between two clean frames.
+  GradientFrame first = exactFrame(w, h, flat, &flat, 0);
+  first.temporal[0][static_cast<size_t>(c * w + c)] = 50.0f;
+  const GradientFrame second = exactFrame(w, h, flat);
+  for (const auto& frame : reconstructWindow({&first, &second}, l1))
+    EXPECT_LE(poisson_test::relativeError(frame, flat, w, h), 1e-2);
+  EXPECT_GT(poisson_test::relativeError(reconstructWindow({&first, &second}, PoissonSettings{})[0], flat, w, h), 0.5);
+  // The same data under L2 does smear: the test can tell the two apart.
+  const auto smeared = reconstructWindow({&firefly}, PoissonSettings{});
+  EXPECT_GT(ringDeviation(smeared[0], w, c, c), 0.1);
+  EXPECT_GT(poisson_test::relativeError(reconstructWindow({&outlier}, PoissonSettings{})[0], flat, w, h), 0.5);
+}
+
+TEST(ScreenedPoisson, OperatorIsSymmetric) {
+  // <M u, v> = <u, M v> for the matrix-free A^T W A, motion and mixed rows included.
+  const GradientFrame f0 = noisyFrame(7, 5, 1, &kSmooth, -2), f1 = noisyFrame(7, 5, 2, &kSmooth, 1);
+  const GradientFrame f2 = noisyFrame(7, 5, 3, nullptr, 0);
+  const PoissonSystem system({&f0, &f1, &f2}, 0.3f);
+  std::vector<float> u(system.size()), v(system.size()), mu, mv;
+  for (size_t i = 0; i < u.size(); ++i) {
+    u[i] = test_support::hashed(5, 0, static_cast<int>(i), 0);
+    v[i] = test_support::hashed(6, 0, static_cast<int>(i), 0);
+  }
+  system.applyNormal(u, mu);
+  system.applyNormal(v, mv);
+  double a = 0, b = 0;
+  for (size_t i = 0; i < u.size(); ++i) {
+    a += static_cast<double>(mu[i]) * v[i];
+    b += static_cast<double>(u[i]) * mv[i];
+  }
+  EXPECT_NEAR(a, b, 1e-4 * std::abs(a));
+}
+
+}  // namespace
+}  // namespace pathfarm

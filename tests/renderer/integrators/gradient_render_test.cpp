@@ -1,0 +1,284 @@
+// Gradient-domain rendering against independent answers: a scene of constant radiance
+// has no differences, the reconstruction's mean is the path tracer's, temporal offsets
+// of a still scene replay their base samples exactly, and the bits do not depend on
+// threads or tiles.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <iterator>
+
+#include "postproc/poisson/screened_poisson.h"
+#include "renderer/integrators/gradient_frame_renderer.h"
+#include "test_support.h"
+
+namespace pathfarm {
+namespace {
+
+RenderSettings small(int width, int height, int spp, int maxDepth) {
+  RenderSettings settings;
+  settings.width = width;
+  settings.height = height;
+  settings.spp = spp;
+  settings.maxDepth = maxDepth;
+  return settings;
+}
+
+TEST(GradientRender, ConstantRadianceSceneHasZeroDifferences) {
+  // A wide diffuse floor under a uniform sky: every visible point has radiance
+  // albedo * sky = 0.5, and every offset path sees what its base path sees.
+  const Scene scene = test_support::sceneFromJson(R"({
+    "camera": {"position": [0, 1, 0], "look_at": [0, 0, -1], "fov": 20},
+    "environment": {"radiance": 1},
+    "materials": {"floor": {"type": "diffuse", "reflectance": 0.5}},
+    "shapes": [{"type": "rectangle", "size": [1000, 1000], "material": "floor",
+                "transform": {"rotate": {"axis": [1, 0, 0], "angle": -90}}}]})");
+  const FrameImage image = GradientFrameRenderer(scene, small(12, 10, 8, 4), {}).render(0);
+  for (const char* c : {"R", "G", "B"}) {
+    for (const std::string layer : {"gradient_x.", "gradient_y."})
+      for (float g : image.channel(layer + c)) ASSERT_NEAR(g, 0.0f, 1e-5f) << layer << c;
+    const auto mean = test_support::meanOverPixels(image, c);
+    EXPECT_NEAR(mean.mean, 0.5, 5 * mean.standardError + 1e-6);
+  }
+}
+
+// The demo Cornell box for statistics: looked at from lower down, so that the lamp is out
+// of sight (the differences leave directly seen emitters out, the path tracer's image
+// would not); a large lamp and a rough glass sphere, so that no pixel's mean hangs on
+// rare caustic paths that a few seeds would not see. The mirror sphere stays.
+Scene cornellForStatistics() {
+  std::ifstream file(test_support::sourceDir() / "scenes/cornell/scene.json");
+  std::string json{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+  for (const auto& [from, to] :
+       {std::pair<std::string, std::string>{"\"look_at\": [0, 1, 0]", "\"look_at\": [0, 0.3, 0]"},
+        {"\"size\": [0.5, 0.4]", "\"size\": [1.4, 1.4]"},
+        {"\"emission\": [17, 12, 4]", "\"emission\": [3, 2.4, 1]"},
+        {"\"type\": \"dielectric\", \"ior\": 1.5", "\"type\": \"rough_dielectric\", \"alpha\": 0.3"}}) {
+    const size_t at = json.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    json.replace(at, from.size(), to);
+  }
+  return test_support::sceneFromJson(json, test_support::sourceDir() / "scenes/cornell");
+}
+
+// The reconstruction's mean over each quadrant, over many seeds, against the path
+// tracer's at many samples: the L2 reconstruction is linear in unbiased data.
+TEST(GradientRender, L2ReconstructionIsUnbiased) {
+  Scene scene = cornellForStatistics();
+  const int w = 12, h = 12, seeds = 16;
+  const RenderSettings settings = small(w, h, 8, 5);
+  RenderSettings reference = settings;
+  reference.spp = 2048;
+  const FrameImage truth = FrameRenderer(scene, reference).render(3);
+
+  // quadrant q, channel c: the sum over seeds and of squares, per estimate.
+  double sum[2][4][3] = {}, squares[2][4][3] = {};
+  for (int seed = 0; seed < seeds; ++seed) {
+    scene.seed = 1000 + static_cast<uint64_t>(seed);
+    const FrameImage image = GradientFrameRenderer(scene, settings, {}).render(3);
+    const GradientFrame frame = GradientFrame::fromImage(image, "gpt");
+    const auto solved = reconstructWindow({&frame}, PoissonSettings{});
+    for (size_t c = 0; c < 3; ++c) {
+      double quadrant[2][4] = {};
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+          const size_t p = static_cast<size_t>(y * w + x);
+          const int q = (x >= w / 2) + 2 * (y >= h / 2);
+          quadrant[0][q] += (solved[0][c][p] + frame.directEmission[c][p]) / (w * h / 4);
+          quadrant[1][q] += image.channel(kColorChannels[c])[p] / (w * h / 4);
+        }
+      for (int e = 0; e < 2; ++e)
+        for (int q = 0; q < 4; ++q) {
+          sum[e][q][c] += quadrant[e][q];
+          squares[e][q][c] += quadrant[e][q] * quadrant[e][q];
+        }
+    }
+  }
+  for (size_t c = 0; c < 3; ++c) {
+    const auto& ref = truth.channel(kColorChannels[c]);
+    const auto& refVariance = truth.channel(std::string("variance.") + kColorChannels[c]);
+    for (int q = 0; q < 4; ++q) {
+      double refMean = 0, refVar = 0;
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+          if ((x >= w / 2) + 2 * (y >= h / 2) == q) {
+            refMean += ref[static_cast<size_t>(y * w + x)] / (w * h / 4);
+            refVar += refVariance[static_cast<size_t>(y * w + x)] / (w * h / 4.0) / (w * h / 4.0);
+          }
+      for (int e = 0; e < 2; ++e) {  // the reconstruction, and the primal image
+        const double mean = sum[e][q][c] / seeds;
+        const double variance = (squares[e][q][c] - seeds * mean * mean) / (seeds - 1) / seeds;
+        EXPECT_NEAR(mean, refMean, 5 * std::sqrt(variance + refVar) + 1e-6)
+            << (e ? "primal" : "reconstruction") << ", quadrant " << q << ", channel " << c;
+      }
+    }
+  }
+}
+
+// Each pixel's temporal and mixed differences, averaged over many seeds, against converged
+// path-traced images of both frames, compared through the pixel's correspondence.
+TEST(GradientRender, TemporalAndMixedDifferencesAreUnbiased) {
+  Scene scene = cornellForStatistics();
+  const int w = 8, h = 8, seeds = 32;
+  const RenderSettings settings = small(w, h, 8, 4);
+  RenderSettings reference = settings;
+  reference.spp = 16384;
+  const FrameImage before = FrameRenderer(scene, reference).render(6),
+                   after = FrameRenderer(scene, reference).render(7);
+  GradientSettings tgpt;
+  tgpt.temporal = true;
+  const size_t pixels = static_cast<size_t>(w * h);
+  // Per layer (temporal, mixed x, mixed y), channel and pixel: sums over seeds.
+  std::vector<double> sum(9 * pixels, 0.0), squares(9 * pixels, 0.0);
+  std::vector<int32_t> target;
+  for (int seed = 0; seed < seeds; ++seed) {
+    scene.seed = 3000 + static_cast<uint64_t>(seed);
+    const GradientFrame frame =
+        GradientFrame::fromImage(GradientFrameRenderer(scene, settings, tgpt).render(6), "tgpt");
+    target = frame.temporalTarget;
+    for (size_t c = 0; c < 3; ++c)
+      for (size_t p = 0; p < pixels; ++p)
+        for (size_t l = 0; l < 3; ++l) {
+          const double v = (l == 0 ? frame.temporal : l == 1 ? frame.mixedX : frame.mixedY)[c][p];
+          sum[(3 * l + c) * pixels + p] += v;
+          squares[(3 * l + c) * pixels + p] += v * v;
+        }
+  }
+  double chiSquare = 0;
+  int terms = 0, mixedTerms = 0;
+  for (size_t c = 0; c < 3; ++c) {
+    const std::string channel = kColorChannels[c];
+    const auto &b = before.channel(channel), &a = after.channel(channel);
+    const auto &bv = before.channel("variance." + channel), &av = after.channel("variance." + channel);
+    for (size_t p = 0; p < pixels; ++p) {
+      if (target[p] < 0) continue;
+      const auto q = static_cast<size_t>(target[p]);
+      for (size_t l = 0; l < 3; ++l) {
+        // The mixed rows' neighbour: where the correspondence moves p's neighbour rigidly.
+        const size_t step = l == 1 ? 1 : static_cast<size_t>(w);
+        double expected = a[q] - b[p], refVariance = av[q] + bv[p];
+        if (l > 0) {
+          if ((l == 1 && (p % w + 1 == static_cast<size_t>(w) || q % w + 1 == static_cast<size_t>(w))) ||
+              p + step >= pixels || target[p + step] != static_cast<int32_t>(q + step))
+            continue;
+          expected = (a[q + step] - a[q]) - (b[p + step] - b[p]);
+          refVariance = av[q + step] + av[q] + bv[p + step] + bv[p];
+          ++mixedTerms;
+        }
+        const size_t i = (3 * l + c) * pixels + p;
+        const double mean = sum[i] / seeds;
+        const double total = (squares[i] - seeds * mean * mean) / (seeds - 1) / seeds + refVariance;
+        if (total == 0) {
+          EXPECT_EQ(mean, expected);
+          continue;
+        }
+        chiSquare += (mean - expected) * (mean - expected) / total;
+        ++terms;
+      }
+    }
+  }
+  ASSERT_GT(mixedTerms, 100);
+  EXPECT_LT(chiSquare / terms, 1.3);
+  EXPECT_GT(chiSquare / terms, 0.7);
+}
+
+// A floor, a wall, a glass sphere and a lamp, nothing moving.
+const char* const kStillBox = R"({
+  "camera": {"position": [0, 1, 3], "look_at": [0, 0.5, 0], "fov": 50},
+  "materials": {"white": {"type": "diffuse", "reflectance": 0.7}, "glass": {"type": "dielectric"}},
+  "shapes": [
+    {"type": "rectangle", "size": [4, 4], "material": "white", "transform": {"rotate": {"axis": [1, 0, 0], "angle": -90}}},
+    {"type": "rectangle", "size": [4, 4], "material": "white", "transform": {"translate": [0, 2, -1]}},
+    {"type": "sphere", "radius": 0.4, "material": "glass", "transform": {"translate": [0, 0.4, 0]}},
+    {"type": "rectangle", "size": [1, 1], "material": "white", "emission": 5,
+     "transform": {"translate": [0, 2.5, 0], "rotate": {"axis": [1, 0, 0], "angle": 90}}}]})";
+
+// Every pixel's horizontal and vertical difference, averaged over many seeds, against the
+// differences of a converged path-traced image: the squared deviations in units of their
+// standard error must average about 1. The image is tiny so that neighbouring pixels see
+// points far apart, where the reconnection's Jacobian is far from 1.
+TEST(GradientRender, DifferencesAreUnbiased) {
+  Scene scene = cornellForStatistics();
+  const int w = 8, h = 8, seeds = 48;
+  const RenderSettings settings = small(w, h, 16, 5);
+  RenderSettings reference = settings;
+  reference.spp = 65536;
+  const FrameImage truth = FrameRenderer(scene, reference).render(3);
+  const size_t pixels = static_cast<size_t>(w * h);
+  std::vector<double> sum(6 * pixels, 0.0), squares(6 * pixels, 0.0);
+  for (int seed = 0; seed < seeds; ++seed) {
+    scene.seed = 2000 + static_cast<uint64_t>(seed);
+    const FrameImage image = GradientFrameRenderer(scene, settings, {}).render(3);
+    for (size_t c = 0; c < 3; ++c)
+      for (size_t axis = 0; axis < 2; ++axis) {
+        const auto& g = image.channel((axis ? "gradient_y." : "gradient_x.") + std::string(kColorChannels[c]));
+        for (size_t p = 0; p < pixels; ++p) {
+          sum[(2 * c + axis) * pixels + p] += g[p];
+          squares[(2 * c + axis) * pixels + p] += static_cast<double>(g[p]) * g[p];
+        }
+      }
+  }
+  double chiSquare = 0;
+  int terms = 0;
+  for (size_t c = 0; c < 3; ++c) {
+    const auto& ref = truth.channel(kColorChannels[c]);
+    const auto& refVariance = truth.channel(std::string("variance.") + kColorChannels[c]);
+    for (size_t axis = 0; axis < 2; ++axis)
+      for (int y = 0; y < h - static_cast<int>(axis); ++y)
+        for (int x = 0; x < w - static_cast<int>(1 - axis); ++x) {
+          const size_t p = static_cast<size_t>(y * w + x), q = axis ? p + w : p + 1;
+          const size_t i = (2 * c + axis) * pixels + p;
+          const double mean = sum[i] / seeds;
+          const double variance = (squares[i] - seeds * mean * mean) / (seeds - 1) / seeds;
+          const double expected = ref[q] - ref[p];
+          const double total = variance + refVariance[p] + refVariance[q];
+          if (total == 0) {  // both black: nothing to compare but the values
+            EXPECT_EQ(mean, expected);
+            continue;
+          }
+          chiSquare += (mean - expected) * (mean - expected) / total;
+          ++terms;
+        }
+  }
+  EXPECT_LT(chiSquare / terms, 1.3);
+  EXPECT_GT(chiSquare / terms, 0.7);
+}
+
+TEST(GradientRender, TemporalOffsetsOfAStillSceneReplayTheirBaseSamples) {
+  const Scene scene = test_support::sceneFromJson(kStillBox);
+  GradientSettings tgpt;
+  tgpt.temporal = true;
+  const FrameImage image = GradientFrameRenderer(scene, small(10, 8, 2, 4), tgpt).render(2);
+  for (float v : image.channel("temporal.valid.Y")) ASSERT_EQ(v, 1.0f);
+  for (const char* c : {"R", "G", "B"})
+    for (const std::string layer : {"temporal.", "mixed_x.", "mixed_y."})
+      for (float t : image.channel(layer + c)) ASSERT_EQ(t, 0.0f) << layer << c;
+  const auto& tx = image.channel("temporal.target.X");
+  for (size_t p = 0; p < tx.size(); ++p) EXPECT_EQ(tx[p], static_cast<float>(p % 10));
+}
+
+TEST(GradientRender, ThreadsTilesAndBatchesGiveIdenticalBits) {
+  const Scene scene = loadScene(test_support::sourceDir() / "scenes/cornell/scene.json");
+  GradientSettings tgpt;
+  tgpt.temporal = true;
+  tgpt.batches = 2;
+  std::vector<FrameImage> images;
+  for (const auto& [threads, tile] : {std::pair{1, 5}, std::pair{2, 16}}) {
+    RenderSettings settings = small(20, 14, 4, 4);
+    settings.threads = threads;
+    settings.tileSize = tile;
+    images.push_back(GradientFrameRenderer(scene, settings, tgpt).render(7));
+  }
+  ASSERT_TRUE(images[0].hasChannel("temporal.R"));
+  for (const std::string& name : images[0].channelNames())
+    EXPECT_EQ(images[0].channel(name), images[1].channel(name)) << name;
+  // Adaptive batches spend about the same samples, unevenly.
+  const auto& counts = images[0].channel("sample_count.Y");
+  double total = 0;
+  for (float n : counts) total += n;
+  EXPECT_NEAR(total, 4.0 * 20 * 14, 20 * 14 * 0.05);
+  EXPECT_GT(*std::max_element(counts.begin(), counts.end()), *std::min_element(counts.begin(), counts.end()));
+}
+
+}  // namespace
+}  // namespace pathfarm
