@@ -5,6 +5,7 @@
 #include <map>
 #include <string>
 
+#include "postproc/poisson/window_blend.h"
 #include "renderer/decomposition/decomposition.h"
 
 namespace pathfarm::farm {
@@ -172,6 +173,42 @@ void planFiltering(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
   planEvaluation(spec, true, evaluated, plan);
 }
 
+// Temporal gradient-domain path tracing (Manzi et al. 2016): a gradient render per frame
+// (whole frames: differences need both pixels of a pair; the temporal offset of frame f
+// reaches f + 1), a Poisson reconstruction per window of frames, and a blend per frame
+// over the windows covering it.
+void planGradientDomain(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
+  checkRenderSpec(spec);
+  if (spec.poisson_window() < 1 || spec.poisson_overlap() < 0 || spec.poisson_overlap() >= spec.poisson_window())
+    throw PlanError("poisson_window, poisson_overlap: need 0 <= overlap < window");
+  if (spec.poisson_norm() != "l1" && spec.poisson_norm() != "l2") throw PlanError("poisson_norm: \"l1\" or \"l2\"");
+  std::map<int64_t, size_t> rendered;
+  for (int64_t frame = spec.frame_start(); frame <= spec.frame_end(); ++frame)
+    rendered[frame] = push(task(TASK_GRADIENT_RENDER, frame, {}), plan);
+  std::map<int64_t, std::vector<size_t>> covering;  // frame -> its windows, in order
+  const auto frames = static_cast<size_t>(spec.frame_end() - spec.frame_start() + 1);
+  for (const PoissonWindow& window :
+       planWindows(frames, static_cast<size_t>(spec.poisson_window()), static_cast<size_t>(spec.poisson_overlap()))) {
+    const int64_t first = spec.frame_start() + static_cast<int64_t>(window.first);
+    PlannedTask solve = task(TASK_POISSON_WINDOW, first, {});
+    solve.params.set_window_first(first);
+    solve.params.set_window_frames(static_cast<int32_t>(window.count));
+    for (int64_t frame = first; frame < first + static_cast<int64_t>(window.count); ++frame)
+      solve.dependencies.push_back(rendered.at(frame));
+    const size_t index = push(std::move(solve), plan);
+    for (int64_t frame = first; frame < first + static_cast<int64_t>(window.count); ++frame)
+      covering[frame].push_back(index);
+  }
+  StageOutputs evaluated;
+  for (const auto& [frame, windows] : covering) {
+    PlannedTask blend = task(TASK_POISSON_BLEND, frame, windows);
+    blend.dependencies.push_back(rendered.at(frame));  // its directly seen emission
+    blend.output = true;
+    evaluated[frame] = {push(std::move(blend), plan)};
+  }
+  planEvaluation(spec, true, evaluated, plan);
+}
+
 }  // namespace
 
 bool isFilteringPipeline(const std::string& pipeline) {
@@ -198,11 +235,13 @@ std::vector<PlannedTask> planShot(const ShotSpec& spec) {
     planPathTracing(spec, plan);
   } else if (isFilteringPipeline(spec.pipeline())) {
     planFiltering(spec, plan);
+  } else if (spec.pipeline() == "tgpt") {
+    planGradientDomain(spec, plan);
   } else if (spec.pipeline() == "noop") {
     if (spec.noop_tasks() < 1) throw PlanError("noop_tasks: must be at least 1");
     plan.assign(static_cast<size_t>(spec.noop_tasks()), PlannedTask{TASK_NOOP, {}, {}});
   } else {
-    throw PlanError("pipeline \"" + spec.pipeline() + "\" is not available (this farm runs: pt, d, du, di, dui, noop)");
+    throw PlanError("pipeline \"" + spec.pipeline() + "\" is not available (this farm runs: pt, d, du, di, dui, tgpt, noop)");
   }
   return plan;
 }

@@ -7,6 +7,8 @@
 //         motion vectors reaching the neighbouring keyframes) and filtered, in-between
 //         frames interpolated, a composite per frame; re-render tiles are added while the
 //         shot runs (FarmState::complete);
+//   tgpt  temporal gradient-domain path tracing: a gradient render per frame, a screened
+//         Poisson reconstruction per window of frames, a blend per frame;
 //   noop  independent tasks that do nothing, for measuring the farm itself.
 // Every render pipeline adds the evaluation tasks the report needs: the baseline (plain pt
 // at the shot's spp) and, with reference_spp, the reference of the evaluation frames and

@@ -42,6 +42,13 @@ void readFilteringKeys(const JsonNode& root, const Scene& scene, ShotSpec& spec)
   spec.set_keyframe_reason(choice.reason);
 }
 
+void readGradientKeys(const JsonNode& root, ShotSpec& spec) {
+  spec.set_poisson_window(root.has("poisson_window") ? root["poisson_window"].integer(1, 1000) : 10);
+  spec.set_poisson_overlap(root.has("poisson_overlap") ? root["poisson_overlap"].integer(0, spec.poisson_window() - 1) : 5);
+  spec.set_poisson_norm(root.has("poisson_norm") ? root["poisson_norm"].string() : "l1");
+  if (spec.poisson_norm() != "l1" && spec.poisson_norm() != "l2") root["poisson_norm"].fail("expected \"l1\" or \"l2\"");
+}
+
 void readEvaluationKeys(const JsonNode& root, ShotSpec& spec) {
   spec.set_reference_spp(root.has("reference_spp") ? root["reference_spp"].integer(1, 1 << 24) : 0);
   if (root.has("baseline_core_seconds")) spec.set_baseline_core_seconds(root["baseline_core_seconds"].number(1e-9, 1e12));
@@ -51,7 +58,7 @@ void readEvaluationKeys(const JsonNode& root, ShotSpec& spec) {
       if (value < spec.frame_start() || value > spec.frame_end()) frame.fail("not a frame of the shot");
       spec.add_evaluation_frames(value);
     }
-  } else if (isFilteringPipeline(spec.pipeline()) || spec.reference_spp() > 0) {
+  } else if (spec.pipeline() != "pt" || spec.reference_spp() > 0) {
     for (const int64_t frame : defaultEvaluationFrames(spec)) spec.add_evaluation_frames(frame);
   }
 }
@@ -73,15 +80,16 @@ ShotSpec loadShotFile(const std::filesystem::path& file) {
   const JsonNode root(document, "", label);
   root.expectKeys({"name", "scene", "frames", "resolution", "spp", "max_depth", "pipeline", "tile", "output",
                    "priority", "max_attempts", "noop_tasks", "decompose", "keyframe_interval", "rerender_bound",
-                   "reference_spp", "evaluation_frames", "baseline_core_seconds"});
+                   "reference_spp", "evaluation_frames", "baseline_core_seconds",
+                   "poisson_window", "poisson_overlap", "poisson_norm"});
   const std::filesystem::path folder = std::filesystem::absolute(file).parent_path();
 
   ShotSpec spec;
   spec.set_name(root.has("name") ? root["name"].string() : file.stem().string());
   spec.set_pipeline(root.has("pipeline") ? root["pipeline"].string() : "dui");
   const bool filtering = isFilteringPipeline(spec.pipeline());
-  if (spec.pipeline() != "pt" && spec.pipeline() != "noop" && !filtering)
-    root["pipeline"].fail("unknown pipeline \"" + spec.pipeline() + "\" (this farm runs: pt, d, du, di, dui, noop)");
+  if (spec.pipeline() != "pt" && spec.pipeline() != "noop" && spec.pipeline() != "tgpt" && !filtering)
+    root["pipeline"].fail("unknown pipeline \"" + spec.pipeline() + "\" (this farm runs: pt, d, du, di, dui, tgpt, noop)");
   spec.set_priority(root.has("priority") ? root["priority"].integer(-1000, 1000) : 0);
   spec.set_max_attempts(root.has("max_attempts") ? root["max_attempts"].integer(1, 100) : 3);
   spec.set_tile(root.has("tile") ? root["tile"].integer(8, 4096) : 64);
@@ -127,6 +135,7 @@ ShotSpec loadShotFile(const std::filesystem::path& file) {
   }
   if (filtering && spec.decompose() == "none") root["decompose"].fail("the filtering pipelines need a decomposition");
   if (filtering) readFilteringKeys(root, scene, spec);
+  if (spec.pipeline() == "tgpt") readGradientKeys(root, spec);
   readEvaluationKeys(root, spec);
   try {
     planShot(spec);  // a shot the farm cannot plan is refused here, naming the reason

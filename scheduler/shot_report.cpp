@@ -12,7 +12,8 @@
 namespace pathfarm::farm {
 namespace {
 
-constexpr std::array<const char*, 6> kStages = {"render", "denoise", "upsample", "interpolate", "re-render", "composite"};
+constexpr std::array<const char*, 7> kStages = {"render",    "denoise",     "upsample", "interpolate",
+                                                "re-render", "reconstruct", "composite"};
 constexpr const char* kMeasurement = "measurement";
 
 // The stage a task's cost belongs to; the baseline, the reference and the evaluation are
@@ -37,7 +38,12 @@ std::string stageOf(const TaskRecord& task) {
     case TASK_FLOW:
     case TASK_INTERPOLATE:
       return "interpolate";
+    case TASK_GRADIENT_RENDER:
+      return "render";
+    case TASK_POISSON_WINDOW:
+      return "reconstruct";
     case TASK_COMPOSITE:
+    case TASK_POISSON_BLEND:
       return "composite";
     default:
       return kMeasurement;
@@ -92,7 +98,7 @@ ShotReport buildReport(const ShotSummary& summary, const ShotSpec& spec, const s
       cost.set_core_seconds(cost.core_seconds() + task.coreSeconds);
       report.set_core_seconds(report.core_seconds() + task.coreSeconds);
     }
-    if (task.kind == TASK_RENDER_TILE && stage != kMeasurement)
+    if ((task.kind == TASK_RENDER_TILE || task.kind == TASK_GRADIENT_RENDER) && stage != kMeasurement)
       report.set_samples_traced(report.samples_traced() + metric(task, "samples"));
     if (task.params.role() == ROLE_BASELINE) {
       baselineSeconds += task.coreSeconds;
@@ -123,7 +129,7 @@ ShotReport buildReport(const ShotSummary& summary, const ShotSpec& spec, const s
     *report.add_stages() = cost;
   }
   report.set_core_seconds_per_frame(report.core_seconds() / frames);
-  if (!filtering) {
+  if (spec.pipeline() == "pt") {
     report.set_baseline_core_seconds_per_frame(report.core_seconds_per_frame());
     report.set_baseline_source("the shot itself: plain path tracing");
   } else if (spec.baseline_core_seconds() > 0) {

@@ -30,6 +30,7 @@ std::string stageOf(const TaskInput& input) {
     case TASK_INTERPOLATE:
       return "interpolate";
     case TASK_COMPOSITE:
+    case TASK_POISSON_BLEND:
       return "final";
     default:
       return "";

@@ -36,6 +36,10 @@ TaskOutput runFlowTask(const Lease& lease, const std::vector<TaskInput>& inputs)
 TaskOutput runInterpolateTask(const Lease& lease, const std::vector<TaskInput>& inputs);
 // A frame's final image: its stage output with the re-rendered pixels, denoised.
 TaskOutput runCompositeTask(const Lease& lease, const std::vector<TaskInput>& inputs);
+// tgpt: the screened Poisson reconstruction of a window of gradient frames.
+TaskOutput runPoissonWindowTask(const Lease& lease, const std::vector<TaskInput>& inputs);
+// tgpt: a frame blended (Hann weights) from the windows covering it, plus its direct emission.
+TaskOutput runPoissonBlendTask(const Lease& lease, const std::vector<TaskInput>& inputs);
 // relMSE and temporal error of every stage of the evaluation frames against the reference.
 TaskOutput runEvaluateTask(const Lease& lease, const std::vector<TaskInput>& inputs);
 

@@ -8,6 +8,7 @@
 #include "image/exr_io.h"
 #include "renderer/decomposition/auto_decomposition.h"
 #include "renderer/integrators/frame_renderer.h"
+#include "renderer/integrators/gradient_frame_renderer.h"
 #include "renderer/scene/scene_loader.h"
 
 namespace pathfarm::farm {
@@ -62,6 +63,8 @@ TaskOutput TaskRunner::run(const Lease& lease, const ChunkFetcher& fetch, std::a
       return renderTile(lease, progress, abandon);
     case TASK_ASSEMBLE_FRAME:
       return {assembleFrame(lease, fetch, progress), {}, {}};
+    case TASK_GRADIENT_RENDER:
+      return renderGradientFrame(lease, progress, abandon);
     case TASK_NOOP:
       return {};
     default:
@@ -95,11 +98,32 @@ TaskOutput TaskRunner::renderTile(const Lease& lease, std::atomic<double>& progr
   return output;
 }
 
+TaskOutput TaskRunner::renderGradientFrame(const Lease& lease, std::atomic<double>& progress,
+                                           const std::atomic<bool>& abandon) {
+  const auto shot = rendererFor(lease);
+  RenderSettings settings = shot->renderer->settings();
+  settings.decomposition = nullptr;
+  const GradientFrameRenderer renderer(shot->scene, settings, GradientSettings{.temporal = true});
+  RenderStats stats;
+  const FrameImage frame = renderer.render(
+      lease.params().frame(),
+      [&](size_t done, size_t total) {
+        if (abandon) throw TaskAbandoned();
+        progress = static_cast<double>(done) / static_cast<double>(total);
+      },
+      &stats);
+  TaskOutput output;
+  output.chunk = encodeExr(frame, ExrCompression::Fast);
+  output.metrics["samples"] = static_cast<double>(stats.samples);
+  return output;
+}
+
 TaskOutput TaskRunner::filter(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress) {
   using Filter = TaskOutput (*)(const Lease&, const std::vector<TaskInput>&);
   const std::map<TaskKind, Filter> filters = {
       {TASK_DENOISE, runDenoiseTask},     {TASK_UPSAMPLE, runUpsampleTask},   {TASK_FLOW, runFlowTask},
-      {TASK_INTERPOLATE, runInterpolateTask}, {TASK_COMPOSITE, runCompositeTask}, {TASK_EVALUATE, runEvaluateTask}};
+      {TASK_INTERPOLATE, runInterpolateTask}, {TASK_COMPOSITE, runCompositeTask}, {TASK_EVALUATE, runEvaluateTask},
+      {TASK_POISSON_WINDOW, runPoissonWindowTask}, {TASK_POISSON_BLEND, runPoissonBlendTask}};
   const auto found = filters.find(lease.kind());
   if (found == filters.end())
     throw std::runtime_error("this worker cannot run tasks of kind " + std::to_string(lease.kind()));

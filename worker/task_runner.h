@@ -47,6 +47,7 @@ class TaskRunner {
   std::shared_ptr<ShotRenderer> rendererFor(const Lease& lease);
   TaskOutput renderTile(const Lease& lease, std::atomic<double>& progress, const std::atomic<bool>& abandon);
   std::string assembleFrame(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress);
+  TaskOutput renderGradientFrame(const Lease& lease, std::atomic<double>& progress, const std::atomic<bool>& abandon);
   TaskOutput filter(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress);
 
   int threads_;

@@ -24,15 +24,27 @@ float hannWeight(size_t index, size_t count) {
   return static_cast<float>(s * s);
 }
 
+void WindowBlend::add(const GradientFrame::Color& solved, size_t index, size_t count) {
+  const float h = hannWeight(index, count);
+  for (size_t c = 0; c < 3; ++c) {
+    sum[c].resize(solved[c].size(), 0.0f);
+    for (size_t p = 0; p < solved[c].size(); ++p) sum[c][p] += h * solved[c][p];
+  }
+  weight += h;
+}
+
+GradientFrame::Color WindowBlend::finish(const GradientFrame::Color& directEmission) && {
+  GradientFrame::Color color = std::move(sum);
+  for (size_t c = 0; c < 3; ++c)
+    for (size_t p = 0; p < color[c].size(); ++p) color[c][p] = color[c][p] / weight + directEmission[c][p];
+  return color;
+}
+
 void reconstructSequence(size_t frames, const FrameLoader& load, const FrameSink& sink, size_t window, size_t overlap,
                          const PoissonSettings& settings, PoissonStats* stats) {
   const std::vector<PoissonWindow> windows = planWindows(frames, window, overlap);
-  struct Blend {
-    GradientFrame::Color sum;
-    float weight = 0;
-  };
   std::map<size_t, GradientFrame> loaded;
-  std::map<size_t, Blend> blends;
+  std::map<size_t, WindowBlend> blends;
   PoissonStats total;
   for (size_t w = 0; w < windows.size(); ++w) {
     const PoissonWindow& current = windows[w];
@@ -46,24 +58,10 @@ void reconstructSequence(size_t frames, const FrameLoader& load, const FrameSink
     const std::vector<GradientFrame::Color> solved = reconstructWindow(inputs, settings, &windowStats);
     total.iterations += windowStats.iterations;
     total.relativeResidual = std::max(total.relativeResidual, windowStats.relativeResidual);
-    for (size_t i = 0; i < current.count; ++i) {
-      Blend& blend = blends[current.first + i];
-      const float h = hannWeight(i, current.count);
-      for (size_t c = 0; c < 3; ++c) {
-        blend.sum[c].resize(solved[i][c].size(), 0.0f);
-        for (size_t p = 0; p < solved[i][c].size(); ++p) blend.sum[c][p] += h * solved[i][c][p];
-      }
-      blend.weight += h;
-    }
+    for (size_t i = 0; i < current.count; ++i) blends[current.first + i].add(solved[i], i, current.count);
     const size_t finishedBelow = w + 1 < windows.size() ? windows[w + 1].first : frames;
-    for (auto it = blends.begin(); it != blends.end() && it->first < finishedBelow; it = blends.erase(it)) {
-      const GradientFrame& frame = loaded.at(it->first);
-      GradientFrame::Color color = std::move(it->second.sum);
-      for (size_t c = 0; c < 3; ++c)
-        for (size_t p = 0; p < color[c].size(); ++p)
-          color[c][p] = color[c][p] / it->second.weight + frame.directEmission[c][p];
-      sink(it->first, color);
-    }
+    for (auto it = blends.begin(); it != blends.end() && it->first < finishedBelow; it = blends.erase(it))
+      sink(it->first, std::move(it->second).finish(loaded.at(it->first).directEmission));
   }
   if (stats) *stats = total;
 }

@@ -25,6 +25,18 @@ std::vector<PoissonWindow> planWindows(size_t frames, size_t window, size_t over
 // position, > 0 everywhere so a frame at a sequence end keeps its only window.
 float hannWeight(size_t index, size_t count);
 
+// A frame's blend over the windows that cover it, added in window order: the farm and
+// reconstructSequence blend with this, so their frames are the same bits.
+struct WindowBlend {
+  GradientFrame::Color sum;
+  float weight = 0;
+
+  // The frame's reconstruction in a window where it is the index-th of `count` frames.
+  void add(const GradientFrame::Color& solved, size_t index, size_t count);
+  // The weighted mean plus the frame's direct emission.
+  GradientFrame::Color finish(const GradientFrame::Color& directEmission) &&;
+};
+
 // The finished frame `index` of the sequence: reconstruction plus direct emission.
 using FrameSink = std::function<void(size_t index, const GradientFrame::Color& color)>;
 using FrameLoader = std::function<GradientFrame(size_t index)>;

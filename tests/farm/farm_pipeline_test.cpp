@@ -89,5 +89,36 @@ TEST_F(FarmTest, DuiShotIsFilteredEndToEndAndAKilledWorkerChangesNoByte) {
   }
 }
 
+// The tgpt pipeline on the farm (gradient renders, Poisson windows, blends) gives the
+// frames that `pathfarm render --integrator tgpt` and `pathfarm poisson` give on one machine.
+TEST_F(FarmTest, TgptShotOnTheFarmEqualsRenderThenPoisson) {
+  const fs::path shot = dir() / "tgpt.shot.json";
+  writeFile(shot, "{\"name\": \"tgpt\", \"scene\": \"" + cornellScene().string() +
+                      "\", \"frames\": {\"start\": 0, \"end\": 6}, \"resolution\": [48, 32], \"spp\": 4,"
+                      " \"max_depth\": 5, \"pipeline\": \"tgpt\", \"poisson_window\": 4, \"poisson_overlap\": 2,"
+                      " \"poisson_norm\": \"l1\", \"baseline_core_seconds\": 1}\n");
+  const fs::path farmFrames = dir() / "farm-frames";
+  const CommandResult local =
+      runPathfarm({"local", shot.string(), "--workers", "2", "--threads", "1", "--out", farmFrames.string()}, {}, 300s);
+  ASSERT_EQ(local.status, 0) << local.output;
+
+  const fs::path gradients = dir() / "gradients", reconstructed = dir() / "reconstructed";
+  const CommandResult rendered =
+      runPathfarm({"render", cornellScene().string(), "--integrator", "tgpt", "--frames", "0:6", "--res", "48x32",
+                   "--spp", "4", "--max-depth", "5", "--out", gradients.string()},
+                  {}, 120s);
+  ASSERT_EQ(rendered.status, 0) << rendered.output;
+  const CommandResult solved = runPathfarm({"poisson", gradients.string(), "--window", "4", "--overlap", "2", "--norm",
+                                            "l1", "--out", reconstructed.string()},
+                                           {}, 120s);
+  ASSERT_EQ(solved.status, 0) << solved.output;
+  for (int64_t frame = 0; frame <= 6; ++frame) {
+    const std::string name = farm::frameFileName(frame);
+    const FrameImage fromFarm = readExr(farmFrames / name), fromCli = readExr(reconstructed / name);
+    for (const char* channel : {"R", "G", "B"})
+      EXPECT_EQ(fromFarm.channel(channel), fromCli.channel(channel)) << name << " channel " << channel;
+  }
+}
+
 }  // namespace
 }  // namespace pathfarm::farmtest

@@ -235,5 +235,52 @@ TEST(Planner, EvaluationAddsBaselineReferenceAndOneEvaluateTask) {
   EXPECT_THROW(planShot(spec), PlanError);
 }
 
+TEST(Planner, TgptRendersEveryFrameSolvesWindowsAndBlendsEachFrameFromItsWindows) {
+  ShotSpec spec = renderSpec();  // frames 3..4
+  spec.set_pipeline("tgpt");
+  spec.set_frame_start(0);
+  spec.set_frame_end(11);  // 12 frames, windows of 5 overlapping by 2: [0,5) [3,8) [6,11) [7,12)
+  spec.set_poisson_window(5);
+  spec.set_poisson_overlap(2);
+  spec.set_poisson_norm("l1");
+  const auto plan = planShot(spec);
+  auto counts = countKinds(plan);
+  EXPECT_EQ(counts[TASK_GRADIENT_RENDER], 12);
+  EXPECT_EQ(counts[TASK_POISSON_WINDOW], 4);
+  EXPECT_EQ(counts[TASK_POISSON_BLEND], 12);
+  EXPECT_EQ(counts[TASK_RENDER_TILE], 0);
+  std::map<int64_t, std::vector<int64_t>> windowsOf;  // frame -> first frames of the windows blended into it
+  for (size_t i = 0; i < plan.size(); ++i) {
+    const PlannedTask& task = plan[i];
+    EXPECT_EQ(task.output, task.kind == TASK_POISSON_BLEND);
+    if (task.kind == TASK_POISSON_WINDOW) {
+      std::set<int64_t> frames;
+      for (int64_t f = task.params.window_first(); f < task.params.window_first() + task.params.window_frames(); ++f)
+        frames.insert(f);
+      EXPECT_EQ(dependencyFrames(plan, task, TASK_GRADIENT_RENDER), frames);
+    }
+    if (task.kind == TASK_POISSON_BLEND) {
+      EXPECT_EQ(dependencyFrames(plan, task, TASK_GRADIENT_RENDER), (std::set<int64_t>{task.params.frame()}));
+      for (const size_t d : task.dependencies) {
+        if (plan[d].kind != TASK_POISSON_WINDOW) continue;
+        const TaskParams& window = plan[d].params;
+        EXPECT_GE(task.params.frame(), window.window_first());
+        EXPECT_LT(task.params.frame(), window.window_first() + window.window_frames());
+        windowsOf[task.params.frame()].push_back(window.window_first());
+      }
+    }
+  }
+  EXPECT_EQ(windowsOf[0], (std::vector<int64_t>{0}));
+  EXPECT_EQ(windowsOf[4], (std::vector<int64_t>{0, 3}));
+  EXPECT_EQ(windowsOf[7], (std::vector<int64_t>{3, 6, 7}));  // in window order, as the blend adds them
+  EXPECT_EQ(windowsOf[11], (std::vector<int64_t>{7}));
+
+  spec.set_poisson_overlap(5);
+  EXPECT_THROW(planShot(spec), PlanError);
+  spec.set_poisson_overlap(2);
+  spec.set_poisson_norm("l3");
+  EXPECT_THROW(planShot(spec), PlanError);
+}
+
 }  // namespace
 }  // namespace pathfarm::farm

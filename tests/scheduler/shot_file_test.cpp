@@ -115,6 +115,23 @@ TEST(ShotFile, AStaticSceneGetsTheLongestKeyframeIntervalTheProbeTries) {
   EXPECT_EQ(spec.keyframe_reason().rfind("k = 8: the largest interval", 0), 0u) << spec.keyframe_reason();
 }
 
+TEST(ShotFile, ReadsTheGradientDomainKeys) {
+  const auto file = writeShot("tgpt", R"({"scene": "cornell/scene.json", "pipeline": "tgpt", "poisson_window": 6,
+    "poisson_overlap": 3})");
+  const ShotSpec spec = loadShotFile(file);
+  std::filesystem::remove(file);
+  EXPECT_EQ(spec.poisson_window(), 6);
+  EXPECT_EQ(spec.poisson_overlap(), 3);
+  EXPECT_EQ(spec.poisson_norm(), "l1");
+  EXPECT_EQ(spec.decompose(), "none");
+  EXPECT_EQ(spec.evaluation_frames_size(), 2);  // the baseline's cost is measured
+  EXPECT_NE(errorOf(R"({"scene": "cornell/scene.json", "pipeline": "tgpt", "poisson_window": 4, "poisson_overlap": 4})")
+                .find("poisson_overlap: 4 is out of range"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"scene": "cornell/scene.json", "pipeline": "tgpt", "poisson_norm": "l3"})").find("poisson_norm"),
+            std::string::npos);
+}
+
 TEST(ShotFile, BadFilteringShotsAreRefused) {
   EXPECT_NE(errorOf(R"({"scene": "cornell/scene.json", "keyframe_interval": 0})").find("keyframe_interval: 0 is out of range"),
             std::string::npos);
