@@ -128,15 +128,23 @@ int run(const Options& options) {
                static_cast<long long>(base.frame_end()), base.width(), base.height(),
                static_cast<long long>(evaluation.front()), static_cast<long long>(evaluation.back()),
                base.keyframe_reason().c_str());
+  // The reference is kept next to the results and reused while its settings hold.
+  const std::filesystem::path out(options.out);
+  const std::filesystem::path referenceFolder = out / ("reference-" + std::to_string(options.referenceSpp));
+  std::filesystem::create_directories(referenceFolder);
   std::vector<FrameImage> references;
   const double referenceSeconds = seconds([&] {
-    for (const int64_t frame : evaluation)
-      references.push_back(render(scene, base.width(), base.height(), options.referenceSpp, frame, false));
+    for (const int64_t frame : evaluation) {
+      const std::filesystem::path file = referenceFolder / farm::frameFileName(frame);
+      if (!std::filesystem::exists(file))
+        writeExr(file, render(scene, base.width(), base.height(), options.referenceSpp, frame, false));
+      references.push_back(readExr(file));
+    }
   });
-  std::fprintf(stderr, "reference: %d spp, %.1f s\n", options.referenceSpp, referenceSeconds);
-
-  const std::filesystem::path out(options.out);
-  std::filesystem::remove_all(out);
+  std::fprintf(stderr, "reference: %d spp, %.1f s (%s)\n", options.referenceSpp, referenceSeconds,
+               referenceFolder.c_str());
+  for (const auto& entry : std::filesystem::directory_iterator(out))
+    if (entry.path().filename().string().rfind("reference-", 0) != 0) std::filesystem::remove_all(entry.path());
   const std::filesystem::path bin = std::filesystem::path(farm::currentExecutable()).parent_path();
   farm::LocalFarm farm({out / "farm", options.workers, 1, (bin / "pathfarm").string(), {}});
 

@@ -120,7 +120,7 @@ void planFiltering(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
 
   const std::vector<int64_t> keyframes = keyframesOf(spec);
   const int keyframeSpp = stages.upsample ? std::max(1, spec.spp() / 4) : spec.spp();
-  std::map<int64_t, size_t> rendered;  // keyframe -> its assembled render
+  std::map<int64_t, size_t> rendered;  // frame -> its assembled render (keyframe or features)
   for (size_t i = 0; i < keyframes.size(); ++i) {
     // Its motion vectors reach the neighbouring keyframes directly (one frame at the ends).
     const int forward = i + 1 < keyframes.size() ? static_cast<int>(keyframes[i + 1] - keyframes[i]) : 1;
@@ -131,6 +131,12 @@ void planFiltering(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
                                                params.set_motion_backward(backward);
                                              });
   }
+
+  // In-between frames: a few samples of their own features (feature_check.h).
+  const int featureSpp = std::clamp(spec.feature_spp(), 1, spec.spp());
+  for (size_t i = 1; i < keyframes.size(); ++i)
+    for (int64_t frame = keyframes[i - 1] + 1; frame < keyframes[i]; ++frame)
+      rendered[frame] = planFrameRender(spec, frame, ROLE_FEATURES, featureSpp, false, plan);
 
   StageOutputs evaluated;
   std::map<int64_t, size_t> finalOf;  // frame -> the task whose frame the composite finishes
@@ -160,7 +166,9 @@ void planFiltering(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
       interpolationInputs.push_back(push(std::move(flow), plan));
     }
     for (int64_t frame = k0 + 1; frame < k1; ++frame) {
-      finalOf[frame] = push(between(TASK_INTERPOLATE, frame, interpolationInputs), plan);
+      std::vector<size_t> inputs = interpolationInputs;
+      inputs.push_back(rendered.at(frame));
+      finalOf[frame] = push(between(TASK_INTERPOLATE, frame, inputs), plan);
       evaluated[frame] = {finalOf[frame]};
     }
   }

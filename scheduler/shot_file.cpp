@@ -25,6 +25,7 @@ std::vector<int64_t> defaultEvaluationFrames(const ShotSpec& spec) {
 }
 
 void readFilteringKeys(const JsonNode& root, const Scene& scene, ShotSpec& spec) {
+  spec.set_feature_spp(root.has("feature_spp") ? root["feature_spp"].integer(1, 1 << 20) : 4);
   if (!stagesOf(spec.pipeline()).interpolate) {
     spec.set_keyframe_interval(1);
     spec.set_keyframe_reason("k = 1: the pipeline does not interpolate");
@@ -80,7 +81,7 @@ ShotSpec loadShotFile(const std::filesystem::path& file) {
   const JsonNode root(document, "", label);
   root.expectKeys({"name", "scene", "frames", "resolution", "spp", "max_depth", "pipeline", "tile", "output",
                    "priority", "max_attempts", "noop_tasks", "decompose", "keyframe_interval", "rerender_bound",
-                   "reference_spp", "evaluation_frames", "baseline_core_seconds",
+                   "feature_spp", "reference_spp", "evaluation_frames", "baseline_core_seconds",
                    "poisson_window", "poisson_overlap", "poisson_norm"});
   const std::filesystem::path folder = std::filesystem::absolute(file).parent_path();
 

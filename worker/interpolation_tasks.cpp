@@ -4,6 +4,7 @@
 
 #include "image/exr_io.h"
 #include "postproc/filters/decomposed_frame.h"
+#include "postproc/interpolation/feature_check.h"
 #include "postproc/interpolation/frame_interpolation.h"
 #include "worker/filter_inputs.h"
 
@@ -84,6 +85,17 @@ TaskOutput runInterpolateTask(const Lease& lease, const std::vector<TaskInput>& 
   }
   const float fraction = static_cast<float>(params.frame() - before) / static_cast<float>(after - before);
   InterpolationResult result = interpolateFrameDetailed(k0, k1, motions, fraction);
+  // Where the frame's own features disagree, the interpolation is wrong: re-render there too.
+  const std::vector<uint8_t> mismatch =
+      featureMismatch(result.frame, inputOf(inputs, TASK_ASSEMBLE_FRAME, params.frame()).image);
+  size_t mismatched = 0;
+  std::vector<float>& flagged = result.frame.channel("rerender.Y");
+  for (size_t p = 0; p < mismatch.size(); ++p) {
+    mismatched += mismatch[p];
+    if (!mismatch[p]) continue;
+    result.mask[p] = 1;
+    flagged[p] = 1.0f;
+  }
   for (const auto& [key, value] : k0.attributes()) result.frame.attributes().emplace(key, value);
   result.frame.attributes()["pathfarm.frame"] = std::to_string(params.frame());
   result.frame.attributes()["pathfarm.interpolated"] =
@@ -95,6 +107,7 @@ TaskOutput runInterpolateTask(const Lease& lease, const std::vector<TaskInput>& 
   output.metrics["rerender_silhouettes"] = static_cast<double>(result.silhouettePixels);
   output.metrics["rerender_untracked"] = static_cast<double>(result.untrackedPixels);
   output.metrics["rerender_illumination"] = static_cast<double>(result.illuminationPixels);
+  output.metrics["rerender_mismatch"] = static_cast<double>(mismatched);
   output.chunk = encodeExr(result.frame, ExrCompression::Fast);
   return output;
 }

@@ -79,6 +79,7 @@ ShotSpec filteringSpec(const std::string& pipeline, int interval) {
   spec.set_spp(16);
   spec.set_decompose("diffuse_direct=ED,diffuse_indirect=ED.+,reflection=ERD.*,residual");
   spec.set_keyframe_interval(interval);
+  spec.set_feature_spp(2);
   return spec;
 }
 
@@ -100,8 +101,8 @@ TEST(Planner, DuiGraphHasEveryStageWithItsEdges) {
   // k = 4: keyframes 10, 14, 18 and the last frame 19; in-between 11-13 and 15-17.
   const auto plan = planShot(filteringSpec("dui", 4));
   auto counts = countKinds(plan);
-  EXPECT_EQ(counts[TASK_RENDER_TILE], 4 * 2);  // only keyframes are rendered up front
-  EXPECT_EQ(counts[TASK_ASSEMBLE_FRAME], 4);
+  EXPECT_EQ(counts[TASK_RENDER_TILE], 10 * 2);  // 4 keyframes, 6 in-between frames' features
+  EXPECT_EQ(counts[TASK_ASSEMBLE_FRAME], 10);
   EXPECT_EQ(counts[TASK_DENOISE], 4);
   EXPECT_EQ(counts[TASK_UPSAMPLE], 4);
   EXPECT_EQ(counts[TASK_FLOW], 2 * 3);    // (10,14), (14,18) x diffuse_direct, diffuse_indirect, residual
@@ -114,7 +115,11 @@ TEST(Planner, DuiGraphHasEveryStageWithItsEdges) {
     for (const size_t d : task.dependencies) EXPECT_LT(d, i);
     outputs += task.output;
     EXPECT_EQ(task.output, task.kind == TASK_COMPOSITE);
-    if (task.kind == TASK_RENDER_TILE) {
+    if (task.kind == TASK_RENDER_TILE && task.params.role() == ROLE_FEATURES) {
+      EXPECT_EQ(task.params.spp(), 2);  // feature_spp
+      EXPECT_TRUE(task.params.frame() != 10 && task.params.frame() != 14 && task.params.frame() != 18 &&
+                  task.params.frame() != 19);
+    } else if (task.kind == TASK_RENDER_TILE) {
       EXPECT_EQ(task.params.role(), ROLE_KEYFRAME);
       EXPECT_EQ(task.params.spp(), 4);  // a quarter of the samples
       // Motion vectors reach the neighbouring keyframes: 10 <-> 14 <-> 18 <-> 19.
@@ -137,6 +142,7 @@ TEST(Planner, DuiGraphHasEveryStageWithItsEdges) {
       EXPECT_EQ(task.params.keyframe_after(), 18);
       EXPECT_EQ(dependencyFrames(plan, task, TASK_UPSAMPLE), (std::set<int64_t>{14, 18}));
       EXPECT_EQ(dependencyFrames(plan, task, TASK_FLOW), (std::set<int64_t>{14}));  // flows are keyed by K0
+      EXPECT_EQ(dependencyFrames(plan, task, TASK_ASSEMBLE_FRAME), (std::set<int64_t>{16}));  // its features
       int flows = 0;
       for (const size_t d : task.dependencies) flows += plan[d].kind == TASK_FLOW;
       EXPECT_EQ(flows, 3);
