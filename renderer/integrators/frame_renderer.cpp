@@ -81,12 +81,18 @@ std::optional<Vec2f> toFloat(const std::optional<Vec2d>& v) {
   return Vec2f{static_cast<float>(v->x), static_cast<float>(v->y)};
 }
 
-struct TileCounters {
-  uint64_t samples = 0, nonFinite = 0;
-  RayCounts rays;
-};
-
 }  // namespace
+
+void writeRenderAttributes(FrameImage& image, const Scene& scene, int64_t frame, const RenderSettings& settings,
+                           const RenderStats& stats) {
+  auto& attributes = image.attributes();
+  attributes["pathfarm.scene"] = scene.file.filename().string();
+  attributes["pathfarm.frame"] = std::to_string(frame);
+  attributes["pathfarm.spp"] = std::to_string(settings.spp);
+  attributes["pathfarm.max_depth"] = std::to_string(settings.maxDepth);
+  attributes["pathfarm.seed"] = std::to_string(scene.seed);
+  attributes["pathfarm.nonfinite_samples"] = std::to_string(stats.nonFiniteSamples);
+}
 
 FrameImage FrameRenderer::render(int64_t frame, const ProgressCallback& progress, RenderStats* stats) const {
   return renderWindow(frame, {0, 0, settings_.width, settings_.height}, progress, stats);
@@ -121,10 +127,10 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
   const int tilesX = (width + tile - 1) / tile, tilesY = (height + tile - 1) / tile;
   const size_t tileCount = static_cast<size_t>(tilesX) * static_cast<size_t>(tilesY);
   std::atomic<size_t> tilesDone{0};
-  tbb::enumerable_thread_specific<TileCounters> counters;
+  tbb::enumerable_thread_specific<SampleCounters> counters;
 
   auto renderTile = [&](size_t index) {
-    TileCounters& local = counters.local();
+    SampleCounters& local = counters.local();
     SampleComponents components;
     std::optional<PathDecomposer> decomposer;
     if (film) decomposer.emplace(*decomposition, components);
@@ -197,23 +203,9 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
     });
   });
 
-  RenderStats total;
-  for (const TileCounters& c : counters) {
-    total.samples += c.samples;
-    total.nonFiniteSamples += c.nonFinite;
-    total.rays.closestHit += c.rays.closestHit;
-    total.rays.shadow += c.rays.shadow;
-  }
-  total.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
-  auto& attributes = image.attributes();
-  attributes["pathfarm.scene"] = scene_.file.filename().string();
-  attributes["pathfarm.frame"] = std::to_string(frame);
-  attributes["pathfarm.spp"] = std::to_string(settings_.spp);
-  attributes["pathfarm.max_depth"] = std::to_string(settings_.maxDepth);
-  attributes["pathfarm.seed"] = std::to_string(scene_.seed);
-  attributes["pathfarm.nonfinite_samples"] = std::to_string(total.nonFiniteSamples);
-  if (decomposition) attributes["pathfarm.decomposition"] = decomposition->describe();
+  const RenderStats total = totalOf(counters, start);
+  writeRenderAttributes(image, scene_, frame, settings_, total);
+  if (decomposition) image.attributes()["pathfarm.decomposition"] = decomposition->describe();
   if (stats) *stats = total;
   return image;
 }

@@ -4,6 +4,7 @@
 // Each pixel's samples are independent streams (sample_stream.h) accumulated in a
 // fixed order, so the result is the same bits for any thread count and tile size.
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -45,6 +46,31 @@ struct RenderStats {
   RayCounts rays;
   double seconds = 0;
 };
+
+// One thread's counts during a render; renders keep one per thread and add them up.
+struct SampleCounters {
+  uint64_t samples = 0, nonFinite = 0;
+  RayCounts rays;
+};
+
+// The totals of `perThread` (any range of SampleCounters) for a render begun at `start`.
+template <class PerThread>
+RenderStats totalOf(const PerThread& perThread, std::chrono::steady_clock::time_point start) {
+  RenderStats total;
+  for (const SampleCounters& c : perThread) {
+    total.samples += c.samples;
+    total.nonFiniteSamples += c.nonFinite;
+    total.rays.closestHit += c.rays.closestHit;
+    total.rays.shadow += c.rays.shadow;
+  }
+  total.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return total;
+}
+
+// The header every rendered frame carries: scene, frame, spp, max depth, seed and the
+// number of non-finite samples dropped.
+void writeRenderAttributes(FrameImage& image, const Scene& scene, int64_t frame, const RenderSettings& settings,
+                           const RenderStats& stats);
 
 // Called from worker threads as tiles finish: (tiles done, tiles in all).
 using ProgressCallback = std::function<void(size_t, size_t)>;

@@ -54,11 +54,6 @@ struct PixelSums {
 
 const char* const kChannels[3] = {"R", "G", "B"};
 
-struct Counters {
-  uint64_t samples = 0, nonFinite = 0;
-  RayCounts rays;
-};
-
 bool isFinite(const GradientSample& g) {
   Rgb total = g.direct + g.radiance;
   for (size_t k = 0; k < 4; ++k) total += g.base[k] + g.offset[k] + g.difference[k];
@@ -164,9 +159,9 @@ FrameImage GradientFrameRenderer::render(int64_t frame, const ProgressCallback& 
   const size_t tileCount = static_cast<size_t>(tilesX) * static_cast<size_t>(tilesY);
   const int batches = gradient_.batches;
   std::atomic<size_t> tilesDone{0};
-  tbb::enumerable_thread_specific<Counters> counters;
+  tbb::enumerable_thread_specific<SampleCounters> counters;
 
-  auto renderPixel = [&](int x, int y, uint32_t count, Counters& local) {
+  auto renderPixel = [&](int x, int y, uint32_t count, SampleCounters& local) {
     const size_t p = static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
     PixelSums& s = sums[p];
     for (uint32_t i = 0; i < count; ++i) {
@@ -233,7 +228,7 @@ FrameImage GradientFrameRenderer::render(int64_t frame, const ProgressCallback& 
     arena.execute([&] {
       tbb::parallel_for(tbb::blocked_range<size_t>(0, tileCount, 1), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t index = r.begin(); index != r.end(); ++index) {
-          Counters& local = counters.local();
+          SampleCounters& local = counters.local();
           const int x0 = static_cast<int>(index % static_cast<size_t>(tilesX)) * tile;
           const int y0 = static_cast<int>(index / static_cast<size_t>(tilesX)) * tile;
           for (int y = y0; y < std::min(y0 + tile, height); ++y)
@@ -319,21 +314,9 @@ FrameImage GradientFrameRenderer::render(int64_t frame, const ProgressCallback& 
   auto& sampleCount = image.addChannel("sample_count.Y");
   for (size_t p = 0; p < pixels; ++p) sampleCount[p] = static_cast<float>(sums[p].drawn);
 
-  RenderStats total;
-  for (const Counters& c : counters) {
-    total.samples += c.samples;
-    total.nonFiniteSamples += c.nonFinite;
-    total.rays.closestHit += c.rays.closestHit;
-    total.rays.shadow += c.rays.shadow;
-  }
-  total.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const RenderStats total = totalOf(counters, start);
+  writeRenderAttributes(image, scene_, frame, settings_, total);
   auto& attributes = image.attributes();
-  attributes["pathfarm.scene"] = scene_.file.filename().string();
-  attributes["pathfarm.frame"] = std::to_string(frame);
-  attributes["pathfarm.spp"] = std::to_string(settings_.spp);
-  attributes["pathfarm.max_depth"] = std::to_string(settings_.maxDepth);
-  attributes["pathfarm.seed"] = std::to_string(scene_.seed);
-  attributes["pathfarm.nonfinite_samples"] = std::to_string(total.nonFiniteSamples);
   attributes["pathfarm.integrator"] = gradient_.temporal ? "tgpt" : "gpt";
   attributes["pathfarm.adaptive_batches"] = std::to_string(batches);
   if (stats) *stats = total;
