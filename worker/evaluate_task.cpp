@@ -41,7 +41,7 @@ const std::vector<std::string> kBeauty = {"R", "G", "B"};
 
 }  // namespace
 
-TaskOutput runEvaluateTask(const Lease& lease, const std::vector<TaskInput>& inputs) {
+TaskOutput runEvaluateTask(const Lease& /*lease*/, const std::vector<TaskInput>& inputs) {
   std::map<int64_t, const FrameImage*> references;
   for (const TaskInput& input : inputs)
     if (input.kind == TASK_ASSEMBLE_FRAME && input.params.role() == ROLE_REFERENCE)

@@ -128,10 +128,12 @@ TEST(Planner, DuiGraphHasEveryStageWithItsEdges) {
       EXPECT_EQ(task.params.motion_forward(), forward) << "frame " << task.params.frame();
       EXPECT_EQ(task.params.motion_backward(), backward) << "frame " << task.params.frame();
     }
-    if (task.kind == TASK_DENOISE && task.params.frame() == 14)
+    if (task.kind == TASK_DENOISE && task.params.frame() == 14) {
       EXPECT_EQ(dependencyFrames(plan, task, TASK_ASSEMBLE_FRAME), (std::set<int64_t>{10, 14, 18}));
-    if (task.kind == TASK_DENOISE && task.params.frame() == 19)
+    }
+    if (task.kind == TASK_DENOISE && task.params.frame() == 19) {
       EXPECT_EQ(dependencyFrames(plan, task, TASK_ASSEMBLE_FRAME), (std::set<int64_t>{18, 19}));
+    }
     if (task.kind == TASK_FLOW) {
       EXPECT_EQ(dependencyFrames(plan, task, TASK_UPSAMPLE),
                 (std::set<int64_t>{task.params.keyframe_before(), task.params.keyframe_after()}));
@@ -170,7 +172,9 @@ TEST(Planner, EachPipelinePlansOnlyItsStages) {
   EXPECT_EQ(di.count(TASK_UPSAMPLE), 0u);
   EXPECT_EQ(di.at(TASK_INTERPOLATE), 6);
   for (const PlannedTask& task : planShot(filteringSpec("di", 4)))
-    if (task.kind == TASK_RENDER_TILE && task.params.role() == ROLE_KEYFRAME) EXPECT_EQ(task.params.spp(), 16);
+    if (task.kind == TASK_RENDER_TILE && task.params.role() == ROLE_KEYFRAME) {
+      EXPECT_EQ(task.params.spp(), 16);
+    }
   // Upsampling needs an even resolution.
   ShotSpec odd = filteringSpec("du", 4);
   odd.set_width(63);
@@ -214,7 +218,9 @@ TEST(Planner, EvaluationAddsBaselineReferenceAndOneEvaluateTask) {
     if (task.params.role() == ROLE_BASELINE) {
       ++baseline;
       EXPECT_TRUE(task.params.beauty_only() || task.kind == TASK_ASSEMBLE_FRAME);
-      if (task.kind == TASK_RENDER_TILE) EXPECT_EQ(task.params.spp(), 16);
+      if (task.kind == TASK_RENDER_TILE) {
+        EXPECT_EQ(task.params.spp(), 16);
+      }
     }
   EXPECT_EQ(baseline, 2 * 3);  // two frames of 2 tiles + assembly
   spec.set_baseline_core_seconds(12.5);
