@@ -275,16 +275,16 @@ void addIrradianceFlow(ComponentMotions& motions, const FrameImage& k0, const Fr
     }
     return motion;
   };
-  std::vector<std::pair<const std::string, ComponentMotion>*> todo;
+  std::vector<std::pair<const std::string, ComponentMotion>*> flowing;
   for (auto& entry : motions.components) {
     if (entry.first.empty()) continue;
     if (std::find(components.begin(), components.end(), entry.first) == components.end())
       throw std::invalid_argument("irradiance flow: the keyframes have no component \"" + entry.first + "\"");
-    todo.push_back(&entry);
+    flowing.push_back(&entry);
   }
-  tbb::parallel_for(size_t(0), todo.size(), [&](size_t i) {
-    const std::string& c = todo[i]->first;
-    ComponentMotion& motion = todo[i]->second;
+  tbb::parallel_for(size_t(0), flowing.size(), [&](size_t i) {
+    const std::string& c = flowing[i]->first;
+    ComponentMotion& motion = flowing[i]->second;
     const std::string what = "irradiance flow: component \"" + c + "\"";
     const Planes e0 = irradiance(k0, c, "keyframe 0"), e1 = irradiance(k1, c, "keyframe 1");
     const FlowField forward = bootstrappedFlow(e0, e1, guess(motion.forward, what + " forward motion"), logSettings);
