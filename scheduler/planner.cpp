@@ -217,7 +217,61 @@ void planGradientDomain(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
   planEvaluation(spec, true, evaluated, plan);
 }
 
+// The chain blocks [first, first + count) of each of `tasks` chain-batch tasks: `blocks`
+// split as evenly as possible, in order.
+std::vector<std::pair<int, int>> splitBlocks(int blocks, int tasks) {
+  std::vector<std::pair<int, int>> ranges;
+  for (int t = 0, first = 0; t < tasks; ++t) {
+    const int count = blocks / tasks + (t < blocks % tasks ? 1 : 0);
+    ranges.emplace_back(first, count);
+    first += count;
+  }
+  return ranges;
+}
+
+// Metropolis light transport (docs/metropolis.md): per window of frames (one frame for
+// mlt) a seed pool, chain-batch tasks over ranges of chain blocks, and a merge per frame.
+void planMetropolis(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
+  checkRenderSpec(spec);
+  if (spec.mlt_window() < 1) throw PlanError("mlt_window: must be at least 1");
+  if (!(spec.mutations_per_pixel() > 0)) throw PlanError("mutations_per_pixel: must be positive");
+  if (spec.mlt_chains() < 1 || spec.chains_per_block() < 1 || spec.chain_tasks() < 1)
+    throw PlanError("mlt_chains, chains_per_block, chain_tasks: must be at least 1");
+  if (spec.bootstrap_samples() < 1) throw PlanError("bootstrap_samples: must be at least 1");
+  if (spec.pipeline() == "tmlt" && !(spec.temporal_delta() > 0)) throw PlanError("temporal_delta: must be positive");
+  const int blocks = (spec.mlt_chains() + spec.chains_per_block() - 1) / spec.chains_per_block();
+  const int64_t length = spec.pipeline() == "mlt" ? 1 : spec.mlt_window();
+  StageOutputs evaluated;
+  for (int64_t first = spec.frame_start(); first <= spec.frame_end(); first += length) {
+    const int64_t count = std::min(length, spec.frame_end() - first + 1);
+    const auto windowTask = [&](TaskKind kind, int64_t frame, std::vector<size_t> dependencies) {
+      PlannedTask planned = task(kind, frame, std::move(dependencies));
+      planned.params.set_window_first(first);
+      planned.params.set_window_frames(static_cast<int32_t>(count));
+      return planned;
+    };
+    const size_t pool = push(windowTask(TASK_MLT_SEED_POOL, first, {}), plan);
+    std::vector<size_t> merged = {pool};
+    for (const auto& [firstBlock, blockCount] : splitBlocks(blocks, std::min(blocks, spec.chain_tasks()))) {
+      PlannedTask chains = windowTask(TASK_MLT_CHAINS, first, {pool});
+      chains.params.set_block_first(firstBlock);
+      chains.params.set_block_count(blockCount);
+      merged.push_back(push(std::move(chains), plan));
+    }
+    for (int64_t frame = first; frame < first + count; ++frame) {
+      PlannedTask merge = windowTask(TASK_MLT_MERGE, frame, merged);
+      merge.output = true;
+      evaluated[frame] = {push(std::move(merge), plan)};
+    }
+  }
+  planEvaluation(spec, true, evaluated, plan);
+}
+
 }  // namespace
+
+bool isMetropolisPipeline(const std::string& pipeline) {
+  return pipeline == "pssmlt" || pipeline == "mlt" || pipeline == "tmlt";
+}
 
 bool isFilteringPipeline(const std::string& pipeline) {
   return pipeline == "d" || pipeline == "du" || pipeline == "di" || pipeline == "dui";
@@ -245,11 +299,13 @@ std::vector<PlannedTask> planShot(const ShotSpec& spec) {
     planFiltering(spec, plan);
   } else if (spec.pipeline() == "tgpt") {
     planGradientDomain(spec, plan);
+  } else if (isMetropolisPipeline(spec.pipeline())) {
+    planMetropolis(spec, plan);
   } else if (spec.pipeline() == "noop") {
     if (spec.noop_tasks() < 1) throw PlanError("noop_tasks: must be at least 1");
     plan.assign(static_cast<size_t>(spec.noop_tasks()), PlannedTask{TASK_NOOP, {}, {}});
   } else {
-    throw PlanError("pipeline \"" + spec.pipeline() + "\" is not available (this farm runs: pt, d, du, di, dui, tgpt, noop)");
+    throw PlanError("pipeline \"" + spec.pipeline() + "\" is not available (this farm runs: pt, d, du, di, dui, tgpt, pssmlt, mlt, tmlt, noop)");
   }
   return plan;
 }

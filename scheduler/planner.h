@@ -9,6 +9,9 @@
 //         shot runs (FarmState::complete);
 //   tgpt  temporal gradient-domain path tracing: a gradient render per frame, a screened
 //         Poisson reconstruction per window of frames, a blend per frame;
+//   pssmlt, mlt, tmlt  Metropolis light transport: per window of frames (one frame for mlt)
+//         a seed-pool task, chain-batch tasks over ranges of chain blocks depending on it,
+//         and per frame a merge task depending on all of them;
 //   noop  independent tasks that do nothing, for measuring the farm itself.
 // Every render pipeline adds the evaluation tasks the report needs: the baseline (plain pt
 // at the shot's spp) and, with reference_spp, the reference of the evaluation frames and
@@ -39,6 +42,7 @@ struct PipelineStages {
 };
 
 bool isFilteringPipeline(const std::string& pipeline);
+bool isMetropolisPipeline(const std::string& pipeline);
 // Throws PlanError for a pipeline that is not a filtering one.
 PipelineStages stagesOf(const std::string& pipeline);
 // The rendered frames of a shot: every frame, or with interpolation every k-th from the

@@ -50,6 +50,20 @@ void readGradientKeys(const JsonNode& root, ShotSpec& spec) {
   if (spec.poisson_norm() != "l1" && spec.poisson_norm() != "l2") root["poisson_norm"].fail("expected \"l1\" or \"l2\"");
 }
 
+void readMetropolisKeys(const JsonNode& root, const Scene& scene, ShotSpec& spec) {
+  if (scene.camera.shutterClose <= scene.camera.shutterOpen)
+    root["scene"].fail("the Metropolis pipelines need an open shutter; the scene's shutter has zero length");
+  spec.set_mlt_window(root.has("mlt_window") ? root["mlt_window"].integer(1, 1000) : 24);
+  spec.set_mutations_per_pixel(root.has("mutations_per_pixel") ? root["mutations_per_pixel"].number(1e-6, 1e9)
+                                                                 : spec.spp());
+  spec.set_mlt_chains(root.has("mlt_chains") ? root["mlt_chains"].integer(1, 1 << 20) : 64);
+  spec.set_chains_per_block(root.has("chains_per_block") ? root["chains_per_block"].integer(1, 1 << 20) : 8);
+  spec.set_chain_tasks(root.has("chain_tasks") ? root["chain_tasks"].integer(1, 1 << 20) : 8);
+  spec.set_temporal_delta(root.has("temporal_delta") ? root["temporal_delta"].number(1e-6, 1e6) : 1.0);
+  spec.set_tune_delta(root.has("tune_delta") && root["tune_delta"].boolean());
+  spec.set_bootstrap_samples(root.has("bootstrap_samples") ? root["bootstrap_samples"].integer(1, 1 << 30) : 100000);
+}
+
 void readEvaluationKeys(const JsonNode& root, ShotSpec& spec) {
   spec.set_reference_spp(root.has("reference_spp") ? root["reference_spp"].integer(1, 1 << 24) : 0);
   if (root.has("baseline_core_seconds")) spec.set_baseline_core_seconds(root["baseline_core_seconds"].number(1e-9, 1e12));
@@ -82,15 +96,19 @@ ShotSpec loadShotFile(const std::filesystem::path& file) {
   root.expectKeys({"name", "scene", "frames", "resolution", "spp", "max_depth", "pipeline", "tile", "output",
                    "priority", "max_attempts", "noop_tasks", "decompose", "keyframe_interval", "rerender_bound",
                    "feature_spp", "reference_spp", "evaluation_frames", "baseline_core_seconds",
-                   "poisson_window", "poisson_overlap", "poisson_norm"});
+                   "poisson_window", "poisson_overlap", "poisson_norm", "mlt_window", "mutations_per_pixel",
+                   "mlt_chains", "chains_per_block", "chain_tasks", "temporal_delta", "tune_delta",
+                   "bootstrap_samples"});
   const std::filesystem::path folder = std::filesystem::absolute(file).parent_path();
 
   ShotSpec spec;
   spec.set_name(root.has("name") ? root["name"].string() : file.stem().string());
   spec.set_pipeline(root.has("pipeline") ? root["pipeline"].string() : "dui");
   const bool filtering = isFilteringPipeline(spec.pipeline());
-  if (spec.pipeline() != "pt" && spec.pipeline() != "noop" && spec.pipeline() != "tgpt" && !filtering)
-    root["pipeline"].fail("unknown pipeline \"" + spec.pipeline() + "\" (this farm runs: pt, d, du, di, dui, tgpt, noop)");
+  if (spec.pipeline() != "pt" && spec.pipeline() != "noop" && spec.pipeline() != "tgpt" && !filtering &&
+      !isMetropolisPipeline(spec.pipeline()))
+    root["pipeline"].fail("unknown pipeline \"" + spec.pipeline() +
+                          "\" (this farm runs: pt, d, du, di, dui, tgpt, pssmlt, mlt, tmlt, noop)");
   spec.set_priority(root.has("priority") ? root["priority"].integer(-1000, 1000) : 0);
   spec.set_max_attempts(root.has("max_attempts") ? root["max_attempts"].integer(1, 100) : 3);
   spec.set_tile(root.has("tile") ? root["tile"].integer(8, 4096) : 64);
@@ -137,6 +155,7 @@ ShotSpec loadShotFile(const std::filesystem::path& file) {
   if (filtering && spec.decompose() == "none") root["decompose"].fail("the filtering pipelines need a decomposition");
   if (filtering) readFilteringKeys(root, scene, spec);
   if (spec.pipeline() == "tgpt") readGradientKeys(root, spec);
+  if (isMetropolisPipeline(spec.pipeline())) readMetropolisKeys(root, scene, spec);
   readEvaluationKeys(root, spec);
   try {
     planShot(spec);  // a shot the farm cannot plan is refused here, naming the reason

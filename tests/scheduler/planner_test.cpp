@@ -294,5 +294,84 @@ TEST(Planner, TgptRendersEveryFrameSolvesWindowsAndBlendsEachFrameFromItsWindows
   EXPECT_THROW(planShot(spec), PlanError);
 }
 
+ShotSpec metropolisSpec(const std::string& pipeline) {
+  ShotSpec spec = renderSpec();
+  spec.set_pipeline(pipeline);
+  spec.set_frame_start(0);
+  spec.set_frame_end(9);  // 10 frames, windows of 4: [0,4) [4,8) [8,10)
+  spec.set_mlt_window(4);
+  spec.set_mutations_per_pixel(8);
+  spec.set_mlt_chains(10);
+  spec.set_chains_per_block(3);  // blocks: 4, the last of one chain
+  spec.set_chain_tasks(3);       // blocks per task: 2, 1, 1
+  spec.set_temporal_delta(0.5);
+  spec.set_bootstrap_samples(1000);
+  return spec;
+}
+
+TEST(Planner, MetropolisPlansAPoolChainBatchesOverEveryBlockAndAMergePerFrame) {
+  for (const std::string pipeline : {"pssmlt", "tmlt", "mlt"}) {
+    SCOPED_TRACE(pipeline);
+    const ShotSpec spec = metropolisSpec(pipeline);
+    const auto plan = planShot(spec);
+    const int windows = pipeline == "mlt" ? 10 : 3;
+    auto counts = countKinds(plan);
+    EXPECT_EQ(counts[TASK_MLT_SEED_POOL], windows);
+    EXPECT_EQ(counts[TASK_MLT_CHAINS], 3 * windows);
+    EXPECT_EQ(counts[TASK_MLT_MERGE], 10);
+    std::map<int64_t, std::vector<int>> blocksOfWindow;  // window first frame -> blocks covered, in order
+    std::set<int64_t> merged;
+    for (const PlannedTask& task : plan) {
+      EXPECT_EQ(task.output, task.kind == TASK_MLT_MERGE);
+      const TaskParams& p = task.params;
+      if (task.kind == TASK_MLT_SEED_POOL) {
+        EXPECT_TRUE(task.dependencies.empty());
+      }
+      if (task.kind == TASK_MLT_CHAINS) {
+        ASSERT_EQ(task.dependencies.size(), 1u);
+        const PlannedTask& pool = plan[task.dependencies[0]];
+        EXPECT_EQ(pool.kind, TASK_MLT_SEED_POOL);
+        EXPECT_EQ(pool.params.window_first(), p.window_first());
+        EXPECT_EQ(pool.params.window_frames(), p.window_frames());
+        for (int b = p.block_first(); b < p.block_first() + p.block_count(); ++b) blocksOfWindow[p.window_first()].push_back(b);
+      }
+      if (task.kind == TASK_MLT_MERGE) {
+        EXPECT_GE(p.frame(), p.window_first());
+        EXPECT_LT(p.frame(), p.window_first() + p.window_frames());
+        merged.insert(p.frame());
+        int pools = 0, batches = 0;
+        for (const size_t d : task.dependencies) {
+          EXPECT_EQ(plan[d].params.window_first(), p.window_first());
+          pools += plan[d].kind == TASK_MLT_SEED_POOL;
+          batches += plan[d].kind == TASK_MLT_CHAINS;
+        }
+        EXPECT_EQ(pools, 1);
+        EXPECT_EQ(batches, 3);
+      }
+    }
+    EXPECT_EQ(merged.size(), 10u);
+    ASSERT_EQ(blocksOfWindow.size(), static_cast<size_t>(windows));
+    for (const auto& [first, blocks] : blocksOfWindow) EXPECT_EQ(blocks, (std::vector<int>{0, 1, 2, 3}));
+    EXPECT_EQ(plan.size(), static_cast<size_t>(windows * 4 + 10));  // no evaluation without frames to evaluate
+  }
+}
+
+TEST(Planner, MetropolisRefusesEmptySettings) {
+  ShotSpec spec = metropolisSpec("tmlt");
+  spec.set_chain_tasks(100);  // more tasks than blocks: one block each
+  auto counts = countKinds(planShot(spec));
+  EXPECT_EQ(counts[TASK_MLT_CHAINS], 3 * 4);
+  spec.set_temporal_delta(0);
+  EXPECT_THROW(planShot(spec), PlanError);
+  spec = metropolisSpec("pssmlt");
+  spec.set_temporal_delta(0);
+  EXPECT_NO_THROW(planShot(spec));  // pssmlt has no temporal perturbation
+  spec.set_mlt_chains(0);
+  EXPECT_THROW(planShot(spec), PlanError);
+  spec = metropolisSpec("pssmlt");
+  spec.set_mutations_per_pixel(0);
+  EXPECT_THROW(planShot(spec), PlanError);
+}
+
 }  // namespace
 }  // namespace pathfarm::farm
