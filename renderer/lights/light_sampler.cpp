@@ -106,63 +106,80 @@ float LightSampler::pointDensity(const FrameGeometry& frame, const Emitter& emit
   return area > 0 ? choice / area : 0;
 }
 
-std::optional<LightSample> LightSampler::sample(const FrameGeometry& frame, Vec3f from, float time,
-                                                float uLight, Vec2f uPoint) const {
-  const Scene& scene = shot_.scene();
+bool LightSampler::choosesEnvironment(float uLight) const {
+  return std::upper_bound(emitterCdf_.begin(), emitterCdf_.end(), uLight) == emitterCdf_.end();
+}
+
+std::optional<EmitterPoint> LightSampler::sampleEmitterPoint(const FrameGeometry& frame, float time, float uLight,
+                                                             Vec2f uPoint) const {
   const auto chosen = std::upper_bound(emitterCdf_.begin(), emitterCdf_.end(), uLight);
-  if (chosen == emitterCdf_.end()) {
-    if (environmentProbability_ == 0) return std::nullopt;
-    return LightSample{sampleUniformSphere(uPoint), std::numeric_limits<float>::infinity(),
-                       scene.environment, environmentPdf()};
-  }
+  if (chosen == emitterCdf_.end()) return std::nullopt;
   const Emitter& emitter = emitters_[static_cast<size_t>(chosen - emitterCdf_.begin())];
   const PreparedShape& shape = shot_.shape(emitter.object);
   const Transform toWorld = frame.shapeToWorld(emitter.object, time);
 
-  Vec3f point, normal;
-  uint32_t triangle = 0;
+  SurfaceHit hit;
+  hit.object = emitter.object;
   if (shape.type == ShapeType::Sphere) {
     const Vec3f n = sampleUniformSphere(uPoint);
-    point = toWorld.point(shape.center + n * shape.radius);
-    normal = normalize(toWorld.normal(n));
+    hit.position = toWorld.point(shape.center + n * shape.radius);
+    hit.geometricNormal = normalize(toWorld.normal(n));
   } else {
     // Reuse what is left of uLight inside the chosen emitter's interval to pick a triangle.
     const float low = chosen == emitterCdf_.begin() ? 0 : *(chosen - 1);
     const float u = std::min((uLight - low) / emitter.probability, 0x1.fffffep-1f) *
                     emitter.triangleCdf.back();
-    triangle = static_cast<uint32_t>(
+    hit.primitive = static_cast<uint32_t>(
         std::min<size_t>(std::upper_bound(emitter.triangleCdf.begin(), emitter.triangleCdf.end(), u) -
                              emitter.triangleCdf.begin(),
                          emitter.triangleCdf.size() - 1));
     const TriangleMesh& m = *shape.mesh;
-    const Vec3f p0 = toWorld.point(m.positions[m.indices[3 * triangle]]);
-    const Vec3f p1 = toWorld.point(m.positions[m.indices[3 * triangle + 1]]);
-    const Vec3f p2 = toWorld.point(m.positions[m.indices[3 * triangle + 2]]);
+    const Vec3f p0 = toWorld.point(m.positions[m.indices[3 * hit.primitive]]);
+    const Vec3f p1 = toWorld.point(m.positions[m.indices[3 * hit.primitive + 1]]);
+    const Vec3f p2 = toWorld.point(m.positions[m.indices[3 * hit.primitive + 2]]);
     const Vec2f b = sampleUniformTriangle(uPoint);
-    point = p0 * (1 - b.x - b.y) + p1 * b.x + p2 * b.y;
-    normal = normalize(cross(p1 - p0, p2 - p0));
+    hit.position = p0 * (1 - b.x - b.y) + p1 * b.x + p2 * b.y;
+    hit.geometricNormal = normalize(cross(p1 - p0, p2 - p0));
   }
-  const Vec3f toLight = point - from;
+  hit.shadingNormal = hit.geometricNormal;
+  const float pdfArea = emitter.probability * pointDensity(frame, emitter, hit.primitive, time);
+  if (!(pdfArea > 0) || !std::isfinite(pdfArea)) return std::nullopt;
+  return EmitterPoint{hit, shot_.scene().objects[static_cast<size_t>(emitter.object)].emission, pdfArea};
+}
+
+std::optional<LightSample> LightSampler::sample(const FrameGeometry& frame, Vec3f from, float time,
+                                                float uLight, Vec2f uPoint) const {
+  if (choosesEnvironment(uLight)) {
+    if (environmentProbability_ == 0) return std::nullopt;
+    return LightSample{sampleUniformSphere(uPoint), std::numeric_limits<float>::infinity(),
+                       shot_.scene().environment, environmentPdf()};
+  }
+  const auto point = sampleEmitterPoint(frame, time, uLight, uPoint);
+  if (!point) return std::nullopt;
+  const Vec3f toLight = point->hit.position - from;
   const float distance = length(toLight);
   if (distance <= 0) return std::nullopt;
   const Vec3f direction = toLight / distance;
-  const float cosLight = -dot(normal, direction);
+  const float cosLight = -dot(point->hit.geometricNormal, direction);
   if (cosLight <= 0) return std::nullopt;  // the back of an emitter is dark
-  const float pdf = emitter.probability * pointDensity(frame, emitter, triangle, time) * distance *
-                    distance / cosLight;
+  const float pdf = point->pdfArea * distance * distance / cosLight;
   if (!(pdf > 0) || !std::isfinite(pdf)) return std::nullopt;
-  return LightSample{direction, distance, scene.objects[static_cast<size_t>(emitter.object)].emission, pdf};
+  return LightSample{direction, distance, point->radiance, pdf};
 }
 
-float LightSampler::pdf(const FrameGeometry& frame, Vec3f from, const SurfaceHit& hit, float time) const {
+float LightSampler::emitterPointPdf(const FrameGeometry& frame, const SurfaceHit& hit, float time) const {
   const int index = emitterOfObject_[static_cast<size_t>(hit.object)];
   if (index < 0) return 0;
   const Emitter& emitter = emitters_[static_cast<size_t>(index)];
+  return emitter.probability * pointDensity(frame, emitter, hit.primitive, time);
+}
+
+float LightSampler::pdf(const FrameGeometry& frame, Vec3f from, const SurfaceHit& hit, float time) const {
   const Vec3f toLight = hit.position - from;
   const float distanceSquared = dot(toLight, toLight);
   const float cosLight = std::abs(dot(hit.geometricNormal, toLight)) / std::sqrt(distanceSquared);
   if (cosLight <= 0) return 0;
-  return emitter.probability * pointDensity(frame, emitter, hit.primitive, time) * distanceSquared / cosLight;
+  return emitterPointPdf(frame, hit, time) * distanceSquared / cosLight;
 }
 
 }  // namespace pathfarm

@@ -10,6 +10,15 @@
 
 namespace pathfarm {
 
+// A point on a surface emitter, for paths that start at the light (bidirectional path
+// tracing): hit.position, hit.geometricNormal (the emitting side), hit.object and
+// hit.primitive (the triangle) are set.
+struct EmitterPoint {
+  SurfaceHit hit;
+  Rgb radiance;    // emitted from the front side
+  float pdfArea;   // area density, including the choice of the emitter
+};
+
 struct LightSample {
   Vec3f direction;  // unit, from the shading point to the light
   float distance;   // to the light point; infinity for the environment
@@ -28,6 +37,17 @@ class LightSampler {
   // Density over solid angle with which sample() yields the emitter point `hit`, seen from `from`.
   float pdf(const FrameGeometry& frame, Vec3f from, const SurfaceHit& hit, float time) const;
   float environmentPdf() const;
+
+  // For light subpaths: whether uLight chooses the constant environment rather than a
+  // surface emitter (the same choice sample() makes), and the point sample() would take
+  // on the surface emitter uLight chooses (nothing when it chooses the environment).
+  bool choosesEnvironment(float uLight) const;
+  std::optional<EmitterPoint> sampleEmitterPoint(const FrameGeometry& frame, float time, float uLight,
+                                                 Vec2f uPoint) const;
+  // Area density with which sampleEmitterPoint() yields the emitter point `hit` (0 off emitters).
+  float emitterPointPdf(const FrameGeometry& frame, const SurfaceHit& hit, float time) const;
+  // The probability of choosing the environment (its share of the power).
+  float environmentProbability() const { return environmentProbability_; }
 
  private:
   struct Emitter {
