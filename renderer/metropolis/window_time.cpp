@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
-#include <string>
+#include <sstream>
 
 #include "renderer/scene/scene.h"
 
@@ -20,10 +20,13 @@ WindowTime::WindowTime(FrameWindow window, float shutterOpen, float shutterClose
   if (window.count < 1) throw std::invalid_argument("a frame window needs at least one frame");
   if (!(shutterOpen >= 0 && shutterClose <= 1 && shutterOpen <= shutterClose))
     throw std::invalid_argument("the shutter must open and close within a frame, opening first");
-  if (shutterClose == shutterOpen)
-    throw std::invalid_argument("the camera shutter has zero length (open " + std::to_string(shutterOpen) +
-                                " = close): Metropolis light transport samples time over the open shutter, "
-                                "so there is nothing to sample; give the camera a shutter such as [0, 0.5]");
+  if (shutterClose == shutterOpen) {
+    std::ostringstream message;
+    message << "the camera shutter has zero length (it opens and closes at " << shutterOpen
+            << " of the frame): Metropolis light transport samples time over the open shutter, so there is "
+               "nothing to sample; give the camera a shutter such as [0, 0.5]";
+    throw std::invalid_argument(message.str());
+  }
 }
 
 WindowTime WindowTime::of(const Scene& scene, FrameWindow window) {
