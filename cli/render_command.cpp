@@ -14,6 +14,7 @@
 #include "renderer/decomposition/auto_decomposition.h"
 #include "renderer/integrators/frame_renderer.h"
 #include "renderer/integrators/gradient_frame_renderer.h"
+#include "renderer/metropolis/metropolis_renderer.h"
 #include "renderer/scene/scene_loader.h"
 
 namespace pathfarm {
@@ -33,7 +34,16 @@ struct RenderOptions {
   std::string integrator = "pt";
   int batches = 1;
   bool noMotion = false;
+  // Metropolis integrators (docs/metropolis.md).
+  int window = 0;  // frames per window; 0: the whole range
+  std::optional<double> mutationsPerPixel;
+  std::optional<int> chains, chainsPerBlock;
+  std::optional<uint64_t> bootstrap;
+  std::optional<double> delta;
+  bool tuneDelta = false;
 };
+
+bool isMetropolis(const std::string& integrator) { return integrator == "pssmlt" || integrator == "mlt" || integrator == "tmlt"; }
 
 class UsageError : public std::runtime_error {
  public:
@@ -76,6 +86,52 @@ std::string frameName(int64_t frame, const char* extension) {
   return name;
 }
 
+void writeFrame(const RenderOptions& options, int64_t frame, const FrameImage& image) {
+  const std::filesystem::path out(options.out);
+  writeExr(out / frameName(frame, "exr"), image);
+  if (options.png) writePngPreview(out / frameName(frame, "png"), image, options.exposure);
+}
+
+MetropolisSettings metropolisSettingsOf(const RenderOptions& options, const Scene& scene, const RenderSettings& render) {
+  MetropolisSettings settings = MetropolisSettings::defaultsOf(scene);
+  settings.method = parseMetropolisMethod(options.integrator);
+  settings.width = render.width;
+  settings.height = render.height;
+  settings.maxDepth = render.maxDepth;
+  settings.threads = options.threads;
+  if (options.mutationsPerPixel) settings.mutationsPerPixel = *options.mutationsPerPixel;
+  if (options.chains) settings.chains = *options.chains;
+  if (options.chainsPerBlock) settings.chainsPerBlock = *options.chainsPerBlock;
+  if (options.bootstrap) settings.bootstrapSamples = *options.bootstrap;
+  if (options.delta) settings.temporalDelta = *options.delta;
+  settings.tuneDelta = options.tuneDelta;
+  return settings;
+}
+
+// Frames first..last in windows of options.window frames, one Metropolis render each.
+void renderMetropolisWindows(const RenderOptions& options, const Scene& scene, const MetropolisSettings& settings,
+                             std::pair<int64_t, int64_t> frames) {
+  const MetropolisRenderer renderer(scene, settings);
+  const int64_t windowLength = options.window > 0 ? options.window : frames.second - frames.first + 1;
+  for (int64_t first = frames.first; first <= frames.second; first += windowLength) {
+    const FrameWindow window{first, static_cast<int>(std::min(windowLength, frames.second - first + 1))};
+    std::vector<FrameImage> images;
+    {
+      ProgressBar bar("frames " + std::to_string(window.first) + ".." + std::to_string(window.end() - 1));
+      images = renderer.render(window, [&](size_t done, size_t total) { bar.update(done, total); });
+    }
+    const auto& attributes = images.front().attributes();
+    std::string acceptance;
+    for (const auto& [key, value] : attributes)
+      if (key.starts_with("pathfarm.mlt.acceptance.")) acceptance += " " + key.substr(24) + " " + value;
+    spdlog::info("frames {}..{}: {} mutations in {} s, acceptance{}{}", window.first, window.end() - 1,
+                 attributes.at("pathfarm.mlt.mutations"), attributes.at("pathfarm.mlt.seconds"), acceptance,
+                 attributes.count("pathfarm.mlt.final_delta") ? ", final D " + attributes.at("pathfarm.mlt.final_delta")
+                                                              : std::string());
+    for (int f = 0; f < window.count; ++f) writeFrame(options, window.first + f, images[static_cast<size_t>(f)]);
+  }
+}
+
 int runRender(const RenderOptions& options) {
   Scene scene;
   RenderSettings settings;
@@ -99,6 +155,7 @@ int runRender(const RenderOptions& options) {
     spdlog::error("--decompose: {}", e.what());
     return kExitBadInput;
   }
+  const bool metropolis = isMetropolis(options.integrator);
   const bool gradient = options.integrator == "gpt" || options.integrator == "tgpt";
   const bool bidirectional = options.integrator == "bdpt";
   if (options.integrator != "pt" && options.decompose != "none") {
@@ -109,11 +166,33 @@ int runRender(const RenderOptions& options) {
     spdlog::error("--batches and --no-motion apply to --integrator gpt and tgpt only");
     return kExitBadInput;
   }
+  const bool metropolisOptions = options.window != 0 || options.mutationsPerPixel || options.chains ||
+                                 options.chainsPerBlock || options.bootstrap || options.delta || options.tuneDelta;
+  if (!metropolis && metropolisOptions) {
+    spdlog::error("--window, --mutations-per-pixel, --chains, --chains-per-block, --bootstrap, --delta and "
+                  "--tune-delta apply to --integrator pssmlt, mlt and tmlt only");
+    return kExitBadInput;
+  }
+  if (metropolis && options.spp) {
+    spdlog::error("--integrator {} takes --mutations-per-pixel (and --bootstrap), not --spp", options.integrator);
+    return kExitBadInput;
+  }
   const GradientSettings gradientSettings{options.integrator == "tgpt", !options.noMotion, options.batches};
   if (options.spp) settings.spp = *options.spp;
   if (options.maxDepth) settings.maxDepth = *options.maxDepth;
   settings.threads = options.threads;
   settings.tileSize = options.tileSize;
+  MetropolisSettings metropolisSettings;
+  if (metropolis) {
+    try {
+      metropolisSettings = metropolisSettingsOf(options, scene, settings);
+      metropolisSettings.validate();
+      WindowTime::of(scene, {frames.first, 1});  // a zero-length shutter is bad input, refused before any work
+    } catch (const std::invalid_argument& e) {
+      spdlog::error("{}", e.what());
+      return kExitBadInput;
+    }
+  }
 
   const std::filesystem::path out(options.out);
   std::error_code error;
@@ -121,6 +200,19 @@ int runRender(const RenderOptions& options) {
   if (error) {
     spdlog::error("{}: cannot create the output folder: {}", out.string(), error.message());
     return kExitFailure;
+  }
+  if (metropolis) {
+    spdlog::info("rendering {} frames {}..{} at {}x{} with {}, {} mutations per pixel, {} chains, max depth {}",
+                 options.scene, frames.first, frames.second, settings.width, settings.height, options.integrator,
+                 metropolisSettings.mutationsPerPixel, metropolisSettings.chains, settings.maxDepth);
+    try {
+      renderMetropolisWindows(options, scene, metropolisSettings, frames);
+    } catch (const std::exception& e) {
+      spdlog::error("{}", e.what());
+      return kExitFailure;
+    }
+    spdlog::info("EXR frames{} in {}", options.png ? " and PNG previews" : "", out.string());
+    return kExitOk;
   }
   spdlog::info("rendering {} frames {}..{} at {}x{}, {} spp, max depth {}", options.scene, frames.first,
                frames.second, settings.width, settings.height, settings.spp, settings.maxDepth);
@@ -145,8 +237,7 @@ int runRender(const RenderOptions& options) {
                                 : renderer->render(frame, update, &stats);
       }
       const auto exr = out / frameName(frame, "exr");
-      writeExr(exr, image);
-      if (options.png) writePngPreview(out / frameName(frame, "png"), image, options.exposure);
+      writeFrame(options, frame, image);
       spdlog::info("frame {}: {:.2f} s, {:.2f} M samples/s, {:.2f} M rays/s -> {}", frame, stats.seconds,
                    stats.samples / stats.seconds * 1e-6,
                    (stats.rays.closestHit + stats.rays.shadow) / stats.seconds * 1e-6, exr.string());
@@ -182,8 +273,9 @@ std::vector<Command> addRenderCommand(CLI::App& app) {
   render->add_option("--integrator", options->integrator,
                      "pt (path tracing), bdpt (bidirectional, docs/metropolis.md), gpt (gradient-domain) or tgpt "
                      "(temporal gradient-domain); gpt and tgpt frames are reconstructed by `pathfarm poisson` "
-                     "(docs/gradient-domain.md)")
-      ->check(CLI::IsMember({"pt", "bdpt", "gpt", "tgpt"}))
+                     "(docs/gradient-domain.md); pssmlt (primary-sample-space Metropolis over windows of frames, "
+                     "docs/metropolis.md)")
+      ->check(CLI::IsMember({"pt", "bdpt", "gpt", "tgpt", "pssmlt", "mlt", "tmlt"}))
       ->capture_default_str();
   render->add_option("--batches", options->batches,
                      "gpt/tgpt: sampling batches; after a uniform first batch the others follow the relative variance "
@@ -191,6 +283,25 @@ std::vector<Command> addRenderCommand(CLI::App& app) {
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
   render->add_flag("--no-motion", options->noMotion, "tgpt: temporal offsets keep their pixel instead of following the motion");
+  render->add_option("--window", options->window,
+                     "pssmlt/mlt/tmlt: frames per window of Markov chains (default: the whole frame range)")
+      ->check(CLI::Range(1, 100000));
+  render->add_option("--mutations-per-pixel", options->mutationsPerPixel,
+                     "pssmlt/mlt/tmlt: mutations per pixel and frame (default 64)")
+      ->check(CLI::Range(1e-3, 1e9));
+  render->add_option("--chains", options->chains, "pssmlt/mlt/tmlt: Markov chains per window (default 64)")
+      ->check(CLI::Range(1, 1 << 24));
+  render->add_option("--chains-per-block", options->chainsPerBlock,
+                     "pssmlt/mlt/tmlt: chains per block, the farm's unit of work (default 16)")
+      ->check(CLI::Range(1, 1 << 24));
+  render->add_option("--bootstrap", options->bootstrap,
+                     "pssmlt/mlt/tmlt: bootstrap samples for the normalization and the chain seeds (default 10000)")
+      ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 30));
+  render->add_option("--delta", options->delta,
+                     "pssmlt/mlt/tmlt: reach D of the temporal mutation, in frames (default 1)")
+      ->check(CLI::Range(1e-3, 1e6));
+  render->add_flag("--tune-delta", options->tuneDelta,
+                   "pssmlt/mlt/tmlt: tune D towards a 23 % temporal acceptance during the first tenth of each chain");
   render->add_option("--exposure", options->exposure, "exposure multiplier of the PNG previews")
       ->check(CLI::Range(1e-6, 1e6));
   return {{render, [options] { return runRender(*options); }}};

@@ -1,0 +1,34 @@
+#pragma once
+// The numbers that shape a window's Markov chains, whatever the state they move in.
+#include <cstdint>
+
+#include "renderer/metropolis/window_time.h"
+
+namespace pathfarm {
+
+struct ChainSettings {
+  uint64_t sceneSeed = 0;
+  int width = 64, height = 64;
+  double mutationsPerPixel = 64;  // per frame of the window
+  uint64_t bootstrapSamples = 10000;
+  int chains = 64;
+  int chainsPerBlock = 16;
+  double temporalDelta = 1;       // D, in frames
+  bool tuneDelta = false;
+  double targetTemporalAcceptance = 0.23;
+  double tuningShare = 0.1;       // the first part of each chain in which D is tuned
+  int threads = 0;                // 0: every core
+
+  // Throws std::invalid_argument naming the first setting out of range.
+  void validate() const;
+  int blocks() const { return (chains + chainsPerBlock - 1) / chainsPerBlock; }
+  // Mutations of all chains of the window together, and of chain `chain`: the total
+  // split as evenly as integers allow, the first chains taking the remainder.
+  uint64_t totalMutations(FrameWindow window) const;
+  uint64_t mutationsOfChain(FrameWindow window, int chain) const;
+  // The splat films' scale that turns sums of value / scalar into radiance
+  // (Kelemen et al. 2002): b times the pixels and frames over the number of mutations.
+  double filmScale(FrameWindow window, double normalization) const;
+};
+
+}  // namespace pathfarm
