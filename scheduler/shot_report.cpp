@@ -39,11 +39,14 @@ std::string stageOf(const TaskRecord& task) {
     case TASK_INTERPOLATE:
       return "interpolate";
     case TASK_GRADIENT_RENDER:
+    case TASK_MLT_SEED_POOL:
+    case TASK_MLT_CHAINS:
       return "render";
     case TASK_POISSON_WINDOW:
       return "reconstruct";
     case TASK_COMPOSITE:
     case TASK_POISSON_BLEND:
+    case TASK_MLT_MERGE:
       return "composite";
     default:
       return kMeasurement;
@@ -83,6 +86,7 @@ ShotReport buildReport(const ShotSummary& summary, const ShotSpec& spec, const s
 
   std::map<std::string, StageCost> stages;
   double baselineSeconds = 0, interpolationRerender = 0, upsampleRerender = 0;
+  double temporalProposed = 0, temporalAccepted = 0;
   int64_t interpolated = 0, upsampled = 0;
   std::map<int64_t, bool> baselineFrames;
   std::map<std::string, double> errors;
@@ -98,7 +102,8 @@ ShotReport buildReport(const ShotSummary& summary, const ShotSpec& spec, const s
       cost.set_core_seconds(cost.core_seconds() + task.coreSeconds);
       report.set_core_seconds(report.core_seconds() + task.coreSeconds);
     }
-    if ((task.kind == TASK_RENDER_TILE || task.kind == TASK_GRADIENT_RENDER) && stage != kMeasurement)
+    if ((task.kind == TASK_RENDER_TILE || task.kind == TASK_GRADIENT_RENDER || task.kind == TASK_MLT_CHAINS) &&
+        stage != kMeasurement)
       report.set_samples_traced(report.samples_traced() + metric(task, "samples"));
     if (task.params.role() == ROLE_BASELINE) {
       baselineSeconds += task.coreSeconds;
@@ -117,7 +122,10 @@ ShotReport buildReport(const ShotSummary& summary, const ShotSpec& spec, const s
     if (task.kind == TASK_COMPOSITE)
       report.set_rerender_pixels(report.rerender_pixels() + static_cast<int64_t>(metric(task, "rerender_pixels")));
     if (task.kind == TASK_EVALUATE) errors = task.metrics;
+    temporalProposed += metric(task, "temporal_proposed");
+    temporalAccepted += metric(task, "temporal_accepted");
   }
+  report.set_temporal_acceptance(temporalProposed > 0 ? temporalAccepted / temporalProposed : -1);
 
   const double frames = static_cast<double>(report.frames());
   const double pixels = static_cast<double>(spec.width()) * spec.height();
@@ -204,6 +212,8 @@ std::string reportMarkdown(const ShotReport& r) {
   for (const auto& [cause, share] : r.interpolation_rerender_causes())
     md += std::string("| &nbsp; of which ").append(cause) + " | " + format("%.2f%%", 100 * share) + " |\n";
   md += "| re-render rate, upsampled keyframes | " + format("%.2f%%", 100 * r.upsample_rerender_rate()) + " |\n";
+  if (r.temporal_acceptance() >= 0)
+    md += "| temporal perturbations accepted | " + format("%.1f%%", 100 * r.temporal_acceptance()) + " |\n";
   md += "| measurement core-seconds (baseline, reference, evaluation; not in the cost) | " +
         format("%.2f", r.measurement_core_seconds()) + " |\n\n";
   if (r.errors().empty()) {

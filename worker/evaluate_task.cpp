@@ -31,6 +31,7 @@ std::string stageOf(const TaskInput& input) {
       return "interpolate";
     case TASK_COMPOSITE:
     case TASK_POISSON_BLEND:
+    case TASK_MLT_MERGE:
       return "final";
     default:
       return "";

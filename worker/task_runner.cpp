@@ -10,6 +10,8 @@
 #include "renderer/integrators/frame_renderer.h"
 #include "renderer/integrators/gradient_frame_renderer.h"
 #include "renderer/scene/scene_loader.h"
+#include "scheduler/planner.h"
+#include "worker/metropolis_tasks.h"
 
 namespace pathfarm::farm {
 namespace {
@@ -35,6 +37,7 @@ RenderSettings settingsOf(const Scene& scene, const ShotSpec& spec, int threads)
 struct TaskRunner::ShotRenderer {
   Scene scene;
   std::unique_ptr<FrameRenderer> renderer;
+  std::unique_ptr<MetropolisRenderer> metropolis;  // Metropolis pipelines only
 };
 
 TaskRunner::~TaskRunner() = default;
@@ -51,6 +54,8 @@ std::shared_ptr<TaskRunner::ShotRenderer> TaskRunner::rendererFor(const Lease& l
   auto shot = std::make_shared<ShotRenderer>();
   shot->scene = loadScene(lease.spec().scene());
   shot->renderer = std::make_unique<FrameRenderer>(shot->scene, settingsOf(shot->scene, lease.spec(), threads_));
+  if (isMetropolisPipeline(lease.spec().pipeline()))
+    shot->metropolis = std::make_unique<MetropolisRenderer>(shot->scene, metropolisSettingsOf(lease.spec(), threads_));
   renderers_.insert(renderers_.begin(), {lease.shot_id(), shot});
   if (renderers_.size() > kShotsKept) renderers_.pop_back();  // tasks still using it keep their copy
   return shot;
@@ -67,6 +72,10 @@ TaskOutput TaskRunner::run(const Lease& lease, const ChunkFetcher& fetch, std::a
       return renderGradientFrame(lease, progress, abandon);
     case TASK_NOOP:
       return {};
+    case TASK_MLT_SEED_POOL:
+    case TASK_MLT_CHAINS:
+    case TASK_MLT_MERGE:
+      return runMetropolis(lease, fetch, progress, abandon);
     default:
       return filter(lease, fetch, progress);
   }
@@ -127,6 +136,15 @@ TaskOutput TaskRunner::filter(const Lease& lease, const ChunkFetcher& fetch, std
   const auto found = filters.find(lease.kind());
   if (found == filters.end())
     throw std::runtime_error("this worker cannot run tasks of kind " + std::to_string(lease.kind()));
+  const std::vector<TaskInput> inputs = inputsOf(lease, fetch, progress);
+  tbb::task_arena arena(threads_ > 0 ? threads_ : tbb::task_arena::automatic);
+  TaskOutput output = arena.execute([&] { return found->second(lease, inputs); });
+  progress = 1.0;
+  return output;
+}
+
+std::vector<TaskInput> TaskRunner::inputsOf(const Lease& lease, const ChunkFetcher& fetch,
+                                            std::atomic<double>& progress) {
   if (lease.input_kinds_size() != lease.inputs_size() || lease.input_params_size() != lease.inputs_size())
     throw std::runtime_error("the lease's inputs are incomplete (kinds or parameters missing)");
   std::vector<TaskInput> inputs;
@@ -138,8 +156,28 @@ TaskOutput TaskRunner::filter(const Lease& lease, const ChunkFetcher& fetch, std
     // Fetching and decoding is the first half of a filter task's work, as far as anyone can tell.
     progress = 0.5 * static_cast<double>(i + 1) / static_cast<double>(lease.inputs_size());
   }
-  tbb::task_arena arena(threads_ > 0 ? threads_ : tbb::task_arena::automatic);
-  TaskOutput output = arena.execute([&] { return found->second(lease, inputs); });
+  return inputs;
+}
+
+TaskOutput TaskRunner::runMetropolis(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,
+                                     const std::atomic<bool>& abandon) {
+  const auto shot = rendererFor(lease);
+  if (!shot->metropolis)
+    throw std::runtime_error("a Metropolis task in a shot of pipeline \"" + lease.spec().pipeline() + "\"");
+  const MetropolisRenderer& renderer = *shot->metropolis;
+  TaskOutput output;
+  if (lease.kind() == TASK_MLT_SEED_POOL) {
+    output = runSeedPoolTask(renderer, lease);
+  } else {
+    std::atomic<double> fetching{0};
+    const std::vector<TaskInput> inputs = inputsOf(lease, fetch, fetching);
+    output = lease.kind() == TASK_MLT_CHAINS ? runChainsTask(renderer, lease, inputs,
+                                                             [&](double done) {
+                                                               if (abandon) throw TaskAbandoned();
+                                                               progress = done;
+                                                             })
+                                             : runMergeTask(renderer, lease, inputs);
+  }
   progress = 1.0;
   return output;
 }

@@ -1,7 +1,8 @@
 #pragma once
 // Runs one leased task with the renderer and postproc libraries and returns its output: a
 // tile's EXR for render_tile, the frame's EXR for assemble_frame, the filter tasks' chunks
-// (worker/filter_tasks.h), nothing for noop.
+// (worker/filter_tasks.h), the Metropolis tasks' (worker/metropolis_tasks.h), nothing
+// for noop.
 // Scenes and their built geometry are cached per shot, so the tiles of a shot pay for
 // loading and BVH building once per worker.
 #include <atomic>
@@ -49,6 +50,10 @@ class TaskRunner {
   std::string assembleFrame(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress);
   TaskOutput renderGradientFrame(const Lease& lease, std::atomic<double>& progress, const std::atomic<bool>& abandon);
   TaskOutput filter(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress);
+  TaskOutput runMetropolis(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,
+                           const std::atomic<bool>& abandon);
+  // The lease's input chunks, decoded; `progress` goes to 0.5 as they arrive.
+  static std::vector<TaskInput> inputsOf(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress);
 
   int threads_;
   std::mutex mutex_;

@@ -4,6 +4,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "renderer/metropolis/exact_text.h"
+
 namespace pathfarm {
 
 MutationStats MutationStats::forKinds(std::vector<std::string> kindNames, int temporal) {
@@ -50,6 +52,50 @@ void MutationStats::writeAttributes(FrameImage& image) const {
     a["pathfarm.mlt.final_delta"] = std::to_string(meanFinalDelta());
   }
   a["pathfarm.mlt.seconds"] = std::to_string(seconds);
+}
+
+std::string MutationStats::serialize() const {
+  std::ostringstream out;
+  out << "pathfarm-mutation-stats 1\n"
+      << "chains " << chains << " temporal " << temporalKind << " delta " << exactText(finalDeltaSum) << " seconds "
+      << exactText(seconds) << " kinds " << kinds.size() << '\n';
+  for (size_t k = 0; k < kinds.size(); ++k) out << kinds[k] << ' ' << proposed[k] << ' ' << accepted[k] << '\n';
+  return out.str();
+}
+
+MutationStats MutationStats::parse(const std::string& text) {
+  std::istringstream in(text);
+  std::string header, delta, seconds;
+  std::getline(in, header);
+  if (header != "pathfarm-mutation-stats 1") throw std::invalid_argument("mutation statistics: missing the header line");
+  MutationStats stats;
+  size_t count = 0;
+  const auto expect = [&](const char* keyword) {
+    std::string word;
+    if (!(in >> word) || word != keyword)
+      throw std::invalid_argument(std::string("mutation statistics: expected '") + keyword + "'");
+  };
+  expect("chains");
+  in >> stats.chains;
+  expect("temporal");
+  in >> stats.temporalKind;
+  expect("delta");
+  in >> delta;
+  expect("seconds");
+  in >> seconds;
+  expect("kinds");
+  if (!(in >> count) || count > 64) throw std::invalid_argument("mutation statistics: bad kind count");
+  stats.finalDeltaSum = parseExactText(delta, "mutation statistics");
+  stats.seconds = parseExactText(seconds, "mutation statistics");
+  stats.kinds.resize(count);
+  stats.proposed.resize(count);
+  stats.accepted.resize(count);
+  for (size_t k = 0; k < count; ++k)
+    if (!(in >> stats.kinds[k] >> stats.proposed[k] >> stats.accepted[k]) || stats.accepted[k] > stats.proposed[k])
+      throw std::invalid_argument("mutation statistics: bad counts of kind " + std::to_string(k));
+  if (stats.temporalKind < -1 || stats.temporalKind >= static_cast<int>(count))
+    throw std::invalid_argument("mutation statistics: bad temporal kind");
+  return stats;
 }
 
 std::string MutationStats::summary() const {

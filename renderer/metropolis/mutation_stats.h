@@ -30,6 +30,10 @@ struct MutationStats {
   void add(const MutationStats& other);
   // "pathfarm.mlt.*" attributes: mutations, acceptance per kind, temporal acceptance, D, seconds.
   void writeAttributes(FrameImage& image) const;
+  // Text with the exact counts and sums, for shipping a block's statistics between farm
+  // tasks; parse throws std::invalid_argument naming what is wrong.
+  std::string serialize() const;
+  static MutationStats parse(const std::string& text);
   // One line for a progress report.
   std::string summary() const;
 };

@@ -1,28 +1,16 @@
 #include "renderer/metropolis/seed_pool.h"
 
-#include <cstdio>
-#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
+
+#include "renderer/metropolis/exact_text.h"
 
 namespace pathfarm {
 namespace {
 
 constexpr const char* kHeader = "pathfarm-seed-pool 1";
 
-// Hexadecimal floating point: the exact bits survive the round trip.
-std::string exact(double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%a", value);
-  return buffer;
-}
-
-double parseExact(const std::string& token) {
-  char* end = nullptr;
-  const double value = std::strtod(token.c_str(), &end);
-  if (token.empty() || *end != '\0') throw std::invalid_argument("seed pool: not a number: '" + token + "'");
-  return value;
-}
+double parseExact(const std::string& token) { return parseExactText(token, "seed pool"); }
 
 }  // namespace
 
@@ -31,9 +19,9 @@ std::string SeedPool::serialize() const {
   out << kHeader << '\n'
       << "window " << window.first << ' ' << window.count << '\n'
       << "bootstrap " << bootstrapSamples << '\n'
-      << "normalization " << exact(normalization) << '\n'
+      << "normalization " << exactText(normalization) << '\n'
       << "seeds " << seeds.size() << '\n';
-  for (const ChainSeed& seed : seeds) out << seed.bootstrapIndex << ' ' << seed.strategy << ' ' << exact(seed.contribution) << '\n';
+  for (const ChainSeed& seed : seeds) out << seed.bootstrapIndex << ' ' << seed.strategy << ' ' << exactText(seed.contribution) << '\n';
   return out.str();
 }
 

@@ -120,5 +120,45 @@ TEST_F(FarmTest, TgptShotOnTheFarmEqualsRenderThenPoisson) {
   }
 }
 
+// A Metropolis shot on the farm (a seed pool, chain blocks spread over three tasks on two
+// workers, a merge per frame) gives the frames `pathfarm render` gives with every block in
+// one process: the split does not change a bit.
+class MetropolisFarmTest : public FarmTest {
+ protected:
+  void expectFarmEqualsOneProcess(const std::string& pipeline);
+};
+
+void MetropolisFarmTest::expectFarmEqualsOneProcess(const std::string& pipeline) {
+  const fs::path shot = dir() / (pipeline + ".shot.json");
+  writeFile(shot, "{\"name\": \"" + pipeline + "\", \"scene\": \"" + cornellScene().string() +
+                      "\", \"frames\": {\"start\": 2, \"end\": 5}, \"resolution\": [40, 32], \"spp\": 4,"
+                      " \"max_depth\": 4, \"pipeline\": \"" + pipeline + "\", \"mlt_window\": 3,"
+                      " \"mutations_per_pixel\": 8, \"mlt_chains\": 10, \"chains_per_block\": 2, \"chain_tasks\": 3,"
+                      " \"bootstrap_samples\": 2000, \"temporal_delta\": 0.75, \"baseline_core_seconds\": 1}\n");
+  const fs::path farmFrames = dir() / (pipeline + "-farm");
+  const CommandResult local =
+      runPathfarm({"local", shot.string(), "--workers", "2", "--threads", "1", "--out", farmFrames.string()}, {}, 300s);
+  ASSERT_EQ(local.status, 0) << local.output;
+  const fs::path oneProcess = dir() / (pipeline + "-render");
+  const CommandResult rendered = runPathfarm(
+      {"render", cornellScene().string(), "--integrator", pipeline, "--frames", "2:5", "--window", "3", "--res", "40x32",
+       "--max-depth", "4", "--mutations-per-pixel", "8", "--chains", "10", "--chains-per-block", "2", "--bootstrap",
+       "2000", "--delta", "0.75", "--out", oneProcess.string()},
+      {}, 120s);
+  ASSERT_EQ(rendered.status, 0) << rendered.output;
+  for (int64_t frame = 2; frame <= 5; ++frame) {
+    const std::string name = farm::frameFileName(frame);
+    const FrameImage fromFarm = readExr(farmFrames / name), fromCli = readExr(oneProcess / name);
+    double sum = 0;
+    for (const char* channel : {"R", "G", "B"}) {
+      EXPECT_EQ(fromFarm.channel(channel), fromCli.channel(channel)) << name << " channel " << channel;
+      for (const float v : fromFarm.channel(channel)) sum += v;
+    }
+    EXPECT_GT(sum, 0) << name << " is black";
+  }
+}
+
+TEST_F(MetropolisFarmTest, PssmltShotEqualsOneProcessWhateverTheSplit) { expectFarmEqualsOneProcess("pssmlt"); }
+
 }  // namespace
 }  // namespace pathfarm::farmtest
