@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "renderer/decomposition/auto_decomposition.h"
+#include "renderer/metropolis/metropolis_renderer.h"
 #include "scheduler/keyframe_probe.h"
 #include "scheduler/planner.h"
 #include "renderer/scene/json_node.h"
@@ -50,18 +51,22 @@ void readGradientKeys(const JsonNode& root, ShotSpec& spec) {
   if (spec.poisson_norm() != "l1" && spec.poisson_norm() != "l2") root["poisson_norm"].fail("expected \"l1\" or \"l2\"");
 }
 
+// Defaults are the renderer's (MetropolisSettings), so a shot and `pathfarm render` agree.
 void readMetropolisKeys(const JsonNode& root, const Scene& scene, ShotSpec& spec) {
   if (scene.camera.shutterClose <= scene.camera.shutterOpen)
     root["scene"].fail("the Metropolis pipelines need an open shutter; the scene's shutter has zero length");
+  const MetropolisSettings defaults;
   spec.set_mlt_window(root.has("mlt_window") ? root["mlt_window"].integer(1, 1000) : 24);
   spec.set_mutations_per_pixel(root.has("mutations_per_pixel") ? root["mutations_per_pixel"].number(1e-6, 1e9)
                                                                  : spec.spp());
-  spec.set_mlt_chains(root.has("mlt_chains") ? root["mlt_chains"].integer(1, 1 << 20) : 64);
-  spec.set_chains_per_block(root.has("chains_per_block") ? root["chains_per_block"].integer(1, 1 << 20) : 8);
+  spec.set_mlt_chains(root.has("mlt_chains") ? root["mlt_chains"].integer(1, 1 << 20) : defaults.chains);
+  spec.set_chains_per_block(root.has("chains_per_block") ? root["chains_per_block"].integer(1, 1 << 20)
+                                                         : defaults.chainsPerBlock);
   spec.set_chain_tasks(root.has("chain_tasks") ? root["chain_tasks"].integer(1, 1 << 20) : 8);
-  spec.set_temporal_delta(root.has("temporal_delta") ? root["temporal_delta"].number(1e-6, 1e6) : 1.0);
+  spec.set_temporal_delta(root.has("temporal_delta") ? root["temporal_delta"].number(1e-6, 1e6) : defaults.temporalDelta);
   spec.set_tune_delta(root.has("tune_delta") && root["tune_delta"].boolean());
-  spec.set_bootstrap_samples(root.has("bootstrap_samples") ? root["bootstrap_samples"].integer(1, 1 << 30) : 100000);
+  spec.set_bootstrap_samples(root.has("bootstrap_samples") ? root["bootstrap_samples"].integer(1, 1 << 30)
+                                                           : static_cast<int>(defaults.bootstrapSamples));
 }
 
 void readEvaluationKeys(const JsonNode& root, ShotSpec& spec) {

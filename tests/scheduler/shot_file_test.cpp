@@ -132,6 +132,30 @@ TEST(ShotFile, ReadsTheGradientDomainKeys) {
             std::string::npos);
 }
 
+TEST(ShotFile, ReadsTheMetropolisKeysAndRefusesAClosedShutter) {
+  const auto file = writeShot("tmlt", R"({"scene": "cornell/scene.json", "pipeline": "tmlt", "spp": 32, "mlt_window": 6,
+    "mlt_chains": 12, "chains_per_block": 5, "chain_tasks": 2, "temporal_delta": 0.5, "tune_delta": true})");
+  const ShotSpec spec = loadShotFile(file);
+  std::filesystem::remove(file);
+  EXPECT_EQ(spec.mlt_window(), 6);
+  EXPECT_EQ(spec.mutations_per_pixel(), 32);  // the shot's spp when not given
+  EXPECT_EQ(spec.mlt_chains(), 12);
+  EXPECT_EQ(spec.chains_per_block(), 5);
+  EXPECT_EQ(spec.chain_tasks(), 2);
+  EXPECT_EQ(spec.temporal_delta(), 0.5);
+  EXPECT_TRUE(spec.tune_delta());
+  EXPECT_EQ(spec.decompose(), "none");
+
+  nlohmann::json scene = nlohmann::json::parse(readText(test_support::sourceDir() / "scenes/cornell/scene.json"));
+  scene["camera"].erase("shutter");  // no shutter: open for no time
+  const auto folder = writeShot("closed-shutter-folder", "{}").parent_path();
+  std::ofstream(folder / "closed_shutter_scene.json") << scene.dump();
+  EXPECT_NE(errorOf(R"({"scene": "closed_shutter_scene.json", "pipeline": "pssmlt"})").find("zero length"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"scene": "cornell/scene.json", "pipeline": "mlt", "mlt_chains": 0})").find("mlt_chains"),
+            std::string::npos);
+}
+
 TEST(ShotFile, BadFilteringShotsAreRefused) {
   EXPECT_NE(errorOf(R"({"scene": "cornell/scene.json", "keyframe_interval": 0})").find("keyframe_interval: 0 is out of range"),
             std::string::npos);
