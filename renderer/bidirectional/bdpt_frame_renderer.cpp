@@ -10,6 +10,7 @@
 #include "renderer/bidirectional/connection.h"
 #include "renderer/bidirectional/subpath.h"
 #include "renderer/film/splat_film.h"
+#include "renderer/integrators/sample_moments.h"
 
 namespace pathfarm {
 
@@ -59,8 +60,8 @@ FrameImage BdptFrameRenderer::render(int64_t frame, const ProgressCallback& prog
   const double splatScale = 1.0 / settings_.spp;
 
   auto renderPixel = [&](ThreadState& state, int x, int y) {
-    double sum[3] = {0, 0, 0}, sumSquares[3] = {0, 0, 0};
-    int accepted = 0;
+    SampleMoments moments;
+    uint32_t accepted = 0;
     for (int i = 0; i < settings_.spp; ++i) {
       SampleStream stream({scene_.seed, frame, x, y, static_cast<uint32_t>(i)});
       StreamSource u(stream);
@@ -87,21 +88,12 @@ FrameImage BdptFrameRenderer::render(int64_t frame, const ProgressCallback& prog
         continue;
       }
       ++accepted;
-      for (int c = 0; c < 3; ++c) {
-        sum[c] += L[c];
-        sumSquares[c] += static_cast<double>(L[c]) * L[c];
-      }
+      moments.add(L);
     }
     const size_t pixel = static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
-    float mean[3];
-    for (int c = 0; c < 3; ++c) {
-      const double m = accepted > 0 ? sum[c] / accepted : 0.0;
-      mean[c] = static_cast<float>(m);
-      variance[c][pixel] = accepted > 1 ? static_cast<float>(std::max(0.0, sumSquares[c] - accepted * m * m) /
-                                                             (static_cast<double>(accepted - 1) * accepted))
-                                        : 0.0f;
-    }
-    means[pixel] = {mean[0], mean[1], mean[2]};
+    for (size_t c = 0; c < 3; ++c) variance[c][pixel] = static_cast<float>(moments.varianceOfMean(c, accepted));
+    means[pixel] = {static_cast<float>(moments.mean(0, accepted)), static_cast<float>(moments.mean(1, accepted)),
+                    static_cast<float>(moments.mean(2, accepted))};
   };
 
   tbb::task_arena arena(settings_.threads > 0 ? settings_.threads : tbb::task_arena::automatic);

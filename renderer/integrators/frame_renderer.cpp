@@ -11,6 +11,7 @@
 #include "renderer/decomposition/decomposed_film.h"
 #include "renderer/decomposition/primary_motion.h"
 #include "renderer/decomposition/specular_motion.h"
+#include "renderer/integrators/sample_moments.h"
 
 namespace pathfarm {
 
@@ -142,8 +143,8 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
         const int x = window.x0 + ix, y = window.y0 + iy;  // frame pixel coordinates
         const size_t pixel = static_cast<size_t>(iy) * static_cast<size_t>(width) + static_cast<size_t>(ix);
         if (only && (*only)[pixel] == 0) continue;
-        double sum[3] = {0, 0, 0}, sumSquares[3] = {0, 0, 0};
-        int accepted = 0;
+        SampleMoments moments;
+        uint32_t accepted = 0;
         std::optional<DecomposedFilm::Pixel> sums;
         if (film) sums.emplace(decomposition->size());
         for (int s = 0; s < settings_.spp; ++s) {
@@ -167,20 +168,11 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
           if (film)
             sums->add(components, extrasOf(record, ray, time, s < DecomposedFilm::kMotionSamples ? &motion : nullptr));
           ++accepted;
-          for (int c = 0; c < 3; ++c) {
-            sum[c] += L[c];
-            sumSquares[c] += static_cast<double>(L[c]) * L[c];
-          }
+          moments.add(L);
         }
-        for (int c = 0; c < 3; ++c) {
-          const double mean = accepted > 0 ? sum[c] / accepted : 0.0;
-          // Variance of the pixel mean: the samples' unbiased variance over their count.
-          const double variance = accepted > 1
-                                      ? std::max(0.0, sumSquares[c] - accepted * mean * mean) /
-                                            (static_cast<double>(accepted - 1) * accepted)
-                                      : 0.0;
-          channels[c][pixel] = static_cast<float>(mean);
-          channels[3 + c][pixel] = static_cast<float>(variance);
+        for (size_t c = 0; c < 3; ++c) {
+          channels[c][pixel] = static_cast<float>(moments.mean(c, accepted));
+          channels[3 + c][pixel] = static_cast<float>(moments.varianceOfMean(c, accepted));
         }
         if (film) {
           for (int k = 0; k < decomposition->size(); ++k) {

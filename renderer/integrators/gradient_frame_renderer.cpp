@@ -12,6 +12,7 @@
 #include "renderer/gradient/adaptive_sampling.h"
 #include "renderer/gradient/temporal_correspondence.h"
 #include "renderer/integrators/gradient_path_tracer.h"
+#include "renderer/integrators/sample_moments.h"
 
 namespace pathfarm {
 
@@ -25,31 +26,12 @@ struct GradientFrameRenderer::Shot {
 
 namespace {
 
-// A sum of samples and of their squares, per color channel.
-struct Moments {
-  std::array<double, 3> sum{}, squares{};
-
-  void add(const Rgb& v) {
-    for (int c = 0; c < 3; ++c) {
-      sum[static_cast<size_t>(c)] += v[c];
-      squares[static_cast<size_t>(c)] += static_cast<double>(v[c]) * v[c];
-    }
-  }
-  double mean(size_t c, uint32_t n) const { return n > 0 ? sum[c] / n : 0.0; }
-  // The variance of the mean of n samples.
-  double varianceOfMean(size_t c, uint32_t n) const {
-    if (n < 2) return 0;
-    const double m = sum[c] / n;
-    return std::max(0.0, squares[c] - n * m * m) / (static_cast<double>(n - 1) * n);
-  }
-};
-
 struct PixelSums {
   uint32_t drawn = 0;             // sample indices used so far
   uint32_t samples = 0;           // finite samples accumulated
-  Moments direct, own, temporal;  // own: the base's parts of its pixel, averaged over the 4 pairs
-  std::array<Moments, 4> offset, difference;
-  std::array<Moments, 4> mixed;  // the temporal offset's difference minus the base's, per direction
+  SampleMoments direct, own, temporal;  // own: the base's parts of its pixel, averaged over the 4 pairs
+  std::array<SampleMoments, 4> offset, difference;
+  std::array<SampleMoments, 4> mixed;  // the temporal offset's difference minus the base's, per direction
 };
 
 const char* const kChannels[3] = {"R", "G", "B"};
@@ -81,7 +63,7 @@ class FrameLayers {
     for (size_t k = 0; k < 4; ++k) {
       const size_t n = neighbour(p, k);
       if (n == SIZE_MAX) continue;
-      const Moments& m = sums_[n].offset[k ^ 1];
+      const SampleMoments& m = sums_[n].offset[k ^ 1];
       value += 0.25 * m.mean(c, sums_[n].samples);
       v += 0.0625 * m.varianceOfMean(c, sums_[n].samples);
     }
@@ -96,8 +78,8 @@ class FrameLayers {
       if (variance) *variance = 0;
       return 0;
     }
-    const Moments& forward = sums_[p].difference[k];
-    const Moments& backward = sums_[n].difference[k ^ 1];
+    const SampleMoments& forward = sums_[p].difference[k];
+    const SampleMoments& backward = sums_[n].difference[k ^ 1];
     if (variance)
       *variance = forward.varianceOfMean(c, sums_[p].samples) + backward.varianceOfMean(c, sums_[n].samples);
     return forward.mean(c, sums_[p].samples) - backward.mean(c, sums_[n].samples);
