@@ -63,7 +63,8 @@ int checkJacobians(const WindowFixture& f, const std::vector<ChainCase>& cases, 
     const WindowInstant instant = *f.time.instant(c.state.tau);
     const BdptScene bdpt = f.window.frame(instant.frame);
     const int a = c.chain.a, b = c.chain.b;
-    // Tangent frames of the four vertices involved; the surfaces are planar.
+    // Tangent frames of the four vertices involved; a perturbed vertex is put back on its
+    // (possibly curved) surface along the normal, with the normal found there.
     const int in[2] = {a, a + 1}, out[2] = {b - 1, b};
     const auto tangent = [&](int i, int axis) {
       const Frame frame = Frame::fromNormal(x[at(i)].hit.geometricNormal);
@@ -77,8 +78,13 @@ int checkJacobians(const WindowFixture& f, const std::vector<ChainCase>& cases, 
       for (int sign = 0; sign < 2 && traced; ++sign) {
         std::vector<PathVertex> moved = x;
         PathVertex& v = moved[at(in[column / 2])];
-        v.hit.position = v.hit.position + tangent(in[column / 2], column % 2) * static_cast<float>(sign ? h : -h);
-        traced = retraceChain(bdpt, instant.shutterFraction, x, c.chain, ChainDirection::FromCamera, moved);
+        const Vec3f n = v.hit.geometricNormal;
+        const Vec3f shifted = v.hit.position + tangent(in[column / 2], column % 2) * static_cast<float>(sign ? h : -h);
+        SurfaceHit onSurface;
+        if (!bdpt.geometry.intersect({shifted + n * 0.01f, -n}, instant.shutterFraction, onSurface)) onSurface = v.hit;
+        if (onSurface.object != v.hit.object) traced = false;
+        v.hit = onSurface;
+        traced = traced && retraceChain(bdpt, instant.shutterFraction, x, c.chain, ChainDirection::FromCamera, moved);
         ends[sign][0] = moved[at(out[0])].position();
         ends[sign][1] = moved[at(out[1])].position();
       }
@@ -122,7 +128,9 @@ TEST(SpecularChain, MirrorChainDensitiesMatchTheJacobianOfTheChain) {
 }
 
 TEST(SpecularChain, RefractionChainDensitiesMatchTheJacobianOfTheChain) {
-  const WindowFixture f(test_support::glassBlockScene(), {0, 4}, 16, 5);
+  // A wedge: light enters and leaves by faces that are not parallel, where a slab (or a
+  // ball's symmetric chords) would make the light side's density the mirror rule's.
+  const WindowFixture f(test_support::glassWedgeScene(), {0, 4}, 16, 5);
   EXPECT_GE(checkJacobians(f, surfaceChains(f, 3000), 20), 5);
 }
 

@@ -1,4 +1,4 @@
-// The temporal perturbation on toy scenes (a moving mirror, a moving glass block, a
+// The temporal perturbation on toy scenes (a moving mirror, a moving glass wedge, a
 // moving quad, a moving camera): detailed balance in both directions, with the reverse
 // density T(Y -> X) computed by actually running the move back from Y, not by the
 // forward move's formula; the move is its own inverse; vertices follow their objects.
@@ -73,8 +73,8 @@ TEST(TemporalPerturbation, DetailedBalanceWithAMovingMirror) {
   EXPECT_GT(counts.retraced, 20);
 }
 
-TEST(TemporalPerturbation, DetailedBalanceWithAMovingGlassBlock) {
-  const WindowFixture f(test_support::glassBlockScene(), {0, 4}, 16, 5);
+TEST(TemporalPerturbation, DetailedBalanceWithAMovingGlassWedge) {
+  const WindowFixture f(test_support::glassWedgeScene(), {0, 4}, 16, 5);
   const BalanceCounts counts = checkDetailedBalance(f, 600);
   EXPECT_GT(counts.checked, 200);
   EXPECT_GT(counts.retraced, 20);

@@ -1,7 +1,9 @@
 #pragma once
 // Toy scenes for the path-space mutations: a few quads, a lamp, and either a moving
-// mirror (specular chains by reflection) or a glass block (chains by refraction), with a
+// mirror (specular chains by reflection) or a glass wedge (chains by refraction), with a
 // moving camera and a moving quad; 1 frame per second, shutter open half of each frame.
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 namespace pathfarm::test_support {
@@ -32,10 +34,26 @@ inline std::string movingMirrorScene() {
        "animation": {"translate": [{"frame": 0, "value": [-1.3, 0.9, -0.6]}, {"frame": 4, "value": [-0.9, 1.1, -0.3]}]}})");
 }
 
-inline std::string glassBlockScene() {
-  return toyScene(R"({"type": "box", "size": [1.2, 0.4, 1.2], "material": "glass",
-       "transform": {"rotate": {"axis": [0, 1, 0], "angle": 20}},
-       "animation": {"translate": [{"frame": 0, "value": [-0.2, 1.2, 0]}, {"frame": 4, "value": [0.2, 1.3, 0.1]}]}})");
+// A glass wedge (written next to the test scenes, sceneFromJson's folder): light enters
+// its sloped face and leaves by its base, faces that are not parallel.
+inline std::string glassWedgeScene() {
+  std::ofstream(std::filesystem::temp_directory_path() / "path_space_wedge.obj") << R"(
+v -0.6 0 -0.6
+v 0.6 0 -0.6
+v -0.6 0.7 -0.6
+v -0.6 0 0.6
+v 0.6 0 0.6
+v -0.6 0.7 0.6
+f 1 3 2
+f 4 5 6
+f 1 2 5
+f 1 5 4
+f 1 4 6
+f 1 6 3
+f 2 3 6
+f 2 6 5
+)";
+  return toyScene(R"({"type": "mesh", "file": "path_space_wedge.obj", "material": "glass",
+       "animation": {"translate": [{"frame": 0, "value": [-0.3, 0.9, 0]}, {"frame": 4, "value": [0.1, 1.0, 0.1]}]}})");
 }
-
 }  // namespace pathfarm::test_support
