@@ -56,4 +56,5 @@ f 2 6 5
   return toyScene(R"({"type": "mesh", "file": "path_space_wedge.obj", "material": "glass",
        "animation": {"translate": [{"frame": 0, "value": [-0.3, 0.9, 0]}, {"frame": 4, "value": [0.1, 1.0, 0.1]}]}})");
 }
+
 }  // namespace pathfarm::test_support
