@@ -7,6 +7,7 @@
 #include "renderer/bidirectional/subpath.h"
 #include "renderer/bidirectional/vertex_scattering.h"
 #include "renderer/metropolis/path_space/path_walk.h"
+#include "renderer/metropolis/path_space/vertex_motion.h"
 
 namespace pathfarm {
 namespace {
@@ -86,6 +87,8 @@ bool extend(const BdptScene& bdpt, float time, std::vector<PathVertex>& walk, in
 
 }  // namespace
 
+bool renewsTime(int k, int l, int m) { return l == 0 && m == k + 1; }
+
 double deletionProbability(int k, int l, int m) {
   const int d = m - l;
   if (l < 0 || m > k + 1 || d < 1) return 0;
@@ -99,16 +102,24 @@ double bidirectionalDensity(const WindowScene& scene, const PathSpaceState& x, c
   const double pn = additionProbability(added, k + 1 - deleted, deleted, m == k + 1, maxCameraVertices(bdpt));
   double sum = 0;
   for (int t = 0; t <= added; ++t) sum += splitDensity(bdpt, y.path.time, y.path.vertices, l, mNew, t);
-  return deletionProbability(k, l, m) * pn * sum / (added + 1);
+  const double time = renewsTime(k, l, m) ? 1 / scene.time.openLength() : 1;
+  return deletionProbability(k, l, m) * pn * sum / (added + 1) * time;
 }
 
 PathMutation bidirectionalMutation(const WindowScene& scene, const PathSpaceState& current, SampleStream& random) {
   PathMutation result;
-  const BdptScene bdpt = scene.frame(current.contribution.frame);
-  const float time = current.path.time;
   const std::vector<PathVertex>& x = current.path.vertices;
   const int k = current.path.length();
   const Deletion del = sampleDeletion(k, random);
+  double tau = current.tau;
+  std::vector<PathVertex> cameraSide(x.begin(), x.begin() + del.l + 1);
+  if (renewsTime(k, del.l, del.m)) {
+    tau = scene.time.fromPrimary(random.next1D());
+    cameraSide[0] = placedAt(scene, x[0], *scene.time.instant(current.tau), *scene.time.instant(tau));
+  }
+  const WindowInstant instant = *scene.time.instant(tau);
+  const BdptScene bdpt = scene.frame(instant.frame);
+  const float time = instant.shutterFraction;
   const int deleted = del.m - del.l - 1, kept = k + 1 - deleted;
   const bool lightEndDeleted = del.m == k + 1;
   const int added = sampleAddition(kept, deleted, lightEndDeleted, maxCameraVertices(bdpt), random.next1D());
@@ -116,7 +127,6 @@ PathMutation bidirectionalMutation(const WindowScene& scene, const PathSpaceStat
   const int t = std::min(static_cast<int>(random.next1D() * static_cast<float>(added + 1)), added), s = added - t;
   const bool connected = !(lightEndDeleted && s == 0);
 
-  std::vector<PathVertex> cameraSide(x.begin(), x.begin() + del.l + 1);
   if (!extend(bdpt, time, cameraSide, t, !connected, random)) return result;
   std::vector<PathVertex> lightSide;  // from the light end inwards
   if (!lightEndDeleted) {
@@ -134,7 +144,7 @@ PathMutation bidirectionalMutation(const WindowScene& scene, const PathSpaceStat
     cameraSide.back().type = VertexType::Light;  // the camera walk found the light end
   }
   cameraSide.insert(cameraSide.end(), lightSide.rbegin(), lightSide.rend());
-  result.proposed = stateAt(scene, CompletePath{std::move(cameraSide), 0}, current.tau);
+  result.proposed = stateAt(scene, CompletePath{std::move(cameraSide), 0}, tau);
   if (!(result.proposed.density > 0)) return result;
   result.forward = bidirectionalDensity(scene, current, result.proposed, del.l, del.m);
   result.reverse = bidirectionalDensity(scene, result.proposed, current, del.l, del.l + added + 1);

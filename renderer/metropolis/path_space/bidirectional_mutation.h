@@ -15,7 +15,12 @@
 // split t' of the new vertices into camera and light walks that could have made them
 // (its connection edge between two non-delta vertices), p_t' the product of their walk
 // densities (path_walk.h). The reverse deletes the new vertices of Y and adds back X's.
-// The time stays; the camera must be a pinhole (its lens point is never resampled).
+// The time stays, except when the whole path after the camera vertex is deleted (l = 0,
+// m = k + 1): then tau is drawn anew uniformly over the window's open time (density
+// 1 / open length both ways) and the camera vertex placed there, so that chains reach
+// every frame however short the temporal perturbation's reach D is (with D below the
+// closed part of a frame, temporal moves alone never leave a frame). The camera must be
+// a pinhole: its lens point is never resampled.
 #include "renderer/metropolis/path_space/path_mutation.h"
 #include "renderer/sampling/sample_stream.h"
 
@@ -27,6 +32,7 @@ PathMutation bidirectionalMutation(const WindowScene& scene, const PathSpaceStat
 // mutation that kept X's vertices [0, l] and [m, k] (Y keeps them as [0, l] and
 // [m', k'], m' = l + 1 + its number of new vertices).
 double deletionProbability(int k, int l, int m);
+bool renewsTime(int k, int l, int m);
 double bidirectionalDensity(const WindowScene& scene, const PathSpaceState& x, const PathSpaceState& y, int l, int m);
 
 }  // namespace pathfarm
