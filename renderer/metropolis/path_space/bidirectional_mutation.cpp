@@ -108,6 +108,7 @@ double bidirectionalDensity(const WindowScene& scene, const PathSpaceState& x, c
 
 PathMutation bidirectionalMutation(const WindowScene& scene, const PathSpaceState& current, SampleStream& random) {
   PathMutation result;
+  if (!(current.density > 0)) return result;
   const std::vector<PathVertex>& x = current.path.vertices;
   const int k = current.path.length();
   const Deletion del = sampleDeletion(k, random);

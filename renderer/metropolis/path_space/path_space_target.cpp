@@ -4,6 +4,8 @@
 
 #include "renderer/bidirectional/subpath.h"
 #include "renderer/metropolis/path_space/bidirectional_mutation.h"
+#include "renderer/metropolis/path_space/caustic_perturbation.h"
+#include "renderer/metropolis/path_space/lens_perturbation.h"
 #include "renderer/metropolis/path_space/specular_chain.h"
 #include "renderer/metropolis/path_space/temporal_perturbation.h"
 
@@ -55,16 +57,28 @@ PathSpaceState PathSpaceTarget::bootstrap(int, SampleStream& random) const {
   return seed;
 }
 
+namespace {
+
+// Of the mutations other than the temporal one.
+constexpr double kBidirectionalShare = 0.4, kLensShare = 0.3;
+
+}  // namespace
+
 Proposal<PathSpaceState> PathSpaceTarget::propose(const State& current, MutationContext& context) const {
-  const bool temporal = context.random.next1D() < temporalProbability_;
+  const double u = context.random.next1D();
+  const double other = (u - temporalProbability_) / (1 - temporalProbability_);
+  const Kind kind = u < temporalProbability_            ? kTemporal
+                    : other < kBidirectionalShare         ? kBidirectional
+                    : other < kBidirectionalShare + kLensShare ? kLens
+                                                          : kCaustic;
   PathMutation mutation;
-  if (temporal) {
-    TemporalMove move = perturbInTime(scene_, current, context);
-    mutation = {std::move(move.proposed), move.forward, move.reverse};
-  } else {
-    mutation = bidirectionalMutation(scene_, current, context.random);
+  switch (kind) {
+    case kTemporal: mutation = perturbInTime(scene_, current, context).mutation; break;
+    case kBidirectional: mutation = bidirectionalMutation(scene_, current, context.random); break;
+    case kLens: mutation = lensPerturbation(scene_, current, context.random); break;
+    case kCaustic: mutation = causticPerturbation(scene_, current, context.random); break;
   }
-  Proposal<State> proposal{std::move(mutation.proposed), temporal ? kTemporal : kBidirectional, 0};
+  Proposal<State> proposal{std::move(mutation.proposed), kind, 0};
   if (mutation.forward > 0 && current.density > 0)
     proposal.transitionRatio = mutation.reverse / mutation.forward * (current.contribution.scalar() / current.density);
   return proposal;

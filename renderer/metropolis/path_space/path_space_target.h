@@ -19,8 +19,13 @@
 // a weight and for f, which have the same colour.
 //
 // Mutations: with probability `temporalProbability` the temporal perturbation
-// (temporal_perturbation.h), otherwise the bidirectional mutation
-// (bidirectional_mutation.h). The camera must be a pinhole.
+// (temporal_perturbation.h); otherwise the bidirectional mutation (40 %,
+// bidirectional_mutation.h), the lens perturbation (30 %, lens_perturbation.h) or the
+// caustic perturbation (30 %, caustic_perturbation.h): the perturbations explore a
+// bright path's neighbourhood with high acceptance, the bidirectional mutation changes
+// its length and structure, and, deleting everything after the camera, renews its time.
+// Every choice has a fixed probability, which cancels in the acceptance ratio. The
+// camera must be a pinhole.
 #include "renderer/metropolis/chain_target.h"
 #include "renderer/metropolis/path_space/path_state.h"
 
@@ -29,7 +34,7 @@ namespace pathfarm {
 class PathSpaceTarget {
  public:
   using State = PathSpaceState;
-  enum Kind { kBidirectional, kTemporal };
+  enum Kind { kBidirectional, kLens, kCaustic, kTemporal };
 
   // Throws std::invalid_argument for a thin-lens camera or a probability outside [0, 1].
   PathSpaceTarget(const WindowScene& scene, double temporalProbability);
@@ -37,7 +42,7 @@ class PathSpaceTarget {
   int strategies() const { return 1; }
   State bootstrap(int strategy, SampleStream& random) const;
   Proposal<State> propose(const State& current, MutationContext& context) const;
-  std::vector<std::string> mutationKinds() const { return {"bidirectional", "temporal"}; }
+  std::vector<std::string> mutationKinds() const { return {"bidirectional", "lens", "caustic", "temporal"}; }
   int temporalKind() const { return kTemporal; }
 
  private:

@@ -40,24 +40,6 @@ void onExactRay(const BdptScene& bdpt, float time, Vec3f origin, Vec3f direction
 
 bool animated(const BdptScene& bdpt, const SurfaceHit& hit) { return bdpt.geometry.shot().shape(hit.object).animated; }
 
-// The vertex a re-traced ray gives in place of `wanted`, if it is of the same kind.
-std::optional<PathVertex> landing(const BdptScene& bdpt, bool hitSomething, const SurfaceHit& hit, Vec3f direction,
-                                  const PathVertex& wanted) {
-  PathVertex v;
-  v.type = wanted.type;
-  v.delta = wanted.delta;
-  if (wanted.type == VertexType::Environment) {
-    if (hitSomething) return std::nullopt;
-    v.direction = direction;
-    return v;
-  }
-  if (!hitSomething || wanted.type == VertexType::Camera) return std::nullopt;
-  if (animated(bdpt, hit) != animated(bdpt, wanted.hit)) return std::nullopt;
-  v.hit = hit;
-  if (wanted.type == VertexType::Surface && !wanted.delta && !isConnectible(bdpt.scene(), v)) return std::nullopt;
-  return v;
-}
-
 // The symmetric geometry term |cos at p| |cos at q| / |p - q|^2 (a solid angle at p for
 // an environment q).
 double symmetricGeometry(const PathVertex& p, const PathVertex& q) {
@@ -76,6 +58,26 @@ std::vector<SpecularChain> specularChainsOf(const std::vector<PathVertex>& x) {
     chains.push_back({a, i});
   }
   return chains;
+}
+
+std::optional<PathVertex> regenerate(const BdptScene& bdpt, float time, const PathVertex& from, Vec3f direction,
+                                     const PathVertex& wanted) {
+  SurfaceHit hit;
+  const bool hitSomething = bdpt.geometry.intersect({offsetRayOrigin(from.hit, direction), direction}, time, hit);
+  if (hitSomething) onExactRay(bdpt, time, from.position(), direction, hit);
+  PathVertex v;
+  v.type = wanted.type;
+  v.delta = wanted.delta;
+  if (wanted.type == VertexType::Environment) {
+    if (hitSomething) return std::nullopt;
+    v.direction = direction;
+    return v;
+  }
+  if (!hitSomething || wanted.type == VertexType::Camera) return std::nullopt;
+  if (animated(bdpt, hit) != animated(bdpt, wanted.hit)) return std::nullopt;
+  v.hit = hit;
+  if (wanted.type == VertexType::Surface && !wanted.delta && !isConnectible(bdpt.scene(), v)) return std::nullopt;
+  return v;
 }
 
 bool edgeVisible(const BdptScene& bdpt, float time, const PathVertex& cameraSide, const PathVertex& lightSide) {
@@ -97,11 +99,7 @@ bool retraceChain(const BdptScene& bdpt, float time, const std::vector<PathVerte
     const bool reflection = isReflection(original[at(i - 1)], original[at(i)], original[at(i + 1)]);
     const auto out = deltaDirection(bdpt.scene(), vertices[at(i)], travel, reflection);
     if (!out) return false;
-    SurfaceHit hit;
-    const Vec3f origin = vertices[at(i)].position();
-    const bool hitSomething = bdpt.geometry.intersect({offsetRayOrigin(vertices[at(i)].hit, *out), *out}, time, hit);
-    if (hitSomething) onExactRay(bdpt, time, origin, *out, hit);
-    const auto next = landing(bdpt, hitSomething, hit, *out, original[at(i + step)]);
+    const auto next = regenerate(bdpt, time, vertices[at(i)], *out, original[at(i + step)]);
     if (!next) return false;
     vertices[at(i + step)] = *next;
     travel = *out;

@@ -17,6 +17,7 @@
 // (G the symmetric geometry term |cos cos| / d^2, n the refractive index of the medium
 // of the edge), so R_light = R_cam n_a^2 G(x_a, x_a+1) / (n_b^2 G(x_b-1, x_b)). For
 // mirrors this is prod_{a <= j < b-1} g(x_j+1, x_j), the same rule walking the other way.
+#include <optional>
 #include <vector>
 
 #include "renderer/bidirectional/bdpt_scene.h"
@@ -52,6 +53,15 @@ bool straightenChains(const BdptScene& bdpt, float time, std::vector<PathVertex>
 // R_cam or R_light above for the chain of the vertex list x.
 double regenerationDensity(const Scene& scene, const std::vector<PathVertex>& x, SpecularChain chain,
                            ChainDirection direction);
+
+// The vertex that the ray from `from` along unit `direction` regenerates in place of
+// `wanted` (its hit, or an environment direction when it escapes), if it is of the same
+// kind: the same vertex type and delta flag, on an object that is animated if and only if
+// wanted's is, and connectible where wanted is a non-delta surface vertex. The hit is
+// put on the ray from from's exact position (the ray itself leaves from an offset
+// origin), so that regenerating the other way comes back to the same points.
+std::optional<PathVertex> regenerate(const BdptScene& bdpt, float time, const PathVertex& from, Vec3f direction,
+                                     const PathVertex& wanted);
 
 // Whether the edge between two vertices of a path is unoccluded, as measure() tests it.
 bool edgeVisible(const BdptScene& bdpt, float time, const PathVertex& cameraSide, const PathVertex& lightSide);

@@ -65,10 +65,10 @@ double wayProbability(bool retraced, bool bothSucceed) { return retraced && both
 TemporalMove temporalMove(const WindowScene& scene, const TemporalProposal& proposal, const PathSpaceState& current,
                           double tauNext, ChainDirection first) {
   TemporalMove move;
-  move.proposed.tau = tauNext;
+  move.mutation.proposed.tau = tauNext;
   const std::optional<WindowInstant> from = scene.time.instant(current.tau), to = scene.time.instant(tauNext);
   const double pForward = proposal.density(current.tau, tauNext);
-  if (!from || !to || !(pForward > 0)) return move;  // closed shutter: f(Y) = 0
+  if (!from || !to || !(pForward > 0) || !(current.density > 0)) return move;  // closed shutter: f(Y) = 0
   const std::vector<PathVertex>& x = current.path.vertices;
   const auto tried = moveTo(scene, x, *from, *to, first);
   const auto other = moveTo(scene, x, *from, *to, opposite(first));
@@ -76,15 +76,15 @@ TemporalMove temporalMove(const WindowScene& scene, const TemporalProposal& prop
   const MovedPath& used = tried ? *tried : *other;
   move.way = tried ? first : opposite(first);
   move.retraced = !used.retraced.empty();
-  move.proposed = stateAt(scene, CompletePath{used.vertices, 0}, tauNext);
-  if (!(move.proposed.density > 0)) return move;
+  move.mutation.proposed = stateAt(scene, CompletePath{used.vertices, 0}, tauNext);
+  if (!(move.mutation.proposed.density > 0)) return move;
 
-  const std::vector<PathVertex>& y = move.proposed.path.vertices;
+  const std::vector<PathVertex>& y = move.mutation.proposed.path.vertices;
   const auto back = moveTo(scene, y, *to, *from, move.way);
   if (!back) return move;  // not reversible (rounding at a grazing edge): T(Y -> X) = 0
   const bool backOtherSucceeds = moveTo(scene, y, *to, *from, opposite(move.way)).has_value();
-  move.forward = pForward * wayProbability(move.retraced, tried && other) * moveDensity(scene, y, used, *to, move.way);
-  move.reverse = proposal.density(tauNext, current.tau) * wayProbability(!back->retraced.empty(), backOtherSucceeds) *
+  move.mutation.forward = pForward * wayProbability(move.retraced, tried && other) * moveDensity(scene, y, used, *to, move.way);
+  move.mutation.reverse = proposal.density(tauNext, current.tau) * wayProbability(!back->retraced.empty(), backOtherSucceeds) *
                  moveDensity(scene, x, *back, *from, move.way);
   return move;
 }

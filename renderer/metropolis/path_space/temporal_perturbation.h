@@ -23,15 +23,13 @@
 // The move is its own inverse: from Y at tau' the same way back to tau gives X again, so
 // T(Y -> X) is the same formula evaluated for that reverse move.
 #include "renderer/metropolis/chain_target.h"
-#include "renderer/metropolis/path_space/path_state.h"
+#include "renderer/metropolis/path_space/path_mutation.h"
 #include "renderer/metropolis/path_space/specular_chain.h"
 
 namespace pathfarm {
 
 struct TemporalMove {
-  PathSpaceState proposed;  // density 0 when the move is impossible or carries nothing
-  double forward = 0;       // T(X -> Y)
-  double reverse = 0;       // T(Y -> X)
+  PathMutation mutation;
   ChainDirection way = ChainDirection::FromCamera;  // the way the chains were re-traced
   bool retraced = false;    // whether any chain was re-traced
 };

@@ -33,8 +33,11 @@ struct WindowFixture {
         window{time, geometry, lights, camera, maxDepth} {}
 
   // The states of every contributing strategy of `samples` bidirectional samples, each
-  // at a window time uniform over the open time, their specular chains straightened.
-  std::vector<PathSpaceState> samplePaths(int samples, uint64_t seed) const {
+  // at a window time uniform over the open time, their specular chains straightened;
+  // with `weights`, also each state's bidirectional estimate (MIS-weighted f / p, as a
+  // luminance), whose sum over the samples divided by `samples` estimates the integral
+  // of f over the paths and the open time divided by the open time.
+  std::vector<PathSpaceState> samplePaths(int samples, uint64_t seed, std::vector<double>* weights = nullptr) const {
     std::vector<PathSpaceState> states;
     Subpath cameraPath, lightPath;
     std::vector<WeightedPath> paths;
@@ -52,7 +55,9 @@ struct WindowFixture {
       for (WeightedPath& p : paths) {
         if (!straightenChains(bdpt, instant.shutterFraction, p.path.vertices)) continue;
         PathSpaceState s = stateAt(window, std::move(p.path), tau);
-        if (s.density > 0) states.push_back(std::move(s));
+        if (!(s.density > 0)) continue;
+        states.push_back(std::move(s));
+        if (weights) weights->push_back(Contribution{0, p.raster, p.contribution}.scalar());
       }
     }
     return states;

@@ -61,10 +61,10 @@ void expectConvergence(MetropolisMethod method, FrameWindow window, int framesPe
   }
   // Sixteen times the mutations: the error falls well below its coarse value.
   EXPECT_LT(fine, 0.25 * coarse) << coarse << " " << fine;
-  // Path-space MLT with bidirectional mutations alone (about 10 % accepted) is much less
-  // efficient than path tracing on this easy scene: measured 15 to 20 times its error
-  // at the same number of samples; the bound leaves room for the chains' noise.
-  EXPECT_LT(fine, 32 * pathTraced + 2 * referenceOwn) << "path traced " << pathTraced;
+  // On this easy scene path-space MLT is less efficient than path tracing: measured 10 to
+  // 13 times its error at the same number of samples (bidirectional mutations are 14 %
+  // accepted); the bound leaves room for the chains' noise.
+  EXPECT_LT(fine, 24 * pathTraced + 2 * referenceOwn) << "path traced " << pathTraced;
 }
 
 TEST(PathSpaceMlt, FrameByFrameConvergesToThePathTracedReference) {
