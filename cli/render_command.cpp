@@ -10,6 +10,7 @@
 #include "cli/progress_bar.h"
 #include "image/exr_io.h"
 #include "image/png_preview.h"
+#include "renderer/bidirectional/bdpt_frame_renderer.h"
 #include "renderer/decomposition/auto_decomposition.h"
 #include "renderer/integrators/frame_renderer.h"
 #include "renderer/integrators/gradient_frame_renderer.h"
@@ -156,7 +157,8 @@ int runRender(const RenderOptions& options) {
   }
   const bool metropolis = isMetropolis(options.integrator);
   const bool gradient = options.integrator == "gpt" || options.integrator == "tgpt";
-  if ((gradient || metropolis) && options.decompose != "none") {
+  const bool bidirectional = options.integrator == "bdpt";
+  if (options.integrator != "pt" && options.decompose != "none") {
     spdlog::error("--integrator {} renders no path-space components: leave out --decompose", options.integrator);
     return kExitBadInput;
   }
@@ -217,8 +219,11 @@ int runRender(const RenderOptions& options) {
   try {
     std::optional<FrameRenderer> renderer;
     std::optional<GradientFrameRenderer> gradientRenderer;
+    std::optional<BdptFrameRenderer> bidirectionalRenderer;
     if (gradient)
       gradientRenderer.emplace(scene, settings, gradientSettings);
+    else if (bidirectional)
+      bidirectionalRenderer.emplace(scene, settings);
     else
       renderer.emplace(scene, settings);
     for (int64_t frame = frames.first; frame <= frames.second; ++frame) {
@@ -227,7 +232,9 @@ int runRender(const RenderOptions& options) {
       {
         ProgressBar bar("frame " + std::to_string(frame));
         const ProgressCallback update = [&](size_t done, size_t total) { bar.update(done, total); };
-        image = gradient ? gradientRenderer->render(frame, update, &stats) : renderer->render(frame, update, &stats);
+        image = gradient        ? gradientRenderer->render(frame, update, &stats)
+                : bidirectional ? bidirectionalRenderer->render(frame, update, &stats)
+                                : renderer->render(frame, update, &stats);
       }
       const auto exr = out / frameName(frame, "exr");
       writeFrame(options, frame, image);
@@ -264,10 +271,11 @@ std::vector<Command> addRenderCommand(CLI::App& app) {
                      "path-space components: none, default, auto, or \"name=EXPR,...\" (docs/decomposition.md)")
       ->capture_default_str();
   render->add_option("--integrator", options->integrator,
-                     "pt (path tracing), gpt (gradient-domain) or tgpt (temporal gradient-domain); gpt and tgpt "
-                     "frames are reconstructed by `pathfarm poisson` (docs/gradient-domain.md); pssmlt "
-                     "(primary-sample-space Metropolis over windows of frames, docs/metropolis.md)")
-      ->check(CLI::IsMember({"pt", "gpt", "tgpt", "pssmlt", "mlt", "tmlt"}))
+                     "pt (path tracing), bdpt (bidirectional, docs/metropolis.md), gpt (gradient-domain) or tgpt "
+                     "(temporal gradient-domain); gpt and tgpt frames are reconstructed by `pathfarm poisson` "
+                     "(docs/gradient-domain.md); pssmlt (primary-sample-space Metropolis over windows of frames, "
+                     "docs/metropolis.md)")
+      ->check(CLI::IsMember({"pt", "bdpt", "gpt", "tgpt", "pssmlt", "mlt", "tmlt"}))
       ->capture_default_str();
   render->add_option("--batches", options->batches,
                      "gpt/tgpt: sampling batches; after a uniform first batch the others follow the relative variance "

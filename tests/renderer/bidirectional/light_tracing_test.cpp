@@ -67,11 +67,12 @@ TEST(LightTracing, AloneAgreesWithThePathTracerOnADiffuseScene) {
   const BdptScene bdpt = fixture.bdpt(maxDepth);
   const int paths = 60000;
   double sum[4] = {}, sumSquares[4] = {};
-  Subpath camera(1), light;
+  Subpath camera, light;
   for (int i = 0; i < paths; ++i) {
     SampleStream stream({11, 0, i, 0, 0});
     StreamSource u(stream);
     const float time = u.next1D();
+    generateCameraSubpath(bdpt, time, {0, 0}, {0.5f, 0.5f}, u, 1, camera);  // the lens alone
     generateLightSubpath(bdpt, time, u, maxLightVertices(bdpt), light);
     double perQuadrant[4] = {};
     for (int s = 1; s <= static_cast<int>(light.size()); ++s) {
