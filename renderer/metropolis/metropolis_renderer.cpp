@@ -92,7 +92,8 @@ auto MetropolisRenderer::withDriver(FrameWindow window, const Work& work) const 
     }
     case MetropolisMethod::PathSpace:
     case MetropolisMethod::Temporal: {
-      const PathSpaceTarget target(windowScene, settings_.temporalStepProbability);
+      const bool temporal = settings_.method == MetropolisMethod::Temporal;
+      const PathSpaceTarget target(windowScene, temporal ? settings_.temporalStepProbability : 0);
       return work(ChainDriver(target, time, chainSettings));
     }
   }

@@ -43,7 +43,7 @@ class PathSpaceTarget {
   State bootstrap(int strategy, SampleStream& random) const;
   Proposal<State> propose(const State& current, MutationContext& context) const;
   std::vector<std::string> mutationKinds() const { return {"bidirectional", "lens", "caustic", "temporal"}; }
-  int temporalKind() const { return kTemporal; }
+  int temporalKind() const { return temporalProbability_ > 0 ? kTemporal : -1; }
 
  private:
   const WindowScene& scene_;
