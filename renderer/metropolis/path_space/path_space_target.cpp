@@ -66,11 +66,12 @@ constexpr double kBidirectionalShare = 0.4, kLensShare = 0.3;
 
 Proposal<PathSpaceState> PathSpaceTarget::propose(const State& current, MutationContext& context) const {
   const double u = context.random.next1D();
-  const double other = (u - temporalProbability_) / (1 - temporalProbability_);
-  const Kind kind = u < temporalProbability_            ? kTemporal
-                    : other < kBidirectionalShare         ? kBidirectional
+  // u past the temporal share, rescaled to [0, 1) over the other mutations.
+  const double other = u < temporalProbability_ ? 0 : (u - temporalProbability_) / (1 - temporalProbability_);
+  const Kind kind = u < temporalProbability_                   ? kTemporal
+                    : other < kBidirectionalShare              ? kBidirectional
                     : other < kBidirectionalShare + kLensShare ? kLens
-                                                          : kCaustic;
+                                                               : kCaustic;
   PathMutation mutation;
   switch (kind) {
     case kTemporal: mutation = perturbInTime(scene_, current, context).mutation; break;

@@ -50,8 +50,9 @@ std::optional<MovedPath> moveTo(const WindowScene& scene, const std::vector<Path
 // vertices, for the vertex list x that the move `m` made (or that its reverse restores).
 double moveDensity(const WindowScene& scene, const std::vector<PathVertex>& x, const MovedPath& m, WindowInstant at,
                    ChainDirection way) {
+  const Scene& shot = scene.geometry.frame(at.frame).shot().scene();
   double density = 1;
-  for (const SpecularChain& c : m.retraced) density *= regenerationDensity(scene.geometry.frame(at.frame).shot().scene(), x, c, way);
+  for (const SpecularChain& c : m.retraced) density *= regenerationDensity(shot, x, c, way);
   for (size_t i = 0; i < x.size(); ++i)
     if (m.moved[i] && !m.regenerated[i]) density /= areaScale(scene, x[i], at);
   return density;

@@ -75,5 +75,31 @@ TEST(PathSpaceMlt, TemporalConvergesToThePathTracedReference) {
   expectConvergence(MetropolisMethod::Temporal, {10, 2}, 2);
 }
 
+TEST(PathSpaceMlt, ThinLensCameraIsRefusedClearly) {
+  Scene scene = loadScene(test_support::sourceDir() / "scenes/cornell/scene.json");
+  scene.camera.apertureRadius = 0.05f;
+  try {
+    MetropolisRenderer(scene, smallSettings(MetropolisMethod::Temporal, 4)).render({0, 2});
+    FAIL() << "rendered with a thin lens";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("pinhole"), std::string::npos) << e.what();
+  }
+}
+
+TEST(PathSpaceMlt, UnreachableLightGivesFiniteBlackFrames) {
+  // The light shines inside a closed sphere; the camera sees the sphere from outside.
+  const Scene scene = test_support::sceneFromJson(R"({
+    "camera": {"position": [0, 0, 4], "look_at": [0, 0, 0], "shutter": [0, 0.5]},
+    "materials": {"white": {"type": "diffuse", "reflectance": 0.7}},
+    "shapes": [
+      {"type": "sphere", "radius": 1, "material": "white"},
+      {"type": "rectangle", "size": [0.3, 0.3], "material": "white", "emission": 10}]
+  })");
+  for (const MetropolisMethod method : {MetropolisMethod::PathSpace, MetropolisMethod::Temporal})
+    for (const FrameImage& frame : MetropolisRenderer(scene, smallSettings(method, 4)).render({0, 2}))
+      for (const char* c : {"R", "G", "B"})
+        for (const float v : frame.channel(c)) ASSERT_EQ(v, 0);
+}
+
 }  // namespace
 }  // namespace pathfarm

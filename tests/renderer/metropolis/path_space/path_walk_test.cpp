@@ -67,37 +67,23 @@ class PathWalk : public ::testing::Test {
     ASSERT_TRUE(f.geometry.frame(0).intersect({{0.1f, 0.1f, 1}, {0, 0, 1}}, 0, onLamp.hit));
     onLamp.type = VertexType::Light;
   }
+
+  // The area estimate of `object` from walks leaving `start`, reached from `before`.
+  AreaEstimate walks(int object, const PathVertex* before, const PathVertex& start) const {
+    return estimateArea(object, [&](SampleStream& random, double& density) {
+      PathVertex from = start;
+      auto y = walkFrom(bdpt, 0, before, from, random);
+      if (y) density = walkDensity(bdpt, 0, before, from, *y);
+      return y;
+    });
+  }
 };
 
-TEST_F(PathWalk, FromTheCamera) {
-  expectArea(estimateArea(kLamp, [&](SampleStream& random, double& density) {
-               PathVertex from = camera;
-               auto y = walkFrom(bdpt, 0, nullptr, from, random);
-               if (y) density = walkDensity(bdpt, 0, nullptr, from, *y);
-               return y;
-             }),
-             0.25);
-}
+TEST_F(PathWalk, FromTheCamera) { expectArea(walks(kLamp, nullptr, camera), 0.25); }
 
-TEST_F(PathWalk, FromADiffuseSurfaceTowardsTheLamp) {
-  expectArea(estimateArea(kLamp, [&](SampleStream& random, double& density) {
-               PathVertex from = onQuad;
-               auto y = walkFrom(bdpt, 0, &camera, from, random);
-               if (y) density = walkDensity(bdpt, 0, &camera, from, *y);
-               return y;
-             }),
-             0.25);
-}
+TEST_F(PathWalk, FromADiffuseSurfaceTowardsTheLamp) { expectArea(walks(kLamp, &camera, onQuad), 0.25); }
 
-TEST_F(PathWalk, FromALightEnd) {
-  expectArea(estimateArea(kQuad, [&](SampleStream& random, double& density) {
-               PathVertex from = onLamp;
-               auto y = walkFrom(bdpt, 0, nullptr, from, random);
-               if (y) density = walkDensity(bdpt, 0, nullptr, from, *y);
-               return y;
-             }),
-             1.0);
-}
+TEST_F(PathWalk, FromALightEnd) { expectArea(walks(kQuad, nullptr, onLamp), 1.0); }
 
 TEST_F(PathWalk, NewLightEnds) {
   expectArea(estimateArea(kLamp, [&](SampleStream& random, double& density) {

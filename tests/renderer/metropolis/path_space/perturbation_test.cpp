@@ -53,23 +53,19 @@ Counts checkCaustic(const WindowFixture& f) {
   return counts;
 }
 
-TEST(LensPerturbation, DetailedBalanceThroughMirrorsAndGlass) {
+// Both toy scenes: enough pairs checked, some of them through specular chains.
+void expectBalancedOnToyScenes(Counts (*check)(const WindowFixture&)) {
   for (const std::string& scene : {test_support::movingMirrorScene(), test_support::glassWedgeScene()}) {
     const WindowFixture f(scene, {0, 4}, 16, 5);
-    const Counts counts = checkLens(f);
+    const Counts counts = check(f);
     EXPECT_GT(counts.checked, 100);
     EXPECT_GT(counts.throughChains, 5);
   }
 }
 
-TEST(CausticPerturbation, DetailedBalanceThroughMirrorsAndGlass) {
-  for (const std::string& scene : {test_support::movingMirrorScene(), test_support::glassWedgeScene()}) {
-    const WindowFixture f(scene, {0, 4}, 16, 5);
-    const Counts counts = checkCaustic(f);
-    EXPECT_GT(counts.checked, 100);
-    EXPECT_GT(counts.throughChains, 5);
-  }
-}
+TEST(LensPerturbation, DetailedBalanceThroughMirrorsAndGlass) { expectBalancedOnToyScenes(checkLens); }
+
+TEST(CausticPerturbation, DetailedBalanceThroughMirrorsAndGlass) { expectBalancedOnToyScenes(checkCaustic); }
 
 TEST(CausticPerturbation, PathsWithoutASourceAreNotPerturbed) {
   PathVertex camera, mirror, lamp;
