@@ -6,6 +6,7 @@
 #include "renderer/accel/shot_geometry.h"
 #include "renderer/bidirectional/camera_importance.h"
 #include "renderer/lights/light_sampler.h"
+#include "renderer/metropolis/path_space/path_space_target.h"
 #include "renderer/metropolis/pssmlt/pssmlt_target.h"
 #include "renderer/metropolis/window_scene.h"
 
@@ -90,9 +91,13 @@ auto MetropolisRenderer::withDriver(FrameWindow window, const Work& work) const 
       return work(ChainDriver(target, time, chainSettings));
     }
     case MetropolisMethod::PathSpace:
-    case MetropolisMethod::Temporal: break;
+    case MetropolisMethod::Temporal: {
+      const bool temporal = settings_.method == MetropolisMethod::Temporal;
+      const PathSpaceTarget target(windowScene, temporal ? settings_.temporalStepProbability : 0);
+      return work(ChainDriver(target, time, chainSettings));
+    }
   }
-  throw std::invalid_argument("--integrator " + nameOf(settings_.method) + " is not part of this build yet");
+  throw std::invalid_argument("unknown Metropolis method");
 }
 
 SeedPool MetropolisRenderer::seedPool(FrameWindow window) const {
