@@ -112,7 +112,10 @@ MetropolisSettings metropolisSettingsOf(const RenderOptions& options, const Scen
 void renderMetropolisWindows(const RenderOptions& options, const Scene& scene, const MetropolisSettings& settings,
                              std::pair<int64_t, int64_t> frames) {
   const MetropolisRenderer renderer(scene, settings);
-  const int64_t windowLength = options.window > 0 ? options.window : frames.second - frames.first + 1;
+  // mlt is frame by frame; the others default to one window over the whole range.
+  const int64_t windowLength = options.window > 0                          ? options.window
+                               : settings.method == MetropolisMethod::PathSpace ? 1
+                                                                                : frames.second - frames.first + 1;
   for (int64_t first = frames.first; first <= frames.second; first += windowLength) {
     const FrameWindow window{first, static_cast<int>(std::min(windowLength, frames.second - first + 1))};
     std::vector<FrameImage> images;
@@ -171,6 +174,10 @@ int runRender(const RenderOptions& options) {
   if (!metropolis && metropolisOptions) {
     spdlog::error("--window, --mutations-per-pixel, --chains, --chains-per-block, --bootstrap, --delta and "
                   "--tune-delta apply to --integrator pssmlt, mlt and tmlt only");
+    return kExitBadInput;
+  }
+  if (options.integrator == "mlt" && options.window > 1) {
+    spdlog::error("--integrator mlt renders frame by frame (windows of one frame); tmlt and pssmlt take --window");
     return kExitBadInput;
   }
   if (metropolis && options.spp) {
@@ -284,7 +291,7 @@ std::vector<Command> addRenderCommand(CLI::App& app) {
       ->capture_default_str();
   render->add_flag("--no-motion", options->noMotion, "tgpt: temporal offsets keep their pixel instead of following the motion");
   render->add_option("--window", options->window,
-                     "pssmlt/mlt/tmlt: frames per window of Markov chains (default: the whole frame range)")
+                     "pssmlt/tmlt: frames per window of Markov chains (default: the whole frame range; mlt: 1)")
       ->check(CLI::Range(1, 100000));
   render->add_option("--mutations-per-pixel", options->mutationsPerPixel,
                      "pssmlt/mlt/tmlt: mutations per pixel and frame (default 64)")

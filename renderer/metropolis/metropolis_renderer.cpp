@@ -81,6 +81,8 @@ MetropolisRenderer::~MetropolisRenderer() = default;
 // The one place that knows which target each method's chains sample.
 template <class Work>
 auto MetropolisRenderer::withDriver(FrameWindow window, const Work& work) const {
+  if (settings_.method == MetropolisMethod::PathSpace && window.count != 1)
+    throw std::invalid_argument("mlt renders frame by frame: its windows are one frame (tmlt spans several)");
   const WindowTime time = WindowTime::of(scene_, window);
   const WindowGeometry geometry(shot_->geometry, window);
   const WindowScene windowScene{time, geometry, shot_->lights, shot_->camera, settings_.maxDepth};

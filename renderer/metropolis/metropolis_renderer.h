@@ -67,9 +67,9 @@ class MetropolisRenderer {
   const MetropolisSettings& settings() const { return settings_; }
   int blocks() const { return settings_.blocks(); }
 
-  // Every call below throws std::invalid_argument for an empty window or a camera
-  // shutter of zero length. A scene whose light never reaches
-  // the camera gives an empty pool, black frames and a warning.
+  // Every call below throws std::invalid_argument for an empty window, a camera shutter
+  // of zero length, or a window of more than one frame for PathSpace ("mlt"). A scene
+  // whose light never reaches the camera gives an empty pool, black frames and a warning.
   SeedPool seedPool(FrameWindow window) const;
   BlockResult runBlock(FrameWindow window, const SeedPool& pool, int block, const ChainProgress& progress = {}) const;
   std::vector<FrameImage> merge(FrameWindow window, const SeedPool& pool, std::vector<BlockResult> results) const;

@@ -159,6 +159,7 @@ void MetropolisFarmTest::expectFarmEqualsOneProcess(const std::string& pipeline)
 }
 
 TEST_F(MetropolisFarmTest, PssmltShotEqualsOneProcessWhateverTheSplit) { expectFarmEqualsOneProcess("pssmlt"); }
+TEST_F(MetropolisFarmTest, TmltShotEqualsOneProcessWhateverTheSplit) { expectFarmEqualsOneProcess("tmlt"); }
 
 }  // namespace
 }  // namespace pathfarm::farmtest

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "render_error.h"
+#include "tests/renderer/metropolis/render_error.h"
 #include "renderer/integrators/frame_renderer.h"
 #include "renderer/metropolis/metropolis_renderer.h"
 #include "test_support.h"
@@ -96,9 +96,16 @@ TEST(PathSpaceMlt, UnreachableLightGivesFiniteBlackFrames) {
       {"type": "rectangle", "size": [0.3, 0.3], "material": "white", "emission": 10}]
   })");
   for (const MetropolisMethod method : {MetropolisMethod::PathSpace, MetropolisMethod::Temporal})
-    for (const FrameImage& frame : MetropolisRenderer(scene, smallSettings(method, 4)).render({0, 2}))
+    for (const FrameImage& frame :
+         MetropolisRenderer(scene, smallSettings(method, 4)).render({0, method == MetropolisMethod::Temporal ? 2 : 1}))
       for (const char* c : {"R", "G", "B"})
         for (const float v : frame.channel(c)) ASSERT_EQ(v, 0);
+}
+
+TEST(PathSpaceMlt, MltRefusesWindowsOfSeveralFrames) {
+  const Scene scene = loadScene(test_support::sourceDir() / "scenes/cornell/scene.json");
+  const MetropolisRenderer renderer(scene, smallSettings(MetropolisMethod::PathSpace, 4));
+  EXPECT_THROW(renderer.seedPool({3, 2}), std::invalid_argument);
 }
 
 }  // namespace

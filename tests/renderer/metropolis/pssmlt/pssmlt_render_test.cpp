@@ -9,6 +9,7 @@
 #include "renderer/integrators/frame_renderer.h"
 #include "renderer/metropolis/metropolis_renderer.h"
 #include "test_support.h"
+#include "tests/renderer/metropolis/render_error.h"
 
 namespace pathfarm {
 namespace {
@@ -35,30 +36,8 @@ RenderSettings referenceSettings(int spp) {
   return settings;
 }
 
-// relMSE (DESIGN.md) of `image` against `reference` over R, G, B.
-double relMse(const FrameImage& image, const FrameImage& reference) {
-  double sum = 0;
-  size_t n = 0;
-  for (const char* c : {"R", "G", "B"}) {
-    const auto& x = image.channel(c);
-    const auto& r = reference.channel(c);
-    for (size_t i = 0; i < x.size(); ++i, ++n) sum += (x[i] - r[i]) * (x[i] - r[i]) / (r[i] * r[i] + 0.01);
-  }
-  return sum / static_cast<double>(n);
-}
-
-// The relMSE a path-traced image with `spp` samples is expected to have: the reference's
-// variance of the pixel mean, rescaled from its sample count to `spp`.
-double pathTracedRelMse(const FrameImage& reference, int referenceSpp, double spp) {
-  double sum = 0;
-  size_t n = 0;
-  for (const char* c : {"R", "G", "B"}) {
-    const auto& r = reference.channel(c);
-    const auto& v = reference.channel(std::string("variance.") + c);
-    for (size_t i = 0; i < r.size(); ++i, ++n) sum += v[i] * referenceSpp / spp / (r[i] * r[i] + 0.01);
-  }
-  return sum / static_cast<double>(n);
-}
+using test_support::pathTracedRelMse;
+using test_support::relMse;
 
 double meanOf(const FrameImage& image) {
   double sum = 0;
