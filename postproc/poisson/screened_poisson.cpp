@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -24,12 +25,31 @@ ChannelSums dot3(const std::vector<float>& a, const std::vector<float>& b) {
   });
 }
 
-// Runs body(g) for every pixel g in [0, n) in parallel; each writes only its own values.
+// The per-channel scalars of an iteration repeated for 4 pixels: loops over 12
+// interleaved values at a time then vectorize.
+using Lanes = std::array<float, 12>;
+
+Lanes lanes(const std::array<float, 3>& perChannel) {
+  Lanes out{};
+  for (size_t k = 0; k < out.size(); ++k) out[k] = perChannel[k % 3];
+  return out;
+}
+
+// Runs body(i, k) for the values i of pixels [begin, end), k = (i - 3 begin) mod 12, so
+// lane k holds channel k mod 3.
 template <class Body>
-void forEach(size_t n, Body body) {
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t g = r.begin(); g != r.end(); ++g) body(g);
-  });
+void forValues(size_t begin, size_t end, Body body) {
+  size_t i = 3 * begin;
+  for (; i + 12 <= 3 * end; i += 12)
+    for (size_t k = 0; k < 12; ++k) body(i + k, k);
+  for (size_t k = 0; i < 3 * end; ++i, ++k) body(i, k);
+}
+
+// Per channel, the sums of 12 lanes (each a channel's), added in lane order.
+ChannelSums channelsOf(const std::array<double, 12>& lanes) {
+  ChannelSums sums{};
+  for (size_t k = 0; k < lanes.size(); ++k) sums[k % 3] += lanes[k];
+  return sums;
 }
 
 // Jacobi-preconditioned conjugate gradients on A^T W A x = A^T W b, from x as given, one
@@ -72,15 +92,17 @@ double conjugateGradients(const PoissonSystem& system, std::vector<float>& x, in
     std::array<float, 3> a{};
     for (size_t c = 0; c < 3; ++c) a[c] = pq[c] > 0 && rz[c] > 0 ? static_cast<float>(rz[c] / pq[c]) : 0.0f;
     // r -= a q, and the next r.z and r.r with z = D^-1 r.
+    const Lanes step = lanes(a);
     const auto sums = chunkedSum<6>(pixels, kChunk, [&](size_t begin, size_t end) {
-      std::array<double, 6> partial{};
-      for (size_t g = begin; g < end; ++g)
-        for (size_t c = 0, i = 3 * g; c < 3; ++c, ++i) {
-          r[i] -= a[c] * q[i];
-          partial[c] += static_cast<double>(r[i]) * r[i] * inverseDiagonal[i];
-          partial[3 + c] += static_cast<double>(r[i]) * r[i];
-        }
-      return partial;
+      std::array<double, 12> rzLanes{}, rrLanes{};
+      forValues(begin, end, [&](size_t i, size_t k) {
+        r[i] -= step[k] * q[i];
+        const double rSquared = static_cast<double>(r[i]) * r[i];
+        rzLanes[k] += rSquared * inverseDiagonal[i];
+        rrLanes[k] += rSquared;
+      });
+      const ChannelSums rzPart = channelsOf(rzLanes), rrPart = channelsOf(rrLanes);
+      return std::array<double, 6>{rzPart[0], rzPart[1], rzPart[2], rrPart[0], rrPart[1], rrPart[2]};
     });
     std::array<float, 3> beta{};
     for (size_t c = 0; c < 3; ++c) {
@@ -89,11 +111,12 @@ double conjugateGradients(const PoissonSystem& system, std::vector<float>& x, in
       rr[c] = sums[3 + c];
     }
     // x += a p, then p = z + beta p.
-    forEach(pixels, [&](size_t g) {
-      for (size_t c = 0, i = 3 * g; c < 3; ++c, ++i) {
-        x[i] += a[c] * p[i];
-        p[i] = r[i] * inverseDiagonal[i] + beta[c] * p[i];
-      }
+    const Lanes keep = lanes(beta);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, pixels, kChunk), [&](const tbb::blocked_range<size_t>& range) {
+      forValues(range.begin(), range.end(), [&](size_t i, size_t k) {
+        x[i] += step[k] * p[i];
+        p[i] = r[i] * inverseDiagonal[i] + keep[k] * p[i];
+      });
     });
     ++iterations;
   }
