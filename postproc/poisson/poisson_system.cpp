@@ -226,15 +226,9 @@ ChannelSums PoissonSystem::applyNormal(const std::vector<float>& x, std::vector<
 
 void PoissonSystem::gradient(const std::vector<float>& x, std::vector<float>& out) const { gather<true>(x, out); }
 
-std::vector<float> PoissonSystem::rightHandSide() const {
-  std::vector<float> out;
-  gradient(std::vector<float>(size(), 0.0f), out);
-  for (float& v : out) v = -v;
-  return out;
-}
-std::vector<float> PoissonSystem::diagonal() const {
+void PoissonSystem::inverseDiagonal(std::vector<float>& out) const {
   const size_t w = static_cast<size_t>(width_);
-  std::vector<float> d(size());
+  out.resize(size());
   forEach(rows_, [&](size_t g) {
     const size_t p = g % pixels_;
     const bool left = p % w > 0, up = p / w > 0;
@@ -251,10 +245,9 @@ std::vector<float> PoissonSystem::diagonal() const {
         if (sp % w > 0) v += weight(MixedX, source - 1, c);
         if (sp / w > 0) v += weight(MixedY, source - w, c);
       }
-      d[3 * g + c] = v;
+      out[3 * g + c] = v > 0 ? 1 / v : 0;
     }
   });
-  return d;
 }
 
 template <class Sink>

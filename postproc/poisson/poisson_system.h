@@ -38,10 +38,9 @@ class PoissonSystem {
   // out = A^T W (A x - b): the gradient of half the weighted least-squares objective,
   // minus the residual of the normal equations, in one pass.
   void gradient(const std::vector<float>& x, std::vector<float>& out) const;
-  // A^T W b.
-  std::vector<float> rightHandSide() const;
-  // The diagonal of A^T W A (Jacobi preconditioner).
-  std::vector<float> diagonal() const;
+  // out = 1 / the diagonal of A^T W A (the Jacobi preconditioner), 0 for an unknown no
+  // row constrains.
+  void inverseDiagonal(std::vector<float>& out) const;
   // Residuals A_k x - b_k of every block, indexed like the unknowns (0 for absent rows).
   std::array<std::vector<float>, kBlocks> residuals(const std::vector<float>& x) const;
 

@@ -58,16 +58,21 @@ ChannelSums channelsOf(const std::array<double, 12>& lanes) {
 // memory: r and the next r.z, r.r; then x (with the previous direction) and the new
 // direction. Stops when every channel's residual is below the tolerance; returns the
 // largest relative residual.
+// The vectors of a solve, kept from one IRLS round to the next: a window's vectors are
+// large, and allocating them costs time too.
+struct Workspace {
+  std::vector<float> r, p, q, inverseDiagonal;
+};
+
 double conjugateGradients(const PoissonSystem& system, std::vector<float>& x, int maxIterations, float tolerance,
-                          int& iterations) {
+                          int& iterations, Workspace& workspace) {
   const size_t n = system.size(), pixels = n / 3;
-  const ChannelSums bb = [&] {
-    const std::vector<float> b = system.rightHandSide();
-    return dot3(b, b);
-  }();
-  std::vector<float> inverseDiagonal = system.diagonal();
-  for (float& d : inverseDiagonal) d = d > 0 ? 1 / d : 0;
-  std::vector<float> r, p(n), q(n);
+  auto& [r, p, q, inverseDiagonal] = workspace;
+  // |A^T W b| per channel: the gradient at 0 is -A^T W b.
+  p.assign(n, 0.0f);
+  system.gradient(p, q);
+  const ChannelSums bb = dot3(q, q);
+  system.inverseDiagonal(inverseDiagonal);
   system.gradient(x, r);
   // r = b - A x is minus the gradient; p = z = D^-1 r.
   const auto start = chunkedSum<6>(pixels, kChunk, [&](size_t begin, size_t end) {
@@ -139,24 +144,26 @@ std::vector<GradientFrame::Color> reconstructWindow(const std::vector<const Grad
   PoissonStats total;
   PoissonSystem system(frames, settings.alpha);
   std::vector<float> x = system.primal();
+  Workspace workspace;
   double residual = 0;
   if (settings.norm == PoissonNorm::L2) {
-    residual = conjugateGradients(system, x, settings.maxIterations, settings.tolerance, total.iterations);
+    residual = conjugateGradients(system, x, settings.maxIterations, settings.tolerance, total.iterations, workspace);
   } else {
-    residual = conjugateGradients(system, x, settings.irlsIterations, settings.tolerance, total.iterations);
+    residual = conjugateGradients(system, x, settings.irlsIterations, settings.tolerance, total.iterations, workspace);
     for (int round = 1; round < settings.irlsRounds; ++round) {
       system.reweightForL1(x, settings.irlsEpsilon);
-      residual = conjugateGradients(system, x, settings.irlsIterations, settings.tolerance, total.iterations);
+      residual =
+          conjugateGradients(system, x, settings.irlsIterations, settings.tolerance, total.iterations, workspace);
     }
   }
   total.relativeResidual = residual;
   const size_t pixels = frames[0]->pixelCount();
-  for (size_t f = 0; f < frames.size(); ++f)
-    for (size_t c = 0; c < 3; ++c) {
-      auto& plane = result[f][c];
-      plane.resize(pixels);
-      for (size_t p = 0; p < pixels; ++p) plane[p] = x[3 * (f * pixels + p) + c];
-    }
+  tbb::parallel_for(size_t{0}, 3 * frames.size(), [&](size_t plane) {
+    const size_t f = plane / 3, c = plane % 3;
+    auto& values = result[f][c];
+    values.resize(pixels);
+    for (size_t p = 0; p < pixels; ++p) values[p] = x[3 * (f * pixels + p) + c];
+  });
   if (stats) *stats = total;
   return result;
 }
