@@ -150,10 +150,13 @@ ChannelSums PoissonSystem::gather(const std::vector<float>& x, std::vector<float
 
   // z: the temporal rows' weighted residuals plus what the mixed rows add to them. A
   // mixed row differences neighbouring temporal rows, mixed_x(i) = t(i + x) - t(i) +
-  // (its target shift), with t the temporal residuals.
-  z_.resize(size());
-  tbb::parallel_for(size_t{0}, (lines + kLinesPerChunk - 1) / kLinesPerChunk, [&](size_t chunk) {
-    const size_t begin = chunk * kLinesPerChunk, end = std::min(lines, begin + kLinesPerChunk);
+  // (its target shift), with t the temporal residuals. Frame f's gather reads its own z
+  // and, through m^-1, frame f - 1's: the window is gathered frame by frame, each
+  // chunk of lines computing its z just before it is read (still in cache), and z is
+  // kept for two frames, frame f's at slot f mod 2.
+  z_.resize(2 * 3 * pixels_);
+  const auto zOfLine = [&](size_t line) { return &z_[(line / h % 2) * 3 * pixels_ + (line % h) * lineSize]; };
+  const auto zOfLines = [&](size_t begin, size_t end) {
     // mixedX has 3 leading zeros: a value's left neighbour is always there.
     std::vector<float> t(lineSize), tBelow(lineSize), temporal(lineSize), mixedX(3 + lineSize, 0.0f),
         mixedY(lineSize), mixedYAbove(lineSize, 0.0f);
@@ -163,7 +166,7 @@ ChannelSums PoissonSystem::gather(const std::vector<float>& x, std::vector<float
       });
     };
     temporalOfLine(begin, t.data());
-    if (begin > 0 && begin % h > 0) {
+    if (begin % h > 0) {
       temporalOfLine(begin - 1, tBelow.data());  // the line above, for now
       mixedYOf(begin - 1, tBelow.data(), t.data(), mixedYAbove.data());
     }
@@ -174,16 +177,15 @@ ChannelSums PoissonSystem::gather(const std::vector<float>& x, std::vector<float
       rowsOfLine(MixedX, line, 3, false, mixedX.data() + 3,
                  [&](size_t j) { return t[j + 3] - t[j] + target(mixedShift_[0], first + j); });
       mixedYOf(line, t.data(), tBelow.data(), mixedY.data());
-      float* z = &z_[first];
+      float* z = zOfLine(line);
       for (size_t j = 0; j < lineSize; ++j)
         z[j] = temporal[j] - mixedX[j + 3] + mixedX[j] - mixedY[j] + mixedYAbove[j];
       std::swap(t, tBelow);
       std::swap(mixedY, mixedYAbove);
     }
-  });
-
-  out.resize(size());
-  return chunkedSum<3>(lines, kLinesPerChunk, [&](size_t begin, size_t end) {
+  };
+  // out over lines of one frame, and <x, out> per channel.
+  const auto outOfLines = [&](size_t begin, size_t end) {
     // spatialX has 3 leading zeros like mixedX above.
     std::vector<float> data(lineSize), spatialX(3 + lineSize, 0.0f), spatialY(lineSize), spatialYAbove(lineSize, 0.0f);
     const auto spatialYOf = [&](size_t line, float* result) {
@@ -193,6 +195,9 @@ ChannelSums PoissonSystem::gather(const std::vector<float>& x, std::vector<float
       });
     };
     if (begin % h > 0) spatialYOf(begin - 1, spatialYAbove.data());
+    // The previous frame's z, indexed by its window pixel (there is none for frame 0).
+    const size_t frame = begin / h, previousFirst = frame > 0 ? (frame - 1) * pixels_ : 0;
+    const float* zPrevious = &z_[(frame + 1) % 2 * 3 * pixels_];
     ChannelSums partial{};
     for (size_t line = begin; line < end; ++line) {
       const size_t first = line * lineSize;
@@ -203,21 +208,32 @@ ChannelSums PoissonSystem::gather(const std::vector<float>& x, std::vector<float
       });
       spatialYOf(line, spatialY.data());
       float* o = &out[first];
-      const float* z = &z_[first];
+      const float* z = zOfLine(line);
       for (size_t j = 0; j < lineSize; ++j)
         o[j] = data[j] - spatialX[j + 3] + spatialX[j] - spatialY[j] + spatialYAbove[j] - z[j];
       // The line's pixels are the far end of the previous frame's temporal and mixed rows.
       for (size_t g = line * w; g < (line + 1) * w; ++g) {
         const int32_t previous = previous_[g];
         for (size_t c = 0; c < 3; ++c) {
-          if (previous >= 0) out[3 * g + c] += z_[3 * static_cast<size_t>(previous) + c];
+          if (previous >= 0) out[3 * g + c] += zPrevious[3 * (static_cast<size_t>(previous) - previousFirst) + c];
           partial[c] += static_cast<double>(x[3 * g + c]) * out[3 * g + c];
         }
       }
       std::swap(spatialY, spatialYAbove);
     }
     return partial;
-  });
+  };
+
+  out.resize(size());
+  ChannelSums total{};
+  for (size_t f = 0; f < frames_; ++f) {
+    const ChannelSums sums = chunkedSum<3>(h, kLinesPerChunk, [&](size_t begin, size_t end) {
+      zOfLines(f * h + begin, f * h + end);
+      return outOfLines(f * h + begin, f * h + end);
+    });
+    for (size_t c = 0; c < 3; ++c) total[c] += sums[c];
+  }
+  return total;
 }
 
 ChannelSums PoissonSystem::applyNormal(const std::vector<float>& x, std::vector<float>& out) const {
