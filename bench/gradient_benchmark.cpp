@@ -2,6 +2,7 @@
 // Poisson reconstruction costs, and what PT, GPT and TGPT buy at equal time.
 //
 //   build/bin/gradient_benchmark reconstruction --norm l2|l1 [--input DIR] [--res 1280x720] [--frames 10]
+//        [--save FILE] [--compare FILE]
 //   build/bin/gradient_benchmark equal-time [--scene scenes/cornell/scene.json] [--frames 0:23]
 //        [--res 128x128] [--pt-spp 16] [--reference-spp 512] [--reference-dir DIR]
 //        [--svg docs/figures/gradient_equal_time.svg]
@@ -9,8 +10,10 @@
 // `reconstruction` solves one window of frames, read from DIR's first frame_NNNN.exr files
 // (a `pathfarm render --integrator tgpt` output) or, without DIR, a synthetic window (a
 // smooth image with noisy primal, spatial, temporal and mixed differences), and prints the
-// seconds of the solve and the process's peak resident memory (getrusage). Run one norm
-// per process: the peak is the process's.
+// seconds of the solve and the process's peak resident memory (getrusage), then the
+// objective the norm minimizes at the solution. Run one norm per process: the peak is the
+// process's. --save FILE keeps the reconstruction (raw floats); --compare FILE prints its
+// relative difference to one saved before (another solver's, say).
 //
 // `equal-time` first measures each method's cost per sample per pixel on one frame, gives
 // every method the samples that take at most as long as --pt-spp path-traced samples, renders the
@@ -32,6 +35,7 @@
 #include "bench/bench_support.h"
 #include "image/exr_io.h"
 #include "postproc/metrics/relmse.h"
+#include "postproc/poisson/poisson_system.h"
 #include "postproc/poisson/window_blend.h"
 #include "renderer/integrators/gradient_frame_renderer.h"
 #include "renderer/scene/scene_loader.h"
@@ -107,7 +111,62 @@ std::vector<GradientFrame> windowFrom(const std::filesystem::path& folder, int f
   return window;
 }
 
-int reconstruction(const std::string& norm, const std::string& input, int width, int height, int frames) {
+// The objective of Section 5 at the reconstruction: the sum over rows of |residual|^p
+// times alpha^p for the data rows, per channel summed. Absent rows have residual 0.
+double objective(const std::vector<const GradientFrame*>& window, const std::vector<GradientFrame::Color>& solved,
+                 const PoissonSettings& settings) {
+  const PoissonSystem system(window, settings.alpha);
+  const size_t pixels = window[0]->pixelCount();
+  std::vector<float> x(system.size());
+  for (size_t f = 0; f < solved.size(); ++f)
+    for (size_t c = 0; c < 3; ++c)
+      for (size_t p = 0; p < pixels; ++p) x[3 * (f * pixels + p) + c] = solved[f][c][p];
+  const auto residuals = system.residuals(x);
+  double sum = 0;
+  for (size_t k = 0; k < PoissonSystem::kBlocks; ++k) {
+    const double scale = k == PoissonSystem::Data ? settings.alpha : 1.0;
+    for (float r : residuals[k]) {
+      const double v = scale * std::abs(static_cast<double>(r));
+      sum += settings.norm == PoissonNorm::L1 ? v : v * v;
+    }
+  }
+  return sum;
+}
+
+// The reconstruction as raw floats, frame by frame, channel by channel.
+void saveRaw(const std::string& file, const std::vector<GradientFrame::Color>& solved) {
+  std::ofstream out(file, std::ios::binary);
+  for (const auto& frame : solved)
+    for (const auto& plane : frame)
+      out.write(reinterpret_cast<const char*>(plane.data()), static_cast<std::streamsize>(plane.size() * sizeof(float)));
+  if (!out) throw std::runtime_error(file + ": cannot write");
+}
+
+// RMS and largest |a - b| over every value, relative to the RMS of the saved `file`.
+void compareRaw(const std::string& file, const std::vector<GradientFrame::Color>& solved) {
+  std::ifstream in(file, std::ios::binary);
+  double squares = 0, reference = 0, largest = 0;
+  size_t count = 0;
+  for (const auto& frame : solved)
+    for (const auto& plane : frame) {
+      std::vector<float> saved(plane.size());
+      in.read(reinterpret_cast<char*>(saved.data()), static_cast<std::streamsize>(saved.size() * sizeof(float)));
+      if (!in) throw std::runtime_error(file + ": not a reconstruction of this window");
+      for (size_t i = 0; i < plane.size(); ++i) {
+        const double d = static_cast<double>(plane[i]) - saved[i];
+        squares += d * d;
+        reference += static_cast<double>(saved[i]) * saved[i];
+        largest = std::max(largest, std::abs(d));
+        ++count;
+      }
+    }
+  const double rms = std::sqrt(reference / static_cast<double>(count));
+  std::printf("against %s: RMS difference %.2e, largest %.2e, relative to the saved RMS %.3f\n", file.c_str(),
+              std::sqrt(squares / static_cast<double>(count)) / rms, largest / rms, rms);
+}
+
+int reconstruction(const std::string& norm, const std::string& input, int width, int height, int frames,
+                   const std::string& saveFile, const std::string& compareFile) {
   const std::vector<GradientFrame> window =
       input.empty() ? syntheticWindow(width, height, frames) : windowFrom(input, frames);
   std::vector<const GradientFrame*> pointers;
@@ -116,7 +175,8 @@ int reconstruction(const std::string& norm, const std::string& input, int width,
   settings.norm = parsePoissonNorm(norm);
   PoissonStats stats;
   const double cpuBefore = cpuSeconds(usageNow());
-  const double seconds = bench::seconds([&] { reconstructWindow(pointers, settings, &stats); });
+  std::vector<GradientFrame::Color> solved;
+  const double seconds = bench::seconds([&] { solved = reconstructWindow(pointers, settings, &stats); });
   const rusage after = usageNow();
   // ru_maxrss is in KiB.
   std::printf(
@@ -125,6 +185,9 @@ int reconstruction(const std::string& norm, const std::string& input, int width,
       norm.c_str(), window.size(), window[0].width, window[0].height, input.empty() ? "synthetic" : input.c_str(),
       seconds, cpuSeconds(after) - cpuBefore, stats.iterations, stats.relativeResidual,
       static_cast<double>(after.ru_maxrss) / (1024.0 * 1024.0));
+  std::printf("objective (%s norm): %.6e\n", norm.c_str(), objective(pointers, solved, settings));
+  if (!saveFile.empty()) saveRaw(saveFile, solved);
+  if (!compareFile.empty()) compareRaw(compareFile, solved);
   return 0;
 }
 
@@ -339,6 +402,9 @@ int main(int argc, char** argv) {
   solve->add_option("--input", input, "folder of frame_NNNN.exr from render --integrator tgpt");
   solve->add_option("--res", resolution);
   solve->add_option("--frames", frames);
+  std::string saveFile, compareFile;
+  solve->add_option("--save", saveFile, "writes the reconstruction here (raw floats)");
+  solve->add_option("--compare", compareFile, "a reconstruction saved with --save to compare with");
   std::string scene = "scenes/cornell/scene.json", range = "0:23", svg, equalResolution = "128x128";
   int ptSpp = 16, referenceSpp = 1024;
   CLI::App* compare = app.add_subcommand("equal-time", "PT, GPT and TGPT at equal render time");
@@ -353,6 +419,6 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   int width = 0, height = 0;
   if (std::sscanf((solve->parsed() ? resolution : equalResolution).c_str(), "%dx%d", &width, &height) != 2) return 2;
-  if (solve->parsed()) return reconstruction(norm, input, width, height, frames);
+  if (solve->parsed()) return reconstruction(norm, input, width, height, frames, saveFile, compareFile);
   return equalTime(scene, range, width, height, ptSpp, referenceSpp, referenceDir, svg);
 }

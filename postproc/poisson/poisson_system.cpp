@@ -1,7 +1,10 @@
 #include "postproc/poisson/poisson_system.h"
 
+#include "postproc/poisson/bfloat16.h"
+
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -17,17 +20,9 @@ void forEach(size_t n, Body body) {
   });
 }
 
-// Runs body(g, x, y) for every pixel g of the window with its image coordinates, image
-// lines in parallel: no divisions per pixel.
-template <class Body>
-void forEachPixel(size_t lines, size_t width, size_t height, Body body) {
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, lines, 4), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t line = r.begin(); line != r.end(); ++line) {
-      const size_t y = line % height;
-      for (size_t x = 0, g = line * width; x < width; ++x, ++g) body(g, x, y);
-    }
-  });
-}
+// Lines per chunk of the operator's passes; the chunks also fix the order of its dot
+// product's sum.
+constexpr size_t kLinesPerChunk = 8;
 
 bool finite3(const float* v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
 
@@ -39,6 +34,7 @@ PoissonSystem::PoissonSystem(const std::vector<const GradientFrame*>& frames, fl
       frames_(frames.size()),
       pixels_(frames.at(0)->pixelCount()),
       rows_(frames_ * pixels_),
+      alpha_(alpha),
       alphaSquared_(alpha * alpha) {
   const size_t n = rows_, w = static_cast<size_t>(width_), h = static_cast<size_t>(height_);
   next_.assign(n, -1);
@@ -98,91 +94,160 @@ PoissonSystem::PoissonSystem(const std::vector<const GradientFrame*>& frames, fl
     if (p % w + 1 < w) add(MixedX, 1, frames[f]->mixedX);
     if (p / w + 1 < h) add(MixedY, w, frames[f]->mixedY);
   });
+  for (size_t k = 0; k < kBlocks; ++k) {
+    factors_[k].resize(3 * n);
+    forEach(n, [&](size_t g) {
+      const uint16_t factor = toBfloat16(present(static_cast<Block>(k), g) ? 1.0f : 0.0f);
+      for (size_t c = 0; c < 3; ++c) factors_[k][3 * g + c] = factor;
+    });
+  }
 }
 
-void PoissonSystem::setWeightFactors(std::array<std::vector<float>, kBlocks> factors) { factors_ = std::move(factors); }
-
-template <bool kWithTargets>
-void PoissonSystem::temporalResiduals(const std::vector<float>& x, std::vector<float>& r) const {
-  r.resize(size());
-  forEach(rows_, [&](size_t g) {
-    const int32_t next = next_[g];
-    for (size_t c = 0; c < 3; ++c) {
-      float v = next < 0 ? 0.0f : x[3 * static_cast<size_t>(next) + c] - x[3 * g + c];
-      if constexpr (kWithTargets) v -= targets_[Temporal][3 * g + c];
-      r[3 * g + c] = v;
-    }
-  });
+float PoissonSystem::weight(Block block, size_t row, size_t c) const {
+  return (block == Data ? alphaSquared_ : 1.0f) * fromBfloat16(factors_[block][3 * row + c]);
 }
 
+float PoissonSystem::temporalResidual(const std::vector<float>& x, size_t g, size_t c) const {
+  const int32_t next = next_[g];
+  return next < 0 ? 0.0f : x[3 * static_cast<size_t>(next) + c] - x[3 * g + c] - targets_[Temporal][3 * g + c];
+}
+
+// The operator is computed image line by image line: the rows of a line (one value per
+// unknown of the line, 0 for absent rows) go to short line buffers, and each unknown
+// then adds the rows it takes part in. Every loop over a line runs over its values
+// without branches, which the compiler vectorizes; the rows at the end of a line and on
+// the last line of a frame are absent and never computed, so no buffer reaches past the
+// window.
 template <bool kWithTargets>
-void PoissonSystem::gather(const std::vector<float>& x, std::vector<float>& out) const {
-  const size_t w = static_cast<size_t>(width_);
+ChannelSums PoissonSystem::gather(const std::vector<float>& x, std::vector<float>& out) const {
+  const size_t w = static_cast<size_t>(width_), h = static_cast<size_t>(height_), lineSize = 3 * w;
+  const size_t lines = frames_ * h;
   // The targets' part of a row, read only when asked for.
   const auto target = [&](const std::vector<float>& targets, size_t i) {
     if constexpr (kWithTargets) return targets[i];
     return 0.0f;
   };
-  temporalResiduals<kWithTargets>(x, r3_);
-  const std::vector<float>& r3 = r3_;
-  // z: the temporal rows' weighted residuals plus what the mixed rows add to them.
-  std::vector<float>& z = z_;
-  z.resize(size());
-  const size_t lines = frames_ * static_cast<size_t>(height_), h = static_cast<size_t>(height_);
-  forEachPixel(lines, w, h, [&](size_t g, size_t column, size_t line) {
-    const bool left = column > 0, up = line > 0;
-    for (size_t c = 0; c < 3; ++c) {
-      const auto mixedX = [&](size_t i) {
-        return weight(MixedX, i, c) * (r3[3 * (i + 1) + c] - r3[3 * i + c] + target(mixedShift_[0], 3 * i + c));
-      };
-      const auto mixedY = [&](size_t i) {
-        return weight(MixedY, i, c) * (r3[3 * (i + w) + c] - r3[3 * i + c] + target(mixedShift_[1], 3 * i + c));
-      };
-      float v = weight(Temporal, g, c) * r3[3 * g + c];
-      if (present(MixedX, g)) v -= mixedX(g);
-      if (left && present(MixedX, g - 1)) v += mixedX(g - 1);
-      if (present(MixedY, g)) v -= mixedY(g);
-      if (up && present(MixedY, g - w)) v += mixedY(g - w);
-      z[3 * g + c] = v;
+  // result[j] = weight * residual(j) for the values j of `line` of one row block; 0 for the
+  // `lastColumns` values of the line's last pixel (rows towards x + 1) and over the whole
+  // line when it is its frame's last and the rows reach y + 1.
+  const auto rowsOfLine = [&](Block block, size_t line, size_t lastColumns, bool towardsNextLine, float* result,
+                              auto residual) {
+    const size_t end = towardsNextLine && line % h == h - 1 ? 0 : lineSize - lastColumns;
+    const float base = block == Data ? alphaSquared_ : 1.0f;
+    const uint16_t* factor = &factors_[block][line * lineSize];
+    for (size_t j = 0; j < end; ++j) result[j] = base * fromBfloat16(factor[j]) * residual(j);
+    std::fill(result + end, result + lineSize, 0.0f);
+  };
+  // The temporal rows' A x - b over a line, 0 where absent (where their targets are 0).
+  const auto temporalOfLine = [&](size_t line, float* t) {
+    for (size_t g = line * w, j = 0; g < (line + 1) * w; ++g, j += 3) {
+      const int32_t next = next_[g];
+      for (size_t c = 0; c < 3; ++c)
+        t[j + c] = next < 0 ? 0.0f
+                            : x[3 * static_cast<size_t>(next) + c] - x[3 * g + c] - target(targets_[Temporal], 3 * g + c);
     }
-  });
+  };
+
+  // z: the temporal rows' weighted residuals plus what the mixed rows add to them. A
+  // mixed row differences neighbouring temporal rows, mixed_x(i) = t(i + x) - t(i) +
+  // (its target shift), with t the temporal residuals. Frame f's gather reads its own z
+  // and, through m^-1, frame f - 1's: the window is gathered frame by frame, each
+  // chunk of lines computing its z just before it is read (still in cache), and z is
+  // kept for two frames, frame f's at slot f mod 2.
+  z_.resize(2 * 3 * pixels_);
+  const auto zOfLine = [&](size_t line) { return &z_[(line / h % 2) * 3 * pixels_ + (line % h) * lineSize]; };
+  const auto zOfLines = [&](size_t begin, size_t end) {
+    // mixedX has 3 leading zeros: a value's left neighbour is always there.
+    std::vector<float> t(lineSize), tBelow(lineSize), temporal(lineSize), mixedX(3 + lineSize, 0.0f),
+        mixedY(lineSize), mixedYAbove(lineSize, 0.0f);
+    const auto mixedYOf = [&](size_t line, const float* above, const float* below, float* result) {
+      rowsOfLine(MixedY, line, 0, true, result, [&](size_t j) {
+        return below[j] - above[j] + target(mixedShift_[1], line * lineSize + j);
+      });
+    };
+    temporalOfLine(begin, t.data());
+    if (begin % h > 0) {
+      temporalOfLine(begin - 1, tBelow.data());  // the line above, for now
+      mixedYOf(begin - 1, tBelow.data(), t.data(), mixedYAbove.data());
+    }
+    for (size_t line = begin; line < end; ++line) {
+      const size_t first = line * lineSize;
+      if (line + 1 < lines) temporalOfLine(line + 1, tBelow.data());
+      rowsOfLine(Temporal, line, 0, false, temporal.data(), [&](size_t j) { return t[j]; });
+      rowsOfLine(MixedX, line, 3, false, mixedX.data() + 3,
+                 [&](size_t j) { return t[j + 3] - t[j] + target(mixedShift_[0], first + j); });
+      mixedYOf(line, t.data(), tBelow.data(), mixedY.data());
+      float* z = zOfLine(line);
+      for (size_t j = 0; j < lineSize; ++j)
+        z[j] = temporal[j] - mixedX[j + 3] + mixedX[j] - mixedY[j] + mixedYAbove[j];
+      std::swap(t, tBelow);
+      std::swap(mixedY, mixedYAbove);
+    }
+  };
+  // out over lines of one frame, and <x, out> per channel.
+  const auto outOfLines = [&](size_t begin, size_t end) {
+    // spatialX has 3 leading zeros like mixedX above.
+    std::vector<float> data(lineSize), spatialX(3 + lineSize, 0.0f), spatialY(lineSize), spatialYAbove(lineSize, 0.0f);
+    const auto spatialYOf = [&](size_t line, float* result) {
+      const size_t first = line * lineSize;
+      rowsOfLine(SpatialY, line, 0, true, result, [&](size_t j) {
+        return x[first + lineSize + j] - x[first + j] - target(targets_[SpatialY], first + j);
+      });
+    };
+    if (begin % h > 0) spatialYOf(begin - 1, spatialYAbove.data());
+    // The previous frame's z, indexed by its window pixel (there is none for frame 0).
+    const size_t frame = begin / h, previousFirst = frame > 0 ? (frame - 1) * pixels_ : 0;
+    const float* zPrevious = &z_[(frame + 1) % 2 * 3 * pixels_];
+    ChannelSums partial{};
+    for (size_t line = begin; line < end; ++line) {
+      const size_t first = line * lineSize;
+      rowsOfLine(Data, line, 0, false, data.data(),
+                 [&](size_t j) { return x[first + j] - target(targets_[Data], first + j); });
+      rowsOfLine(SpatialX, line, 3, false, spatialX.data() + 3, [&](size_t j) {
+        return x[first + j + 3] - x[first + j] - target(targets_[SpatialX], first + j);
+      });
+      spatialYOf(line, spatialY.data());
+      float* o = &out[first];
+      const float* z = zOfLine(line);
+      for (size_t j = 0; j < lineSize; ++j)
+        o[j] = data[j] - spatialX[j + 3] + spatialX[j] - spatialY[j] + spatialYAbove[j] - z[j];
+      // The line's pixels are the far end of the previous frame's temporal and mixed rows.
+      for (size_t g = line * w; g < (line + 1) * w; ++g) {
+        const int32_t previous = previous_[g];
+        for (size_t c = 0; c < 3; ++c) {
+          if (previous >= 0) out[3 * g + c] += zPrevious[3 * (static_cast<size_t>(previous) - previousFirst) + c];
+          partial[c] += static_cast<double>(x[3 * g + c]) * out[3 * g + c];
+        }
+      }
+      std::swap(spatialY, spatialYAbove);
+    }
+    return partial;
+  };
+
   out.resize(size());
-  forEachPixel(lines, w, h, [&](size_t g, size_t column, size_t line) {
-    const bool left = column > 0, up = line > 0;
-    const int32_t previous = previous_[g];
-    for (size_t c = 0; c < 3; ++c) {
-      const auto spatialX = [&](size_t i) {
-        return weight(SpatialX, i, c) * (x[3 * (i + 1) + c] - x[3 * i + c] - target(targets_[SpatialX], 3 * i + c));
-      };
-      const auto spatialY = [&](size_t i) {
-        return weight(SpatialY, i, c) * (x[3 * (i + w) + c] - x[3 * i + c] - target(targets_[SpatialY], 3 * i + c));
-      };
-      float v = weight(Data, g, c) * (x[3 * g + c] - target(targets_[Data], 3 * g + c)) - z[3 * g + c];
-      if (present(SpatialX, g)) v -= spatialX(g);
-      if (left && present(SpatialX, g - 1)) v += spatialX(g - 1);
-      if (present(SpatialY, g)) v -= spatialY(g);
-      if (up && present(SpatialY, g - w)) v += spatialY(g - w);
-      if (previous >= 0) v += z[3 * static_cast<size_t>(previous) + c];
-      out[3 * g + c] = v;
-    }
-  });
+  ChannelSums total{};
+  for (size_t f = 0; f < frames_; ++f) {
+    const ChannelSums sums = chunkedSum<3>(h, kLinesPerChunk, [&](size_t begin, size_t end) {
+      zOfLines(f * h + begin, f * h + end);
+      return outOfLines(f * h + begin, f * h + end);
+    });
+    for (size_t c = 0; c < 3; ++c) total[c] += sums[c];
+  }
+  return total;
 }
 
-void PoissonSystem::applyNormal(const std::vector<float>& x, std::vector<float>& out) const { gather<false>(x, out); }
-
-std::vector<float> PoissonSystem::rightHandSide() const {
-  std::vector<float> out;
-  gather<true>(std::vector<float>(size(), 0.0f), out);
-  for (float& v : out) v = -v;
-  return out;
+ChannelSums PoissonSystem::applyNormal(const std::vector<float>& x, std::vector<float>& out) const {
+  return gather<false>(x, out);
 }
 
-std::vector<float> PoissonSystem::diagonal() const {
+void PoissonSystem::gradient(const std::vector<float>& x, std::vector<float>& out) const { gather<true>(x, out); }
+
+void PoissonSystem::inverseDiagonal(std::vector<float>& out) const {
   const size_t w = static_cast<size_t>(width_);
-  std::vector<float> d(size());
-  const size_t h = static_cast<size_t>(height_);
-  forEachPixel(frames_ * h, w, h, [&](size_t g, size_t column, size_t line) {
-    const bool left = column > 0, up = line > 0;
+  out.resize(size());
+  forEach(rows_, [&](size_t g) {
+    const size_t p = g % pixels_;
+    const bool left = p % w > 0, up = p / w > 0;
     const int32_t q = previous_[g];
     for (size_t c = 0; c < 3; ++c) {
       float v = 0;
@@ -196,28 +261,42 @@ std::vector<float> PoissonSystem::diagonal() const {
         if (sp % w > 0) v += weight(MixedX, source - 1, c);
         if (sp / w > 0) v += weight(MixedY, source - w, c);
       }
-      d[3 * g + c] = v;
+      out[3 * g + c] = v > 0 ? 1 / v : 0;
     }
   });
-  return d;
 }
 
-std::array<std::vector<float>, PoissonSystem::kBlocks> PoissonSystem::residuals(const std::vector<float>& x) const {
+template <class Sink>
+void PoissonSystem::visitResiduals(const std::vector<float>& x, Sink sink) const {
   const size_t w = static_cast<size_t>(width_);
-  std::array<std::vector<float>, kBlocks> r;
-  for (auto& block : r) block.assign(size(), 0.0f);
-  temporalResiduals<true>(x, r[Temporal]);
   forEach(rows_, [&](size_t g) {
     for (size_t c = 0; c < 3; ++c) {
       const size_t i = 3 * g + c;
-      r[Data][i] = x[i] - targets_[Data][i];
-      if (present(SpatialX, g)) r[SpatialX][i] = x[i + 3] - x[i] - targets_[SpatialX][i];
-      if (present(SpatialY, g)) r[SpatialY][i] = x[i + 3 * w] - x[i] - targets_[SpatialY][i];
-      if (present(MixedX, g)) r[MixedX][i] = r[Temporal][i + 3] - r[Temporal][i] + mixedShift_[0][i];
-      if (present(MixedY, g)) r[MixedY][i] = r[Temporal][i + 3 * w] - r[Temporal][i] + mixedShift_[1][i];
+      if (present(Data, g)) sink(Data, i, x[i] - targets_[Data][i]);
+      if (present(SpatialX, g)) sink(SpatialX, i, x[i + 3] - x[i] - targets_[SpatialX][i]);
+      if (present(SpatialY, g)) sink(SpatialY, i, x[i + 3 * w] - x[i] - targets_[SpatialY][i]);
+      if (!present(Temporal, g)) continue;
+      const float temporal = temporalResidual(x, g, c);
+      sink(Temporal, i, temporal);
+      if (present(MixedX, g)) sink(MixedX, i, temporalResidual(x, g + 1, c) - temporal + mixedShift_[0][i]);
+      if (present(MixedY, g)) sink(MixedY, i, temporalResidual(x, g + w, c) - temporal + mixedShift_[1][i]);
     }
   });
+}
+
+std::array<std::vector<float>, PoissonSystem::kBlocks> PoissonSystem::residuals(const std::vector<float>& x) const {
+  std::array<std::vector<float>, kBlocks> r;
+  for (auto& block : r) block.assign(size(), 0.0f);
+  visitResiduals(x, [&](Block block, size_t i, float residual) { r[block][i] = residual; });
   return r;
+}
+
+void PoissonSystem::reweightForL1(const std::vector<float>& x, float epsilon) {
+  // Absent rows keep their factor 0.
+  visitResiduals(x, [&](Block block, size_t i, float residual) {
+    const float scale = block == Data ? alpha_ : 1.0f;
+    factors_[block][i] = toBfloat16(1.0f / std::max(scale * std::abs(residual), epsilon));
+  });
 }
 
 }  // namespace pathfarm

@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "postproc/poisson/chunked_sum.h"
 #include "postproc/poisson/gradient_frame.h"
 
 namespace pathfarm {
@@ -30,35 +31,39 @@ class PoissonSystem {
 
   // Unknowns: 3 per pixel of every frame, index 3 * (frame * pixels + pixel) + channel.
   size_t size() const { return 3 * rows_; }
-  // out = A^T W A x.
-  void applyNormal(const std::vector<float>& x, std::vector<float>& out) const;
-  // A^T W b.
-  std::vector<float> rightHandSide() const;
-  // The diagonal of A^T W A (Jacobi preconditioner).
-  std::vector<float> diagonal() const;
+  // out = A^T W A x; returns <x, out> per channel (summed in a fixed order, so the same
+  // bits for any thread count): conjugate gradients need it and get it without another
+  // pass over memory.
+  ChannelSums applyNormal(const std::vector<float>& x, std::vector<float>& out) const;
+  // out = A^T W (A x - b): the gradient of half the weighted least-squares objective,
+  // minus the residual of the normal equations, in one pass.
+  void gradient(const std::vector<float>& x, std::vector<float>& out) const;
+  // out = 1 / the diagonal of A^T W A (the Jacobi preconditioner), 0 for an unknown no
+  // row constrains.
+  void inverseDiagonal(std::vector<float>& out) const;
   // Residuals A_k x - b_k of every block, indexed like the unknowns (0 for absent rows).
   std::array<std::vector<float>, kBlocks> residuals(const std::vector<float>& x) const;
 
-  // Row weights: the unweighted system's (alpha^2 for data, 1 or 0 elsewhere) times
-  // `factors` per block, indexed like the unknowns; for iteratively reweighted least
-  // squares. Without factors every channel weighs alike.
-  void setWeightFactors(std::array<std::vector<float>, kBlocks> factors);
+  // Iteratively reweighted least squares for the L1 norm: every row's weight becomes the
+  // unweighted system's (alpha^2 for data, 1 elsewhere) times 1 / max(|scaled residual|,
+  // epsilon) at x, the scaled residual being alpha times it for data rows. A row's squared
+  // error then equals its absolute error at x (up to the factors' rounding to bfloat16).
+  void reweightForL1(const std::vector<float>& x, float epsilon);
   // The data rows' target: the primal images of the window, indexed like the unknowns.
   const std::vector<float>& primal() const { return targets_[Data]; }
 
  private:
   bool present(Block block, size_t row) const { return (presence_[row] >> block) & 1u; }
-  float weight(Block block, size_t row, size_t c) const {
-    if (!present(block, row)) return 0;
-    const float base = block == Data ? alphaSquared_ : 1.0f;
-    return factors_[block].empty() ? base : base * factors_[block][3 * row + c];
-  }
+  float weight(Block block, size_t row, size_t c) const;
   // out = A^T W (A x - b) with the targets b, or A^T W A x without them: one code path
-  // for the operator and the right-hand side.
+  // for the operator and the gradient. Returns <x, out> per channel.
   template <bool kWithTargets>
-  void gather(const std::vector<float>& x, std::vector<float>& out) const;
-  template <bool kWithTargets>
-  void temporalResiduals(const std::vector<float>& x, std::vector<float>& r) const;
+  ChannelSums gather(const std::vector<float>& x, std::vector<float>& out) const;
+  // The temporal row g's A x - b in channel c, 0 where it is absent.
+  float temporalResidual(const std::vector<float>& x, size_t g, size_t c) const;
+  // sink(block, index, residual) for every present row and channel.
+  template <class Sink>
+  void visitResiduals(const std::vector<float>& x, Sink sink) const;
 
   int width_, height_;
   size_t frames_, pixels_, rows_;              // rows_: pixels of the window (rows of one block)
@@ -67,11 +72,14 @@ class PoissonSystem {
   // A mixed row's residual is the difference of the two temporal rows' residuals plus
   // this (their targets' difference minus the mixed target), per axis (3 per row).
   std::array<std::vector<float>, 2> mixedShift_;
-  float alphaSquared_;
+  float alpha_, alphaSquared_;
   std::vector<uint8_t> presence_;                    // per row, bit k: block k's row exists
-  std::array<std::vector<float>, kBlocks> factors_;  // 3 per row, or empty
+  // A row's weight is the unweighted system's (alpha^2 for data, 1 elsewhere) times its
+  // factor: 1 for a present row, the IRLS factor after reweightForL1, 0 for an absent row.
+  // bfloat16 (bfloat16.h), per row and channel: the operator reads them on every pass.
+  std::array<std::vector<uint16_t>, kBlocks> factors_;
   // Scratch of gather(), kept between calls: a window's vectors are large.
-  mutable std::vector<float> r3_, z_;
+  mutable std::vector<float> z_;
 };
 
 }  // namespace pathfarm

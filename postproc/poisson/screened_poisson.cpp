@@ -7,90 +7,107 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "postproc/poisson/chunked_sum.h"
 #include "postproc/poisson/poisson_system.h"
 
 namespace pathfarm {
 namespace {
 
-constexpr size_t kChunk = 16384;
+constexpr size_t kChunk = 16384;  // pixels per chunk of a sum
 
-// Runs body(begin, end) over fixed chunks of [0, n) in parallel and returns the chunks'
-// results summed in chunk order: the same bits for any thread count.
-template <size_t K, class Body>
-std::array<double, K> reduce(size_t n, Body body) {
-  std::vector<std::array<double, K>> partial((n + kChunk - 1) / kChunk);
-  tbb::parallel_for(size_t{0}, partial.size(),
-                    [&](size_t c) { partial[c] = body(c * kChunk, std::min(n, (c + 1) * kChunk)); });
-  std::array<double, K> total{};
-  for (const auto& p : partial)
-    for (size_t k = 0; k < K; ++k) total[k] += p[k];
-  return total;
-}
-
-using Channels = std::array<double, 3>;
-
-// Per color channel, the sum over the interleaved vectors of a[i] * b[i] * c[i].
-Channels dot3(const std::vector<float>& a, const std::vector<float>& b) {
-  const auto sums = reduce<3>(a.size() / 3, [&](size_t begin, size_t end) {
-    std::array<double, 3> partial{};
+// Per color channel, the sum over the interleaved vectors of a[i] * b[i].
+ChannelSums dot3(const std::vector<float>& a, const std::vector<float>& b) {
+  return chunkedSum<3>(a.size() / 3, kChunk, [&](size_t begin, size_t end) {
+    ChannelSums partial{};
     for (size_t g = begin; g < end; ++g)
       for (size_t c = 0; c < 3; ++c) partial[c] += static_cast<double>(a[3 * g + c]) * b[3 * g + c];
     return partial;
   });
+}
+
+// The per-channel scalars of an iteration repeated for 4 pixels: loops over 12
+// interleaved values at a time then vectorize.
+using Lanes = std::array<float, 12>;
+
+Lanes lanes(const std::array<float, 3>& perChannel) {
+  Lanes out{};
+  for (size_t k = 0; k < out.size(); ++k) out[k] = perChannel[k % 3];
+  return out;
+}
+
+// Runs body(i, k) for the values i of pixels [begin, end), k = (i - 3 begin) mod 12, so
+// lane k holds channel k mod 3.
+template <class Body>
+void forValues(size_t begin, size_t end, Body body) {
+  size_t i = 3 * begin;
+  for (; i + 12 <= 3 * end; i += 12)
+    for (size_t k = 0; k < 12; ++k) body(i + k, k);
+  for (size_t k = 0; i < 3 * end; ++i, ++k) body(i, k);
+}
+
+// Per channel, the sums of 12 lanes (each a channel's), added in lane order.
+ChannelSums channelsOf(const std::array<double, 12>& lanes) {
+  ChannelSums sums{};
+  for (size_t k = 0; k < lanes.size(); ++k) sums[k % 3] += lanes[k];
   return sums;
 }
 
-template <class Body>
-void forEach(size_t n, Body body) {
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t i = r.begin(); i != r.end(); ++i) body(i);
-  });
-}
-
 // Jacobi-preconditioned conjugate gradients on A^T W A x = A^T W b, from x as given, one
-// independent solve per color channel run side by side (scalars per channel), with the
-// vector updates of an iteration fused into two passes. Stops when every channel's
-// residual is below the tolerance; returns the largest relative residual.
+// independent solve per color channel run side by side (scalars per channel). The
+// operator returns p.Ap with A p, and an iteration's vector updates take two passes over
+// memory: r and the next r.z, r.r; then x (with the previous direction) and the new
+// direction. Stops when every channel's residual is below the tolerance; returns the
+// largest relative residual.
+// The vectors of a solve, kept from one IRLS round to the next: a window's vectors are
+// large, and allocating them costs time too.
+struct Workspace {
+  std::vector<float> r, p, q, inverseDiagonal;
+};
+
 double conjugateGradients(const PoissonSystem& system, std::vector<float>& x, int maxIterations, float tolerance,
-                          int& iterations) {
-  const size_t n = system.size(), rows = n / 3;
-  const std::vector<float> b = system.rightHandSide();
-  std::vector<float> inverseDiagonal = system.diagonal();
-  for (float& d : inverseDiagonal) d = d > 0 ? 1 / d : 0;
-  const Channels bb = dot3(b, b);
-  std::vector<float> r(n), p(n), q(n);
-  system.applyNormal(x, q);
-  const auto start = reduce<6>(rows, [&](size_t begin, size_t end) {
+                          int& iterations, Workspace& workspace) {
+  const size_t n = system.size(), pixels = n / 3;
+  auto& [r, p, q, inverseDiagonal] = workspace;
+  // |A^T W b| per channel: the gradient at 0 is -A^T W b.
+  p.assign(n, 0.0f);
+  system.gradient(p, q);
+  const ChannelSums bb = dot3(q, q);
+  system.inverseDiagonal(inverseDiagonal);
+  system.gradient(x, r);
+  // r = b - A x is minus the gradient; p = z = D^-1 r.
+  const auto start = chunkedSum<6>(pixels, kChunk, [&](size_t begin, size_t end) {
     std::array<double, 6> sums{};
-    for (size_t i = 3 * begin; i < 3 * end; ++i) {
-      r[i] = b[i] - q[i];
-      p[i] = r[i] * inverseDiagonal[i];
-      sums[i % 3] += static_cast<double>(r[i]) * p[i];
-      sums[3 + i % 3] += static_cast<double>(r[i]) * r[i];
-    }
+    for (size_t g = begin; g < end; ++g)
+      for (size_t c = 0, i = 3 * g; c < 3; ++c, ++i) {
+        r[i] = -r[i];
+        p[i] = r[i] * inverseDiagonal[i];
+        sums[c] += static_cast<double>(r[i]) * p[i];
+        sums[3 + c] += static_cast<double>(r[i]) * r[i];
+      }
     return sums;
   });
-  Channels rz{start[0], start[1], start[2]}, rr{start[3], start[4], start[5]};
+  ChannelSums rz{start[0], start[1], start[2]}, rr{start[3], start[4], start[5]};
   const auto relative = [&] {
     double worst = 0;
     for (size_t c = 0; c < 3; ++c) worst = std::max(worst, bb[c] > 0 ? std::sqrt(rr[c] / bb[c]) : (rr[c] > 0 ? 1 : 0));
     return worst;
   };
   for (int k = 0; k < maxIterations && relative() > tolerance; ++k) {
-    system.applyNormal(p, q);
-    const Channels pq = dot3(p, q);
+    const ChannelSums pq = system.applyNormal(p, q);
     std::array<float, 3> a{};
     for (size_t c = 0; c < 3; ++c) a[c] = pq[c] > 0 && rz[c] > 0 ? static_cast<float>(rz[c] / pq[c]) : 0.0f;
-    // x += a p, r -= a q, and the next r.z and r.r; z = D^-1 r is recomputed below.
-    const auto sums = reduce<6>(rows, [&](size_t begin, size_t end) {
-      std::array<double, 6> partial{};
-      for (size_t i = 3 * begin; i < 3 * end; ++i) {
-        x[i] += a[i % 3] * p[i];
-        r[i] -= a[i % 3] * q[i];
-        partial[i % 3] += static_cast<double>(r[i]) * r[i] * inverseDiagonal[i];
-        partial[3 + i % 3] += static_cast<double>(r[i]) * r[i];
-      }
-      return partial;
+    // r -= a q, and the next r.z and r.r with z = D^-1 r.
+    const Lanes step = lanes(a);
+    const auto sums = chunkedSum<6>(pixels, kChunk, [&](size_t begin, size_t end) {
+      std::array<double, 12> rzLanes{}, rrLanes{};
+      forValues(begin, end, [&](size_t i, size_t k) {
+        r[i] -= step[k] * q[i];
+        const double rSquared = static_cast<double>(r[i]) * r[i];
+        rzLanes[k] += rSquared * inverseDiagonal[i];
+        rrLanes[k] += rSquared;
+      });
+      const ChannelSums rzPart = channelsOf(rzLanes), rrPart = channelsOf(rrLanes);
+      return std::array<double, 6>{rzPart[0], rzPart[1], rzPart[2], rrPart[0], rrPart[1], rrPart[2]};
     });
     std::array<float, 3> beta{};
     for (size_t c = 0; c < 3; ++c) {
@@ -98,22 +115,17 @@ double conjugateGradients(const PoissonSystem& system, std::vector<float>& x, in
       rz[c] = sums[c];
       rr[c] = sums[3 + c];
     }
-    forEach(n, [&](size_t i) { p[i] = r[i] * inverseDiagonal[i] + beta[i % 3] * p[i]; });
+    // x += a p, then p = z + beta p.
+    const Lanes keep = lanes(beta);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, pixels, kChunk), [&](const tbb::blocked_range<size_t>& range) {
+      forValues(range.begin(), range.end(), [&](size_t i, size_t k) {
+        x[i] += step[k] * p[i];
+        p[i] = r[i] * inverseDiagonal[i] + keep[k] * p[i];
+      });
+    });
     ++iterations;
   }
   return relative();
-}
-
-// IRLS weights for the L1 norm: a row's squared error, weighted by 1 / |scaled residual|,
-// equals its absolute error at the current solution.
-void reweightForL1(PoissonSystem& system, const std::vector<float>& x, float alpha, float epsilon) {
-  auto factors = system.residuals(x);
-  for (size_t k = 0; k < PoissonSystem::kBlocks; ++k) {
-    const float scale = k == PoissonSystem::Data ? alpha : 1.0f;
-    forEach(factors[k].size(),
-            [&](size_t i) { factors[k][i] = 1.0f / std::max(scale * std::abs(factors[k][i]), epsilon); });
-  }
-  system.setWeightFactors(std::move(factors));
 }
 
 }  // namespace
@@ -132,24 +144,26 @@ std::vector<GradientFrame::Color> reconstructWindow(const std::vector<const Grad
   PoissonStats total;
   PoissonSystem system(frames, settings.alpha);
   std::vector<float> x = system.primal();
+  Workspace workspace;
   double residual = 0;
   if (settings.norm == PoissonNorm::L2) {
-    residual = conjugateGradients(system, x, settings.maxIterations, settings.tolerance, total.iterations);
+    residual = conjugateGradients(system, x, settings.maxIterations, settings.tolerance, total.iterations, workspace);
   } else {
-    residual = conjugateGradients(system, x, settings.irlsIterations, settings.tolerance, total.iterations);
+    residual = conjugateGradients(system, x, settings.irlsIterations, settings.tolerance, total.iterations, workspace);
     for (int round = 1; round < settings.irlsRounds; ++round) {
-      reweightForL1(system, x, settings.alpha, settings.irlsEpsilon);
-      residual = conjugateGradients(system, x, settings.irlsIterations, settings.tolerance, total.iterations);
+      system.reweightForL1(x, settings.irlsEpsilon);
+      residual =
+          conjugateGradients(system, x, settings.irlsIterations, settings.tolerance, total.iterations, workspace);
     }
   }
   total.relativeResidual = residual;
   const size_t pixels = frames[0]->pixelCount();
-  for (size_t f = 0; f < frames.size(); ++f)
-    for (size_t c = 0; c < 3; ++c) {
-      auto& plane = result[f][c];
-      plane.resize(pixels);
-      for (size_t p = 0; p < pixels; ++p) plane[p] = x[3 * (f * pixels + p) + c];
-    }
+  tbb::parallel_for(size_t{0}, 3 * frames.size(), [&](size_t plane) {
+    const size_t f = plane / 3, c = plane % 3;
+    auto& values = result[f][c];
+    values.resize(pixels);
+    for (size_t p = 0; p < pixels; ++p) values[p] = x[3 * (f * pixels + p) + c];
+  });
   if (stats) *stats = total;
   return result;
 }

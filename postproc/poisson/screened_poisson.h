@@ -4,12 +4,14 @@
 // with H the spatial, temporal and mixed difference operators (poisson_system.h), I_g
 // the primal images and G the sampled differences, per color channel.
 //   L2: conjugate gradients on the normal equations with a Jacobi preconditioner,
-//       starting from the primal images.
+//       starting from the primal images. An iteration is three passes over memory: the
+//       operator (which also returns p.Ap), r and the next r.z, then x and p.
 //   L1: iteratively reweighted least squares: each round solves the L2 problem with row
-//       weights 1 / max(|residual|, epsilon) from the previous round, so a row weighs by
-//       its absolute rather than its squared error. This is the standard IRLS
-//       majorizer of the L1 norm (a round solved exactly never raises the L1
-//       objective), warm-started, with a few CG iterations per round.
+//       weights 1 / max(|residual|, epsilon) from the previous round (kept as bfloat16,
+//       within 2^-8), so a row weighs by its absolute rather than its squared error.
+//       This is the standard IRLS majorizer of the L1 norm (a round solved exactly
+//       never raises the L1 objective, up to the weights' rounding), warm-started, with
+//       a few CG iterations per round.
 // Emitters seen directly from the camera are added back afterwards.
 #include <array>
 #include <string>

@@ -1,9 +1,10 @@
 // The screened Poisson reconstruction against independent answers: a dense least-squares
-// solve written from the row definitions, clean images behind exact differences, and
-// the L1 norm's robustness to outliers.
+// solve written from the row definitions, clean images behind exact differences, the L1
+// norm's robustness to outliers; and the same bits for any thread count.
 #include "postproc/poisson/screened_poisson.h"
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <cmath>
 #include <limits>
@@ -273,6 +274,26 @@ TEST(ScreenedPoisson, L1KeepsAFireflyAndOutlierGradientsFromSmearing) {
   const auto smeared = reconstructWindow({&firefly}, PoissonSettings{});
   EXPECT_GT(ringDeviation(smeared[0], w, c, c), 0.1);
   EXPECT_GT(poisson_test::relativeError(reconstructWindow({&outlier}, PoissonSettings{})[0], flat, w, h), 0.5);
+}
+
+TEST(ScreenedPoisson, SameBitsForAnyThreadCount) {
+  // Large enough for several chunks of lines in the operator and of pixels in the sums.
+  const GradientFrame f0 = noisyFrame(96, 64, 7, &kSmooth, 2), f1 = noisyFrame(96, 64, 8, &kSmooth, -1);
+  const GradientFrame f2 = noisyFrame(96, 64, 9, nullptr, 0);
+  for (PoissonNorm norm : {PoissonNorm::L2, PoissonNorm::L1}) {
+    PoissonSettings settings;
+    settings.norm = norm;
+    std::vector<GradientFrame::Color> one, four;
+    {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+      one = reconstructWindow({&f0, &f1, &f2}, settings);
+    }
+    {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 4);
+      four = reconstructWindow({&f0, &f1, &f2}, settings);
+    }
+    EXPECT_EQ(one, four);
+  }
 }
 
 TEST(ScreenedPoisson, OperatorIsSymmetric) {
