@@ -57,7 +57,7 @@ expect_refused poisson "$work/gap" --out "$work/x"
 grep -q "not consecutive" "$work/log" || fail "no clear message for a gap in the frames: $(cat "$work/log")"
 expect_refused render "$scene" --frames 4:4 --res 8x8 --integrator gpt --decompose default --out "$work/x"
 expect_refused render "$scene" --frames 4:4 --res 8x8 --batches 3 --out "$work/x"
-expect_refused render "$scene" --frames 4:4 --res 8x8 --integrator mlt --out "$work/x"
+expect_refused render "$scene" --frames 4:4 --res 8x8 --integrator vcm --out "$work/x"
 [ -e "$work/x" ] && fail "a refused command wrote its output"
 
 finish "gradient CLI"
