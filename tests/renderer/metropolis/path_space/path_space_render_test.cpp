@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "tests/renderer/metropolis/render_error.h"
+#include "tests/renderer/metropolis/sealed_light_scene.h"
 #include "renderer/integrators/frame_renderer.h"
 #include "renderer/metropolis/metropolis_renderer.h"
 #include "test_support.h"
@@ -87,14 +88,7 @@ TEST(PathSpaceMlt, ThinLensCameraIsRefusedClearly) {
 }
 
 TEST(PathSpaceMlt, UnreachableLightGivesFiniteBlackFrames) {
-  // The light shines inside a closed sphere; the camera sees the sphere from outside.
-  const Scene scene = test_support::sceneFromJson(R"({
-    "camera": {"position": [0, 0, 4], "look_at": [0, 0, 0], "shutter": [0, 0.5]},
-    "materials": {"white": {"type": "diffuse", "reflectance": 0.7}},
-    "shapes": [
-      {"type": "sphere", "radius": 1, "material": "white"},
-      {"type": "rectangle", "size": [0.3, 0.3], "material": "white", "emission": 10}]
-  })");
+  const Scene scene = test_support::sealedLightScene();
   for (const MetropolisMethod method : {MetropolisMethod::PathSpace, MetropolisMethod::Temporal})
     for (const FrameImage& frame :
          MetropolisRenderer(scene, smallSettings(method, 4)).render({0, method == MetropolisMethod::Temporal ? 2 : 1}))

@@ -10,6 +10,7 @@
 #include "renderer/metropolis/metropolis_renderer.h"
 #include "test_support.h"
 #include "tests/renderer/metropolis/render_error.h"
+#include "tests/renderer/metropolis/sealed_light_scene.h"
 
 namespace pathfarm {
 namespace {
@@ -178,14 +179,7 @@ TEST(Pssmlt, ZeroLengthShutterIsAClearError) {
 }
 
 TEST(Pssmlt, UnreachableLightGivesBlackFramesAndAWarning) {
-  // The light shines inside a closed sphere; the camera sees the sphere from outside.
-  const Scene scene = test_support::sceneFromJson(R"({
-    "camera": {"position": [0, 0, 4], "look_at": [0, 0, 0], "shutter": [0, 0.5]},
-    "materials": {"white": {"type": "diffuse", "reflectance": 0.7}},
-    "shapes": [
-      {"type": "sphere", "radius": 1, "material": "white"},
-      {"type": "rectangle", "size": [0.3, 0.3], "material": "white", "emission": 10}]
-  })");
+  const Scene scene = test_support::sealedLightScene();
   std::ostringstream log;
   const auto previous = spdlog::default_logger();
   spdlog::set_default_logger(std::make_shared<spdlog::logger>("capture", std::make_shared<spdlog::sinks::ostream_sink_mt>(log)));
