@@ -33,13 +33,18 @@ PathMutation lensPerturbation(const WindowScene& scene, const PathSpaceState& cu
   const BdptScene bdpt = scene.frame(instant.frame);
   const float time = instant.shutterFraction;
   const std::vector<PathVertex>& x = current.path.vertices;
+  // Veach's lens subpath is E S* D (D|L): the moved x_c must reconnect to a vertex that
+  // can be connected. A delta x_c+1 keeps its Dirac directions, which the moved x_c would
+  // break; f only tolerates that within the lobe test's tolerance, a band of paths no
+  // other sampler makes, where a chain then sticks with a biased f.
+  const int c = firstNonDelta(x);
+  if (c < current.path.length() && x[static_cast<size_t>(c + 1)].delta) return result;
   const Vec2f film{current.contribution.film.x + offset.x, current.contribution.film.y + offset.y};
   const Vec3f direction = bdpt.camera.camera().generateRay(film, {0.5f, 0.5f}, bdpt.seconds(time)).direction;
   std::vector<PathVertex> y = x;
   const auto y1 = regenerate(bdpt, time, x[0], direction, x[1]);
   if (!y1) return result;
   y[1] = *y1;
-  const int c = firstNonDelta(x);
   if (c >= 2 && !retraceChain(bdpt, time, x, {0, c}, ChainDirection::FromCamera, y)) return result;
   result.proposed = stateAt(scene, CompletePath{std::move(y), 0}, current.tau);
   if (!(result.proposed.density > 0)) return result;

@@ -65,6 +65,28 @@ void expectBalancedOnToyScenes(Counts (*check)(const WindowFixture&)) {
 
 TEST(LensPerturbation, DetailedBalanceThroughMirrorsAndGlass) { expectBalancedOnToyScenes(checkLens); }
 
+// Veach's lens subpath is E S* D (D|L): the moved first non-delta vertex x_c cannot be
+// reconnected to a delta x_c+1, whose Dirac directions it would break. Such a move once
+// went through, f passing the lobe test's tolerance, and trapped chains in a band of
+// paths no other sampler makes (glass_egg frame 3, E S S S D S S S D L).
+TEST(LensPerturbation, DoesNotReconnectToADeltaVertex) {
+  for (const std::string& scene : {test_support::movingMirrorScene(), test_support::glassWedgeScene()}) {
+    const WindowFixture f(scene, {0, 4}, 16, 5);
+    int applicable = 0, proposed = 0;
+    for (const PathSpaceState& x : f.samplePaths(600, 8)) {
+      const auto& v = x.path.vertices;
+      size_t c = 1;
+      while (v[c].delta) ++c;
+      if (c + 1 >= v.size() || !v[c + 1].delta) continue;
+      ++applicable;
+      for (const Vec2f offset : {Vec2f{0.1f, 0}, Vec2f{0, -0.1f}, Vec2f{0.07f, 0.07f}})
+        proposed += lensPerturbation(f.window, x, offset).proposed.density > 0;
+    }
+    EXPECT_GT(applicable, 20);
+    EXPECT_EQ(proposed, 0);
+  }
+}
+
 TEST(CausticPerturbation, DetailedBalanceThroughMirrorsAndGlass) { expectBalancedOnToyScenes(checkCaustic); }
 
 TEST(CausticPerturbation, PathsWithoutASourceAreNotPerturbed) {
