@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "tests/renderer/metropolis/render_error.h"
-#include "tests/renderer/metropolis/sealed_light_scene.h"
+#include "tests/renderer/metropolis/metropolis_test_support.h"
 #include "renderer/integrators/frame_renderer.h"
 #include "renderer/metropolis/metropolis_renderer.h"
 #include "test_support.h"
@@ -14,19 +14,10 @@
 namespace pathfarm {
 namespace {
 
-constexpr int kSize = 24;
+constexpr int kSize = test_support::kMetropolisTestSize;
 
 MetropolisSettings smallSettings(MetropolisMethod method, double mutationsPerPixel) {
-  MetropolisSettings settings;
-  settings.method = method;
-  settings.width = settings.height = kSize;
-  settings.maxDepth = 4;
-  settings.mutationsPerPixel = mutationsPerPixel;
-  settings.bootstrapSamples = 4000;
-  settings.chains = 32;
-  settings.chainsPerBlock = 8;
-  settings.temporalDelta = 0.5;  // shorter than the closed half frame: frames are joined by renewed times
-  return settings;
+  return test_support::smallMetropolisSettings(method, mutationsPerPixel);
 }
 
 // The window's frames by `method` at two budgets against a 1024 spp path-traced

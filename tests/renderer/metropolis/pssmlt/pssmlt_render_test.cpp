@@ -10,23 +10,15 @@
 #include "renderer/metropolis/metropolis_renderer.h"
 #include "test_support.h"
 #include "tests/renderer/metropolis/render_error.h"
-#include "tests/renderer/metropolis/sealed_light_scene.h"
+#include "tests/renderer/metropolis/metropolis_test_support.h"
 
 namespace pathfarm {
 namespace {
 
-constexpr int kSize = 24;
+constexpr int kSize = test_support::kMetropolisTestSize;
 
 MetropolisSettings smallSettings(double mutationsPerPixel) {
-  MetropolisSettings settings;
-  settings.width = settings.height = kSize;
-  settings.maxDepth = 4;
-  settings.mutationsPerPixel = mutationsPerPixel;
-  settings.bootstrapSamples = 4000;
-  settings.chains = 32;
-  settings.chainsPerBlock = 8;
-  settings.temporalDelta = 0.5;
-  return settings;
+  return test_support::smallMetropolisSettings(MetropolisMethod::Pssmlt, mutationsPerPixel);
 }
 
 RenderSettings referenceSettings(int spp) {
