@@ -9,8 +9,8 @@
 #include "renderer/integrators/frame_renderer.h"
 #include "renderer/metropolis/metropolis_renderer.h"
 #include "test_support.h"
-#include "tests/renderer/metropolis/render_error.h"
 #include "tests/renderer/metropolis/metropolis_test_support.h"
+#include "tests/renderer/metropolis/render_error.h"
 
 namespace pathfarm {
 namespace {
