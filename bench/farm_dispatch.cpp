@@ -16,6 +16,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench/median.h"
 #include "scheduler/farm_client.h"
 #include "scheduler/local_farm.h"
 #include "scheduler/scheduler_server.h"
@@ -24,11 +25,7 @@
 namespace {
 
 using namespace pathfarm::farm;
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
-}
+using pathfarm::bench::median;
 
 std::vector<double> leaseToCompleteSeconds(const std::filesystem::path& database) {
   sqlite3* db = nullptr;

@@ -2,7 +2,7 @@
 // Poisson reconstruction costs, and what PT, GPT and TGPT buy at equal time.
 //
 //   build/bin/gradient_benchmark reconstruction --norm l2|l1 [--input DIR] [--res 1280x720] [--frames 10]
-//        [--save FILE] [--compare FILE]
+//        [--repeat 1] [--save FILE] [--compare FILE]
 //   build/bin/gradient_benchmark equal-time [--scene scenes/cornell/scene.json] [--frames 0:23]
 //        [--res 128x128] [--pt-spp 16] [--reference-spp 512] [--reference-dir DIR]
 //        [--svg docs/figures/gradient_equal_time.svg]
@@ -12,7 +12,7 @@
 // smooth image with noisy primal, spatial, temporal and mixed differences), and prints the
 // seconds of the solve and the process's peak resident memory (getrusage), then the
 // objective the norm minimizes at the solution. Run one norm per process: the peak is the
-// process's. --save FILE keeps the reconstruction (raw floats); --compare FILE prints its
+// process's. --repeat N solves N times and prints the median seconds. --save FILE keeps the reconstruction (raw floats); --compare FILE prints its
 // relative difference to one saved before (another solver's, say).
 //
 // `equal-time` first measures each method's cost per sample per pixel on one frame, gives
@@ -33,6 +33,7 @@
 #include <regex>
 
 #include "bench/bench_support.h"
+#include "bench/median.h"
 #include "image/exr_io.h"
 #include "postproc/metrics/relmse.h"
 #include "postproc/poisson/poisson_system.h"
@@ -166,7 +167,7 @@ void compareRaw(const std::string& file, const std::vector<GradientFrame::Color>
 }
 
 int reconstruction(const std::string& norm, const std::string& input, int width, int height, int frames,
-                   const std::string& saveFile, const std::string& compareFile) {
+                   int repeat, const std::string& saveFile, const std::string& compareFile) {
   const std::vector<GradientFrame> window =
       input.empty() ? syntheticWindow(width, height, frames) : windowFrom(input, frames);
   std::vector<const GradientFrame*> pointers;
@@ -174,17 +175,22 @@ int reconstruction(const std::string& norm, const std::string& input, int width,
   PoissonSettings settings;
   settings.norm = parsePoissonNorm(norm);
   PoissonStats stats;
-  const double cpuBefore = cpuSeconds(usageNow());
   std::vector<GradientFrame::Color> solved;
-  const double seconds = bench::seconds([&] { solved = reconstructWindow(pointers, settings, &stats); });
-  const rusage after = usageNow();
+  std::vector<double> wall, cpu;
+  for (int run = 0; run < repeat; ++run) {
+    solved.clear();  // the peak memory is one solve's
+    const double cpuBefore = cpuSeconds(usageNow());
+    wall.push_back(bench::seconds([&] { solved = reconstructWindow(pointers, settings, &stats); }));
+    cpu.push_back(cpuSeconds(usageNow()) - cpuBefore);
+    if (repeat > 1) std::printf("run %d: %.2f s (%.2f CPU s)\n", run + 1, wall.back(), cpu.back());
+  }
   // ru_maxrss is in KiB.
   std::printf(
-      "%s, %zu frames of %dx%d (%s): %.2f s (%.2f CPU s), %d CG iterations (all channels), relative "
+      "%s, %zu frames of %dx%d (%s): %.2f s (%.2f CPU s)%s, %d CG iterations (all channels), relative "
       "residual %.1e, peak resident memory %.2f GiB\n",
       norm.c_str(), window.size(), window[0].width, window[0].height, input.empty() ? "synthetic" : input.c_str(),
-      seconds, cpuSeconds(after) - cpuBefore, stats.iterations, stats.relativeResidual,
-      static_cast<double>(after.ru_maxrss) / (1024.0 * 1024.0));
+      bench::median(wall), bench::median(cpu), repeat > 1 ? " (medians)" : "", stats.iterations,
+      stats.relativeResidual, static_cast<double>(usageNow().ru_maxrss) / (1024.0 * 1024.0));
   std::printf("objective (%s norm): %.6e\n", norm.c_str(), objective(pointers, solved, settings));
   if (!saveFile.empty()) saveRaw(saveFile, solved);
   if (!compareFile.empty()) compareRaw(compareFile, solved);
@@ -324,10 +330,9 @@ int equalTime(const std::string& scenePath, const std::string& frames, int width
     if (cost.count(costKey(m))) continue;
     RenderSettings calibration = settings;
     calibration.spp = 8;
-    std::array<double, 3> runs{};
+    std::vector<double> runs(3);
     for (double& seconds : runs) renderSequence(scene, calibration, m, middle, middle, &seconds);
-    std::sort(runs.begin(), runs.end());
-    cost[costKey(m)] = runs[1] / 8;
+    cost[costKey(m)] = bench::median(runs) / 8;
   }
   Sequence truth;
   if (!referenceDir.empty() && std::filesystem::exists(referenceDir)) {
@@ -396,12 +401,13 @@ int main(int argc, char** argv) {
   CLI::App app{"pathfarm gradient-domain benchmark"};
   app.require_subcommand(1);
   std::string norm = "l2", input, resolution = "1280x720";
-  int frames = 10;
+  int frames = 10, repeat = 1;
   CLI::App* solve = app.add_subcommand("reconstruction", "seconds and peak memory of one window's reconstruction");
   solve->add_option("--norm", norm);
   solve->add_option("--input", input, "folder of frame_NNNN.exr from render --integrator tgpt");
   solve->add_option("--res", resolution);
   solve->add_option("--frames", frames);
+  solve->add_option("--repeat", repeat, "solves this many times; prints the medians")->check(CLI::PositiveNumber);
   std::string saveFile, compareFile;
   solve->add_option("--save", saveFile, "writes the reconstruction here (raw floats)");
   solve->add_option("--compare", compareFile, "a reconstruction saved with --save to compare with");
@@ -419,6 +425,6 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   int width = 0, height = 0;
   if (std::sscanf((solve->parsed() ? resolution : equalResolution).c_str(), "%dx%d", &width, &height) != 2) return 2;
-  if (solve->parsed()) return reconstruction(norm, input, width, height, frames, saveFile, compareFile);
+  if (solve->parsed()) return reconstruction(norm, input, width, height, frames, repeat, saveFile, compareFile);
   return equalTime(scene, range, width, height, ptSpp, referenceSpp, referenceDir, svg);
 }

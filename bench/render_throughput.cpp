@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "bench/median.h"
 #include "renderer/accel/frame_geometry.h"
 #include "renderer/decomposition/auto_decomposition.h"
 #include "renderer/integrators/frame_renderer.h"
@@ -27,11 +28,7 @@
 namespace {
 
 using namespace pathfarm;
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
-}
+using bench::median;
 
 // Traces `count` random rays with rtcIntersect1 in parallel; returns rays per second.
 double embreeRaysPerSecond(const FrameGeometry& geometry, uint64_t count) {

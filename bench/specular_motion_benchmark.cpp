@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "bench/bench_support.h"
+#include "bench/median.h"
 #include "renderer/accel/shot_geometry.h"
 #include "renderer/decomposition/specular_motion.h"
 #include "renderer/scene/scene_loader.h"
@@ -31,6 +32,7 @@
 namespace {
 
 using namespace pathfarm;
+using bench::median;
 
 struct Tally {
   int64_t specularPixels = 0, trackedPixels = 0, paths = 0, unwalked = 0, walks = 0, inner = 0, outer = 0;
@@ -72,11 +74,6 @@ Tally trackFrame(const SpecularMotion& motion, int components, int width, int he
   Tally total;
   for (const Tally& t : tallies) total += t;
   return total;
-}
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
 }
 
 }  // namespace

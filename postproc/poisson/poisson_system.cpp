@@ -1,6 +1,7 @@
 #include "postproc/poisson/poisson_system.h"
 
 #include "postproc/poisson/bfloat16.h"
+#include "postproc/poisson/channel_lanes.h"
 
 #include <tbb/parallel_for.h>
 
@@ -22,7 +23,7 @@ void forEach(size_t n, Body body) {
 
 // Lines per chunk of the operator's passes; the chunks also fix the order of its dot
 // product's sum.
-constexpr size_t kLinesPerChunk = 8;
+constexpr size_t kLinesPerChunk = 32;
 
 bool finite3(const float* v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
 
@@ -119,7 +120,8 @@ float PoissonSystem::temporalResidual(const std::vector<float>& x, size_t g, siz
 // the last line of a frame are absent and never computed, so no buffer reaches past the
 // window.
 template <bool kWithTargets>
-ChannelSums PoissonSystem::gather(const std::vector<float>& x, std::vector<float>& out) const {
+ChannelSums PoissonSystem::gather(const std::vector<float>& x, std::vector<float>& out,
+                                  const Reweighting* reweighting) const {
   const size_t w = static_cast<size_t>(width_), h = static_cast<size_t>(height_), lineSize = 3 * w;
   const size_t lines = frames_ * h;
   // The targets' part of a row, read only when asked for.
@@ -129,13 +131,31 @@ ChannelSums PoissonSystem::gather(const std::vector<float>& x, std::vector<float
   };
   // result[j] = weight * residual(j) for the values j of `line` of one row block; 0 for the
   // `lastColumns` values of the line's last pixel (rows towards x + 1) and over the whole
-  // line when it is its frame's last and the rows reach y + 1.
+  // line when it is its frame's last and the rows reach y + 1. When reweighting, the
+  // weights come from the residuals instead, and the chunk that owns the line writes them.
   const auto rowsOfLine = [&](Block block, size_t line, size_t lastColumns, bool towardsNextLine, float* result,
-                              auto residual) {
+                              auto residual, bool ownsLine = true) {
     const size_t end = towardsNextLine && line % h == h - 1 ? 0 : lineSize - lastColumns;
     const float base = block == Data ? alphaSquared_ : 1.0f;
-    const uint16_t* factor = &factors_[block][line * lineSize];
-    for (size_t j = 0; j < end; ++j) result[j] = base * fromBfloat16(factor[j]) * residual(j);
+    const size_t first = line * lineSize;
+    if (reweighting) {
+      // Branch-free, so that it vectorizes: absent rows keep 0 through a mask, and a line
+      // another chunk owns goes to scratch.
+      thread_local std::vector<uint16_t> keep, scratch;
+      keep.resize(lineSize);
+      scratch.resize(lineSize);
+      for (size_t j = 0; j < lineSize; j += 3) keep[j] = keep[j + 1] = keep[j + 2] = present(block, (first + j) / 3) ? 0xFFFF : 0;
+      uint16_t* factor = ownsLine ? &reweighting->factors[block][first] : scratch.data();
+      const float scale = block == Data ? alpha_ : 1.0f;
+      for (size_t j = 0; j < end; ++j) {
+        const float r = residual(j);
+        factor[j] = toBfloat16(1.0f / std::max(scale * std::abs(r), reweighting->epsilon)) & keep[j];
+        result[j] = base * fromBfloat16(factor[j]) * r;
+      }
+    } else {
+      const uint16_t* factor = &factors_[block][first];
+      for (size_t j = 0; j < end; ++j) result[j] = base * fromBfloat16(factor[j]) * residual(j);
+    }
     std::fill(result + end, result + lineSize, 0.0f);
   };
   // The temporal rows' A x - b over a line, 0 where absent (where their targets are 0).
@@ -160,15 +180,15 @@ ChannelSums PoissonSystem::gather(const std::vector<float>& x, std::vector<float
     // mixedX has 3 leading zeros: a value's left neighbour is always there.
     std::vector<float> t(lineSize), tBelow(lineSize), temporal(lineSize), mixedX(3 + lineSize, 0.0f),
         mixedY(lineSize), mixedYAbove(lineSize, 0.0f);
-    const auto mixedYOf = [&](size_t line, const float* above, const float* below, float* result) {
-      rowsOfLine(MixedY, line, 0, true, result, [&](size_t j) {
-        return below[j] - above[j] + target(mixedShift_[1], line * lineSize + j);
-      });
+    const auto mixedYOf = [&](size_t line, const float* above, const float* below, float* result, bool ownsLine) {
+      rowsOfLine(
+          MixedY, line, 0, true, result,
+          [&](size_t j) { return below[j] - above[j] + target(mixedShift_[1], line * lineSize + j); }, ownsLine);
     };
     temporalOfLine(begin, t.data());
     if (begin % h > 0) {
       temporalOfLine(begin - 1, tBelow.data());  // the line above, for now
-      mixedYOf(begin - 1, tBelow.data(), t.data(), mixedYAbove.data());
+      mixedYOf(begin - 1, tBelow.data(), t.data(), mixedYAbove.data(), false);
     }
     for (size_t line = begin; line < end; ++line) {
       const size_t first = line * lineSize;
@@ -176,7 +196,7 @@ ChannelSums PoissonSystem::gather(const std::vector<float>& x, std::vector<float
       rowsOfLine(Temporal, line, 0, false, temporal.data(), [&](size_t j) { return t[j]; });
       rowsOfLine(MixedX, line, 3, false, mixedX.data() + 3,
                  [&](size_t j) { return t[j + 3] - t[j] + target(mixedShift_[0], first + j); });
-      mixedYOf(line, t.data(), tBelow.data(), mixedY.data());
+      mixedYOf(line, t.data(), tBelow.data(), mixedY.data(), true);
       float* z = zOfLine(line);
       for (size_t j = 0; j < lineSize; ++j)
         z[j] = temporal[j] - mixedX[j + 3] + mixedX[j] - mixedY[j] + mixedYAbove[j];
@@ -187,14 +207,16 @@ ChannelSums PoissonSystem::gather(const std::vector<float>& x, std::vector<float
   // out over lines of one frame, and <x, out> per channel.
   const auto outOfLines = [&](size_t begin, size_t end) {
     // spatialX has 3 leading zeros like mixedX above.
-    std::vector<float> data(lineSize), spatialX(3 + lineSize, 0.0f), spatialY(lineSize), spatialYAbove(lineSize, 0.0f);
-    const auto spatialYOf = [&](size_t line, float* result) {
+    std::vector<float> data(lineSize), spatialX(3 + lineSize, 0.0f), spatialY(lineSize), spatialYAbove(lineSize, 0.0f),
+        fromPrevious(lineSize);
+    const auto spatialYOf = [&](size_t line, float* result, bool ownsLine) {
       const size_t first = line * lineSize;
-      rowsOfLine(SpatialY, line, 0, true, result, [&](size_t j) {
-        return x[first + lineSize + j] - x[first + j] - target(targets_[SpatialY], first + j);
-      });
+      rowsOfLine(
+          SpatialY, line, 0, true, result,
+          [&](size_t j) { return x[first + lineSize + j] - x[first + j] - target(targets_[SpatialY], first + j); },
+          ownsLine);
     };
-    if (begin % h > 0) spatialYOf(begin - 1, spatialYAbove.data());
+    if (begin % h > 0) spatialYOf(begin - 1, spatialYAbove.data(), false);
     // The previous frame's z, indexed by its window pixel (there is none for frame 0).
     const size_t frame = begin / h, previousFirst = frame > 0 ? (frame - 1) * pixels_ : 0;
     const float* zPrevious = &z_[(frame + 1) % 2 * 3 * pixels_];
@@ -206,7 +228,7 @@ ChannelSums PoissonSystem::gather(const std::vector<float>& x, std::vector<float
       rowsOfLine(SpatialX, line, 3, false, spatialX.data() + 3, [&](size_t j) {
         return x[first + j + 3] - x[first + j] - target(targets_[SpatialX], first + j);
       });
-      spatialYOf(line, spatialY.data());
+      spatialYOf(line, spatialY.data(), true);
       float* o = &out[first];
       const float* z = zOfLine(line);
       for (size_t j = 0; j < lineSize; ++j)
@@ -214,11 +236,12 @@ ChannelSums PoissonSystem::gather(const std::vector<float>& x, std::vector<float
       // The line's pixels are the far end of the previous frame's temporal and mixed rows.
       for (size_t g = line * w; g < (line + 1) * w; ++g) {
         const int32_t previous = previous_[g];
-        for (size_t c = 0; c < 3; ++c) {
-          if (previous >= 0) out[3 * g + c] += zPrevious[3 * (static_cast<size_t>(previous) - previousFirst) + c];
-          partial[c] += static_cast<double>(x[3 * g + c]) * out[3 * g + c];
-        }
+        if (previous < 0) continue;
+        const float* from = &zPrevious[3 * (static_cast<size_t>(previous) - previousFirst)];
+        for (size_t c = 0; c < 3; ++c) out[3 * g + c] += from[c];
       }
+      const ChannelSums lineSums = channelDot(x.data(), out.data(), line * w, (line + 1) * w);
+      for (size_t c = 0; c < 3; ++c) partial[c] += lineSums[c];
       std::swap(spatialY, spatialYAbove);
     }
     return partial;
@@ -241,6 +264,12 @@ ChannelSums PoissonSystem::applyNormal(const std::vector<float>& x, std::vector<
 }
 
 void PoissonSystem::gradient(const std::vector<float>& x, std::vector<float>& out) const { gather<true>(x, out); }
+
+void PoissonSystem::reweightForL1(const std::vector<float>& x, float epsilon, std::vector<float>& gradient) {
+  Reweighting reweighting{epsilon, {}};
+  for (size_t k = 0; k < kBlocks; ++k) reweighting.factors[k] = factors_[k].data();
+  gather<true>(x, gradient, &reweighting);
+}
 
 void PoissonSystem::inverseDiagonal(std::vector<float>& out) const {
   const size_t w = static_cast<size_t>(width_);
@@ -266,37 +295,24 @@ void PoissonSystem::inverseDiagonal(std::vector<float>& out) const {
   });
 }
 
-template <class Sink>
-void PoissonSystem::visitResiduals(const std::vector<float>& x, Sink sink) const {
+std::array<std::vector<float>, PoissonSystem::kBlocks> PoissonSystem::residuals(const std::vector<float>& x) const {
+  std::array<std::vector<float>, kBlocks> r;
+  for (auto& block : r) block.assign(size(), 0.0f);
   const size_t w = static_cast<size_t>(width_);
   forEach(rows_, [&](size_t g) {
     for (size_t c = 0; c < 3; ++c) {
       const size_t i = 3 * g + c;
-      if (present(Data, g)) sink(Data, i, x[i] - targets_[Data][i]);
-      if (present(SpatialX, g)) sink(SpatialX, i, x[i + 3] - x[i] - targets_[SpatialX][i]);
-      if (present(SpatialY, g)) sink(SpatialY, i, x[i + 3 * w] - x[i] - targets_[SpatialY][i]);
+      if (present(Data, g)) r[Data][i] = x[i] - targets_[Data][i];
+      if (present(SpatialX, g)) r[SpatialX][i] = x[i + 3] - x[i] - targets_[SpatialX][i];
+      if (present(SpatialY, g)) r[SpatialY][i] = x[i + 3 * w] - x[i] - targets_[SpatialY][i];
       if (!present(Temporal, g)) continue;
       const float temporal = temporalResidual(x, g, c);
-      sink(Temporal, i, temporal);
-      if (present(MixedX, g)) sink(MixedX, i, temporalResidual(x, g + 1, c) - temporal + mixedShift_[0][i]);
-      if (present(MixedY, g)) sink(MixedY, i, temporalResidual(x, g + w, c) - temporal + mixedShift_[1][i]);
+      r[Temporal][i] = temporal;
+      if (present(MixedX, g)) r[MixedX][i] = temporalResidual(x, g + 1, c) - temporal + mixedShift_[0][i];
+      if (present(MixedY, g)) r[MixedY][i] = temporalResidual(x, g + w, c) - temporal + mixedShift_[1][i];
     }
   });
-}
-
-std::array<std::vector<float>, PoissonSystem::kBlocks> PoissonSystem::residuals(const std::vector<float>& x) const {
-  std::array<std::vector<float>, kBlocks> r;
-  for (auto& block : r) block.assign(size(), 0.0f);
-  visitResiduals(x, [&](Block block, size_t i, float residual) { r[block][i] = residual; });
   return r;
-}
-
-void PoissonSystem::reweightForL1(const std::vector<float>& x, float epsilon) {
-  // Absent rows keep their factor 0.
-  visitResiduals(x, [&](Block block, size_t i, float residual) {
-    const float scale = block == Data ? alpha_ : 1.0f;
-    factors_[block][i] = toBfloat16(1.0f / std::max(scale * std::abs(residual), epsilon));
-  });
 }
 
 }  // namespace pathfarm

@@ -48,22 +48,26 @@ class PoissonSystem {
   // unweighted system's (alpha^2 for data, 1 elsewhere) times 1 / max(|scaled residual|,
   // epsilon) at x, the scaled residual being alpha times it for data rows. A row's squared
   // error then equals its absolute error at x (up to the factors' rounding to bfloat16).
-  void reweightForL1(const std::vector<float>& x, float epsilon);
+  // In the same pass, `gradient` becomes the gradient at x under the new weights.
+  void reweightForL1(const std::vector<float>& x, float epsilon, std::vector<float>& gradient);
   // The data rows' target: the primal images of the window, indexed like the unknowns.
   const std::vector<float>& primal() const { return targets_[Data]; }
 
  private:
   bool present(Block block, size_t row) const { return (presence_[row] >> block) & 1u; }
   float weight(Block block, size_t row, size_t c) const;
+  // Weights computed from the residuals during a pass (reweightForL1), written to `factors`.
+  struct Reweighting {
+    float epsilon;
+    std::array<uint16_t*, kBlocks> factors;
+  };
   // out = A^T W (A x - b) with the targets b, or A^T W A x without them: one code path
-  // for the operator and the gradient. Returns <x, out> per channel.
+  // for the operator, the gradient and the reweighting. Returns <x, out> per channel.
   template <bool kWithTargets>
-  ChannelSums gather(const std::vector<float>& x, std::vector<float>& out) const;
+  ChannelSums gather(const std::vector<float>& x, std::vector<float>& out,
+                     const Reweighting* reweighting = nullptr) const;
   // The temporal row g's A x - b in channel c, 0 where it is absent.
   float temporalResidual(const std::vector<float>& x, size_t g, size_t c) const;
-  // sink(block, index, residual) for every present row and channel.
-  template <class Sink>
-  void visitResiduals(const std::vector<float>& x, Sink sink) const;
 
   int width_, height_;
   size_t frames_, pixels_, rows_;              // rows_: pixels of the window (rows of one block)

@@ -6,8 +6,10 @@
 #include <array>
 #include <cmath>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
 
-#include "postproc/poisson/chunked_sum.h"
+#include "postproc/poisson/channel_lanes.h"
 #include "postproc/poisson/poisson_system.h"
 
 namespace pathfarm {
@@ -17,76 +19,57 @@ constexpr size_t kChunk = 16384;  // pixels per chunk of a sum
 
 // Per color channel, the sum over the interleaved vectors of a[i] * b[i].
 ChannelSums dot3(const std::vector<float>& a, const std::vector<float>& b) {
-  return chunkedSum<3>(a.size() / 3, kChunk, [&](size_t begin, size_t end) {
-    ChannelSums partial{};
-    for (size_t g = begin; g < end; ++g)
-      for (size_t c = 0; c < 3; ++c) partial[c] += static_cast<double>(a[3 * g + c]) * b[3 * g + c];
-    return partial;
+  return chunkedSum<3>(a.size() / 3, kChunk,
+                       [&](size_t begin, size_t end) { return channelDot(a.data(), b.data(), begin, end); });
+}
+
+// The vectors of a solve, kept from one IRLS round to the next: a window's vectors are
+// large, and allocating them costs time too. A solve starts with r holding the gradient
+// A^T W (A x - b) at its x.
+struct Workspace {
+  std::vector<float> r, p, q, inverseDiagonal;
+};
+
+// One pass over the residual r: update(i, k) sets its value i (k: the lane, as in
+// forValues), and the pass returns the new r.z and r.r per channel, with z = D^-1 r.
+template <class Update>
+std::pair<ChannelSums, ChannelSums> updateResiduals(const std::vector<float>& r,
+                                                    const std::vector<float>& inverseDiagonal, Update update) {
+  const auto sums = chunkedSum<6>(r.size() / 3, kChunk, [&](size_t begin, size_t end) {
+    std::array<double, 12> rzLanes{}, rrLanes{};
+    forValues(begin, end, [&](size_t i, size_t k) {
+      update(i, k);
+      const double rSquared = static_cast<double>(r[i]) * r[i];
+      rzLanes[k] += rSquared * inverseDiagonal[i];
+      rrLanes[k] += rSquared;
+    });
+    const ChannelSums rz = channelsOf(rzLanes), rr = channelsOf(rrLanes);
+    return std::array<double, 6>{rz[0], rz[1], rz[2], rr[0], rr[1], rr[2]};
   });
-}
-
-// The per-channel scalars of an iteration repeated for 4 pixels: loops over 12
-// interleaved values at a time then vectorize.
-using Lanes = std::array<float, 12>;
-
-Lanes lanes(const std::array<float, 3>& perChannel) {
-  Lanes out{};
-  for (size_t k = 0; k < out.size(); ++k) out[k] = perChannel[k % 3];
-  return out;
-}
-
-// Runs body(i, k) for the values i of pixels [begin, end), k = (i - 3 begin) mod 12, so
-// lane k holds channel k mod 3.
-template <class Body>
-void forValues(size_t begin, size_t end, Body body) {
-  size_t i = 3 * begin;
-  for (; i + 12 <= 3 * end; i += 12)
-    for (size_t k = 0; k < 12; ++k) body(i + k, k);
-  for (size_t k = 0; i < 3 * end; ++i, ++k) body(i, k);
-}
-
-// Per channel, the sums of 12 lanes (each a channel's), added in lane order.
-ChannelSums channelsOf(const std::array<double, 12>& lanes) {
-  ChannelSums sums{};
-  for (size_t k = 0; k < lanes.size(); ++k) sums[k % 3] += lanes[k];
-  return sums;
+  return {{sums[0], sums[1], sums[2]}, {sums[3], sums[4], sums[5]}};
 }
 
 // Jacobi-preconditioned conjugate gradients on A^T W A x = A^T W b, from x as given, one
 // independent solve per color channel run side by side (scalars per channel). The
 // operator returns p.Ap with A p, and an iteration's vector updates take two passes over
 // memory: r and the next r.z, r.r; then x (with the previous direction) and the new
-// direction. Stops when every channel's residual is below the tolerance; returns the
+// direction. Stops when every channel's |residual| is below the tolerance times its
+// `reference` (per channel, squared; the starting residual's when null); returns the
 // largest relative residual.
-// The vectors of a solve, kept from one IRLS round to the next: a window's vectors are
-// large, and allocating them costs time too.
-struct Workspace {
-  std::vector<float> r, p, q, inverseDiagonal;
-};
-
 double conjugateGradients(const PoissonSystem& system, std::vector<float>& x, int maxIterations, float tolerance,
-                          int& iterations, Workspace& workspace) {
+                          const ChannelSums* reference, int& iterations, Workspace& workspace) {
   const size_t n = system.size(), pixels = n / 3;
   auto& [r, p, q, inverseDiagonal] = workspace;
-  // |A^T W b| per channel: the gradient at 0 is -A^T W b.
-  p.assign(n, 0.0f);
-  system.gradient(p, q);
-  const ChannelSums bb = dot3(q, q);
+  p.resize(n);
+  q.resize(n);
   system.inverseDiagonal(inverseDiagonal);
-  system.gradient(x, r);
   // r = b - A x is minus the gradient; p = z = D^-1 r.
-  const auto start = chunkedSum<6>(pixels, kChunk, [&](size_t begin, size_t end) {
-    std::array<double, 6> sums{};
-    for (size_t g = begin; g < end; ++g)
-      for (size_t c = 0, i = 3 * g; c < 3; ++c, ++i) {
-        r[i] = -r[i];
-        p[i] = r[i] * inverseDiagonal[i];
-        sums[c] += static_cast<double>(r[i]) * p[i];
-        sums[3 + c] += static_cast<double>(r[i]) * r[i];
-      }
-    return sums;
+  ChannelSums rz, rr;
+  std::tie(rz, rr) = updateResiduals(r, inverseDiagonal, [&](size_t i, size_t) {
+    r[i] = -r[i];
+    p[i] = r[i] * inverseDiagonal[i];
   });
-  ChannelSums rz{start[0], start[1], start[2]}, rr{start[3], start[4], start[5]};
+  const ChannelSums bb = reference ? *reference : rr;
   const auto relative = [&] {
     double worst = 0;
     for (size_t c = 0; c < 3; ++c) worst = std::max(worst, bb[c] > 0 ? std::sqrt(rr[c] / bb[c]) : (rr[c] > 0 ? 1 : 0));
@@ -96,27 +79,15 @@ double conjugateGradients(const PoissonSystem& system, std::vector<float>& x, in
     const ChannelSums pq = system.applyNormal(p, q);
     std::array<float, 3> a{};
     for (size_t c = 0; c < 3; ++c) a[c] = pq[c] > 0 && rz[c] > 0 ? static_cast<float>(rz[c] / pq[c]) : 0.0f;
-    // r -= a q, and the next r.z and r.r with z = D^-1 r.
-    const Lanes step = lanes(a);
-    const auto sums = chunkedSum<6>(pixels, kChunk, [&](size_t begin, size_t end) {
-      std::array<double, 12> rzLanes{}, rrLanes{};
-      forValues(begin, end, [&](size_t i, size_t k) {
-        r[i] -= step[k] * q[i];
-        const double rSquared = static_cast<double>(r[i]) * r[i];
-        rzLanes[k] += rSquared * inverseDiagonal[i];
-        rrLanes[k] += rSquared;
-      });
-      const ChannelSums rzPart = channelsOf(rzLanes), rrPart = channelsOf(rrLanes);
-      return std::array<double, 6>{rzPart[0], rzPart[1], rzPart[2], rrPart[0], rrPart[1], rrPart[2]};
-    });
+    // r -= a q, and the next r.z and r.r.
+    const Lanes step = lanesOf(a);
+    const auto [nextRz, nextRr] = updateResiduals(r, inverseDiagonal, [&](size_t i, size_t k) { r[i] -= step[k] * q[i]; });
     std::array<float, 3> beta{};
-    for (size_t c = 0; c < 3; ++c) {
-      beta[c] = rz[c] > 0 ? static_cast<float>(sums[c] / rz[c]) : 0.0f;
-      rz[c] = sums[c];
-      rr[c] = sums[3 + c];
-    }
+    for (size_t c = 0; c < 3; ++c) beta[c] = rz[c] > 0 ? static_cast<float>(nextRz[c] / rz[c]) : 0.0f;
+    rz = nextRz;
+    rr = nextRr;
     // x += a p, then p = z + beta p.
-    const Lanes keep = lanes(beta);
+    const Lanes keep = lanesOf(beta);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, pixels, kChunk), [&](const tbb::blocked_range<size_t>& range) {
       forValues(range.begin(), range.end(), [&](size_t i, size_t k) {
         x[i] += step[k] * p[i];
@@ -126,6 +97,14 @@ double conjugateGradients(const PoissonSystem& system, std::vector<float>& x, in
     ++iterations;
   }
   return relative();
+}
+
+// The smoothing of IRLS round `round` >= 1: geometric from the start epsilon to the final.
+float irlsEpsilon(const PoissonSettings& settings, int round) {
+  const int reweighted = settings.irlsRounds - 1;
+  if (reweighted <= 1) return settings.irlsEpsilon;
+  const double t = static_cast<double>(round - 1) / (reweighted - 1);
+  return static_cast<float>(settings.irlsStartEpsilon * std::pow(settings.irlsEpsilon / settings.irlsStartEpsilon, t));
 }
 
 }  // namespace
@@ -140,20 +119,32 @@ std::vector<GradientFrame::Color> reconstructWindow(const std::vector<const Grad
                                                     const PoissonSettings& settings, PoissonStats* stats) {
   if (frames.empty()) throw std::invalid_argument("a Poisson window needs at least one frame");
   if (!(settings.alpha > 0)) throw std::invalid_argument("alpha must be positive");
+  if (settings.norm == PoissonNorm::L1 &&
+      !(settings.irlsEpsilon > 0 && settings.irlsStartEpsilon >= settings.irlsEpsilon && settings.irlsRounds > 0))
+    throw std::invalid_argument("L1 needs IRLS rounds and 0 < epsilon <= start epsilon");
   std::vector<GradientFrame::Color> result(frames.size());
   PoissonStats total;
   PoissonSystem system(frames, settings.alpha);
   std::vector<float> x = system.primal();
   Workspace workspace;
+  system.gradient(x, workspace.r);
   double residual = 0;
   if (settings.norm == PoissonNorm::L2) {
-    residual = conjugateGradients(system, x, settings.maxIterations, settings.tolerance, total.iterations, workspace);
+    // The tolerance is relative to |A^T b|, the gradient at 0 (computed in the solver's
+    // vectors, which it then overwrites).
+    workspace.q.assign(x.size(), 0.0f);
+    system.gradient(workspace.q, workspace.p);
+    const ChannelSums reference = dot3(workspace.p, workspace.p);
+    residual = conjugateGradients(system, x, settings.maxIterations, settings.tolerance, &reference, total.iterations,
+                                  workspace);
   } else {
-    residual = conjugateGradients(system, x, settings.irlsIterations, settings.tolerance, total.iterations, workspace);
-    for (int round = 1; round < settings.irlsRounds; ++round) {
-      system.reweightForL1(x, settings.irlsEpsilon);
-      residual =
-          conjugateGradients(system, x, settings.irlsIterations, settings.tolerance, total.iterations, workspace);
+    // The first round is the L2 solve; then the weights follow x, with epsilon going down
+    // geometrically from irlsStartEpsilon in the first reweighted round to irlsEpsilon in
+    // the last. Each round's tolerance is relative to its own starting residual.
+    for (int round = 0; round < settings.irlsRounds; ++round) {
+      if (round > 0) system.reweightForL1(x, irlsEpsilon(settings, round), workspace.r);
+      residual = conjugateGradients(system, x, settings.irlsIterations, settings.tolerance, nullptr, total.iterations,
+                                    workspace);
     }
   }
   total.relativeResidual = residual;

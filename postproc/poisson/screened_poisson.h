@@ -9,9 +9,12 @@
 //   L1: iteratively reweighted least squares: each round solves the L2 problem with row
 //       weights 1 / max(|residual|, epsilon) from the previous round (kept as bfloat16,
 //       within 2^-8), so a row weighs by its absolute rather than its squared error.
-//       This is the standard IRLS majorizer of the L1 norm (a round solved exactly
-//       never raises the L1 objective, up to the weights' rounding), warm-started, with
-//       a few CG iterations per round.
+//       This is the standard IRLS majorizer of the L1 norm smoothed below epsilon (a
+//       round solved exactly never raises the smoothed objective, up to the weights'
+//       rounding), warm-started, with a few CG iterations per round. epsilon starts
+//       large and goes down geometrically over the rounds (smoothing continuation): the
+//       first rounds then see a well-conditioned system, and the same iterations reach
+//       a lower L1 objective than a fixed small epsilon (docs/performance.md).
 // Emitters seen directly from the camera are added back afterwards.
 #include <array>
 #include <string>
@@ -28,11 +31,14 @@ PoissonNorm parsePoissonNorm(const std::string& text);  // "l1" or "l2"; throws 
 struct PoissonSettings {
   float alpha = 0.2f;
   PoissonNorm norm = PoissonNorm::L2;
-  int maxIterations = 400;    // conjugate-gradient iterations (L2); the channels are solved side by side
-  float tolerance = 1e-5f;    // stop when |residual| <= tolerance * |right-hand side|
-  int irlsRounds = 10;        // L1
-  int irlsIterations = 20;    // CG iterations per L1 round
-  float irlsEpsilon = 1e-3f;  // L1: residuals below this weigh like this
+  int maxIterations = 400;  // conjugate-gradient iterations (L2); the channels are solved side by side
+  // Stop when |residual| <= tolerance * |right-hand side| (L2), or * the round's starting
+  // |residual| (an L1 round).
+  float tolerance = 1e-5f;
+  int irlsRounds = 10;             // L1: the L2 solve, then reweighted rounds
+  int irlsIterations = 15;         // CG iterations per L1 round
+  float irlsStartEpsilon = 1e-1f;  // L1: epsilon of the first reweighted round
+  float irlsEpsilon = 1e-3f;       // L1: of the last; residuals below epsilon weigh like epsilon
 };
 
 struct PoissonStats {
