@@ -271,27 +271,45 @@ void PoissonSystem::reweightForL1(const std::vector<float>& x, float epsilon, st
   gather<true>(x, gradient, &reweighting);
 }
 
+// Every coefficient is +-1, so an unknown's diagonal entry is the sum of the weights of
+// the rows it takes part in: its own, the x rows of the pixel to its left, the y rows of
+// the pixel above, and through m^-1 the temporal and mixed rows it is the far end of.
+// Absent rows weigh 0, and the rows that would reach from a line's last pixel to the
+// next line's first, or from a frame's last line to the next frame, are absent: the
+// neighbours need no test but the window's start. Computed line by line, so the sums
+// over the blocks vectorize.
 void PoissonSystem::inverseDiagonal(std::vector<float>& out) const {
-  const size_t w = static_cast<size_t>(width_);
+  const size_t w = static_cast<size_t>(width_), lineSize = 3 * w, lines = frames_ * static_cast<size_t>(height_);
   out.resize(size());
-  forEach(rows_, [&](size_t g) {
-    const size_t p = g % pixels_;
-    const bool left = p % w > 0, up = p / w > 0;
-    const int32_t q = previous_[g];
-    for (size_t c = 0; c < 3; ++c) {
-      float v = 0;
-      for (Block k : {Data, SpatialX, SpatialY, Temporal, MixedX, MixedY}) v += weight(k, g, c);
-      if (left) v += weight(SpatialX, g - 1, c) + weight(MixedX, g - 1, c);
-      if (up) v += weight(SpatialY, g - w, c) + weight(MixedY, g - w, c);
-      if (q >= 0) {
-        // This pixel is m(q): the other end of q's temporal row and of the mixed rows through q.
-        const size_t source = static_cast<size_t>(q), sp = source % pixels_;
-        v += weight(Temporal, source, c) + weight(MixedX, source, c) + weight(MixedY, source, c);
-        if (sp % w > 0) v += weight(MixedX, source - 1, c);
-        if (sp / w > 0) v += weight(MixedY, source - w, c);
-      }
-      out[3 * g + c] = v > 0 ? 1 / v : 0;
+  const auto weightAt = [&](Block block, size_t i) {
+    return (block == Data ? alphaSquared_ : 1.0f) * fromBfloat16(factors_[block][i]);
+  };
+  tbb::parallel_for(size_t{0}, lines, [&](size_t line) {
+    float* v = &out[line * lineSize];
+    for (size_t j = 0, i = line * lineSize; j < lineSize; ++j, ++i) {
+      float sum = 0;
+      for (Block k : {Data, SpatialX, SpatialY, Temporal, MixedX, MixedY}) sum += weightAt(k, i);
+      v[j] = sum;
     }
+    for (size_t j = line > 0 ? 0 : 3; j < lineSize; ++j) {
+      const size_t i = line * lineSize + j - 3;
+      v[j] += weightAt(SpatialX, i) + weightAt(MixedX, i);
+    }
+    if (line > 0)
+      for (size_t j = 0, i = (line - 1) * lineSize; j < lineSize; ++j, ++i)
+        v[j] += weightAt(SpatialY, i) + weightAt(MixedY, i);
+    for (size_t g = line * w, j = 0; j < lineSize; ++g, j += 3) {
+      if (previous_[g] < 0) continue;
+      // This pixel is m(q): the far end of q's temporal row and of the mixed rows through q.
+      const size_t q = static_cast<size_t>(previous_[g]);
+      for (size_t c = 0; c < 3; ++c) {
+        const size_t i = 3 * q + c;
+        v[j + c] += weightAt(Temporal, i) + weightAt(MixedX, i) + weightAt(MixedY, i);
+        if (q >= 1) v[j + c] += weightAt(MixedX, i - 3);
+        if (q >= w) v[j + c] += weightAt(MixedY, i - lineSize);
+      }
+    }
+    for (size_t j = 0; j < lineSize; ++j) v[j] = v[j] > 0 ? 1 / v[j] : 0;
   });
 }
 

@@ -386,5 +386,26 @@ TEST(ScreenedPoisson, OperatorIsSymmetric) {
   EXPECT_NEAR(a, b, 1e-4 * std::abs(a));
 }
 
+TEST(ScreenedPoisson, ReweightingYieldsTheNewGradientAndTheDiagonal) {
+  const GradientFrame f0 = noisyFrame(7, 5, 1, &kSmooth, -2), f1 = noisyFrame(7, 5, 2, &kSmooth, 1);
+  const GradientFrame f2 = noisyFrame(7, 5, 3, nullptr, 0);
+  PoissonSystem system({&f0, &f1, &f2}, 0.3f);
+  std::vector<float> x(system.size()), fused, separate, inverse, column, unit(system.size(), 0.0f);
+  for (size_t i = 0; i < x.size(); ++i) x[i] = 0.5f + test_support::hashed(7, 0, static_cast<int>(i), 0);
+  // The gradient the reweighting pass returns is the one computed under its new weights.
+  system.reweightForL1(x, 0.01f, fused);
+  system.gradient(x, separate);
+  EXPECT_EQ(fused, separate);
+  // The preconditioner inverts the operator's diagonal: e_i . (A^T W A e_i).
+  system.inverseDiagonal(inverse);
+  for (size_t i = 0; i < unit.size(); ++i) {
+    unit[i] = 1;
+    system.applyNormal(unit, column);
+    unit[i] = 0;
+    ASSERT_GT(column[i], 0) << i;
+    EXPECT_NEAR(inverse[i], 1 / column[i], 1e-5f * inverse[i]) << i;
+  }
+}
+
 }  // namespace
 }  // namespace pathfarm
