@@ -104,10 +104,6 @@ PoissonSystem::PoissonSystem(const std::vector<const GradientFrame*>& frames, fl
   }
 }
 
-float PoissonSystem::weight(Block block, size_t row, size_t c) const {
-  return (block == Data ? alphaSquared_ : 1.0f) * fromBfloat16(factors_[block][3 * row + c]);
-}
-
 float PoissonSystem::temporalResidual(const std::vector<float>& x, size_t g, size_t c) const {
   const int32_t next = next_[g];
   return next < 0 ? 0.0f : x[3 * static_cast<size_t>(next) + c] - x[3 * g + c] - targets_[Temporal][3 * g + c];
@@ -281,32 +277,29 @@ void PoissonSystem::reweightForL1(const std::vector<float>& x, float epsilon, st
 void PoissonSystem::inverseDiagonal(std::vector<float>& out) const {
   const size_t w = static_cast<size_t>(width_), lineSize = 3 * w, lines = frames_ * static_cast<size_t>(height_);
   out.resize(size());
-  const auto weightAt = [&](Block block, size_t i) {
-    return (block == Data ? alphaSquared_ : 1.0f) * fromBfloat16(factors_[block][i]);
-  };
   tbb::parallel_for(size_t{0}, lines, [&](size_t line) {
     float* v = &out[line * lineSize];
     for (size_t j = 0, i = line * lineSize; j < lineSize; ++j, ++i) {
       float sum = 0;
-      for (Block k : {Data, SpatialX, SpatialY, Temporal, MixedX, MixedY}) sum += weightAt(k, i);
+      for (Block k : {Data, SpatialX, SpatialY, Temporal, MixedX, MixedY}) sum += weight(k, i);
       v[j] = sum;
     }
     for (size_t j = line > 0 ? 0 : 3; j < lineSize; ++j) {
       const size_t i = line * lineSize + j - 3;
-      v[j] += weightAt(SpatialX, i) + weightAt(MixedX, i);
+      v[j] += weight(SpatialX, i) + weight(MixedX, i);
     }
     if (line > 0)
       for (size_t j = 0, i = (line - 1) * lineSize; j < lineSize; ++j, ++i)
-        v[j] += weightAt(SpatialY, i) + weightAt(MixedY, i);
+        v[j] += weight(SpatialY, i) + weight(MixedY, i);
     for (size_t g = line * w, j = 0; j < lineSize; ++g, j += 3) {
       if (previous_[g] < 0) continue;
       // This pixel is m(q): the far end of q's temporal row and of the mixed rows through q.
       const size_t q = static_cast<size_t>(previous_[g]);
       for (size_t c = 0; c < 3; ++c) {
         const size_t i = 3 * q + c;
-        v[j + c] += weightAt(Temporal, i) + weightAt(MixedX, i) + weightAt(MixedY, i);
-        if (q >= 1) v[j + c] += weightAt(MixedX, i - 3);
-        if (q >= w) v[j + c] += weightAt(MixedY, i - lineSize);
+        v[j + c] += weight(Temporal, i) + weight(MixedX, i) + weight(MixedY, i);
+        if (q >= 1) v[j + c] += weight(MixedX, i - 3);
+        if (q >= w) v[j + c] += weight(MixedY, i - lineSize);
       }
     }
     for (size_t j = 0; j < lineSize; ++j) v[j] = v[j] > 0 ? 1 / v[j] : 0;

@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "postproc/poisson/bfloat16.h"
 #include "postproc/poisson/chunked_sum.h"
 #include "postproc/poisson/gradient_frame.h"
 
@@ -55,7 +56,10 @@ class PoissonSystem {
 
  private:
   bool present(Block block, size_t row) const { return (presence_[row] >> block) & 1u; }
-  float weight(Block block, size_t row, size_t c) const;
+  // The weight of block's row for the unknown i (index 3 * row + channel).
+  float weight(Block block, size_t i) const {
+    return (block == Data ? alphaSquared_ : 1.0f) * fromBfloat16(factors_[block][i]);
+  }
   // Weights computed from the residuals during a pass (reweightForL1), written to `factors`.
   struct Reweighting {
     float epsilon;
