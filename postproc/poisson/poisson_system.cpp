@@ -232,12 +232,11 @@ ChannelSums PoissonSystem::gather(const std::vector<float>& x, std::vector<float
       // The line's pixels are the far end of the previous frame's temporal and mixed rows.
       for (size_t g = line * w; g < (line + 1) * w; ++g) {
         const int32_t previous = previous_[g];
-        if (previous < 0) continue;
-        const float* from = &zPrevious[3 * (static_cast<size_t>(previous) - previousFirst)];
-        for (size_t c = 0; c < 3; ++c) out[3 * g + c] += from[c];
+        for (size_t c = 0; c < 3; ++c) {
+          if (previous >= 0) out[3 * g + c] += zPrevious[3 * (static_cast<size_t>(previous) - previousFirst) + c];
+          partial[c] += static_cast<double>(x[3 * g + c]) * out[3 * g + c];
+        }
       }
-      const ChannelSums lineSums = channelDot(x.data(), out.data(), line * w, (line + 1) * w);
-      for (size_t c = 0; c < 3; ++c) partial[c] += lineSums[c];
       std::swap(spatialY, spatialYAbove);
     }
     return partial;

@@ -30,15 +30,17 @@ struct Workspace {
   std::vector<float> r, p, q, inverseDiagonal;
 };
 
-// One pass over the residual r: update(i, k) sets its value i (k: the lane, as in
-// forValues), and the pass returns the new r.z and r.r per channel, with z = D^-1 r.
+// One pass over the residual r in chunks: update(begin, end) sets the chunk's values,
+// which are then summed while still in cache: returns r.z and r.r per channel, with
+// z = D^-1 r. (Updating and summing in one loop would keep the compiler from
+// vectorizing either.)
 template <class Update>
 std::pair<ChannelSums, ChannelSums> updateResiduals(const std::vector<float>& r,
                                                     const std::vector<float>& inverseDiagonal, Update update) {
   const auto sums = chunkedSum<6>(r.size() / 3, kChunk, [&](size_t begin, size_t end) {
+    update(begin, end);
     std::array<double, 12> rzLanes{}, rrLanes{};
     forValues(begin, end, [&](size_t i, size_t k) {
-      update(i, k);
       const double rSquared = static_cast<double>(r[i]) * r[i];
       rzLanes[k] += rSquared * inverseDiagonal[i];
       rrLanes[k] += rSquared;
@@ -65,9 +67,11 @@ double conjugateGradients(const PoissonSystem& system, std::vector<float>& x, in
   system.inverseDiagonal(inverseDiagonal);
   // r = b - A x is minus the gradient; p = z = D^-1 r.
   ChannelSums rz, rr;
-  std::tie(rz, rr) = updateResiduals(r, inverseDiagonal, [&](size_t i, size_t) {
-    r[i] = -r[i];
-    p[i] = r[i] * inverseDiagonal[i];
+  std::tie(rz, rr) = updateResiduals(r, inverseDiagonal, [&](size_t begin, size_t end) {
+    for (size_t i = 3 * begin; i < 3 * end; ++i) {
+      r[i] = -r[i];
+      p[i] = r[i] * inverseDiagonal[i];
+    }
   });
   const ChannelSums bb = reference ? *reference : rr;
   const auto relative = [&] {
@@ -81,7 +85,9 @@ double conjugateGradients(const PoissonSystem& system, std::vector<float>& x, in
     for (size_t c = 0; c < 3; ++c) a[c] = pq[c] > 0 && rz[c] > 0 ? static_cast<float>(rz[c] / pq[c]) : 0.0f;
     // r -= a q, and the next r.z and r.r.
     const Lanes step = lanesOf(a);
-    const auto [nextRz, nextRr] = updateResiduals(r, inverseDiagonal, [&](size_t i, size_t k) { r[i] -= step[k] * q[i]; });
+    const auto [nextRz, nextRr] = updateResiduals(r, inverseDiagonal, [&](size_t begin, size_t end) {
+      forValues(begin, end, [&](size_t i, size_t k) { r[i] -= step[k] * q[i]; });
+    });
     std::array<float, 3> beta{};
     for (size_t c = 0; c < 3; ++c) beta[c] = rz[c] > 0 ? static_cast<float>(nextRz[c] / rz[c]) : 0.0f;
     rz = nextRz;
