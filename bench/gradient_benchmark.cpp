@@ -2,7 +2,8 @@
 // Poisson reconstruction costs, and what PT, GPT and TGPT buy at equal time.
 //
 //   build/bin/gradient_benchmark reconstruction --norm l2|l1 [--input DIR] [--res 1280x720] [--frames 10]
-//        [--repeat 1] [--save FILE] [--compare FILE]
+//        [--repeat 1] [--irls-rounds 10] [--irls-iterations 15] [--irls-start-epsilon 0.1]
+//        [--irls-epsilon 0.001] [--save FILE] [--compare FILE]
 //   build/bin/gradient_benchmark equal-time [--scene scenes/cornell/scene.json] [--frames 0:23]
 //        [--res 128x128] [--pt-spp 16] [--reference-spp 512] [--reference-dir DIR]
 //        [--svg docs/figures/gradient_equal_time.svg]
@@ -12,7 +13,8 @@
 // smooth image with noisy primal, spatial, temporal and mixed differences), and prints the
 // seconds of the solve and the process's peak resident memory (getrusage), then the
 // objective the norm minimizes at the solution. Run one norm per process: the peak is the
-// process's. --repeat N solves N times and prints the median seconds. --save FILE keeps the reconstruction (raw floats); --compare FILE prints its
+// process's. --repeat N solves N times and prints the median seconds; the --irls options
+// change the L1 schedule (a start epsilon equal to the last keeps epsilon fixed). --save FILE keeps the reconstruction (raw floats); --compare FILE prints its
 // relative difference to one saved before (another solver's, say).
 //
 // `equal-time` first measures each method's cost per sample per pixel on one frame, gives
@@ -167,12 +169,11 @@ void compareRaw(const std::string& file, const std::vector<GradientFrame::Color>
 }
 
 int reconstruction(const std::string& norm, const std::string& input, int width, int height, int frames,
-                   int repeat, const std::string& saveFile, const std::string& compareFile) {
+                   int repeat, PoissonSettings settings, const std::string& saveFile, const std::string& compareFile) {
   const std::vector<GradientFrame> window =
       input.empty() ? syntheticWindow(width, height, frames) : windowFrom(input, frames);
   std::vector<const GradientFrame*> pointers;
   for (const GradientFrame& f : window) pointers.push_back(&f);
-  PoissonSettings settings;
   settings.norm = parsePoissonNorm(norm);
   PoissonStats stats;
   std::vector<GradientFrame::Color> solved;
@@ -408,6 +409,11 @@ int main(int argc, char** argv) {
   solve->add_option("--res", resolution);
   solve->add_option("--frames", frames);
   solve->add_option("--repeat", repeat, "solves this many times; prints the medians")->check(CLI::PositiveNumber);
+  PoissonSettings poisson;
+  solve->add_option("--irls-rounds", poisson.irlsRounds, "L1: rounds, the first being the L2 solve");
+  solve->add_option("--irls-iterations", poisson.irlsIterations, "L1: CG iterations per round");
+  solve->add_option("--irls-start-epsilon", poisson.irlsStartEpsilon, "L1: epsilon of the first reweighted round");
+  solve->add_option("--irls-epsilon", poisson.irlsEpsilon, "L1: epsilon of the last round");
   std::string saveFile, compareFile;
   solve->add_option("--save", saveFile, "writes the reconstruction here (raw floats)");
   solve->add_option("--compare", compareFile, "a reconstruction saved with --save to compare with");
@@ -425,6 +431,6 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   int width = 0, height = 0;
   if (std::sscanf((solve->parsed() ? resolution : equalResolution).c_str(), "%dx%d", &width, &height) != 2) return 2;
-  if (solve->parsed()) return reconstruction(norm, input, width, height, frames, repeat, saveFile, compareFile);
+  if (solve->parsed()) return reconstruction(norm, input, width, height, frames, repeat, poisson, saveFile, compareFile);
   return equalTime(scene, range, width, height, ptSpp, referenceSpp, referenceDir, svg);
 }
