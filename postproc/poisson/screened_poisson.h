@@ -36,7 +36,7 @@ struct PoissonSettings {
   // |residual| (an L1 round).
   float tolerance = 1e-5f;
   int irlsRounds = 10;             // L1: the L2 solve, then reweighted rounds
-  int irlsIterations = 15;         // CG iterations per L1 round
+  int irlsIterations = 14;         // CG iterations per L1 round
   float irlsStartEpsilon = 1e-1f;  // L1: epsilon of the first reweighted round
   float irlsEpsilon = 1e-3f;       // L1: of the last; residuals below epsilon weigh like epsilon
 };
