@@ -3,15 +3,29 @@
 #include <cmath>
 #include <filesystem>
 #include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 
 #include "image/frame_image.h"
+#include "renderer/integrators/frame_renderer.h"
 #include "renderer/scene/scene_loader.h"
 
 namespace pathfarm::test_support {
 
 inline std::filesystem::path sourceDir() { return PATHFARM_SOURCE_DIR; }
+
+// A frame rendered twice, render(settings), on 1 thread in 8-pixel tiles and on 2
+// threads in 5-pixel tiles: the determinism tests compare the two frames' bits.
+template <class Render>
+std::pair<FrameImage, FrameImage> renderedTwoWays(RenderSettings settings, Render render) {
+  settings.threads = 1;
+  settings.tileSize = 8;
+  FrameImage first = render(settings);
+  settings.threads = 2;
+  settings.tileSize = 5;
+  return {std::move(first), render(settings)};
+}
 
 // A scene parsed from text as if it were `folder/scene.json`.
 inline Scene sceneFromJson(const std::string& json,

@@ -66,12 +66,8 @@ TEST(BdptRender, ThreadsAndTileSizesGiveIdenticalBits) {
   const Scene scene = loadScene(test_support::sourceDir() / "scenes/cornell/scene.json");
   RenderSettings settings = smallSettings(20, 2);
   settings.height = 14;
-  settings.threads = 1;
-  settings.tileSize = 8;
-  const FrameImage a = BdptFrameRenderer(scene, settings).render(7);
-  settings.threads = 2;
-  settings.tileSize = 5;
-  const FrameImage b = BdptFrameRenderer(scene, settings).render(7);
+  const auto [a, b] = test_support::renderedTwoWays(
+      settings, [&](const RenderSettings& s) { return BdptFrameRenderer(scene, s).render(7); });
   ASSERT_EQ(a.channelNames(), b.channelNames());
   for (const std::string& name : a.channelNames()) EXPECT_EQ(a.channel(name), b.channel(name)) << name;
 }

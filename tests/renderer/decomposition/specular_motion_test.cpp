@@ -623,12 +623,8 @@ TEST(SpecularMotion, FilmChannelsHoldTheWalkAndDoNotDependOnTiles) {
   settings.height = height;
   settings.spp = 1;
   settings.decomposition = std::make_shared<Decomposition>(Decomposition::standard());
-  settings.threads = 1;
-  settings.tileSize = 8;
-  const FrameImage a = FrameRenderer(parsed, settings).render(1);
-  settings.threads = 2;
-  settings.tileSize = 5;
-  const FrameImage b = FrameRenderer(parsed, settings).render(1);
+  const auto [a, b] = test_support::renderedTwoWays(
+      settings, [&](const RenderSettings& s) { return FrameRenderer(parsed, s).render(1); });
   const TrackedScene scene(json, width, height);
   for (const auto& [component, name] :
        {std::pair{kReflection, "reflection"}, std::pair{kTransmission, "transmission"}}) {

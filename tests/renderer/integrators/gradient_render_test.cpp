@@ -24,6 +24,17 @@ RenderSettings small(int width, int height, int spp, int maxDepth) {
   return settings;
 }
 
+// The mean of an estimate over `seeds` renders, from its sum and sum of squares, and the
+// variance of that mean.
+struct SeedMean {
+  double mean, variance;
+};
+
+SeedMean overSeeds(double sum, double squares, int seeds) {
+  const double mean = sum / seeds;
+  return {mean, (squares - seeds * mean * mean) / (seeds - 1) / seeds};
+}
+
 TEST(GradientRender, ConstantRadianceSceneHasZeroDifferences) {
   // A wide diffuse floor under a uniform sky: every visible point has radiance
   // albedo * sky = 0.5, and every offset path sees what its base path sees.
@@ -106,8 +117,7 @@ TEST(GradientRender, L2ReconstructionIsUnbiased) {
             refVar += refVariance[static_cast<size_t>(y * w + x)] / (w * h / 4.0) / (w * h / 4.0);
           }
       for (int e = 0; e < 2; ++e) {  // the reconstruction, and the primal image
-        const double mean = sum[e][q][c] / seeds;
-        const double variance = (squares[e][q][c] - seeds * mean * mean) / (seeds - 1) / seeds;
+        const auto [mean, variance] = overSeeds(sum[e][q][c], squares[e][q][c], seeds);
         EXPECT_NEAR(mean, refMean, 5 * std::sqrt(variance + refVar) + 1e-6)
             << (e ? "primal" : "reconstruction") << ", quadrant " << q << ", channel " << c;
       }
@@ -166,8 +176,8 @@ TEST(GradientRender, TemporalAndMixedDifferencesAreUnbiased) {
           ++mixedTerms;
         }
         const size_t i = (3 * l + c) * pixels + p;
-        const double mean = sum[i] / seeds;
-        const double total = (squares[i] - seeds * mean * mean) / (seeds - 1) / seeds + refVariance;
+        const auto [mean, variance] = overSeeds(sum[i], squares[i], seeds);
+        const double total = variance + refVariance;
         if (total == 0) {
           EXPECT_EQ(mean, expected);
           continue;
@@ -228,8 +238,7 @@ TEST(GradientRender, DifferencesAreUnbiased) {
         for (int x = 0; x < w - static_cast<int>(1 - axis); ++x) {
           const size_t p = static_cast<size_t>(y * w + x), q = axis ? p + w : p + 1;
           const size_t i = (2 * c + axis) * pixels + p;
-          const double mean = sum[i] / seeds;
-          const double variance = (squares[i] - seeds * mean * mean) / (seeds - 1) / seeds;
+          const auto [mean, variance] = overSeeds(sum[i], squares[i], seeds);
           const double expected = ref[q] - ref[p];
           const double total = variance + refVariance[p] + refVariance[q];
           if (total == 0) {  // both black: nothing to compare but the values
