@@ -24,6 +24,12 @@ RenderSettings small(int width, int height, int spp, int maxDepth) {
   return settings;
 }
 
+// The path tracer's frame at `spp` samples with otherwise these settings: a reference.
+FrameImage pathTraced(const Scene& scene, RenderSettings settings, int spp, int64_t frame) {
+  settings.spp = spp;
+  return FrameRenderer(scene, settings).render(frame);
+}
+
 // The mean of an estimate over `seeds` renders, from its sum and sum of squares, and the
 // variance of that mean.
 struct SeedMean {
@@ -78,9 +84,7 @@ TEST(GradientRender, L2ReconstructionIsUnbiased) {
   Scene scene = cornellForStatistics();
   const int w = 12, h = 12, seeds = 16;
   const RenderSettings settings = small(w, h, 8, 5);
-  RenderSettings reference = settings;
-  reference.spp = 2048;
-  const FrameImage truth = FrameRenderer(scene, reference).render(3);
+  const FrameImage truth = pathTraced(scene, settings, 2048, 3);
 
   // quadrant q, channel c: the sum over seeds and of squares, per estimate.
   double sum[2][4][3] = {}, squares[2][4][3] = {};
@@ -131,10 +135,7 @@ TEST(GradientRender, TemporalAndMixedDifferencesAreUnbiased) {
   Scene scene = cornellForStatistics();
   const int w = 8, h = 8, seeds = 32;
   const RenderSettings settings = small(w, h, 8, 4);
-  RenderSettings reference = settings;
-  reference.spp = 16384;
-  const FrameImage before = FrameRenderer(scene, reference).render(6),
-                   after = FrameRenderer(scene, reference).render(7);
+  const FrameImage before = pathTraced(scene, settings, 16384, 6), after = pathTraced(scene, settings, 16384, 7);
   GradientSettings tgpt;
   tgpt.temporal = true;
   const size_t pixels = static_cast<size_t>(w * h);
@@ -211,9 +212,7 @@ TEST(GradientRender, DifferencesAreUnbiased) {
   Scene scene = cornellForStatistics();
   const int w = 8, h = 8, seeds = 48;
   const RenderSettings settings = small(w, h, 16, 5);
-  RenderSettings reference = settings;
-  reference.spp = 65536;
-  const FrameImage truth = FrameRenderer(scene, reference).render(3);
+  const FrameImage truth = pathTraced(scene, settings, 65536, 3);
   const size_t pixels = static_cast<size_t>(w * h);
   std::vector<double> sum(6 * pixels, 0.0), squares(6 * pixels, 0.0);
   for (int seed = 0; seed < seeds; ++seed) {
