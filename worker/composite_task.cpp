@@ -8,6 +8,7 @@
 #include "image/exr_io.h"
 #include "postproc/filters/component_denoiser.h"
 #include "postproc/filters/decomposed_frame.h"
+#include "worker/direct_emission.h"
 #include "worker/filter_inputs.h"
 
 namespace pathfarm::farm {
@@ -78,6 +79,9 @@ TaskOutput runCompositeTask(const Lease& lease, const std::vector<TaskInput>& in
   }
   std::vector<float>& rerendered = result.addChannel("rerender.Y");
   if (!windows.empty()) {
+    // Directly seen light skips the denoiser, as in the keyframes (worker/direct_emission.h).
+    const bool decomposed = !decompositionComponents(sparse).empty();
+    const FrameImage directLight = decomposed ? takeDirectEmission(sparse) : FrameImage();
     invalidateUnrendered(sparse, mask);
     DenoiseSettings settings;
     settings.label = "re-rendered pixels of frame " + std::to_string(frame);
@@ -100,6 +104,7 @@ TaskOutput runCompositeTask(const Lease& lease, const std::vector<TaskInput>& in
           }
       }
     }
+    if (decomposed) addDirectEmission(result, directLight, &mask);
     for (size_t p = 0; p < mask.size(); ++p) rerendered[p] = mask[p];
   }
   const size_t count = static_cast<size_t>(std::count(mask.begin(), mask.end(), 1));

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "renderer/decomposition/decomposition.h"
+#include "postproc/filters/decomposed_frame.h"
 #include "renderer/decomposition/effective_irradiance.h"
 
 namespace pathfarm::farm {
@@ -10,29 +10,32 @@ namespace {
 
 constexpr const char* kRgb[3] = {"R", "G", "B"};
 
-// The component whose color receives emission met at the first vertex.
-std::string emissionComponent(const FrameImage& frame) {
-  const auto described = frame.attributes().find("pathfarm.decomposition");
-  if (described == frame.attributes().end())
-    throw std::invalid_argument("the frame has no pathfarm.decomposition attribute");
-  const Decomposition decomposition = Decomposition::parse(described->second);
-  const LpeAutomaton& automaton = decomposition.automaton();
-  return decomposition.name(automaton.accepting(automaton.next(automaton.initial(), PathSymbol::E)));
+std::vector<std::string> componentsOf(const FrameImage& frame) {
+  std::vector<std::string> components = decompositionComponents(frame);
+  if (components.empty()) throw std::invalid_argument("the frame has no pathfarm.decomposition attribute");
+  return components;
 }
 
-// Adds `sign` times the emission to the beauty and the component's color, and recomputes
-// the component's irradiance from its color.
-void apply(FrameImage& frame, const std::string& component, const FrameImage& emission, float sign) {
-  for (const char* c : kRgb) {
-    const std::vector<float>& light = emission.channel(std::string("direct_emission.") + c);
-    std::vector<float>& beauty = frame.channel(c);
-    std::vector<float>& color = frame.channel(component + ".color." + c);
-    std::vector<float>& irradiance = frame.channel(component + ".irradiance." + c);
-    const std::vector<float>& reflectance = frame.channel(component + ".reflectance." + c);
-    for (size_t p = 0; p < light.size(); ++p) {
-      beauty[p] += sign * light[p];
-      color[p] = std::max(0.0f, color[p] + sign * light[p]);
-      irradiance[p] = effectiveIrradiance(color[p], reflectance[p]);
+// Adds `sign` times the light to the beauty and the components' colors, and recomputes
+// their irradiance from the colors where the frame has it.
+void apply(FrameImage& frame, const FrameImage& emission, float sign, const std::vector<uint8_t>* only) {
+  for (const std::string& component : componentsOf(frame)) {
+    for (const char* c : kRgb) {
+      const std::string direct = component + ".direct." + c;
+      if (!emission.hasChannel(direct)) continue;
+      const std::vector<float>& light = emission.channel(direct);
+      std::vector<float>& beauty = frame.channel(c);
+      std::vector<float>& color = frame.channel(component + ".color." + c);
+      const std::string irradianceName = component + ".irradiance." + c;
+      std::vector<float>* irradiance = frame.hasChannel(irradianceName) ? &frame.channel(irradianceName) : nullptr;
+      const std::vector<float>* reflectance =
+          irradiance ? &frame.channel(component + ".reflectance." + c) : nullptr;
+      for (size_t p = 0; p < light.size(); ++p) {
+        if (light[p] == 0.0f || (only && !(*only)[p])) continue;
+        beauty[p] += sign * light[p];
+        color[p] = std::max(0.0f, color[p] + sign * light[p]);
+        if (irradiance) (*irradiance)[p] = effectiveIrradiance(color[p], (*reflectance)[p]);
+      }
     }
   }
 }
@@ -40,20 +43,23 @@ void apply(FrameImage& frame, const std::string& component, const FrameImage& em
 }  // namespace
 
 FrameImage takeDirectEmission(FrameImage& frame) {
-  const std::string component = emissionComponent(frame);
   FrameImage emission(frame.width(), frame.height());
-  for (const char* c : kRgb) {
-    const std::vector<float>& color = frame.channel(component + ".color." + c);
-    const std::vector<float>& emitted = frame.channel(component + ".emission." + c);
-    std::vector<float>& light = emission.addChannel(std::string("direct_emission.") + c);
-    for (size_t p = 0; p < light.size(); ++p) light[p] = std::clamp(emitted[p], 0.0f, std::max(0.0f, color[p]));
+  for (const std::string& component : componentsOf(frame)) {
+    for (const char* c : kRgb) {
+      const std::vector<float>& color = frame.channel(component + ".color." + c);
+      const std::vector<float>& emitted = frame.channel(component + ".emission." + c);
+      if (std::all_of(emitted.begin(), emitted.end(), [](float v) { return v <= 0.0f; })) continue;
+      std::vector<float>& light = emission.addChannel(component + ".direct." + c);
+      // The light is part of the color; the clamp only guards against rounding.
+      for (size_t p = 0; p < light.size(); ++p) light[p] = std::clamp(emitted[p], 0.0f, std::max(0.0f, color[p]));
+    }
   }
-  apply(frame, component, emission, -1.0f);
+  apply(frame, emission, -1.0f, nullptr);
   return emission;
 }
 
-void addDirectEmission(FrameImage& frame, const FrameImage& emission) {
-  apply(frame, emissionComponent(frame), emission, 1.0f);
+void addDirectEmission(FrameImage& frame, const FrameImage& emission, const std::vector<uint8_t>* only) {
+  apply(frame, emission, 1.0f, only);
 }
 
 }  // namespace pathfarm::farm

@@ -1,24 +1,26 @@
 #pragma once
-// Light seen directly from the camera is kept out of the keyframe filters. It carries no
-// Monte Carlo noise beyond the pixel's coverage, and its edges are the sharpest in the
-// frame: denoising blurs them, and after 2x2 downsampling no guide feature restores them
-// (an emitter a few pixels wide spills over its neighbours). So it is taken out of the
-// component the decomposition gives zero-bounce emission to (normally the residual),
-// the rest is filtered, and the full-resolution emission is added back.
-//
-// Per pixel the directly seen emission is min(color, emission feature) of that component,
-// channel by channel: the emission feature is the first non-specular vertex's emission
-// averaged over the pixel's samples, which is the component's zero-bounce color.
-#include <string>
+// Directly seen light is kept out of the filters. Light that reaches the camera with no
+// diffuse vertex on its path (an emitter or the sky seen directly, in a mirror or through
+// glass: Zimmer's E S* L paths) carries no Monte Carlo noise beyond the pixel's coverage,
+// and its edges are the sharpest in the frame: denoising blurs them, after 2x2
+// downsampling no guide feature restores them, and a component with no diffuse vertex has
+// no features for the upsampler or the interpolation to follow. So every component's
+// directly seen light (its `emission` buffer, renderer/decomposition/path_decomposer.h) is
+// taken out before filtering, the rest is filtered, and the light is added back at full
+// resolution; an interpolated frame gets the light of its own feature render.
+#include <cstdint>
+#include <vector>
 
 #include "image/frame_image.h"
 
 namespace pathfarm::farm {
 
-// Removes the directly seen emission from the frame's beauty and the receiving component's
-// color (and irradiance) and returns it as `direct_emission.R/G/B`.
+// Removes every component's directly seen light from the frame's beauty and that
+// component's color (and irradiance, when the frame has it) and returns it as
+// `<component>.direct.R/G/B`.
 FrameImage takeDirectEmission(FrameImage& frame);
-// Adds it back to the beauty and the component's color (and irradiance, recomputed).
-void addDirectEmission(FrameImage& frame, const FrameImage& emission);
+// Adds it back to the beauty and the components' colors (and irradiance, recomputed),
+// at every pixel or only where `only` is set.
+void addDirectEmission(FrameImage& frame, const FrameImage& emission, const std::vector<uint8_t>* only = nullptr);
 
 }  // namespace pathfarm::farm

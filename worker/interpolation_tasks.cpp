@@ -6,6 +6,7 @@
 #include "postproc/filters/decomposed_frame.h"
 #include "postproc/interpolation/feature_check.h"
 #include "postproc/interpolation/frame_interpolation.h"
+#include "worker/direct_emission.h"
 #include "worker/filter_inputs.h"
 
 namespace pathfarm::farm {
@@ -73,8 +74,14 @@ TaskOutput runFlowTask(const Lease& lease, const std::vector<TaskInput>& inputs)
 TaskOutput runInterpolateTask(const Lease& lease, const std::vector<TaskInput>& inputs) {
   const TaskParams& params = lease.params();
   const int64_t before = params.keyframe_before(), after = params.keyframe_after();
-  const FrameImage& k0 = filteredKeyframe(inputs, before).image;
-  const FrameImage& k1 = filteredKeyframe(inputs, after).image;
+  // Directly seen light is not interpolated: the frame's own feature render has it exactly.
+  FrameImage k0 = filteredKeyframe(inputs, before).image, k1 = filteredKeyframe(inputs, after).image;
+  takeDirectEmission(k0);
+  takeDirectEmission(k1);
+  const FrameImage& features = inputOf(inputs, TASK_ASSEMBLE_FRAME, params.frame()).image;
+  FrameImage ownFeatures = features;
+  const FrameImage directLight = takeDirectEmission(ownFeatures);
+
   ComponentMotions motions = keyframeMotions(k0, k1);
   for (const TaskInput& input : inputs) {
     if (input.kind != TASK_FLOW) continue;
@@ -85,9 +92,13 @@ TaskOutput runInterpolateTask(const Lease& lease, const std::vector<TaskInput>& 
   }
   const float fraction = static_cast<float>(params.frame() - before) / static_cast<float>(after - before);
   InterpolationResult result = interpolateFrameDetailed(k0, k1, motions, fraction);
+  for (const auto& [key, value] : k0.attributes()) result.frame.attributes().emplace(key, value);
+  result.frame.attributes()["pathfarm.frame"] = std::to_string(params.frame());
+  result.frame.attributes()["pathfarm.interpolated"] =
+      "between keyframes " + std::to_string(before) + " and " + std::to_string(after);
+  addDirectEmission(result.frame, directLight);
   // Where the frame's own features disagree, the interpolation is wrong: re-render there too.
-  const std::vector<uint8_t> mismatch =
-      featureMismatch(result.frame, inputOf(inputs, TASK_ASSEMBLE_FRAME, params.frame()).image);
+  const std::vector<uint8_t> mismatch = featureMismatch(result.frame, features);
   size_t mismatched = 0;
   std::vector<float>& flagged = result.frame.channel("rerender.Y");
   for (size_t p = 0; p < mismatch.size(); ++p) {
@@ -96,10 +107,6 @@ TaskOutput runInterpolateTask(const Lease& lease, const std::vector<TaskInput>& 
     result.mask[p] = 1;
     flagged[p] = 1.0f;
   }
-  for (const auto& [key, value] : k0.attributes()) result.frame.attributes().emplace(key, value);
-  result.frame.attributes()["pathfarm.frame"] = std::to_string(params.frame());
-  result.frame.attributes()["pathfarm.interpolated"] =
-      "between keyframes " + std::to_string(before) + " and " + std::to_string(after);
   TaskOutput output;
   requestRerender(lease.spec(), params.frame(), result.mask, output);
   // Why pixels were flagged (a pixel may have several causes).

@@ -1,6 +1,8 @@
 #include "postproc/metrics/image_metrics.h"
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 
 #include "postproc/metrics/relmse.h"
@@ -12,19 +14,22 @@ struct Sums {
   double rel = 0, squared = 0, smape = 0;
   size_t compared = 0, skippedReference = 0, nonFinite = 0;
 
-  void add(double x, double r) {
+  // Adds one value; returns its relative squared error (0 for a value that was skipped).
+  double add(double x, double r) {
     if (!std::isfinite(r)) {
       ++skippedReference;
-      return;
+      return 0;
     }
     if (!std::isfinite(x)) {
       ++nonFinite;
-      return;
+      return 0;
     }
-    rel += relativeSquaredError(x, r);
+    const double term = relativeSquaredError(x, r);
+    rel += term;
     squared += (x - r) * (x - r);
     smape += 2 * std::abs(x - r) / (std::abs(x) + std::abs(r) + 0.01);
     ++compared;
+    return term;
   }
 
   ImageMetrics metrics() const {
@@ -68,6 +73,46 @@ void forEachPixel(const Crop& crop, int width, Visit visit) {
     for (int x = crop.x0; x < crop.x1; ++x) visit(static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x));
 }
 
+constexpr int kArtifactTile = 16;
+
+// Per pixel of the crop: the sum of its values' relative squared errors and how many
+// values entered it.
+struct PixelErrors {
+  std::vector<double> error;
+  std::vector<int> values;
+};
+
+void addArtifactMeasures(const PixelErrors& pixels, const Crop& crop, int width, ImageMetrics& m) {
+  // Worst tile, on the frame's tile grid clipped to the crop.
+  for (int ty = crop.y0 / kArtifactTile * kArtifactTile; ty < crop.y1; ty += kArtifactTile)
+    for (int tx = crop.x0 / kArtifactTile * kArtifactTile; tx < crop.x1; tx += kArtifactTile) {
+      double sum = 0;
+      size_t count = 0;
+      for (int y = std::max(ty, crop.y0); y < std::min(ty + kArtifactTile, crop.y1); ++y)
+        for (int x = std::max(tx, crop.x0); x < std::min(tx + kArtifactTile, crop.x1); ++x) {
+          const size_t p = static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
+          sum += pixels.error[p];
+          count += static_cast<size_t>(pixels.values[p]);
+        }
+      if (count > 0) m.worstTileRelMse = std::max(m.worstTileRelMse, sum / static_cast<double>(count));
+    }
+  // Share of the error in the worst 1 % of the crop's pixels.
+  std::vector<double> errors;
+  double total = 0;
+  for (int y = crop.y0; y < crop.y1; ++y)
+    for (int x = crop.x0; x < crop.x1; ++x) {
+      const double e = pixels.error[static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)];
+      errors.push_back(e);
+      total += e;
+    }
+  const size_t worst = std::max<size_t>(1, errors.size() / 100);
+  std::nth_element(errors.begin(), errors.begin() + static_cast<std::ptrdiff_t>(worst - 1), errors.end(),
+                   std::greater<>());
+  double inWorst = 0;
+  for (size_t i = 0; i < worst; ++i) inWorst += errors[i];
+  m.worstPercentShare = total > 0 ? inWorst / total : 0;
+}
+
 }  // namespace
 
 std::vector<std::string> layerChannels(const FrameImage& frame, const std::string& layer) {
@@ -89,12 +134,19 @@ ImageMetrics compareImages(const FrameImage& image, const FrameImage& reference,
   checkSameSize(image, reference);
   const Crop c = checkedCrop(image, crop);
   Sums sums;
+  PixelErrors pixels{std::vector<double>(image.pixelCount(), 0.0), std::vector<int>(image.pixelCount(), 0)};
   for (const std::string& name : channels) {
     const auto& x = channelOf(image, name);
     const auto& r = channelOf(reference, name);
-    forEachPixel(c, image.width(), [&](size_t p) { sums.add(x[p], r[p]); });
+    forEachPixel(c, image.width(), [&](size_t p) {
+      const size_t before = sums.compared;
+      pixels.error[p] += sums.add(x[p], r[p]);
+      pixels.values[p] += static_cast<int>(sums.compared - before);
+    });
   }
-  return sums.metrics();
+  ImageMetrics m = sums.metrics();
+  addArtifactMeasures(pixels, c, image.width(), m);
+  return m;
 }
 
 SequenceMetrics compareSequences(const std::vector<FrameImage>& images, const std::vector<FrameImage>& references,

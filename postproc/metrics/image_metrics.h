@@ -20,6 +20,12 @@ struct ImageMetrics {
   double mse = 0;
   double psnr = 0;   // 10 log10(1 / MSE): a peak of 1, as for display-referred values
   double smape = 0;  // mean of 2|x - r| / (|x| + |r| + 0.01)
+  // Artifacts (DESIGN.md): the worst 16x16 tile's relMSE (tiles aligned to the frame's
+  // origin, partial tiles included) and the share of the squared relative error that lies
+  // in the worst 1 % of pixels (at least one pixel). A few wrong pixels show here even
+  // when the mean is low.
+  double worstTileRelMse = 0;
+  double worstPercentShare = 0;
   size_t compared = 0;       // values that entered the means
   size_t skippedReference = 0;  // reference values that were not finite
   size_t nonFinite = 0;      // image values that were not finite

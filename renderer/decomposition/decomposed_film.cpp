@@ -50,7 +50,7 @@ DecomposedFilm::DecomposedFilm(FrameImage& image, const Decomposition& decomposi
     c.primitive = add(name + ".primid.Y");
     addXy(name + ".uv", c.uv);
     c.depth = add(name + ".depth.Z");
-    addRgb(name + ".emission", c.emission);
+    addRgb(name + ".emission", c.direct);
     addXy(name + ".motion", c.motion);
     addXy(name + ".motion_back", c.motionBack);
     c.motionValid = add(name + ".motion_valid.Y");
@@ -74,6 +74,7 @@ void DecomposedFilm::Pixel::add(const SampleComponents& sample, const SampleExtr
       c.color[i] += color[i];
       c.colorSquared[i] += static_cast<double>(color[i]) * color[i];
     }
+    addTo(c.direct, sample.direct[k]);
     if (!sample.hasFeatures[k]) continue;
     const SampleComponents::Features& f = sample.features[k];
     if (c.features++ == 0) {
@@ -81,7 +82,6 @@ void DecomposedFilm::Pixel::add(const SampleComponents& sample, const SampleExtr
       c.primitive = f.primitive;
     }
     addTo(c.reflectance, f.reflectance);
-    addTo(c.emission, f.emission);
     c.normal[0] += f.normal.x;
     c.normal[1] += f.normal.y;
     c.normal[2] += f.normal.z;
@@ -143,7 +143,7 @@ void DecomposedFilm::write(size_t p, const Pixel& sums) const {
       out.variance[i][p] = static_cast<float>(variance);
       out.reflectance[i][p] = reflectance;
       out.irradiance[i][p] = effectiveIrradiance(static_cast<float>(mean), reflectance);
-      out.emission[i][p] = static_cast<float>(c.emission[i] / features);
+      out.direct[i][p] = n > 0 ? static_cast<float>(c.direct[i] / n) : 0.0f;
     }
     const double length = std::sqrt(c.normal[0] * c.normal[0] + c.normal[1] * c.normal[1] + c.normal[2] * c.normal[2]);
     for (int i = 0; i < 3; ++i) out.normal[i][p] = length > 0 ? static_cast<float>(c.normal[i] / length) : 0.0f;

@@ -47,7 +47,7 @@ class DecomposedFilm {
     struct Component {
       double color[3] = {}, colorSquared[3] = {};
       int features = 0, moving = 0;
-      double reflectance[3] = {}, normal[3] = {}, uv[2] = {}, depth = 0, emission[3] = {};
+      double reflectance[3] = {}, normal[3] = {}, uv[2] = {}, depth = 0, direct[3] = {};
       double motion[2] = {}, motionBack[2] = {};
       uint32_t objectId = 0, primitive = 0;
       bool specular = false;
@@ -66,7 +66,7 @@ class DecomposedFilm {
  private:
   struct ComponentChannels {
     float *color[3], *variance[3], *reflectance[3], *irradiance[3], *normal[3], *objectId, *primitive, *uv[2],
-        *depth, *emission[3], *motion[2], *motionBack[2], *motionValid;
+        *depth, *direct[3], *motion[2], *motionBack[2], *motionValid;
   };
   std::vector<ComponentChannels> components_;
   float *depth_, *motion_[2], *motionBack_[2], *silhouette_;

@@ -24,6 +24,7 @@ bool hasDiffuseLobe(const LobeList& lobes) {
 
 void SampleComponents::reset(int components) {
   color.assign(static_cast<size_t>(components), Rgb());
+  direct.assign(static_cast<size_t>(components), Rgb());
   features.resize(static_cast<size_t>(components));
   hasFeatures.assign(static_cast<size_t>(components), 0);
 }
@@ -40,14 +41,19 @@ void PathDecomposer::begin() {
   out_.reset(decomposition_.size());
   sampledState_ = automaton_.next(automaton_.initial(), PathSymbol::E);
   current_ = 0;
-  buffers_[0][0] = {sampledState_, Rgb(1.0f)};
+  buffers_[0][0] = {sampledState_, false, Rgb(1.0f)};
   count_ = 1;
+}
+
+void PathDecomposer::addTo(int state, bool diffuse, Rgb value) {
+  const auto component = static_cast<size_t>(automaton_.accepting(state));
+  out_.color[component] += value;
+  if (!diffuse) out_.direct[component] += value;
 }
 
 void PathDecomposer::addEmission(Rgb value) {
   const auto& states = buffers_[current_];
-  for (int i = 0; i < count_; ++i)
-    out_.color[static_cast<size_t>(automaton_.accepting(states[i].state))] += states[i].weight * value;
+  for (int i = 0; i < count_; ++i) addTo(states[i].state, states[i].diffuse, states[i].weight * value);
 }
 
 void PathDecomposer::addLightSample(const LobeList& lobes, const LobeValues& f, Rgb lightOverPdf) {
@@ -55,11 +61,10 @@ void PathDecomposer::addLightSample(const LobeList& lobes, const LobeValues& f, 
     if (f.value[l].isBlack()) continue;
     const Rgb contribution = f.value[l] * lightOverPdf;
     const PathSymbol symbol = symbolOf(lobes.lobes[l].symbol);
+    const bool diffuse = symbol == PathSymbol::D;
     const auto& states = buffers_[current_];
-    for (int i = 0; i < count_; ++i) {
-      const int component = automaton_.accepting(automaton_.next(states[i].state, symbol));
-      out_.color[static_cast<size_t>(component)] += states[i].weight * contribution;
-    }
+    for (int i = 0; i < count_; ++i)
+      addTo(automaton_.next(states[i].state, symbol), states[i].diffuse || diffuse, states[i].weight * contribution);
   }
 }
 
@@ -96,10 +101,11 @@ void PathDecomposer::scatter(const LobeList& lobes, const VertexFeatures& vertex
     const PathSymbol symbol = symbolOf(lobes.lobes[l].symbol);
     for (int i = 0; i < count_; ++i) {
       const int state = automaton_.next(states[i].state, symbol);
+      const bool diffuse = states[i].diffuse || symbol == PathSymbol::D;
       const Rgb weight = states[i].weight * sample->lobeWeight[l];
       int j = 0;
-      while (j < nextCount && next[j].state != state) ++j;
-      if (j == nextCount) next[nextCount++] = {state, Rgb()};
+      while (j < nextCount && (next[j].state != state || next[j].diffuse != diffuse)) ++j;
+      if (j == nextCount) next[nextCount++] = {state, diffuse, Rgb()};
       next[j].weight += weight;
     }
   }

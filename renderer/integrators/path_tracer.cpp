@@ -72,7 +72,7 @@ Rgb PathTracer::radiance(Ray ray, float time, SampleStream& stream, RayCounts& c
 
     const auto scattered = bsdf.sample(wo, u.lobe, u.direction);
     if (decomposer) {
-      const VertexFeatures vertex{hit.position, normal, hit.uv, pathLength, emitting ? object.emission : Rgb(),
+      const VertexFeatures vertex{hit.position, normal, hit.uv, pathLength,
                                   hit.object, object.objectId, hit.primitive};
       decomposer->scatter(lobes, vertex, scattered ? &*scattered : nullptr);
     }

@@ -40,12 +40,19 @@ void expectComponentsAddUpToBeauty(const Scene& scene, const std::string& label)
       double sum = 0;
       for (const char* c : kComponents) sum += decomposed.channel(std::string(c) + ".color." + channel)[p];
       ASSERT_NEAR(sum, beauty[p], 1e-5 * std::abs(beauty[p]) + 1e-6) << label << " pixel " << p;
+      // Directly seen light is a part of its component's color.
+      for (const char* c : kComponents) {
+        const float direct = decomposed.channel(std::string(c) + ".emission." + channel)[p];
+        const float color = decomposed.channel(std::string(c) + ".color." + channel)[p];
+        ASSERT_GE(direct, 0.0f) << label << " " << c << " pixel " << p;
+        ASSERT_LE(direct, color * (1 + 1e-5f) + 1e-6f) << label << " " << c << " pixel " << p;
+      }
     }
   }
 }
 
 TEST(DecomposedRender, ComponentsAddUpToTheBeautyOfTheSameSamples) {
-  for (const char* path : {"scenes/cornell/scene.json", "scenes/materials/scene.json"}) {
+  for (const char* path : {"scenes/cornell/scene.json", "scenes/materials/scene.json", "scenes/dolly/scene.json"}) {
     expectComponentsAddUpToBeauty(loadScene(test_support::sourceDir() / path), path);
   }
   const Scene lobes = test_support::sceneFromJson(R"({
@@ -113,11 +120,48 @@ TEST(DecomposedRender, MirrorEnergyGoesToReflectionNotToTheDiffuseComponents) {
   const size_t centre = 4 * 8 + 4;
   EXPECT_EQ(image.channel("reflection.objectid.Y")[centre], 3.0f);
   EXPECT_NEAR(image.channel("reflection.normal.Z")[centre], -1.0f, 1e-2f);
-  EXPECT_GT(image.channel("reflection.emission.G")[centre], 4.9f);
+  // The light itself is seen through the mirror without a diffuse vertex (E R L): it is
+  // the residual's directly seen light, 0.9 x 5, and none of the reflection component's.
+  EXPECT_NEAR(image.channel("residual.emission.G")[centre], 4.5f, 0.05f);
+  EXPECT_FLOAT_EQ(image.channel("residual.emission.G")[centre], image.channel("residual.color.G")[centre]);
+  EXPECT_EQ(channelSum(image, "reflection.emission.G"), 0.0);
   // Nothing moves: the mirror's path is tracked with exactly zero motion, without a walk.
   EXPECT_EQ(image.channel("reflection.motion_valid.Y")[centre], 1.0f);
   EXPECT_EQ(image.channel("reflection.motion.X")[centre], 0.0f);
   EXPECT_EQ(image.channel("reflection.motion_back.Y")[centre], 0.0f);
+}
+
+// A mirror sphere, a glass sphere and a diffuse floor under a constant sky of 0.5.
+TEST(DecomposedRender, DirectlySeenLightIsTheLightOfPathsWithoutADiffuseVertex) {
+  const Scene scene = test_support::sceneFromJson(R"({
+    "camera": {"position": [0, 0.6, 4], "look_at": [0, 0.4, 0], "fov": 40},
+    "materials": {"floor": {"type": "diffuse", "reflectance": 0.5},
+                  "mirror": {"type": "conductor", "specular_color": 0.9},
+                  "glass": {"type": "dielectric", "ior": 1.5}},
+    "environment": {"radiance": 0.5},
+    "shapes": [
+      {"type": "rectangle", "size": [4, 4], "material": "floor", "transform": {"rotate": {"axis": [1, 0, 0], "angle": -90}}},
+      {"type": "sphere", "radius": 0.4, "material": "mirror", "transform": {"translate": [-0.5, 0.4, 0]}},
+      {"type": "sphere", "radius": 0.4, "material": "glass", "transform": {"translate": [0.5, 0.4, 0]}}]
+  })");
+  const int width = 32, height = 24;
+  const FrameImage image = renderDecomposed(scene, width, height, 8);
+  // Every expression of the standard decomposition needs a D vertex: only the residual
+  // can receive light from paths without one.
+  for (const char* c : {"diffuse_direct", "diffuse_indirect", "reflection", "transmission"})
+    EXPECT_EQ(channelSum(image, std::string(c) + ".emission.G"), 0.0) << c;
+  // The top row sees the sky: all of its light is the residual's, and directly seen.
+  for (int x = 0; x < width; ++x) {
+    EXPECT_FLOAT_EQ(image.channel("G")[static_cast<size_t>(x)], 0.5f) << x;
+    EXPECT_FLOAT_EQ(image.channel("residual.emission.G")[static_cast<size_t>(x)], 0.5f) << x;
+  }
+  // The spheres show the sky too (reflected, and refracted through the glass): directly
+  // seen light appears on them, and it never exceeds the residual's color.
+  const auto sphereDirect = [&](int x) {
+    return image.channel("residual.emission.G")[static_cast<size_t>(height / 2 * width + x)];
+  };
+  EXPECT_GT(sphereDirect(width / 2 - width / 8), 0.0f);
+  EXPECT_GT(sphereDirect(width / 2 + width / 8), 0.0f);
 }
 
 TEST(DecomposedRender, SeeThroughGlassEnergyGoesToTransmission) {
