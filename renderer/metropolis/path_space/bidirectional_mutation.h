@@ -5,7 +5,9 @@
 // a walk from x_m (or from a new light end), and connect the two walks.
 //
 //   P(l, m):  the number of deleted edges m - l = d in [1, k + 1] with probability
-//             proportional to 2^-(d - 1), then l uniform among the k + 2 - d places;
+//             proportional to 2^-(d - 1), then l uniform among the k + 2 - d places
+//             (l = k, m = k + 1 keeps the light end x_k as x_l, to scatter there: for an
+//             environment direction, which cannot, the proposal fails);
 //   P(n):     n in {nd - 1, nd, nd + 1} (nd = m - l - 1 deleted vertices) with weights
 //             1/4, 1/2, 1/4 among the lengths allowed (at most maxDepth scattering
 //             vertices, a new light end when it was deleted, never n = nd = 0);

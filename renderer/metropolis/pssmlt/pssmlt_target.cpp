@@ -42,7 +42,12 @@ Proposal<PssmltState> PssmltTarget::propose(const State& current, MutationContex
   const double choice = context.random.next1D();
   const bool large = choice < largeStep_;
   if (!large && choice < largeStep_ + (1 - largeStep_) * temporalStep_) return temporalStep(current, context);
-  Proposal<State> proposal{{current.samples.nextStep(large), current.depth, {}}, large ? kLarge : kSmall, 1};
+  // A large step draws the depth anew, uniformly: an independent proposal over every
+  // (depth, primary sample), so the ratio stays 1 and chains move between depths.
+  const int depth = large ? std::min(static_cast<int>(context.random.next1D() * static_cast<float>(strategies())),
+                                     strategies() - 1)
+                          : current.depth;
+  Proposal<State> proposal{{current.samples.nextStep(large), depth, {}}, large ? kLarge : kSmall, 1};
   evaluate(proposal.state, context.random);
   return proposal;
 }

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "test_support.h"
+#include "tests/renderer/sky_furnace.h"
 
 namespace pathfarm {
 namespace {
@@ -60,6 +61,18 @@ TEST(BdptRender, AgreesWithThePathTracerOnTheCornellBox) {
 
 TEST(BdptRender, AgreesWithThePathTracerOnTheMaterialsScene) {
   expectAgreement("scenes/materials/scene.json", 24, 256, 48);
+}
+
+// The sky furnace (sky_furnace.h): the environment is reached by escaping camera subpaths
+// and by connections towards it only, and their MIS weights must still add up to one.
+// The scene has no surface emitter, so no light-tracing splat leaves the variance
+// channel short: 4 standard errors of the pixel means.
+TEST(BdptRender, SkyFurnaceReadsAlbedoOnTheSphereAndOneOnTheSky) {
+  const auto means =
+      test_support::skyFurnaceMeans(BdptFrameRenderer(test_support::skyFurnaceScene(), smallSettings(24, 32)).render(0));
+  EXPECT_NEAR(means.sphere.mean, test_support::kSkyFurnaceSphere, 4 * means.sphere.standardError);
+  EXPECT_NEAR(means.sky.mean, test_support::kSkyFurnaceSky, 1e-6);  // seen directly: no noise
+  EXPECT_GT(means.sphere.standardError, 0);
 }
 
 TEST(BdptRender, ThreadsAndTileSizesGiveIdenticalBits) {

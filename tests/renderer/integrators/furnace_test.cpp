@@ -3,6 +3,7 @@
 
 #include "renderer/integrators/frame_renderer.h"
 #include "test_support.h"
+#include "tests/renderer/sky_furnace.h"
 
 namespace pathfarm {
 namespace {
@@ -66,6 +67,18 @@ TEST(WhiteFurnace, RoughMaterialsNeverCreateEnergy) {
     EXPECT_LE(estimate.mean, 1.0 + 3 * estimate.standardError) << material;
     EXPECT_GT(estimate.mean, 0.8) << material;
   }
+}
+
+// The sky furnace (sky_furnace.h) framed with the sky around the sphere: 0.5 on the
+// sphere's pixels and 1.0 on the sky's, within 4 standard errors of the pixel means.
+TEST(WhiteFurnace, SphereInTheSkyReadsAlbedoAndTheSkyOne) {
+  RenderSettings settings;
+  settings.width = settings.height = 24;
+  settings.spp = 32;
+  const auto means = test_support::skyFurnaceMeans(FrameRenderer(test_support::skyFurnaceScene(), settings).render(0));
+  EXPECT_NEAR(means.sphere.mean, test_support::kSkyFurnaceSphere, 4 * means.sphere.standardError);
+  EXPECT_NEAR(means.sky.mean, test_support::kSkyFurnaceSky, 1e-6);  // seen directly: no noise
+  EXPECT_GT(means.sphere.standardError, 0);
 }
 
 // A closed cube of inward-facing emitting diffuse walls (emission Le, albedo rho) seen from
