@@ -15,9 +15,7 @@ unsigned char encodeSrgb(float linear) {
   return static_cast<unsigned char>(std::lround(encoded * 255.0f));
 }
 
-}  // namespace
-
-void writePngPreview(const std::filesystem::path& file, const FrameImage& frame, float exposure) {
+std::vector<unsigned char> srgbPixels(const FrameImage& frame, float exposure) {
   const std::vector<float>* planes[3] = {&frame.channel("R"), &frame.channel("G"),
                                          &frame.channel("B")};
   std::vector<unsigned char> pixels(frame.pixelCount() * 3);
@@ -27,9 +25,28 @@ void writePngPreview(const std::filesystem::path& file, const FrameImage& frame,
       pixels[i * 3 + static_cast<size_t>(c)] = encodeSrgb(std::isfinite(v) ? v : 0.0f);
     }
   }
+  return pixels;
+}
+
+void appendBytes(void* context, void* data, int size) {
+  static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<size_t>(size));
+}
+
+}  // namespace
+
+void writePngPreview(const std::filesystem::path& file, const FrameImage& frame, float exposure) {
+  const std::vector<unsigned char> pixels = srgbPixels(frame, exposure);
   if (!stbi_write_png(file.c_str(), frame.width(), frame.height(), 3, pixels.data(),
                       frame.width() * 3))
     throw std::runtime_error(file.string() + ": cannot write the PNG preview");
+}
+
+std::string encodePngPreview(const FrameImage& frame, float exposure) {
+  const std::vector<unsigned char> pixels = srgbPixels(frame, exposure);
+  std::string png;
+  if (!stbi_write_png_to_func(appendBytes, &png, frame.width(), frame.height(), 3, pixels.data(), frame.width() * 3))
+    throw std::runtime_error("cannot encode the PNG preview");
+  return png;
 }
 
 }  // namespace pathfarm

@@ -6,6 +6,14 @@
 #include "scheduler/shot_report.h"
 
 namespace pathfarm::farm {
+namespace {
+
+// The evaluation's chunk is its contact sheet (worker/evaluate_task.cpp), or a line of text
+// when it had no final frame to show.
+bool isPng(const std::string& bytes) { return bytes.rfind("\x89PNG", 0) == 0; }
+
+}  // namespace
+
 grpc::Status ClientServiceImpl::Submit(grpc::ServerContext* context, const SubmitRequest* request,
                                        SubmitReply* reply) {
   return guarded(c_, context, [&] {
@@ -37,6 +45,9 @@ grpc::Status ClientServiceImpl::GetReport(grpc::ServerContext* context, const Sh
     const ShotSummary summary = c_.state.summary(request->shot_id(), wallClockSeconds());
     const auto [spec, tasks] = c_.state.taskRecords(request->shot_id());
     *reply = buildReport(summary, spec, tasks);
+    for (const TaskRecord& task : tasks)
+      if (task.kind == TASK_EVALUATE && task.done)
+        if (const auto sheet = c_.store.get(task.outputSha); sheet && isPng(*sheet)) reply->set_contact_sheet_png(*sheet);
     return grpc::Status::OK;
   });
 }

@@ -635,7 +635,7 @@ std::pair<ShotSpec, std::vector<TaskRecord>> FarmState::taskRecords(int64_t shot
     spec.ParseFromString(shot.blob(0));
     shot.reset();
     std::vector<TaskRecord> records;
-    Statement& q = db_.query("SELECT id, kind, params, state = ?2, core_seconds FROM tasks WHERE shot_id = ?1 ORDER BY id");
+    Statement& q = db_.query("SELECT id, kind, params, state = ?2, core_seconds, output_sha FROM tasks WHERE shot_id = ?1 ORDER BY id");
     q.bind(1, shotId).bind(2, asInt(TaskState::Done));
     while (q.step()) {
       TaskRecord record;
@@ -643,6 +643,7 @@ std::pair<ShotSpec, std::vector<TaskRecord>> FarmState::taskRecords(int64_t shot
       record.params.ParseFromString(q.blob(2));
       record.done = q.integer(3) != 0;
       record.coreSeconds = q.real(4);
+      if (record.done) record.outputSha = q.text(5);
       records.push_back(std::move(record));
       Statement& metrics = db_.query("SELECT name, value FROM task_metrics WHERE task_id = ?1").bind(1, q.integer(0));
       while (metrics.step()) records.back().metrics[metrics.text(0)] = metrics.real(1);

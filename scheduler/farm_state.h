@@ -34,6 +34,7 @@ struct TaskRecord {
   bool done = false;
   double coreSeconds = 0;  // of the accepted attempt
   std::map<std::string, double> metrics;
+  std::string outputSha;  // the output chunk of a done task
 };
 
 // Done, failed or cancelled: nothing more will run for the shot.

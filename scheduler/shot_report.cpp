@@ -171,13 +171,22 @@ ShotReport buildReport(const ShotSummary& summary, const ShotSpec& spec, const s
     StageError* error = report.add_errors();
     error->set_stage(stage);
     error->set_relmse(found->second);
+    const auto figure = [&](const char* name) {
+      const auto it = errors.find(std::string(name) + "." + stage);
+      return it == errors.end() ? 0.0 : it->second;
+    };
+    error->set_worst_tile_relmse(figure("worst_tile"));
+    error->set_worst_percent_share(figure("worst_share"));
+    error->set_kept(errors.count(std::string("kept.") + stage) ? figure("kept") : 1.0);
   }
   if (errors.count("temporal.final")) report.set_temporal_error(errors.at("temporal.final"));
   if (errors.count("temporal.baseline")) report.set_baseline_temporal_error(errors.at("temporal.baseline"));
   return report;
 }
 
-std::string reportJson(const ShotReport& report) {
+std::string reportJson(const ShotReport& full) {
+  ShotReport report = full;
+  report.clear_contact_sheet_png();  // written beside it as a PNG
   std::string json;
   google::protobuf::util::JsonPrintOptions options;
   options.add_whitespace = true;
@@ -187,6 +196,23 @@ std::string reportJson(const ShotReport& report) {
   if (!status.ok()) throw std::runtime_error("cannot write the report as JSON: " + status.ToString());
   return json;
 }
+
+namespace {
+
+// What a stage's row shows, in the report's words.
+std::string stageMeaning(const std::string& stage) {
+  static const std::map<std::string, std::string> meaning = {
+      {"render", "keyframes as rendered (before filtering)"},
+      {"denoise", "keyframes denoised"},
+      {"upsample", "keyframes upsampled"},
+      {"interpolate", "in-between frames interpolated"},
+      {"final", "**final frames**"},
+      {"baseline", "plain pt at the same spp"}};
+  const auto found = meaning.find(stage);
+  return found == meaning.end() ? stage : found->second;
+}
+
+}  // namespace
 
 std::string reportMarkdown(const ShotReport& r) {
   std::string md = "# Shot " + std::to_string(r.shot_id()) + " \"" + r.name() + "\": speed against error\n\n";
@@ -222,12 +248,24 @@ std::string reportMarkdown(const ShotReport& r) {
   }
   md += "Errors against pt at " + std::to_string(r.reference_spp()) + " spp on frames";
   for (const int64_t frame : r.evaluation_frames()) md.append(" ").append(std::to_string(frame));
-  md += " (relMSE of the beauty):\n\n| stage | relMSE |\n| --- | ---: |\n";
-  for (const StageError& e : r.errors()) md += "| " + e.stage() + " | " + format("%.5f", e.relmse()) + " |\n";
+  md += " (relMSE of the beauty; the worst 16x16 tile and the share of the error in the worst 1 % of pixels "
+        "show artifacts the mean hides):\n\n"
+        "| stage | relMSE | worst tile | error in worst 1 % | pixels measured |\n| --- | ---: | ---: | ---: | ---: |\n";
+  for (const StageError& e : r.errors()) {
+    const std::string measured = e.kept() < 1 ? format("%.1f%% (kept, not re-rendered)", 100 * e.kept()) : "all";
+    md += "| " + stageMeaning(e.stage()) + " | " + format("%.5f", e.relmse()) + " | " +
+          format("%.4f", e.worst_tile_relmse()) + " | " + format("%.0f%%", 100 * e.worst_percent_share()) + " | " +
+          measured + " |\n";
+  }
+  md += "\n| figure | value |\n| --- | ---: |\n";
   if (r.temporal_error() >= 0)
     md += "| temporal error, final | " + format("%.5f", r.temporal_error()) + " |\n";
   if (r.baseline_temporal_error() >= 0)
     md += "| temporal error, baseline pt | " + format("%.5f", r.baseline_temporal_error()) + " |\n";
+  if (!r.contact_sheet_png().empty())
+    md += "\n![contact sheet](contact_sheet.png)\n\nContact sheet, a row per evaluation frame: final, pt at " +
+          std::to_string(r.spp()) + " spp, reference, and the per-pixel relMSE of the first two (black 1e-4 or less, "
+          "red, yellow, white 1 or more).\n";
   return md;
 }
 
@@ -235,6 +273,7 @@ void writeReportFiles(const ShotReport& report, const std::filesystem::path& fol
   std::filesystem::create_directories(folder);
   writeFileAtomically(folder / "report.json", reportJson(report));
   writeFileAtomically(folder / "report.md", reportMarkdown(report));
+  if (!report.contact_sheet_png().empty()) writeFileAtomically(folder / "contact_sheet.png", report.contact_sheet_png());
 }
 
 }  // namespace pathfarm::farm

@@ -1,8 +1,15 @@
 // The error figures of a shot's report (worker/filter_tasks.h): every stage output of the
-// evaluation frames against their reference, as relMSE of the beauty, and the temporal
-// error (relMSE of frame-to-frame differences) of the final frames and of the baseline.
+// evaluation frames against their reference, as relMSE of the beauty with the artifact
+// measures (worst 16x16 tile, share of the error in the worst 1 % of pixels), and the
+// temporal error (relMSE of frame-to-frame differences) of the final frames and of the
+// baseline. A stage that flags pixels for re-rendering (upsample, interpolate) is measured
+// on the pixels it keeps: the flagged ones hold best-effort values the re-render replaces.
+// The task's chunk is the contact sheet of the evaluation frames (PNG; contact_sheet.h).
+#include <algorithm>
 #include <map>
 
+#include "image/png_preview.h"
+#include "postproc/metrics/contact_sheet.h"
 #include "postproc/metrics/image_metrics.h"
 #include "worker/filter_inputs.h"
 
@@ -40,6 +47,22 @@ std::string stageOf(const TaskInput& input) {
 
 const std::vector<std::string> kBeauty = {"R", "G", "B"};
 
+// The pixels a stage keeps: those upsampling or interpolation do not flag for re-rendering
+// (`rerender.Y`), all of any other stage's (a final frame's `rerender.Y` marks the pixels
+// that were re-rendered).
+std::vector<uint8_t> keptPixels(const std::string& stage, const FrameImage& image) {
+  std::vector<uint8_t> kept(image.pixelCount(), 1);
+  if ((stage != "upsample" && stage != "interpolate") || !image.hasChannel("rerender.Y")) return kept;
+  const std::vector<float>& flagged = image.channel("rerender.Y");
+  for (size_t p = 0; p < kept.size(); ++p) kept[p] = flagged[p] > 0.5f ? 0 : 1;
+  return kept;
+}
+
+struct StageSums {
+  double relMse = 0, worstTile = 0, worstShare = 0, kept = 0;
+  int frames = 0;
+};
+
 }  // namespace
 
 TaskOutput runEvaluateTask(const Lease& /*lease*/, const std::vector<TaskInput>& inputs) {
@@ -49,7 +72,7 @@ TaskOutput runEvaluateTask(const Lease& /*lease*/, const std::vector<TaskInput>&
       references[input.params.frame()] = &input.image;
   if (references.empty()) throw std::runtime_error("the evaluation has no reference frame");
 
-  std::map<std::string, std::pair<double, int>> sums;  // stage -> (sum of relMSE, frames)
+  std::map<std::string, StageSums> sums;
   std::map<std::string, std::map<int64_t, const FrameImage*>> sequences;  // final, baseline
   for (const TaskInput& input : inputs) {
     const std::string stage = stageOf(input);
@@ -58,13 +81,23 @@ TaskOutput runEvaluateTask(const Lease& /*lease*/, const std::vector<TaskInput>&
     // A half-resolution denoise output has no full-resolution error; its upsampling has.
     if (input.image.width() != reference->second->width() || input.image.height() != reference->second->height())
       continue;
-    auto& [sum, frames] = sums[stage];
-    sum += compareImages(input.image, *reference->second, kBeauty).relMse;
-    ++frames;
+    const std::vector<uint8_t> kept = keptPixels(stage, input.image);
+    const ImageMetrics m = compareImages(input.image, *reference->second, kBeauty, {}, &kept);
+    StageSums& sum = sums[stage];
+    sum.relMse += m.relMse;
+    sum.worstTile = std::max(sum.worstTile, m.worstTileRelMse);
+    sum.worstShare += m.worstPercentShare;
+    sum.kept += static_cast<double>(std::count(kept.begin(), kept.end(), 1)) / static_cast<double>(kept.size());
+    ++sum.frames;
     if (stage == "final" || stage == "baseline") sequences[stage][input.params.frame()] = &input.image;
   }
   TaskOutput output;
-  for (const auto& [stage, total] : sums) output.metrics["relmse." + stage] = total.first / total.second;
+  for (const auto& [stage, total] : sums) {
+    output.metrics["relmse." + stage] = total.relMse / total.frames;
+    output.metrics["worst_tile." + stage] = total.worstTile;  // the worst over the frames
+    output.metrics["worst_share." + stage] = total.worstShare / total.frames;
+    output.metrics["kept." + stage] = total.kept / total.frames;
+  }
   for (const auto& [stage, frames] : sequences) {
     if (frames.size() < 2) continue;
     std::vector<FrameImage> images, referenced;
@@ -75,8 +108,17 @@ TaskOutput runEvaluateTask(const Lease& /*lease*/, const std::vector<TaskInput>&
     output.metrics["temporal." + stage] = compareSequences(images, referenced, kBeauty).temporalRelMse;
   }
   output.metrics["evaluation_frames"] = static_cast<double>(references.size());
-  // The chunk records the figures as text, one "name value" per line.
-  for (const auto& [name, value] : output.metrics) output.chunk += name + " " + std::to_string(value) + "\n";
+  std::vector<ContactSheetRow> rows;
+  for (const auto& [frame, reference] : references) {
+    const auto& finals = sequences["final"];
+    const auto& baselines = sequences["baseline"];
+    const auto final = finals.find(frame);
+    if (final == finals.end()) continue;
+    const auto baseline = baselines.find(frame);
+    rows.push_back({final->second, baseline == baselines.end() ? nullptr : baseline->second, reference});
+  }
+  output.chunk = rows.empty() ? std::string("no final frame among the evaluation frames\n")
+                              : encodePngPreview(contactSheet(rows));
   return output;
 }
 

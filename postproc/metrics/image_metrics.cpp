@@ -96,15 +96,17 @@ void addArtifactMeasures(const PixelErrors& pixels, const Crop& crop, int width,
         }
       if (count > 0) m.worstTileRelMse = std::max(m.worstTileRelMse, sum / static_cast<double>(count));
     }
-  // Share of the error in the worst 1 % of the crop's pixels.
+  // Share of the error in the worst 1 % of the compared pixels.
   std::vector<double> errors;
   double total = 0;
   for (int y = crop.y0; y < crop.y1; ++y)
     for (int x = crop.x0; x < crop.x1; ++x) {
-      const double e = pixels.error[static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)];
-      errors.push_back(e);
-      total += e;
+      const size_t p = static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
+      if (pixels.values[p] == 0) continue;
+      errors.push_back(pixels.error[p]);
+      total += pixels.error[p];
     }
+  if (errors.empty()) return;
   const size_t worst = std::max<size_t>(1, errors.size() / 100);
   std::nth_element(errors.begin(), errors.begin() + static_cast<std::ptrdiff_t>(worst - 1), errors.end(),
                    std::greater<>());
@@ -130,15 +132,20 @@ std::vector<std::string> layerChannels(const FrameImage& frame, const std::strin
 }
 
 ImageMetrics compareImages(const FrameImage& image, const FrameImage& reference,
-                           const std::vector<std::string>& channels, const std::optional<Crop>& crop) {
+                           const std::vector<std::string>& channels, const std::optional<Crop>& crop,
+                           const std::vector<uint8_t>* only) {
   checkSameSize(image, reference);
   const Crop c = checkedCrop(image, crop);
+  if (only && only->size() != image.pixelCount())
+    throw std::invalid_argument("the pixel mask has " + std::to_string(only->size()) + " entries for " +
+                                std::to_string(image.pixelCount()) + " pixels");
   Sums sums;
   PixelErrors pixels{std::vector<double>(image.pixelCount(), 0.0), std::vector<int>(image.pixelCount(), 0)};
   for (const std::string& name : channels) {
     const auto& x = channelOf(image, name);
     const auto& r = channelOf(reference, name);
     forEachPixel(c, image.width(), [&](size_t p) {
+      if (only && !(*only)[p]) return;
       const size_t before = sums.compared;
       pixels.error[p] += sums.add(x[p], r[p]);
       pixels.values[p] += static_cast<int>(sums.compared - before);

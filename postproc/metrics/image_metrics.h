@@ -3,6 +3,7 @@
 // crop: relMSE (DESIGN.md's definition), MSE, PSNR and SMAPE. Reference pixels that are
 // not finite are skipped and counted; a non-finite value in the image counts as an error
 // of its own (it is kept out of the means and counted in `nonFinite`).
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -37,8 +38,10 @@ struct ImageMetrics {
 std::vector<std::string> layerChannels(const FrameImage& frame, const std::string& layer);
 
 // Throws std::invalid_argument for different sizes, a missing channel or a crop outside.
+// With `only`, just the pixels it sets are compared.
 ImageMetrics compareImages(const FrameImage& image, const FrameImage& reference,
-                           const std::vector<std::string>& channels, const std::optional<Crop>& crop = {});
+                           const std::vector<std::string>& channels, const std::optional<Crop>& crop = {},
+                           const std::vector<uint8_t>* only = nullptr);
 
 struct SequenceMetrics {
   std::vector<ImageMetrics> frames;

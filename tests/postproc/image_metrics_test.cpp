@@ -42,6 +42,37 @@ TEST(ImageMetrics, CropLayersAndNonFiniteReferences) {
   EXPECT_THROW(compareImages(image, ref, {"R"}, Crop{1, 1, 3, 2}), std::invalid_argument);
 }
 
+// A 40x20 frame (tiles: 3 columns, the last 8 wide; 2 rows, the last 4 high) whose only
+// error is 4 wrong pixels in the partial corner tile: relative errors of 1 and 0.25.
+TEST(ImageMetrics, WorstTileAndWorstPercentFindAFewWrongPixels) {
+  const FrameImage ref = grey(40, 20, std::vector<float>(800, 1.0f));
+  FrameImage image = ref;
+  const size_t wrong[4] = {19 * 40 + 39, 19 * 40 + 38, 18 * 40 + 39, 16 * 40 + 32};
+  const float values[4] = {2.0f, 2.0f, 1.5f, 1.5f};
+  for (const char* c : {"R", "G", "B"})
+    for (int i = 0; i < 4; ++i) image.channel(c)[wrong[i]] = values[i];
+  const ImageMetrics m = compareImages(image, ref, {"R", "G", "B"});
+  const double perValue = 1.0 / 1.01, quarter = 0.25 / 1.01;
+  EXPECT_NEAR(m.relMse, (2 * perValue + 2 * quarter) / 800, 1e-9);
+  // The corner tile has 8x4 pixels: its relMSE is the four pixels' sum over 32.
+  EXPECT_NEAR(m.worstTileRelMse, (2 * perValue + 2 * quarter) / 32, 1e-9);
+  // The worst 1 % of 800 pixels is 8 pixels: they hold all of the error.
+  EXPECT_NEAR(m.worstPercentShare, 1.0, 1e-12);
+  // Spread the same error evenly and the share falls to 1 %.
+  const FrameImage even = grey(40, 20, std::vector<float>(800, 1.1f));
+  EXPECT_NEAR(compareImages(even, ref, {"R"}).worstPercentShare, 0.01, 1e-9);
+  EXPECT_NEAR(compareImages(even, ref, {"R"}).worstTileRelMse, 0.01 / 1.01, 1e-6);
+  // Measured only on the pixels a mask keeps, the wrong ones out: no error at all.
+  std::vector<uint8_t> kept(800, 1);
+  for (size_t p : wrong) kept[p] = 0;
+  const ImageMetrics masked = compareImages(image, ref, {"R", "G", "B"}, {}, &kept);
+  EXPECT_EQ(masked.relMse, 0.0);
+  EXPECT_EQ(masked.worstTileRelMse, 0.0);
+  EXPECT_EQ(masked.compared, 3u * 796u);
+  kept.pop_back();
+  EXPECT_THROW(compareImages(image, ref, {"R"}, {}, &kept), std::invalid_argument);
+}
+
 TEST(SequenceMetrics, TemporalErrorSeesFlickerThatFrameErrorsMiss) {
   // Both sequences are equally wrong frame by frame, but one flickers and one is steady.
   const std::vector<FrameImage> reference{grey(1, 1, {1}), grey(1, 1, {1}), grey(1, 1, {1})};

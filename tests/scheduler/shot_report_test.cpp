@@ -46,7 +46,9 @@ TEST(ShotReport, CostsRatesAndErrorsFollowFromTheTasks) {
   tasks.back().metrics["samples"] = 800;  // measurement: not traced for the output
   tasks.push_back(record(TASK_ASSEMBLE_FRAME, ROLE_BASELINE, 1, 1.0));
   tasks.push_back(record(TASK_EVALUATE, ROLE_UNSPECIFIED, 0, 0.25));
-  tasks.back().metrics = {{"relmse.final", 0.01}, {"relmse.baseline", 0.03}, {"temporal.final", 0.02}};
+  tasks.back().metrics = {{"relmse.final", 0.01},     {"relmse.baseline", 0.03},     {"temporal.final", 0.02},
+                          {"worst_tile.final", 0.5}, {"worst_share.final", 0.25}, {"relmse.interpolate", 0.2},
+                          {"kept.interpolate", 0.9}};
 
   ShotSummary summary;
   summary.set_id(7);
@@ -72,15 +74,27 @@ TEST(ShotReport, CostsRatesAndErrorsFollowFromTheTasks) {
   EXPECT_EQ(report.stages(0).stage(), "render");
   EXPECT_DOUBLE_EQ(report.stages(0).core_seconds(), 3.0);
   EXPECT_EQ(report.stages(3).stage(), "re-render");
-  ASSERT_EQ(report.errors_size(), 2);
-  EXPECT_EQ(report.errors(0).stage(), "final");
-  EXPECT_DOUBLE_EQ(report.errors(0).relmse(), 0.01);
+  ASSERT_EQ(report.errors_size(), 3);
+  EXPECT_EQ(report.errors(0).stage(), "interpolate");
+  EXPECT_DOUBLE_EQ(report.errors(0).kept(), 0.9);
+  EXPECT_EQ(report.errors(1).stage(), "final");
+  EXPECT_DOUBLE_EQ(report.errors(1).relmse(), 0.01);
+  EXPECT_DOUBLE_EQ(report.errors(1).worst_tile_relmse(), 0.5);
+  EXPECT_DOUBLE_EQ(report.errors(1).worst_percent_share(), 0.25);
+  EXPECT_DOUBLE_EQ(report.errors(1).kept(), 1.0);  // a stage that flags nothing is measured everywhere
   EXPECT_DOUBLE_EQ(report.temporal_error(), 0.02);
   EXPECT_EQ(report.baseline_temporal_error(), -1);
 
   const std::string md = reportMarkdown(report);
   EXPECT_NE(md.find("| **relative cost**"), std::string::npos);
-  EXPECT_NE(md.find("| final | 0.01000 |"), std::string::npos);
+  EXPECT_NE(md.find("| **final frames** | 0.01000 | 0.5000 | 25% | all |"), std::string::npos);
+  EXPECT_NE(md.find("| in-between frames interpolated | 0.20000 | 0.0000 | 0% | 90.0% (kept, not re-rendered) |"),
+            std::string::npos);
+  EXPECT_EQ(md.find("contact_sheet.png"), std::string::npos);  // no sheet, no picture
+  ShotReport withSheet = report;
+  withSheet.set_contact_sheet_png("\x89PNG...");
+  EXPECT_NE(reportMarkdown(withSheet).find("![contact sheet](contact_sheet.png)"), std::string::npos);
+  EXPECT_EQ(reportJson(withSheet).find("iVBOR"), std::string::npos);  // the bytes (base64) stay out of the JSON
   EXPECT_NE(reportJson(report).find("\"relative_cost\""), std::string::npos);
 }
 
