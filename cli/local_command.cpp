@@ -1,6 +1,8 @@
 // `pathfarm local SHOT.json --workers N --out DIR`: the embedded farm. Starts a
 // scheduler and N worker processes, submits the shot, watches it, fetches the frames
-// into DIR and stops everything.
+// into DIR and stops everything. A finished shot keeps its frames, its report and the
+// farm's logs; the intermediate chunks, the workers' caches and the database go, unless
+// --keep-farm asks to keep them (a shot that did not finish keeps them, to be looked into).
 #include <spdlog/spdlog.h>
 
 #include <memory>
@@ -20,7 +22,27 @@ struct LocalArguments {
   std::string out;
   int workers = 2;
   int threads = 0;
+  bool keepFarm = false;
 };
+
+uintmax_t folderBytes(const std::filesystem::path& folder) {
+  uintmax_t bytes = 0;
+  std::error_code error;
+  for (auto it = std::filesystem::recursive_directory_iterator(folder, error);
+       !error && it != std::filesystem::recursive_directory_iterator(); it.increment(error))
+    if (it->is_regular_file(error)) bytes += it->file_size(error);
+  return bytes;
+}
+
+// Everything of the embedded farm but its logs.
+void removeIntermediateData(const std::filesystem::path& farmFolder) {
+  const uintmax_t before = folderBytes(farmFolder);
+  for (const auto& entry : std::filesystem::directory_iterator(farmFolder))
+    if (entry.path().filename() != "logs") std::filesystem::remove_all(entry.path());
+  spdlog::info("removed {:.1f} MB of intermediate chunks, worker caches and the farm database from {} "
+               "(--keep-farm keeps them)", static_cast<double>(before - folderBytes(farmFolder)) / 1e6,
+               farmFolder.string());
+}
 
 int runLocal(const LocalArguments& arguments) {
   farm::ShotSpec spec;
@@ -50,7 +72,9 @@ int runLocal(const LocalArguments& arguments) {
     spdlog::info("{} EXR frames in {}; report.md and report.json there too", files.size(), out.string());
     spdlog::info("relative cost {:.3f} (resolution gain {:.2f}, overhead {:.2f}), re-render rate {:.1f}%",
                  report.relative_cost(), report.resolution_gain(), report.overhead(), 100 * report.rerender_rate());
-    return summary.state() == farm::SHOT_DONE ? kExitOk : kExitFailure;
+    const bool done = summary.state() == farm::SHOT_DONE;
+    if (done && !arguments.keepFarm) removeIntermediateData(out / "farm");
+    return done ? kExitOk : kExitFailure;
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
     return kExitFailure;
@@ -66,6 +90,8 @@ std::vector<Command> addLocalCommand(CLI::App& app) {
   local->add_option("--workers", arguments->workers, "worker processes")->check(CLI::Range(1, 256))->capture_default_str();
   local->add_option("--threads", arguments->threads, "render threads per worker (0: the cores shared out)");
   local->add_option("--out", arguments->out, "output folder (default: the shot's output)");
+  local->add_flag("--keep-farm", arguments->keepFarm,
+                  "keep the farm's database, chunks and worker caches after the shot is done (default: only its logs)");
   return {{local, [arguments] { return runLocal(*arguments); }}};
 }
 

@@ -15,4 +15,5 @@ echo
 echo "EXR frames (beauty in R,G,B; every component's color):             $OUT/frame_0000.exr .. frame_0023.exr"
 echo "PNG previews:                                                      $OUT/frame_0000.png .. frame_0023.png"
 echo "Speed against error (above):                                       $OUT/report.md, report.json"
-echo "The farm's database, chunks and worker logs:                       $OUT/farm/"
+echo "Contact sheet (final, pt, reference, error maps):                  $OUT/contact_sheet.png"
+echo "The farm's logs (chunks and caches are removed; --keep-farm keeps them): $OUT/farm/logs/"

@@ -16,6 +16,10 @@ for f in frame_0001.exr frame_0002.exr; do
 done
 # Its workers' command lines name their cache under the output folder.
 pgrep -f "$work/farm_out/farm/cache" > /dev/null && fail "workers left running"
+# A finished shot keeps its frames, its report and the logs; the intermediate data goes.
+[ -d "$work/farm_out/farm/logs" ] || fail "the farm's logs were removed"
+for gone in chunks cache farm.db; do [ -e "$work/farm_out/farm/$gone" ] && fail "farm/$gone was kept"; done
+grep -q "removed .* MB of intermediate" "$work/log" || fail "no word of the removed data: $(cat "$work/log")"
 
 # A decomposed shot: every component's buffers come back from the tiles unchanged.
 cat > "$work/decomposed.json" <<JSON
@@ -23,7 +27,8 @@ cat > "$work/decomposed.json" <<JSON
  "resolution": [40, 30], "spp": 2, "max_depth": 6, "tile": 16, "output": "split_out", "decompose": "default",
  "pipeline": "pt"}
 JSON
-"$pathfarm" local "$work/decomposed.json" --workers 2 --threads 1 > "$work/log" 2>&1 || fail "decomposed local failed: $(cat "$work/log")"
+"$pathfarm" local "$work/decomposed.json" --workers 2 --threads 1 --keep-farm > "$work/log" 2>&1 || fail "decomposed local failed: $(cat "$work/log")"
+[ -d "$work/split_out/farm/chunks" ] || fail "--keep-farm did not keep the chunks"
 "$pathfarm" render "$source_dir/scenes/cornell/scene.json" --frames 2:2 --res 40x30 --spp 2 --max-depth 6 \
   --decompose default --out "$work/split_render" > "$work/render.log" 2>&1 || fail "decomposed render failed"
 cmp -s "$work/split_out/frame_0002.exr" "$work/split_render/frame_0002.exr" || fail "decomposed farm frame differs"
