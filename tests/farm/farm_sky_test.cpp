@@ -1,0 +1,94 @@
+// Light that reaches the camera without a diffuse vertex (the sky seen directly, in a
+// mirror, through glass) survives every stage of the dui pipeline: each stage's output has
+// its components adding up to its beauty, and the final frames show the sky where plain
+// path tracing does.
+#include <cmath>
+
+#include "farm/farm_fixture.h"
+#include "image/exr_io.h"
+#include "postproc/filters/decomposed_frame.h"
+#include "proto/wire/chunk_store.h"
+
+namespace pathfarm::farmtest {
+namespace {
+
+constexpr float kSky = 0.5f;
+
+// A moving camera over a floor with a mirror sphere and a moving glass sphere, under a
+// constant sky and a small lamp; the top rows of every frame see the sky.
+fs::path writeSkyShot(const fs::path& folder) {
+  writeFile(folder / "sky.json", R"({
+    "camera": {"position": [0, 0.7, 4], "look_at": [0, 0.9, 0], "fov": 45, "shutter": [0, 0.5],
+               "animation": {"translate": [{"frame": 0, "value": [-0.3, 0.7, 4]}, {"frame": 4, "value": [0.3, 0.7, 3.8]}]}},
+    "materials": {"floor": {"type": "diffuse", "reflectance": 0.5},
+                  "mirror": {"type": "conductor", "specular_color": 0.9},
+                  "glass": {"type": "dielectric", "ior": 1.5},
+                  "lamp": {"type": "diffuse", "reflectance": 0}},
+    "environment": {"radiance": 0.5},
+    "shapes": [
+      {"type": "rectangle", "size": [6, 6], "material": "floor", "transform": {"rotate": {"axis": [1, 0, 0], "angle": -90}}},
+      {"type": "sphere", "radius": 0.4, "material": "mirror", "transform": {"translate": [-0.5, 0.4, 0]}},
+      {"type": "sphere", "radius": 0.35, "material": "glass",
+       "animation": {"translate": [{"frame": 0, "value": [0.4, 0.35, 0.3]}, {"frame": 4, "value": [0.7, 0.35, 0.1]}]}},
+      {"type": "rectangle", "size": [0.6, 0.6], "material": "lamp", "emission": 20,
+       "transform": {"translate": [0, 3, 1], "rotate": {"axis": [1, 0, 0], "angle": 90}}}]
+  })");
+  const fs::path shot = folder / "sky.shot.json";
+  writeFile(shot, R"({"name": "sky", "scene": "sky.json", "frames": {"start": 0, "end": 4}, "resolution": [64, 48],
+    "spp": 8, "max_depth": 6, "pipeline": "dui", "keyframe_interval": 2, "tile": 32,
+    "baseline_core_seconds": 1})");
+  return shot;
+}
+
+// The beauty equals the sum of the components' colors at every pixel.
+void expectComponentsAddUp(const FrameImage& image, const std::string& label) {
+  const std::vector<std::string> components = decompositionComponents(image);
+  ASSERT_FALSE(components.empty()) << label;
+  for (const char* c : {"R", "G", "B"}) {
+    const std::vector<float>& beauty = image.channel(c);
+    for (size_t p = 0; p < beauty.size(); ++p) {
+      double sum = 0;
+      for (const std::string& component : components) sum += image.channel(component + ".color." + c)[p];
+      ASSERT_NEAR(sum, beauty[p], 1e-4 * std::abs(beauty[p]) + 1e-5) << label << ", channel " << c << ", pixel " << p;
+    }
+  }
+}
+
+TEST_F(FarmTest, SkyMirrorAndGlassLightSurviveEveryDuiStage) {
+  const fs::path shot = writeSkyShot(dir());
+  const fs::path out = dir() / "out";
+  const CommandResult local = runPathfarm(
+      {"local", shot.string(), "--workers", "2", "--threads", "1", "--out", out.string(), "--keep-farm"}, {}, 300s);
+  ASSERT_EQ(local.status, 0) << local.output;
+
+  const FarmDatabase db(out / "farm" / "farm.db");
+  const farm::ChunkStore store(out / "farm" / "chunks");
+  std::map<int, int> checked;  // task kind -> outputs checked
+  for (const auto& row : db.rows("SELECT kind, output_sha FROM tasks WHERE state = 3")) {
+    const int kind = std::stoi(row[0]);
+    if (kind != farm::TASK_ASSEMBLE_FRAME && kind != farm::TASK_DENOISE && kind != farm::TASK_UPSAMPLE &&
+        kind != farm::TASK_INTERPOLATE && kind != farm::TASK_RENDER_TILE && kind != farm::TASK_COMPOSITE)
+      continue;
+    const auto bytes = store.get(row[1]);
+    ASSERT_TRUE(bytes) << "chunk " << row[1] << " is missing";
+    const FrameImage image = decodeExr(*bytes, "chunk " + row[1]);
+    // Baseline and reference renders are plain pt: nothing to add up.
+    if (decompositionComponents(image).empty()) continue;
+    expectComponentsAddUp(image, farm::TaskKind_Name(static_cast<farm::TaskKind>(kind)) + " " + row[1]);
+    ++checked[kind];
+  }
+  for (const farm::TaskKind kind : {farm::TASK_ASSEMBLE_FRAME, farm::TASK_DENOISE, farm::TASK_UPSAMPLE,
+                                    farm::TASK_INTERPOLATE, farm::TASK_COMPOSITE})
+    EXPECT_GT(checked[kind], 0) << "no output of " << farm::TaskKind_Name(kind) << " was checked";
+
+  // The top rows see only the sky: exactly its radiance in every final frame.
+  for (int64_t frame = 0; frame <= 4; ++frame) {
+    const FrameImage image = readExr(out / farm::frameFileName(frame));
+    for (const char* c : {"R", "G", "B"})
+      for (size_t p = 0; p < 2 * static_cast<size_t>(image.width()); ++p)
+        ASSERT_NEAR(image.channel(c)[p], kSky, 1e-4) << "frame " << frame << ", channel " << c << ", pixel " << p;
+  }
+}
+
+}  // namespace
+}  // namespace pathfarm::farmtest
