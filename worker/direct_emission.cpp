@@ -1,6 +1,7 @@
 #include "worker/direct_emission.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "postproc/filters/decomposed_frame.h"
 #include "renderer/decomposition/effective_irradiance.h"
@@ -40,6 +41,17 @@ void apply(FrameImage& frame, const FrameImage& emission, float sign, const std:
   }
 }
 
+std::vector<float> luminance(const FrameImage& frame, const std::string& prefix) {
+  std::vector<float> out(frame.pixelCount(), 0.0f);
+  const float weights[3] = {0.2126f, 0.7152f, 0.0722f};
+  for (int c = 0; c < 3; ++c) {
+    if (!frame.hasChannel(prefix + kRgb[c])) continue;
+    const std::vector<float>& values = frame.channel(prefix + kRgb[c]);
+    for (size_t p = 0; p < out.size(); ++p) out[p] += weights[c] * values[p];
+  }
+  return out;
+}
+
 }  // namespace
 
 FrameImage takeDirectEmission(FrameImage& frame) {
@@ -60,6 +72,34 @@ FrameImage takeDirectEmission(FrameImage& frame) {
 
 void addDirectEmission(FrameImage& frame, const FrameImage& emission, const std::vector<uint8_t>* only) {
   apply(frame, emission, 1.0f, only);
+}
+
+std::vector<uint8_t> directLightEdges(const FrameImage& emission, const FrameImage& beauty, float significance) {
+  std::vector<float> light(emission.pixelCount(), 0.0f);
+  for (const std::string& component : componentsOf(beauty)) {
+    const std::vector<float> part = luminance(emission, component + ".direct.");
+    for (size_t p = 0; p < light.size(); ++p) light[p] += part[p];
+  }
+  const std::vector<float> total = luminance(beauty, "");
+  const int width = emission.width(), height = emission.height();
+  std::vector<uint8_t> edges(light.size(), 0);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const size_t p = static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
+      for (int dy = -1; dy <= 1 && !edges[p]; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int nx = x + dx, ny = y + dy;
+          if (nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
+          const size_t q = static_cast<size_t>(ny) * static_cast<size_t>(width) + static_cast<size_t>(nx);
+          // Judged against what the brighter of the two pixels shows (light included).
+          const float scale = std::max({total[p], total[q], 1e-6f});
+          if (std::abs(light[p] - light[q]) > significance * scale) {
+            edges[p] = 1;
+            break;
+          }
+        }
+    }
+  return edges;
 }
 
 }  // namespace pathfarm::farm

@@ -7,7 +7,9 @@
 // no features for the upsampler or the interpolation to follow. So every component's
 // directly seen light (its `emission` buffer, renderer/decomposition/path_decomposer.h) is
 // taken out before filtering, the rest is filtered, and the light is added back at full
-// resolution; an interpolated frame gets the light of its own feature render.
+// resolution; an interpolated frame gets the light of its own feature render, whose few
+// samples leave the edges of what is directly seen noisy (a pixel a lamp or the sky covers
+// in part): those edges are re-rendered at the shot's spp (directLightEdges).
 #include <cstdint>
 #include <vector>
 
@@ -22,5 +24,11 @@ FrameImage takeDirectEmission(FrameImage& frame);
 // Adds it back to the beauty and the components' colors (and irradiance, recomputed),
 // at every pixel or only where `only` is set.
 void addDirectEmission(FrameImage& frame, const FrameImage& emission, const std::vector<uint8_t>* only = nullptr);
+
+// The pixels on either side of an edge of the directly seen light: where the luminance of
+// the light (summed over components) differs from an 8-neighbour's by more than
+// `significance` times the larger of the two pixels' beauty luminance. `beauty` is the
+// frame the light was taken from.
+std::vector<uint8_t> directLightEdges(const FrameImage& emission, const FrameImage& beauty, float significance = 0.05f);
 
 }  // namespace pathfarm::farm

@@ -6,6 +6,7 @@
 #include "postproc/filters/decomposed_frame.h"
 #include "postproc/interpolation/feature_check.h"
 #include "postproc/interpolation/frame_interpolation.h"
+#include "postproc/interpolation/radiance_check.h"
 #include "worker/direct_emission.h"
 #include "worker/filter_inputs.h"
 
@@ -97,13 +98,19 @@ TaskOutput runInterpolateTask(const Lease& lease, const std::vector<TaskInput>& 
   result.frame.attributes()["pathfarm.interpolated"] =
       "between keyframes " + std::to_string(before) + " and " + std::to_string(after);
   addDirectEmission(result.frame, directLight);
-  // Where the frame's own features disagree, the interpolation is wrong: re-render there too.
+  // Where the frame's own features or their light disagree, the interpolation is wrong;
+  // where its directly seen light has an edge, the feature render's few samples are:
+  // re-render there too.
   const std::vector<uint8_t> mismatch = featureMismatch(result.frame, features);
-  size_t mismatched = 0;
+  const std::vector<uint8_t> edges = directLightEdges(directLight, features);
+  const std::vector<uint8_t> lightMismatch = radianceMismatch(result.frame, features);
+  size_t mismatched = 0, edgePixels = 0, lightMismatched = 0;
   std::vector<float>& flagged = result.frame.channel("rerender.Y");
   for (size_t p = 0; p < mismatch.size(); ++p) {
     mismatched += mismatch[p];
-    if (!mismatch[p]) continue;
+    edgePixels += edges[p];
+    lightMismatched += lightMismatch[p];
+    if (!mismatch[p] && !edges[p] && !lightMismatch[p]) continue;
     result.mask[p] = 1;
     flagged[p] = 1.0f;
   }
@@ -115,6 +122,8 @@ TaskOutput runInterpolateTask(const Lease& lease, const std::vector<TaskInput>& 
   output.metrics["rerender_untracked"] = static_cast<double>(result.untrackedPixels);
   output.metrics["rerender_illumination"] = static_cast<double>(result.illuminationPixels);
   output.metrics["rerender_mismatch"] = static_cast<double>(mismatched);
+  output.metrics["rerender_light_edges"] = static_cast<double>(edgePixels);
+  output.metrics["rerender_light_mismatch"] = static_cast<double>(lightMismatched);
   output.chunk = encodeExr(result.frame, ExrCompression::Fast);
   return output;
 }

@@ -66,6 +66,43 @@ TEST(DirectEmission, ComesBackWhereAskedOnAFrameWithColorsOnly) {
   EXPECT_EQ(f.channel("mirror.color.G"), (std::vector<float>{0.0f, 0.0f, 0.5f}));
 }
 
+// A 6x3 frame: the residual sees a lamp of 10 in columns 0-2 (column 2 half covered, read
+// as 10 by few samples), a dim wall of 0.2 elsewhere.
+TEST(DirectEmission, EdgesOfTheLightAreFlaggedOnBothSides) {
+  FrameImage f(6, 3);
+  f.attributes()["pathfarm.decomposition"] = "diffuse=ED,residual";
+  const std::vector<float> row = {10, 10, 10, 0, 0, 0};
+  const std::vector<float> beautyRow = {10, 10, 10, 0.2f, 0.2f, 0.2f};
+  for (const char* c : {"R", "G", "B"}) {
+    const std::string n = c;
+    std::vector<float> light, beauty;
+    for (int y = 0; y < 3; ++y) {
+      light.insert(light.end(), row.begin(), row.end());
+      beauty.insert(beauty.end(), beautyRow.begin(), beautyRow.end());
+    }
+    f.addChannel(n) = beauty;
+    f.addChannel("residual.color." + n) = beauty;
+    f.addChannel("residual.emission." + n) = light;
+    f.addChannel("diffuse.color." + n) = std::vector<float>(18, 0.0f);
+    f.addChannel("diffuse.emission." + n) = std::vector<float>(18, 0.0f);
+  }
+  FrameImage taken = f;
+  const FrameImage light = takeDirectEmission(taken);
+  const std::vector<uint8_t> edges = directLightEdges(light, f);
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 6; ++x)
+      EXPECT_EQ(edges[static_cast<size_t>(y * 6 + x)], x == 2 || x == 3 ? 1 : 0) << x << "," << y;
+  // A light that changes by less than the significance is no edge.
+  for (const char* c : {"R", "G", "B"}) {
+    std::vector<float>& direct = f.channel(std::string("residual.emission.") + c);
+    for (size_t p = 0; p < direct.size(); ++p) direct[p] = direct[p] > 0 ? 10.0f + 0.01f * static_cast<float>(p % 6) : 0.0f;
+  }
+  taken = f;
+  const std::vector<uint8_t> gentle = directLightEdges(takeDirectEmission(taken), f);
+  EXPECT_EQ(gentle[1], 0);
+  EXPECT_EQ(gentle[2], 1);
+}
+
 TEST(DirectEmission, RefusesAFrameWithoutDecomposition) {
   FrameImage f(1, 1);
   EXPECT_THROW(takeDirectEmission(f), std::invalid_argument);

@@ -1,0 +1,30 @@
+#pragma once
+// Checking an interpolated frame's light against the frame's own cheap render. Depth and
+// presence (feature_check.h) say where surfaces are, not how they are lit: a pixel a
+// keyframe could not see (disoccluded behind a moving object) takes the other keyframe's
+// light, so a shadow or a reflection is put where it was at that keyframe — a ghost of
+// the moving object. The few samples of the in-between frame are noisy pixel by pixel but
+// not over a window: per component c and pixel p, over the (2 radius + 1)^2 window around p,
+//   |sum interpolated <c>.color - sum features' <c>.color| > z * sqrt(sum of the features'
+//   <c>.variance)  and  > relative * (sum of the features' beauty)
+// (luminances; the variance of a luminance bounded above by (sum_k w_k sigma_k)^2) flags p:
+// a difference the feature render's noise cannot explain, large enough to see.
+#include <cstdint>
+#include <vector>
+
+#include "image/frame_image.h"
+
+namespace pathfarm {
+
+struct RadianceCheckSettings {
+  int radius = 3;
+  float z = 4.0f;
+  float relative = 0.1f;
+};
+
+// One byte per pixel, 1 where any component's light disagrees. Throws
+// std::invalid_argument for frames of different sizes or a missing channel (naming it).
+std::vector<uint8_t> radianceMismatch(const FrameImage& interpolated, const FrameImage& features,
+                                      const RadianceCheckSettings& settings = {});
+
+}  // namespace pathfarm
