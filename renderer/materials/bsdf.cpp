@@ -24,6 +24,7 @@ auto visit(const Material& material, Rgb albedo, float roughnessThreshold, F&& f
     case MaterialType::RoughDielectric: return f(RoughDielectricBsdf(material, roughnessThreshold));
     case MaterialType::Plastic: return f(SmoothPlasticBsdf(material, albedo));
     case MaterialType::RoughPlastic: return f(RoughPlasticBsdf(material, albedo, roughnessThreshold));
+    case MaterialType::MetallicRoughness:  // until its BSDF lands
     case MaterialType::Diffuse: break;
   }
   return f(DiffuseBsdf(albedo));

@@ -15,6 +15,7 @@ enum class MaterialType {
   RoughDielectric,  // microfacet glass (Walter et al. 2007)
   Plastic,          // smooth dielectric coating over a diffuse base (as in Mitsuba)
   RoughPlastic,     // microfacet coating over a diffuse base
+  MetallicRoughness,  // glTF 2.0 pbrMetallicRoughness with transmission and ior
 };
 
 enum class MicrofacetType { GGX, Beckmann };
@@ -35,6 +36,13 @@ struct Material {
   // Rough materials.
   MicrofacetType distribution = MicrofacetType::GGX;
   float alpha = 0.1f;
+  // MetallicRoughness: `reflectance` is the base colour (times the texture's texel);
+  // roughness is perceptual (GGX alpha = roughness^2). The texture holds linear data:
+  // B = metal, G = roughness, multiplied by the factors.
+  float metallic = 1;
+  float roughness = 1;
+  int metallicRoughnessTexture = -1;  // index into Scene::textures, -1 for none
+  float transmission = 0;
 };
 
 // The papers' vertex symbols (Zimmer et al. 2015): D diffuse, R specular or glossy

@@ -17,6 +17,11 @@ class TextureError : public std::runtime_error {
 class ImageTexture {
  public:
   static ImageTexture load(const std::filesystem::path& file);
+  // From decoded pixels (rows top to bottom, `channels` interleaved 8- or 16-bit values,
+  // little-endian for 16): grey and grey-alpha are replicated, alpha is dropped. `srgb`
+  // says whether the values are sRGB-encoded colour or linear data.
+  static ImageTexture fromPixels(int width, int height, int channels, int bitsPerChannel,
+                                 const unsigned char* data, bool srgb);
   ImageTexture(int width, int height, std::vector<Rgb> texels);
 
   Rgb lookup(Vec2f uv) const;
