@@ -7,20 +7,16 @@
 #include "renderer/scene/gltf/gltf_scene.h"
 #include "renderer/scene/scene_loader.h"
 #include "tests/renderer/scene/gltf/gltf_builder.h"
+#include "test_support.h"
 
 namespace pathfarm {
 namespace {
 
 using gltftest::GltfBuilder;
+using test_support::expectNear;
 
 std::filesystem::path testFolder(const std::string& name) {
   return std::filesystem::temp_directory_path() / ("pathfarm_gltf_" + name);
-}
-
-void expectNear(Vec3f actual, Vec3f expected, float tolerance = 1e-5f) {
-  EXPECT_NEAR(actual.x, expected.x, tolerance);
-  EXPECT_NEAR(actual.y, expected.y, tolerance);
-  EXPECT_NEAR(actual.z, expected.z, tolerance);
 }
 
 TEST(GltfImport, SquareMeshKeepsPositionsNormalsAndFlipsV) {
