@@ -32,6 +32,13 @@ void parseRender(const JsonNode& node, RenderDefaults& defaults) {
   }
 }
 
+void parseShutter(const JsonNode& node, CameraDesc& camera) {
+  const auto e = node.elements();
+  if (e.size() != 2) node.fail("expected [open, close] as fractions of a frame");
+  camera.shutterOpen = static_cast<float>(e[0].number(0, 1));
+  camera.shutterClose = static_cast<float>(e[1].number(camera.shutterOpen, 1));
+}
+
 void parseCamera(const JsonNode& node, double fps, CameraDesc& camera) {
   node.expectKeys({"position", "look_at", "up", "fov", "aperture_radius", "focus_distance",
                    "shutter", "animation"});
@@ -52,12 +59,7 @@ void parseCamera(const JsonNode& node, double fps, CameraDesc& camera) {
   camera.focusDistance = length(target - eye);
   if (auto f = node.optional("focus_distance"))
     camera.focusDistance = static_cast<float>(f->number(1e-6, 1e9));
-  if (auto shutter = node.optional("shutter")) {
-    const auto e = shutter->elements();
-    if (e.size() != 2) shutter->fail("expected [open, close] as fractions of a frame");
-    camera.shutterOpen = static_cast<float>(e[0].number(0, 1));
-    camera.shutterClose = static_cast<float>(e[1].number(camera.shutterOpen, 1));
-  }
+  if (auto shutter = node.optional("shutter")) parseShutter(*shutter, camera);
   if (auto animation = node.optional("animation")) {
     // A camera moves and turns but never scales.
     animation->expectKeys({"translate", "rotate"});
@@ -143,14 +145,14 @@ SceneObject parseShape(const JsonNode& node, size_t index, const Scene& scene,
   return object;
 }
 
-// "include": "file.glb" | {"file": ..., "scene": name, "camera": name}: the glTF scene
-// the JSON file then adds to and overrides.
+// "include": "file.glb" | {"file": ..., "scene": name, "camera": name, "shutter": [open,
+// close]}: the glTF scene the JSON file then adds to and overrides.
 Scene parseInclude(const JsonNode& node, const std::filesystem::path& folder, double fps, bool hasCamera) {
   GltfImportOptions options;
   options.fps = fps;
   options.requireCamera = !hasCamera;
   if (node.isObject()) {
-    node.expectKeys({"file", "scene", "camera"});
+    node.expectKeys({"file", "scene", "camera", "shutter"});
     if (auto name = node.optional("scene")) options.sceneName = name->string();
     if (auto name = node.optional("camera")) {
       if (hasCamera) name->fail("give the camera either here or as \"camera\", not both");
@@ -160,11 +162,19 @@ Scene parseInclude(const JsonNode& node, const std::filesystem::path& folder, do
   const JsonNode file = node.isObject() ? node["file"] : node;
   const std::filesystem::path path = folder / file.string();
   if (!isGltfFile(path)) file.fail("an included scene must be a .gltf or .glb file");
+  Scene scene;
   try {
-    return loadGltfScene(path, options);
+    scene = loadGltfScene(path, options);
   } catch (const SceneError& e) {
     file.fail(e.what());
   }
+  if (node.isObject()) {
+    if (auto shutter = node.optional("shutter")) {
+      if (hasCamera) shutter->fail("give the shutter in \"camera\" when the JSON scene has its own camera");
+      parseShutter(*shutter, scene.camera);
+    }
+  }
+  return scene;
 }
 
 }  // namespace

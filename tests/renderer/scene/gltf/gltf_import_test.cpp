@@ -191,13 +191,14 @@ TEST(GltfImport, JsonSceneIncludesAGltfFileAndOverridesByName) {
   const std::filesystem::path folder = testFolder("include");
   b.write(folder, "set");
   const Scene scene = parseScene(R"({
-    "include": "set.gltf", "fps": 30,
+    "include": {"file": "set.gltf", "shutter": [0, 0.5]}, "fps": 30,
     "render": {"resolution": [64, 32], "spp": 4},
     "materials": {"floor": {"type": "diffuse", "reflectance": 0.25}, "extra": {"type": "diffuse"}},
     "environment": {"radiance": 1},
     "shapes": [{"type": "sphere", "radius": 0.5, "material": "extra"}]
   })", folder / "shot.json");
   EXPECT_EQ(scene.fps, 30);
+  EXPECT_FLOAT_EQ(scene.camera.shutterClose, 0.5f);
   EXPECT_EQ(scene.defaults.width, 64);
   ASSERT_EQ(scene.objects.size(), 2u);
   const Material& floor = scene.materials[static_cast<size_t>(scene.objects[0].material)];
