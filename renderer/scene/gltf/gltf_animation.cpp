@@ -12,6 +12,10 @@ namespace {
 constexpr double kDenseStep = 1.0 / 96;
 // A STEP key holds its value until this long before the next key.
 constexpr double kStepLead = 1e-5;
+// Key times beyond this (about 28 hours) and nodes needing more samples than this are
+// taken as hostile input, not as a shot.
+constexpr double kMaxKeyTime = 1e5;
+constexpr size_t kMaxSamplesPerNode = size_t{1} << 20;
 
 Mat3d rotationMatrix(const Quaternion& q) {
   const double w = q.w, x = q.x, y = q.y, z = q.z;
@@ -168,8 +172,9 @@ void GltfNodeAnimation::readAnimations() {
       const std::vector<float> times = document_.readFloats(sampler.input, 1, samplerPointer + "/input");
       if (times.empty()) document_.fail(samplerPointer + "/input", "a sampler needs at least one key");
       for (size_t k = 0; k < times.size(); ++k) {
-        if (times[k] < 0 || (k > 0 && !(times[k] > times[k - 1])))
-          document_.fail(samplerPointer + "/input", "key times must be non-negative and strictly increasing");
+        if (times[k] < 0 || times[k] > kMaxKeyTime || (k > 0 && !(times[k] > times[k - 1])))
+          document_.fail(samplerPointer + "/input", "key times must lie in [0, " + std::to_string(kMaxKeyTime) +
+                                                        "] s and increase strictly");
         channel.times.push_back(times[k]);
       }
       channel.values = document_.readFloats(sampler.output, components, samplerPointer + "/output");
@@ -250,10 +255,17 @@ std::vector<double> GltfNodeAnimation::sampleTimes(int node) const {
     }
   }
   if (times.empty()) return times;
+  if (times.size() > kMaxSamplesPerNode)
+    document_.fail(gltfPointer("nodes", node), "its animation has more than " + std::to_string(kMaxSamplesPerNode) +
+                                                   " keys");
   std::sort(times.begin(), times.end());
   if (animatedNodes > 1 || nonlinear) {
     const double first = times.front(), last = times.back();
-    const auto steps = static_cast<size_t>(std::ceil((last - first) / kDenseStep));
+    const double span = std::ceil((last - first) / kDenseStep);
+    if (span + static_cast<double>(times.size()) > static_cast<double>(kMaxSamplesPerNode))
+      document_.fail(gltfPointer("nodes", node), "its animation would need more than " +
+                                                     std::to_string(kMaxSamplesPerNode) + " samples");
+    const auto steps = static_cast<size_t>(span);
     for (size_t i = 1; i < steps; ++i) times.push_back(first + static_cast<double>(i) * kDenseStep);
     std::sort(times.begin(), times.end());
   }

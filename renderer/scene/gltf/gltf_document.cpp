@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <set>
 
 namespace pathfarm {
@@ -67,14 +68,33 @@ GltfDocument::GltfDocument(const std::filesystem::path& file) : file_(file) {
   if (!std::filesystem::is_regular_file(file)) throw SceneError(file.string() + ": cannot open the glTF file");
   tinygltf::TinyGLTF loader;
   std::string error, warning;
-  const bool binary = file.extension() == ".glb";
-  const bool ok = binary ? loader.LoadBinaryFromFile(&model_, &error, &warning, file.string())
-                         : loader.LoadASCIIFromFile(&model_, &error, &warning, file.string());
-  if (!ok || !error.empty()) {
+  const bool loaded = file.extension() == ".glb"
+                          ? loader.LoadBinaryFromFile(&model_, &error, &warning, file.string())
+                          : loader.LoadASCIIFromFile(&model_, &error, &warning, file.string());
+  accept(loaded, error, warning);
+}
+
+GltfDocument::GltfDocument(const unsigned char* bytes, size_t size, const std::filesystem::path& label,
+                           const std::filesystem::path& baseFolder)
+    : file_(label) {
+  if (size > std::numeric_limits<unsigned int>::max()) throw SceneError(label.string() + ": file too large");
+  tinygltf::TinyGLTF loader;
+  std::string error, warning;
+  const auto length = static_cast<unsigned int>(size);
+  const bool loaded =
+      size >= 4 && std::memcmp(bytes, "glTF", 4) == 0
+          ? loader.LoadBinaryFromMemory(&model_, &error, &warning, bytes, length, baseFolder.string())
+          : loader.LoadASCIIFromString(&model_, &error, &warning, reinterpret_cast<const char*>(bytes), length,
+                                       baseFolder.string());
+  accept(loaded, error, warning);
+}
+
+void GltfDocument::accept(bool loaded, std::string error, const std::string& warning) {
+  if (!loaded || !error.empty()) {
     while (!error.empty() && (error.back() == '\n' || error.back() == ' ')) error.pop_back();
-    throw SceneError(file.string() + ": not a loadable glTF 2.0 file: " + (error.empty() ? "unknown error" : error));
+    throw SceneError(file_.string() + ": not a loadable glTF 2.0 file: " + (error.empty() ? "unknown error" : error));
   }
-  if (!warning.empty()) spdlog::warn("{}: {}", file.string(), warning);
+  if (!warning.empty()) spdlog::warn("{}: {}", file_.string(), warning);
   for (size_t i = 0; i < model_.extensionsRequired.size(); ++i) {
     const std::string& name = model_.extensionsRequired[i];
     if (!implementedExtensions().count(name))

@@ -19,6 +19,10 @@ class GltfDocument {
   // Parses the file and its external buffers and images; refuses an entry of
   // `extensionsRequired` that pathfarm does not implement.
   explicit GltfDocument(const std::filesystem::path& file);
+  // The same from the bytes of a .gltf or .glb (told apart by the GLB magic), named
+  // `label` in messages; relative URIs resolve against `baseFolder`.
+  GltfDocument(const unsigned char* bytes, size_t size, const std::filesystem::path& label,
+               const std::filesystem::path& baseFolder);
 
   const tinygltf::Model& model() const { return model_; }
   const std::filesystem::path& file() const { return file_; }
@@ -39,6 +43,8 @@ class GltfDocument {
 
  private:
   const tinygltf::Accessor& accessor(int index, const std::string& pointer) const;
+  // Turns tinygltf's verdict into a SceneError, then checks extensionsRequired.
+  void accept(bool loaded, std::string error, const std::string& warning);
   const tinygltf::BufferView& bufferView(int view, const std::string& pointer) const;
   // The raw bytes of `count` elements of `elementSize` bytes spaced `stride` apart from
   // `offset` in buffer view `view`, checked to lie inside the view and its buffer.

@@ -96,10 +96,13 @@ bool isGltfFile(const std::filesystem::path& file) {
 }
 
 Scene loadGltfScene(const std::filesystem::path& file, const GltfImportOptions& options) {
-  const GltfDocument document(file);
+  return importGltfScene(GltfDocument(file), options);
+}
+
+Scene importGltfScene(const GltfDocument& document, const GltfImportOptions& options) {
   const tinygltf::Model& model = document.model();
   Scene scene;
-  scene.file = file;
+  scene.file = document.file();
   scene.fps = options.fps;
   scene.defaults.width = 640;
   scene.defaults.height = 360;
@@ -129,8 +132,8 @@ Scene loadGltfScene(const std::filesystem::path& file, const GltfImportOptions& 
       if (!mesh) mesh = importPrimitive(document, node.mesh, static_cast<int>(p), texCoord);
       if (!mesh) continue;
       SceneObject object;
-      object.name = (node.name.empty() ? "node" + std::to_string(n) : node.name) +
-                    (primitives.size() > 1 ? "#" + std::to_string(p) : "");
+      object.name = node.name.empty() ? "node" + std::to_string(n) : node.name;
+      if (primitives.size() > 1) object.name.append("#").append(std::to_string(p));
       object.objectId = static_cast<uint32_t>(scene.objects.size() + 1);
       object.type = ShapeType::Mesh;
       object.mesh = mesh;

@@ -18,8 +18,11 @@ struct GltfImportOptions {
   bool requireCamera = true;  // false when the including JSON scene supplies the camera
 };
 
+class GltfDocument;
+
 // Throws SceneError naming the file and the JSON pointer of what is wrong.
 Scene loadGltfScene(const std::filesystem::path& file, const GltfImportOptions& options = {});
+Scene importGltfScene(const GltfDocument& document, const GltfImportOptions& options = {});
 
 bool isGltfFile(const std::filesystem::path& file);
 

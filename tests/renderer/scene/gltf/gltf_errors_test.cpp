@@ -125,6 +125,16 @@ TEST(GltfErrors, AbsurdCountIsRefusedBeforeAllocating) {
   expectError(loadError(b, "huge"), "huge.gltf", "/accessors/0", "exceeds the limit");
 }
 
+TEST(GltfErrors, AbsurdKeyTimesAreRefusedNotSampled) {
+  // Found by the fuzzer: a cubic key at 1.8e33 s asked for that many samples.
+  GltfBuilder b = validScene();
+  const int input = b.floats({0, 1.8e33f}, "SCALAR");
+  const int output = b.floats(std::vector<float>(18, 0.0f), "VEC3");
+  b.doc()["animations"] = {{{"samplers", {{{"input", input}, {"output", output}, {"interpolation", "CUBICSPLINE"}}}},
+                            {"channels", {{{"sampler", 0}, {"target", {{"node", 0}, {"path", "translation"}}}}}}}};
+  expectError(loadError(b, "longtime"), "longtime.gltf", "/animations/0/samplers/0/input", "key times");
+}
+
 TEST(GltfErrors, HierarchyCycle) {
   GltfBuilder b = validScene();
   b.doc()["nodes"][0]["children"] = {1};
