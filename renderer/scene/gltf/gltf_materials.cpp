@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 
 namespace pathfarm {
@@ -15,9 +16,10 @@ const std::set<std::string>& understoodExtensions() {
   return names;
 }
 
+// A number member of `object` (or `object` itself when key is null), else `fallback`.
 double numberOr(const tinygltf::Value& object, const char* key, double fallback) {
-  if (!object.IsObject() || !object.Has(key)) return fallback;
-  const tinygltf::Value& v = object.Get(key);
+  if (key && (!object.IsObject() || !object.Has(key))) return fallback;
+  const tinygltf::Value& v = key ? object.Get(key) : object;
   return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
 }
 
@@ -80,10 +82,35 @@ class TextureImporter {
   std::map<std::pair<int, bool>, int> cache_;
 };
 
-void warnAboutTextureInfo(const GltfDocument& document, const std::string& pointer,
-                          const tinygltf::ExtensionMap& extensions) {
-  if (extension(extensions, "KHR_texture_transform"))
-    document.warn(pointer, "KHR_texture_transform is not supported yet; the texture is applied untransformed");
+// The TEXCOORD set and KHR_texture_transform of a texture reference (glTF 2.0 and the
+// extension's specification: offset, rotation about the origin, then scale, composed as
+// T * R * S).
+TextureCoordinates coordinatesOf(const GltfDocument& document, const std::string& pointer, int texCoord,
+                                 const tinygltf::ExtensionMap& extensions) {
+  TextureCoordinates c;
+  c.set = texCoord;
+  if (const tinygltf::Value* t = extension(extensions, "KHR_texture_transform")) {
+    const std::string p = pointer + "/extensions/KHR_texture_transform";
+    const auto pair = [&](const char* key, double fallback) {
+      std::array<double, 2> v{fallback, fallback};
+      if (t->IsObject() && t->Has(key) && t->Get(key).IsArray() && t->Get(key).ArrayLen() == 2)
+        for (int i = 0; i < 2; ++i) v[static_cast<size_t>(i)] = numberOr(t->Get(key).Get(i), nullptr, fallback);
+      return v;
+    };
+    const auto offset = pair("offset", 0), scale = pair("scale", 1);
+    const double rotation = numberOr(*t, "rotation", 0);
+    const float ox = factor(document, p + "/offset", offset[0], -1e6, 1e6);
+    const float oy = factor(document, p + "/offset", offset[1], -1e6, 1e6);
+    const float sx = factor(document, p + "/scale", scale[0], -1e6, 1e6);
+    const float sy = factor(document, p + "/scale", scale[1], -1e6, 1e6);
+    const double r = factor(document, p + "/rotation", rotation, -1e6, 1e6);
+    const auto cosR = static_cast<float>(std::cos(r)), sinR = static_cast<float>(std::sin(r));
+    c.m = {cosR * sx, sinR * sy, ox, -sinR * sx, cosR * sy, oy};
+    c.set = static_cast<int>(factor(document, p + "/texCoord", numberOr(*t, "texCoord", texCoord), 0, 1));
+  }
+  if (c.set != 0 && c.set != 1)
+    document.fail(pointer + "/texCoord", "TEXCOORD_" + std::to_string(c.set) + " is not supported (only 0 and 1)");
+  return c;
 }
 
 // What the renderer does not model yet, said once per material.
@@ -147,23 +174,21 @@ GltfMaterials importMaterials(const GltfDocument& document, Scene& scene) {
     }
     material.metallic = factor(document, pbrPointer + "/metallicFactor", pbr.metallicFactor, 0, 1);
     material.roughness = factor(document, pbrPointer + "/roughnessFactor", pbr.roughnessFactor, 0, 1);
-    int texCoord = 0;
+    std::optional<TextureCoordinates> coordinates;
     if (pbr.baseColorTexture.index >= 0) {
       const std::string p = pbrPointer + "/baseColorTexture";
       material.reflectanceTexture = textures.get(pbr.baseColorTexture.index, true, p);
-      texCoord = pbr.baseColorTexture.texCoord;
-      warnAboutTextureInfo(document, p, pbr.baseColorTexture.extensions);
+      coordinates = coordinatesOf(document, p, pbr.baseColorTexture.texCoord, pbr.baseColorTexture.extensions);
     }
     if (pbr.metallicRoughnessTexture.index >= 0) {
       const std::string p = pbrPointer + "/metallicRoughnessTexture";
       material.metallicRoughnessTexture = textures.get(pbr.metallicRoughnessTexture.index, false, p);
-      if (pbr.baseColorTexture.index >= 0 && pbr.metallicRoughnessTexture.texCoord != texCoord)
-        document.warn(p + "/texCoord", "differs from the base colour's; both read TEXCOORD_" + std::to_string(texCoord));
-      texCoord = pbr.baseColorTexture.index >= 0 ? texCoord : pbr.metallicRoughnessTexture.texCoord;
-      warnAboutTextureInfo(document, p, pbr.metallicRoughnessTexture.extensions);
+      const TextureCoordinates own =
+          coordinatesOf(document, p, pbr.metallicRoughnessTexture.texCoord, pbr.metallicRoughnessTexture.extensions);
+      if (coordinates && !(own == *coordinates))
+        document.warn(p, "reads other texture coordinates than the base colour; the base colour's apply to both");
+      if (!coordinates) coordinates = own;
     }
-    if (texCoord != 0 && texCoord != 1)
-      document.fail(pbrPointer, "texCoord " + std::to_string(texCoord) + " is not supported (only 0 and 1)");
 
     Rgb emission;
     if (m.emissiveFactor.size() == 3) {
@@ -189,7 +214,7 @@ GltfMaterials importMaterials(const GltfDocument& document, Scene& scene) {
     scene.materials.push_back(material);
     result.sceneIndex.push_back(static_cast<int>(scene.materials.size()) - 1);
     result.emission.push_back(emission);
-    result.texCoord.push_back(texCoord);
+    result.coordinates.push_back(coordinates.value_or(TextureCoordinates{}));
   }
   return result;
 }

@@ -7,16 +7,17 @@
 #include <vector>
 
 #include "renderer/scene/gltf/gltf_document.h"
+#include "renderer/scene/gltf/gltf_mesh.h"
 #include "renderer/scene/scene.h"
 
 namespace pathfarm {
 
 struct GltfMaterials {
-  // Per glTF material, its index in Scene::materials, emitted radiance and the TEXCOORD
-  // set its textures read.
+  // Per glTF material, its index in Scene::materials, emitted radiance and the texture
+  // coordinates its textures read.
   std::vector<int> sceneIndex;
   std::vector<Rgb> emission;
-  std::vector<int> texCoord;
+  std::vector<TextureCoordinates> coordinates;
   // The glTF default material (for primitives without one), added on first use.
   int defaultMaterial(Scene& scene);
 

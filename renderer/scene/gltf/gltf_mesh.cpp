@@ -33,7 +33,7 @@ std::vector<Vec3f> vec3s(const std::vector<float>& values) {
 }  // namespace
 
 std::shared_ptr<const TriangleMesh> importPrimitive(const GltfDocument& document, int meshIndex, int primitiveIndex,
-                                                    int texCoord) {
+                                                    const TextureCoordinates& coordinates) {
   const tinygltf::Primitive& primitive =
       document.model().meshes[static_cast<size_t>(meshIndex)].primitives[static_cast<size_t>(primitiveIndex)];
   const std::string pointer = gltfPointer("meshes", meshIndex) + "/primitives/" + std::to_string(primitiveIndex);
@@ -61,14 +61,18 @@ std::shared_ptr<const TriangleMesh> importPrimitive(const GltfDocument& document
       document.fail(pointer + "/attributes/NORMAL", "has " + std::to_string(mesh->normals.size()) +
                                                          " elements for " + std::to_string(vertexCount) + " positions");
   }
-  const std::string uvName = "TEXCOORD_" + std::to_string(texCoord);
+  const std::string uvName = "TEXCOORD_" + std::to_string(coordinates.set);
   if (attribute(uvName.c_str()) >= 0) {
     const std::vector<float> uv = document.readFloats(attribute(uvName.c_str()), 2, pointer + "/attributes/" + uvName);
     if (uv.size() != 2 * vertexCount)
       document.fail(pointer + "/attributes/" + uvName, "has " + std::to_string(uv.size() / 2) + " elements for " +
                                                            std::to_string(vertexCount) + " positions");
     mesh->uvs.resize(vertexCount);
-    for (size_t i = 0; i < vertexCount; ++i) mesh->uvs[i] = {uv[2 * i], 1 - uv[2 * i + 1]};
+    const auto& m = coordinates.m;
+    for (size_t i = 0; i < vertexCount; ++i) {
+      const float u = uv[2 * i], v = uv[2 * i + 1];
+      mesh->uvs[i] = {m[0] * u + m[1] * v + m[2], 1 - (m[3] * u + m[4] * v + m[5])};
+    }
   }
 
   std::vector<uint32_t> vertices;

@@ -111,8 +111,8 @@ Scene importGltfScene(const GltfDocument& document, const GltfImportOptions& opt
   const std::vector<int> nodes = visibleNodes(document, rootNodes(document, options));
   GltfMaterials materials = importMaterials(document, scene);
 
-  // Each (mesh, primitive, texcoord set) becomes one shared TriangleMesh.
-  std::map<std::tuple<int, int, int>, std::shared_ptr<const TriangleMesh>> meshes;
+  // Each (mesh, primitive, texture coordinates) becomes one shared TriangleMesh.
+  std::map<std::tuple<int, int, TextureCoordinates>, std::shared_ptr<const TriangleMesh>> meshes;
   for (const int n : nodes) {
     const tinygltf::Node& node = model.nodes[static_cast<size_t>(n)];
     const std::string pointer = gltfPointer("nodes", n);
@@ -127,9 +127,10 @@ Scene importGltfScene(const GltfDocument& document, const GltfImportOptions& opt
       if (material >= static_cast<int>(materials.sceneIndex.size()))
         document.fail(gltfPointer("meshes", node.mesh) + "/primitives/" + std::to_string(p) + "/material",
                       "material " + std::to_string(material) + " does not exist");
-      const int texCoord = material >= 0 ? materials.texCoord[static_cast<size_t>(material)] : 0;
-      auto& mesh = meshes[{node.mesh, static_cast<int>(p), texCoord}];
-      if (!mesh) mesh = importPrimitive(document, node.mesh, static_cast<int>(p), texCoord);
+      const TextureCoordinates coordinates =
+          material >= 0 ? materials.coordinates[static_cast<size_t>(material)] : TextureCoordinates{};
+      auto& mesh = meshes[{node.mesh, static_cast<int>(p), coordinates}];
+      if (!mesh) mesh = importPrimitive(document, node.mesh, static_cast<int>(p), coordinates);
       if (!mesh) continue;
       SceneObject object;
       object.name = node.name.empty() ? "node" + std::to_string(n) : node.name;

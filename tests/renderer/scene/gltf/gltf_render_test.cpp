@@ -93,5 +93,31 @@ TEST(GltfRender, BaseColourTexturesAreSrgbAndMetallicRoughnessTexturesLinear) {
   EXPECT_NEAR(data.g, 64 / 255.0, 1e-6);
 }
 
+TEST(GltfRender, TextureTransformMovesTheUvsAsTheExtensionSays) {
+  const unsigned char pixels[] = {255, 255, 255};
+  std::filesystem::create_directories(folder());
+  ASSERT_NE(stbi_write_png((folder() / "white.png").c_str(), 1, 1, 3, pixels, 3), 0);
+  GltfBuilder b;
+  b.doc()["images"] = {{{"uri", "white.png"}}};
+  b.doc()["textures"] = {{{"source", 0}}};
+  // Rotation by a quarter turn, scale 2, offset (0.5, 0.25): T * R * S maps glTF uv
+  // (u, v) to (0.5 + 2 sin(r) v, 0.25 - 2 sin(r) u) with cos(r) = 0, sin(r) = 1.
+  b.doc()["materials"] = {
+      {{"pbrMetallicRoughness",
+        {{"baseColorTexture",
+          {{"index", 0},
+           {"extensions",
+            {{"KHR_texture_transform", {{"offset", {0.5, 0.25}}, {"rotation", M_PI / 2}, {"scale", {2, 2}}}}}}}}}}}};
+  b.scene({b.node({{"mesh", b.square(0)}}), b.camera({0, 0, 3})});
+  const Scene scene = loadScene(b.write(folder(), "transformed"));
+  const TriangleMesh& mesh = *scene.objects[0].mesh;
+  // Vertex 1 has glTF uv (1, 1): transformed (2.5, -1.75), then v flipped: (2.5, 2.75).
+  EXPECT_NEAR(mesh.uvs[1].x, 2.5f, 1e-5f);
+  EXPECT_NEAR(mesh.uvs[1].y, 2.75f, 1e-5f);
+  // Vertex 3 has glTF uv (0, 0): only the offset, (0.5, 0.25), flipped: (0.5, 0.75).
+  EXPECT_NEAR(mesh.uvs[3].x, 0.5f, 1e-5f);
+  EXPECT_NEAR(mesh.uvs[3].y, 0.75f, 1e-5f);
+}
+
 }  // namespace
 }  // namespace pathfarm
