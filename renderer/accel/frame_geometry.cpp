@@ -4,6 +4,8 @@
 
 #include <limits>
 
+#include "renderer/accel/normal_mapping.h"
+
 namespace pathfarm {
 namespace {
 
@@ -184,6 +186,9 @@ SurfaceHit FrameGeometry::makeHit(const Ray& ray, float distance, int object, un
   } else {
     hit.uv = {u, v};
   }
+  const Scene& scene = shot_.scene();
+  hit.shadingNormal = normalMappedShadingNormal(scene, scene.objects[static_cast<size_t>(object)], mesh,
+                                                {i0, i1, i2, u, v}, toWorld, hit.shadingNormal, hit.uv);
   return hit;
 }
 

@@ -14,8 +14,10 @@ TriangleMesh transformMesh(TriangleMesh world, const Transform& toWorld) {
   const auto& m = toWorld.matrix();
   const float det = m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) +
                     m[2] * (m[4] * m[9] - m[5] * m[8]);
+  for (Vec3f& t : world.tangents) t = toWorld.vector(t);
   if (det < 0) {
     for (size_t i = 0; i + 2 < world.indices.size(); i += 3) std::swap(world.indices[i + 1], world.indices[i + 2]);
+    for (float& sign : world.tangentSigns) sign = -sign;
   }
   return world;
 }

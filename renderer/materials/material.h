@@ -43,6 +43,9 @@ struct Material {
   float roughness = 1;
   int metallicRoughnessTexture = -1;  // index into Scene::textures, -1 for none
   float transmission = 0;
+  // A tangent-space normal map (linear data) and the scale of its x and y (any type).
+  int normalTexture = -1;
+  float normalScale = 1;
 };
 
 // The papers' vertex symbols (Zimmer et al. 2015): D diffuse, R specular or glossy

@@ -115,8 +115,6 @@ TextureCoordinates coordinatesOf(const GltfDocument& document, const std::string
 
 // What the renderer does not model yet, said once per material.
 void warnAboutUnsupported(const GltfDocument& document, const std::string& pointer, const tinygltf::Material& m) {
-  if (m.normalTexture.index >= 0)
-    document.warn(pointer + "/normalTexture", "normal maps are not supported yet; the surface renders unbumped");
   if (m.emissiveTexture.index >= 0)
     document.warn(pointer + "/emissiveTexture",
                   "emissive textures are not supported yet; the surface emits emissiveFactor uniformly");
@@ -188,6 +186,17 @@ GltfMaterials importMaterials(const GltfDocument& document, Scene& scene) {
       if (coordinates && !(own == *coordinates))
         document.warn(p, "reads other texture coordinates than the base colour; the base colour's apply to both");
       if (!coordinates) coordinates = own;
+    }
+
+    if (m.normalTexture.index >= 0) {
+      const std::string p = pointer + "/normalTexture";
+      material.normalTexture = textures.get(m.normalTexture.index, false, p);
+      material.normalScale = factor(document, p + "/scale", m.normalTexture.scale, -100, 100);
+      if (!coordinates) {
+        coordinates = coordinatesOf(document, p, m.normalTexture.texCoord, m.normalTexture.extensions);
+      } else if (!(coordinatesOf(document, p, m.normalTexture.texCoord, m.normalTexture.extensions) == *coordinates)) {
+        document.warn(p, "reads other texture coordinates than the base colour; the base colour's apply to both");
+      }
     }
 
     Rgb emission;

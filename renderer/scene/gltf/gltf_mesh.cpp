@@ -75,6 +75,19 @@ std::shared_ptr<const TriangleMesh> importPrimitive(const GltfDocument& document
     }
   }
 
+  if (attribute("TANGENT") >= 0 && !mesh->normals.empty()) {
+    const std::vector<float> t = document.readFloats(attribute("TANGENT"), 4, pointer + "/attributes/TANGENT");
+    if (t.size() != 4 * vertexCount)
+      document.fail(pointer + "/attributes/TANGENT", "has " + std::to_string(t.size() / 4) + " elements for " +
+                                                          std::to_string(vertexCount) + " positions");
+    mesh->tangents.resize(vertexCount);
+    mesh->tangentSigns.resize(vertexCount);
+    for (size_t i = 0; i < vertexCount; ++i) {
+      mesh->tangents[i] = {t[4 * i], t[4 * i + 1], t[4 * i + 2]};
+      mesh->tangentSigns[i] = t[4 * i + 3] < 0 ? -1.0f : 1.0f;
+    }
+  }
+
   std::vector<uint32_t> vertices;
   if (primitive.indices >= 0) {
     vertices = document.readIndices(primitive.indices, vertexCount, pointer + "/indices");
@@ -91,19 +104,19 @@ std::shared_ptr<const TriangleMesh> importPrimitive(const GltfDocument& document
       ++degenerate;
       continue;
     }
-    if (!mesh->normals.empty()) {
-      for (const uint32_t v : {a, b, c}) {
-        const float n = length(mesh->normals[v]);
-        if (!(n > 1e-6f) || !std::isfinite(n))
-          document.fail(pointer + "/attributes/NORMAL", "the normal of vertex " + std::to_string(v) +
-                                                            " has zero length");
-      }
+    for (const uint32_t v : {a, b, c}) {
+      if (!mesh->normals.empty() && !(length(mesh->normals[v]) > 1e-6f))
+        document.fail(pointer + "/attributes/NORMAL", "the normal of vertex " + std::to_string(v) + " has zero length");
+      if (!mesh->tangents.empty() && !(length(mesh->tangents[v]) > 1e-6f))
+        document.fail(pointer + "/attributes/TANGENT", "the tangent of vertex " + std::to_string(v) + " has zero length");
     }
     mesh->indices.insert(mesh->indices.end(), {a, b, c});
   }
-  for (Vec3f& n : mesh->normals) {
-    const float l = length(n);
-    if (l > 1e-6f && std::isfinite(l)) n = n / l;
+  for (std::vector<Vec3f>* directions : {&mesh->normals, &mesh->tangents}) {
+    for (Vec3f& d : *directions) {
+      const float l = length(d);
+      if (l > 1e-6f && std::isfinite(l)) d = d / l;
+    }
   }
   if (degenerate > 0)
     document.warn(pointer, std::to_string(degenerate) + " zero-area triangles dropped");
