@@ -36,8 +36,42 @@ TriangleMesh orientWindingToNormals(TriangleMesh mesh) {
   return mesh;
 }
 
-PreparedShape prepare(const SceneObject& object) {
+uint32_t bitsOf(float f) {
+  uint32_t bits;
+  std::memcpy(&bits, &f, sizeof bits);
+  return bits;
+}
+
+// Embree's filter for cut-out triangles: a hit where the surface is not there (MASK
+// below the cutoff, or BLEND's pass-through) is rejected and the ray goes on. BLEND's
+// random number hashes the hit and the ray's direction, so it is the same for the same
+// ray everywhere.
+void coverageFilter(const RTCFilterFunctionNArguments* args) {
+  const auto& shape = *static_cast<const PreparedShape*>(args->geometryUserPtr);
+  const TriangleMesh& mesh = *shape.mesh;
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const unsigned primitive = RTCHitN_primID(args->hit, args->N, i);
+    const float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
+    Vec2f uv{u, v};
+    if (!mesh.uvs.empty()) {
+      const Vec2f a = mesh.uvs[mesh.indices[3 * primitive]], b = mesh.uvs[mesh.indices[3 * primitive + 1]],
+                  c = mesh.uvs[mesh.indices[3 * primitive + 2]];
+      const float w = 1 - u - v;
+      uv = {a.x * w + b.x * u + c.x * v, a.y * w + b.y * u + c.y * v};
+    }
+    const float random = hashToUnit(primitive, bitsOf(u), bitsOf(v),
+                                    bitsOf(RTCRayN_dir_x(args->ray, args->N, i)) ^
+                                        bitsOf(RTCRayN_dir_y(args->ray, args->N, i)) * 3u ^
+                                        bitsOf(RTCRayN_dir_z(args->ray, args->N, i)) * 7u);
+    if (!shape.coverage->covers(uv, random)) args->valid[i] = 0;
+  }
+}
+
+PreparedShape prepare(const Scene& scene, const SceneObject& object) {
   PreparedShape shape;
+  const int coverage = scene.materials[static_cast<size_t>(object.material)].coverage;
+  if (coverage >= 0 && object.type != ShapeType::Sphere) shape.coverage = &scene.coverages[static_cast<size_t>(coverage)];
   shape.type = object.type;
   shape.animated = object.transform.isAnimated();
   // Animated objects keep their object space (identity here); Embree places them per frame.
@@ -75,6 +109,11 @@ RTCGeometry makeGeometry(RTCDevice device, const PreparedShape& shape) {
   auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
       geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), mesh.triangleCount()));
   std::memcpy(indices, mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t));
+  if (shape.coverage) {
+    rtcSetGeometryUserData(geometry, const_cast<PreparedShape*>(&shape));
+    rtcSetGeometryIntersectFilterFunction(geometry, coverageFilter);
+    rtcSetGeometryOccludedFilterFunction(geometry, coverageFilter);
+  }
   return geometry;
 }
 
@@ -89,8 +128,9 @@ RTCScene newScene(RTCDevice device) {
 
 ShotGeometry::ShotGeometry(const Scene& scene, const EmbreeDevice& device)
     : scene_(scene), device_(device), objectScenes_(scene.objects.size(), nullptr) {
+  shapes_.reserve(scene.objects.size());  // the coverage filters hold pointers to them
   for (size_t i = 0; i < scene.objects.size(); ++i) {
-    shapes_.push_back(prepare(scene.objects[i]));
+    shapes_.push_back(prepare(scene, scene.objects[i]));
     const PreparedShape& shape = shapes_.back();
     RTCGeometry geometry = makeGeometry(device.get(), shape);
     rtcCommitGeometry(geometry);

@@ -18,6 +18,7 @@ struct PreparedShape {
   float radius = 0;  // spheres
   std::shared_ptr<const TriangleMesh> mesh;  // triangles
   bool animated = false;
+  const AlphaCoverage* coverage = nullptr;  // cut-out triangles, tested by Embree's filter
 };
 
 class ShotGeometry {

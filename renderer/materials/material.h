@@ -46,6 +46,8 @@ struct Material {
   // A tangent-space normal map (linear data) and the scale of its x and y (any type).
   int normalTexture = -1;
   float normalScale = 1;
+  // Partial coverage (cut-outs): index into Scene::coverages, -1 for an opaque surface.
+  int coverage = -1;
 };
 
 // The papers' vertex symbols (Zimmer et al. 2015): D diffuse, R specular or glossy

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "renderer/materials/material.h"
+#include "renderer/scene/alpha_coverage.h"
 #include "renderer/scene/animation.h"
 #include "renderer/scene/camera.h"
 #include "renderer/scene/mesh.h"
@@ -47,6 +48,7 @@ struct Scene {
   std::vector<std::string> materialNames;
   std::vector<Material> materials;
   std::vector<ImageTexture> textures;
+  std::vector<AlphaCoverage> coverages;  // cut-outs, indexed by Material::coverage
   std::vector<SceneObject> objects;
   Rgb environment;  // constant radiance from every direction; black if none
   RenderDefaults defaults;

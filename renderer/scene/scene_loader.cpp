@@ -210,7 +210,12 @@ Scene parseScene(std::string_view text, const std::filesystem::path& file) {
     for (const auto& [name, node] : materials->members()) {
       Material material = parseMaterial(node, folder, scene.textures);
       if (const auto it = materialIndex.find(name); it != materialIndex.end()) {
-        scene.materials[static_cast<size_t>(it->second)] = material;
+        // The BSDF is replaced; the included surface's cut-out and normal map stay.
+        Material& replaced = scene.materials[static_cast<size_t>(it->second)];
+        material.coverage = replaced.coverage;
+        material.normalTexture = replaced.normalTexture;
+        material.normalScale = replaced.normalScale;
+        replaced = material;
         continue;
       }
       materialIndex[name] = static_cast<int>(scene.materials.size());

@@ -76,6 +76,31 @@ class TextureImporter {
     return sceneIndex;
   }
 
+ // The coverage of glTF alphaMode MASK or BLEND: the base colour texture's alpha channel
+  // (if its image has one) times the factor's alpha.
+  AlphaCoverage coverage(const tinygltf::Material& m, const std::string& pointer) const {
+    const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
+    const double factorAlpha = pbr.baseColorFactor.size() == 4 ? pbr.baseColorFactor[3] : 1.0;
+    const float factorValue = factor(document_, pointer + "/pbrMetallicRoughness/baseColorFactor", factorAlpha, 0, 1);
+    const auto mode = m.alphaMode == "MASK" ? AlphaCoverage::Mode::Mask : AlphaCoverage::Mode::Blend;
+    const float cutoff = factor(document_, pointer + "/alphaCutoff", m.alphaCutoff, 0, 1);
+    const tinygltf::Model& model = document_.model();
+    if (pbr.baseColorTexture.index < 0) return AlphaCoverage(mode, cutoff, factorValue, 0, 0, {});
+    // get() has checked the texture and its image already.
+    const tinygltf::Texture& texture = model.textures[static_cast<size_t>(pbr.baseColorTexture.index)];
+    const tinygltf::Image& image = model.images[static_cast<size_t>(texture.source)];
+    if (image.component != 2 && image.component != 4) return AlphaCoverage(mode, cutoff, factorValue, 0, 0, {});
+    const size_t n = static_cast<size_t>(image.width) * static_cast<size_t>(image.height);
+    const size_t channels = static_cast<size_t>(image.component);
+    std::vector<float> alpha(n);
+    for (size_t i = 0; i < n; ++i) {
+      const size_t at = i * channels + channels - 1;
+      alpha[i] = image.bits == 16 ? (image.image[2 * at] | (image.image[2 * at + 1] << 8)) / 65535.0f
+                                  : image.image[at] / 255.0f;
+    }
+    return AlphaCoverage(mode, cutoff, factorValue, image.width, image.height, std::move(alpha));
+  }
+
  private:
   const GltfDocument& document_;
   Scene& scene_;
@@ -118,8 +143,6 @@ void warnAboutUnsupported(const GltfDocument& document, const std::string& point
   if (m.emissiveTexture.index >= 0)
     document.warn(pointer + "/emissiveTexture",
                   "emissive textures are not supported yet; the surface emits emissiveFactor uniformly");
-  if (m.alphaMode == "MASK" || m.alphaMode == "BLEND")
-    document.warn(pointer + "/alphaMode", m.alphaMode + " is not supported yet; the surface renders opaque");
   for (const auto& [name, value] : m.extensions) {
     if (!understoodExtensions().count(name))
       document.warn(pointer + "/extensions/" + name, "extension not supported; its effect is ignored");
@@ -188,6 +211,12 @@ GltfMaterials importMaterials(const GltfDocument& document, Scene& scene) {
       if (!coordinates) coordinates = own;
     }
 
+    if (m.alphaMode == "MASK" || m.alphaMode == "BLEND") {
+      scene.coverages.push_back(textures.coverage(m, pointer));
+      material.coverage = static_cast<int>(scene.coverages.size()) - 1;
+    } else if (!m.alphaMode.empty() && m.alphaMode != "OPAQUE") {
+      document.fail(pointer + "/alphaMode", "unknown alpha mode \"" + m.alphaMode + "\"");
+    }
     if (m.normalTexture.index >= 0) {
       const std::string p = pointer + "/normalTexture";
       material.normalTexture = textures.get(m.normalTexture.index, false, p);

@@ -119,5 +119,51 @@ TEST(GltfRender, TextureTransformMovesTheUvsAsTheExtensionSays) {
   EXPECT_NEAR(mesh.uvs[3].y, 0.75f, 1e-5f);
 }
 
+// A lamp square (emission 3, a black body the JSON scene makes Lambertian) filling the
+// view's middle in front of a sky of radiance 1, with the given alpha mode.
+FrameImage renderCutOut(const std::string& name, const nlohmann::json& material, bool rgbaTexture) {
+  GltfBuilder b;
+  nlohmann::json m = material;
+  m["name"] = "lamp";
+  m["emissiveFactor"] = {1, 1, 1};
+  m["extensions"] = {{"KHR_materials_emissive_strength", {{"emissiveStrength", 3}}}};
+  if (rgbaTexture) {
+    // Left texel opaque, right texel fully transparent.
+    const unsigned char pixels[] = {0, 0, 0, 255, 0, 0, 0, 0};
+    std::filesystem::create_directories(folder());
+    EXPECT_NE(stbi_write_png((folder() / "alpha.png").c_str(), 2, 1, 4, pixels, 8), 0);
+    b.doc()["images"] = {{{"uri", "alpha.png"}}};
+    b.doc()["textures"] = {{{"source", 0}}};
+    m["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 0}};
+  }
+  b.doc()["materials"] = {m};
+  b.scene({b.node({{"mesh", b.square(0)}}), b.camera({0, 0, 4}, 2 * std::atan(0.5))});
+  b.write(folder(), name);
+  const Scene scene = parseScene(R"({"include": ")" + name + R"(.gltf",
+    "materials": {"lamp": {"type": "diffuse", "reflectance": 0}}, "environment": {"radiance": 1}})",
+                                 folder() / "shot.json");
+  RenderSettings settings = RenderSettings::defaultsOf(scene);
+  settings.width = settings.height = 40;
+  settings.spp = 16;
+  return FrameRenderer(scene, settings).render(0);
+}
+
+TEST(GltfRender, MaskCutsOutWhereTheTextureAlphaIsBelowTheCutoff) {
+  const FrameImage image = renderCutOut("mask", {{"alphaMode", "MASK"}, {"alphaCutoff", 0.5}}, true);
+  // The square spans x, y in [-1, 1]; its left half (u < 0.5) is there, its right half not.
+  EXPECT_NEAR(meanOver(image, -0.8, -0.2, -0.8, 0.8), 3.0, 1e-4);
+  EXPECT_NEAR(meanOver(image, 0.2, 0.8, -0.8, 0.8), 1.0, 1e-4);
+}
+
+TEST(GltfRender, BlendPassesRaysThroughInProportionToTransparency) {
+  // Alpha 0.25 everywhere: a quarter of the rays stop at the lamp (3), the rest see the
+  // sky (1); the mean is 1.5. Each pixel is a mean of 16 Bernoulli draws, so over about
+  // 300 pixels the standard error is 2 * sqrt(0.25 * 0.75 / 4800) = 0.0125.
+  const FrameImage image =
+      renderCutOut("blend", {{"alphaMode", "BLEND"}, {"pbrMetallicRoughness", {{"baseColorFactor", {0, 0, 0, 0.25}}}}},
+                   false);
+  EXPECT_NEAR(meanOver(image, -0.8, 0.8, -0.8, 0.8), 1.5, 5 * 0.0125);
+}
+
 }  // namespace
 }  // namespace pathfarm
