@@ -20,6 +20,7 @@ std::string_view materialTypeName(MaterialType type) {
     case MaterialType::RoughDielectric: return "rough_dielectric";
     case MaterialType::Plastic: return "plastic";
     case MaterialType::RoughPlastic: return "rough_plastic";
+    case MaterialType::MetallicRoughness: return "metallic_roughness";
     case MaterialType::Diffuse: break;
   }
   return "diffuse";
