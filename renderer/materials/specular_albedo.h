@@ -10,7 +10,7 @@
 // normals of F(wo.m) G1(wi, m) (the weight of the visible-normal sampler, microfacet.h),
 // tabulated over cos(theta_o), perceptual roughness sqrt(alpha) and eta in [1, kMaxIor],
 // each node raised by a margin that covers the quadrature and interpolation error, so that
-// the interpolated E bounds E_s from above (bsdf_metallic_roughness_test.cpp checks it
+// the interpolated E bounds E_s from above (metallic_roughness_test.cpp checks it
 // against independent integration). E_avg is the cosine-weighted average of the same
 // interpolant, computed exactly, so the base's albedo identity holds with the table's E.
 namespace pathfarm {

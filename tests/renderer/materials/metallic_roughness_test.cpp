@@ -20,19 +20,21 @@ namespace {
 
 Vec3f mirrored(Vec3f v) { return {v.x, v.y, -v.z}; }
 
-// GGX written out from Walter et al. 2007 (eqs. 33, 34), apart from microfacet.cpp.
+// GGX written out from Walter et al. 2007 (eqs. 33, 34), apart from microfacet.cpp, with
+// sin^2 from the tangent components so that sharp lobes keep their precision:
+// cos^4 (alpha^2 + tan^2)^2 = (sin^2 + alpha^2 cos^2)^2 for a unit m.
 struct Ggx {
   double alpha;
+  static double sin2(Vec3f v) { return double(v.x) * v.x + double(v.y) * v.y; }
   double D(Vec3f m) const {
     if (m.z <= 0) return 0;
-    const double c2 = double(m.z) * m.z, a2 = alpha * alpha;
-    const double d = c2 * (a2 - 1) + 1;
+    const double a2 = alpha * alpha;
+    const double d = sin2(m) + a2 * m.z * m.z;
     return a2 / (kPi * d * d);
   }
   double G1(Vec3f v, Vec3f m) const {
     if (dot(v, m) * v.z <= 0) return 0;
-    const double c2 = double(v.z) * v.z;
-    return 2 / (1 + std::sqrt(1 + alpha * alpha * (1 - c2) / c2));
+    return 2 / (1 + std::sqrt(1 + alpha * alpha * sin2(v) / (double(v.z) * v.z)));
   }
 };
 
@@ -42,7 +44,7 @@ struct Ggx {
 template <typename F>
 double integrateAroundNormal(const F& f, double alpha, double tolerance) {
   std::vector<double> breaks{0};
-  for (double b = std::max(alpha, 1e-3); b < kPi; b *= 3) breaks.push_back(b);
+  for (double b = std::max(alpha, 1e-5); b < kPi; b *= 3) breaks.push_back(b);
   breaks.push_back(kPi);
   double sum = 0;
   for (size_t i = 0; i + 1 < breaks.size(); ++i)
@@ -84,29 +86,40 @@ double coatingAlbedo(float mu, double alpha, float ior) {
 }
 
 // E >= E_s everywhere (else the diffuse base could create energy), and not by much more
-// than the 0.01 margin of specular_albedo.cpp (else the base would be needlessly dark).
+// than the 0.01 margin of specular_albedo.cpp away from grazing (else the base would be
+// needlessly dark):
+// random points over the whole table, then grazing angles on nearly smooth coatings.
 TEST(SpecularAlbedoBound, BoundsTheCoatingAlbedoClosely) {
   Uniform rng(31);
-  double worstSlack = 1, largestSlack = 0;
-  for (int i = 0; i < 60; ++i) {
-    const float mu = 0.02f + 0.98f * rng.next();
-    const float roughness = 0.05f + 0.95f * rng.next();
-    const float ior = 1 + 2 * rng.next();
+  double smallestSlack = 1, largestSlack = 0;
+  for (int i = 0; i < 300; ++i) {
+    const bool grazing = i >= 200;
+    const float mu = grazing ? 0.001f + 0.1f * rng.next() : 0.02f + 0.98f * rng.next();
+    const float roughness = grazing ? 0.01f + 0.1f * rng.next() : 0.05f + 0.95f * rng.next();
+    // Half of them close to 1, where Fresnel changes fastest with the index.
+    const float u = rng.next();
+    const float ior = 1 + 2 * (i % 2 == 0 ? u : u * u * u);
     const double alpha = double(roughness) * roughness;
     const double exact = coatingAlbedo(mu, alpha, ior);
     const double slack = specularAlbedoBound(mu, float(alpha), ior) - exact;
     EXPECT_GE(slack, 0) << "mu " << mu << " roughness " << roughness << " ior " << ior << ": E_s " << exact;
-    worstSlack = std::min(worstSlack, slack);
-    largestSlack = std::max(largestSlack, slack);
-  }
-  // A smooth coating reflects exactly F(mu).
-  for (const float mu : {0.05f, 0.3f, 0.9f}) {
-    const double f = fresnelDielectric(mu, 1.5f).reflectance;
-    EXPECT_GE(specularAlbedoBound(mu, 0, 1.5f), f);
-    EXPECT_LE(specularAlbedoBound(mu, 0, 1.5f), f + 0.02);
+    smallestSlack = std::min(smallestSlack, slack);
+    // Near grazing the bound is deliberately loose (specular_albedo.cpp), and the diffuse
+    // base, weighted by the cosine, hardly feels it.
+    if (mu > 0.09f) largestSlack = std::max(largestSlack, slack);
   }
   EXPECT_LE(largestSlack, 0.02);
-  RecordProperty("worst slack", std::to_string(worstSlack));
+  RecordProperty("smallest slack", std::to_string(smallestSlack));
+  RecordProperty("largest slack", std::to_string(largestSlack));
+  // A smooth coating reflects exactly F(mu), here at every angle and index.
+  for (const float ior : {1.0f, 1.001f, 1.003f, 1.01f, 1.03f, 1.1f, 1.33f, 1.5f, 2.0f, 2.9f, 3.0f}) {
+    for (int i = 0; i <= 1000; ++i) {
+      const float mu = i / 1000.0f;
+      const double f = fresnelDielectric(mu, ior).reflectance;
+      ASSERT_GE(specularAlbedoBound(mu, 0, ior), f) << "mu " << mu << " ior " << ior;
+      if (mu > 0.09f) ASSERT_LE(specularAlbedoBound(mu, 0, ior), f + 0.02) << "mu " << mu << " ior " << ior;
+    }
+  }
 }
 
 // The normalization of the diffuse base needs the cosine-weighted average of the same E.
