@@ -9,7 +9,8 @@ PACKAGES=(
   libembree-dev libopenexr-dev libimath-dev libtbb-dev
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler
   libsqlite3-dev libssl-dev libspdlog-dev libfmt-dev libgtest-dev libgmock-dev
-  libcli11-dev nlohmann-json3-dev libtinyobjloader-dev libstb-dev
+  libcli11-dev nlohmann-json3-dev libtinyobjloader-dev libstb-dev libtinygltf-dev
+  clang libclang-rt-14-dev
 )
 
 missing=()

@@ -5,6 +5,7 @@
 #include <set>
 #include <sstream>
 
+#include "renderer/scene/gltf/gltf_scene.h"
 #include "renderer/scene/mesh_io.h"
 #include "renderer/scene/scene_parsers.h"
 
@@ -31,6 +32,13 @@ void parseRender(const JsonNode& node, RenderDefaults& defaults) {
   }
 }
 
+void parseShutter(const JsonNode& node, CameraDesc& camera) {
+  const auto e = node.elements();
+  if (e.size() != 2) node.fail("expected [open, close] as fractions of a frame");
+  camera.shutterOpen = static_cast<float>(e[0].number(0, 1));
+  camera.shutterClose = static_cast<float>(e[1].number(camera.shutterOpen, 1));
+}
+
 void parseCamera(const JsonNode& node, double fps, CameraDesc& camera) {
   node.expectKeys({"position", "look_at", "up", "fov", "aperture_radius", "focus_distance",
                    "shutter", "animation"});
@@ -51,12 +59,7 @@ void parseCamera(const JsonNode& node, double fps, CameraDesc& camera) {
   camera.focusDistance = length(target - eye);
   if (auto f = node.optional("focus_distance"))
     camera.focusDistance = static_cast<float>(f->number(1e-6, 1e9));
-  if (auto shutter = node.optional("shutter")) {
-    const auto e = shutter->elements();
-    if (e.size() != 2) shutter->fail("expected [open, close] as fractions of a frame");
-    camera.shutterOpen = static_cast<float>(e[0].number(0, 1));
-    camera.shutterClose = static_cast<float>(e[1].number(camera.shutterOpen, 1));
-  }
+  if (auto shutter = node.optional("shutter")) parseShutter(*shutter, camera);
   if (auto animation = node.optional("animation")) {
     // A camera moves and turns but never scales.
     animation->expectKeys({"translate", "rotate"});
@@ -142,6 +145,38 @@ SceneObject parseShape(const JsonNode& node, size_t index, const Scene& scene,
   return object;
 }
 
+// "include": "file.glb" | {"file": ..., "scene": name, "camera": name, "shutter": [open,
+// close]}: the glTF scene the JSON file then adds to and overrides.
+Scene parseInclude(const JsonNode& node, const std::filesystem::path& folder, double fps, bool hasCamera) {
+  GltfImportOptions options;
+  options.fps = fps;
+  options.requireCamera = !hasCamera;
+  if (node.isObject()) {
+    node.expectKeys({"file", "scene", "camera", "shutter"});
+    if (auto name = node.optional("scene")) options.sceneName = name->string();
+    if (auto name = node.optional("camera")) {
+      if (hasCamera) name->fail("give the camera either here or as \"camera\", not both");
+      options.cameraName = name->string();
+    }
+  }
+  const JsonNode file = node.isObject() ? node["file"] : node;
+  const std::filesystem::path path = folder / file.string();
+  if (!isGltfFile(path)) file.fail("an included scene must be a .gltf or .glb file");
+  Scene scene;
+  try {
+    scene = loadGltfScene(path, options);
+  } catch (const SceneError& e) {
+    file.fail(e.what());
+  }
+  if (node.isObject()) {
+    if (auto shutter = node.optional("shutter")) {
+      if (hasCamera) shutter->fail("give the shutter in \"camera\" when the JSON scene has its own camera");
+      parseShutter(*shutter, scene.camera);
+    }
+  }
+  return scene;
+}
+
 }  // namespace
 
 Scene parseScene(std::string_view text, const std::filesystem::path& file) {
@@ -153,24 +188,35 @@ Scene parseScene(std::string_view text, const std::filesystem::path& file) {
     throw SceneError(label + ": invalid JSON: " + e.what());
   }
   const JsonNode root(document, "", label);
-  root.expectKeys({"fps", "seed", "roughness_threshold", "render", "camera", "materials",
+  root.expectKeys({"include", "fps", "seed", "roughness_threshold", "render", "camera", "materials",
                    "environment", "shapes"});
 
-  Scene scene;
-  scene.file = file;
   const std::filesystem::path folder = file.parent_path();
-  if (auto fps = root.optional("fps")) scene.fps = fps->number(1e-3, 1e6);
+  const double fps = root.has("fps") ? root["fps"].number(1e-3, 1e6) : 24;
+  const auto include = root.optional("include");
+  Scene scene = include ? parseInclude(*include, folder, fps, root.has("camera")) : Scene{};
+  scene.file = file;
+  scene.fps = fps;
   if (auto seed = root.optional("seed")) scene.seed = static_cast<uint64_t>(seed->integer(0, 1 << 30));
   if (auto t = root.optional("roughness_threshold"))
     scene.roughnessThreshold = static_cast<float>(t->number(0, 4));
   if (auto render = root.optional("render")) parseRender(*render, scene.defaults);
-  parseCamera(root["camera"], scene.fps, scene.camera);
+  if (!include || root.has("camera")) parseCamera(root["camera"], scene.fps, scene.camera);
 
+  // A material named like one of the included file's replaces it.
   std::map<std::string, int> materialIndex;
-  for (const auto& [name, node] : root["materials"].members()) {
-    materialIndex[name] = static_cast<int>(scene.materials.size());
-    scene.materialNames.push_back(name);
-    scene.materials.push_back(parseMaterial(node, folder, scene.textures));
+  for (size_t i = 0; i < scene.materialNames.size(); ++i) materialIndex[scene.materialNames[i]] = static_cast<int>(i);
+  if (auto materials = include ? root.optional("materials") : std::optional<JsonNode>(root["materials"])) {
+    for (const auto& [name, node] : materials->members()) {
+      Material material = parseMaterial(node, folder, scene.textures);
+      if (const auto it = materialIndex.find(name); it != materialIndex.end()) {
+        scene.materials[static_cast<size_t>(it->second)] = material;
+        continue;
+      }
+      materialIndex[name] = static_cast<int>(scene.materials.size());
+      scene.materialNames.push_back(name);
+      scene.materials.push_back(material);
+    }
   }
   if (auto env = root.optional("environment")) {
     env->expectKeys({"radiance"});
@@ -178,19 +224,24 @@ Scene parseScene(std::string_view text, const std::filesystem::path& file) {
   }
 
   std::set<uint32_t> ids;
-  const auto shapes = root["shapes"].elements();
-  for (size_t i = 0; i < shapes.size(); ++i) {
-    SceneObject object = parseShape(shapes[i], i, scene, materialIndex, folder);
-    if (!ids.insert(object.objectId).second)
-      (shapes[i].has("object_id") ? shapes[i]["object_id"] : shapes[i])
-          .fail("object id " + std::to_string(object.objectId) + " is used twice");
-    scene.objects.push_back(std::move(object));
+  for (const SceneObject& object : scene.objects) ids.insert(object.objectId);
+  if (auto shapes = include ? root.optional("shapes") : std::optional<JsonNode>(root["shapes"])) {
+    const auto elements = shapes->elements();
+    const size_t first = scene.objects.size();
+    for (size_t i = 0; i < elements.size(); ++i) {
+      SceneObject object = parseShape(elements[i], first + i, scene, materialIndex, folder);
+      if (!ids.insert(object.objectId).second)
+        (elements[i].has("object_id") ? elements[i]["object_id"] : elements[i])
+            .fail("object id " + std::to_string(object.objectId) + " is used twice");
+      scene.objects.push_back(std::move(object));
+    }
+    if (scene.objects.empty()) shapes->fail("a scene needs at least one shape");
   }
-  if (scene.objects.empty()) root["shapes"].fail("a scene needs at least one shape");
   return scene;
 }
 
 Scene loadScene(const std::filesystem::path& file) {
+  if (isGltfFile(file)) return loadGltfScene(file);
   std::ifstream in(file, std::ios::binary);
   if (!in) throw SceneError(file.string() + ": cannot open the scene file");
   std::ostringstream text;

@@ -107,6 +107,29 @@ ImageTexture ImageTexture::load(const std::filesystem::path& file, TextureEncodi
   return ImageTexture(w, h, std::move(texels));
 }
 
+ImageTexture ImageTexture::fromPixels(int width, int height, int channels, int bitsPerChannel,
+                                      const unsigned char* data, bool srgb) {
+  if (width <= 0 || height <= 0 || channels < 1 || channels > 4 || (bitsPerChannel != 8 && bitsPerChannel != 16))
+    throw TextureError("unsupported pixel layout: " + std::to_string(width) + "x" + std::to_string(height) + ", " +
+                       std::to_string(channels) + " channels of " + std::to_string(bitsPerChannel) + " bits");
+  const std::array<float, 256>& table = table8Bit(TextureEncoding::Srgb);
+  const size_t bytes = static_cast<size_t>(bitsPerChannel / 8);
+  const auto value = [&](size_t index) -> float {
+    if (bytes == 1) return srgb ? table[data[index]] : data[index] / 255.0f;
+    const double v = (data[2 * index] | (data[2 * index + 1] << 8)) / 65535.0;
+    return static_cast<float>(srgb ? srgbToLinear(v) : v);
+  };
+  const size_t n = static_cast<size_t>(width) * static_cast<size_t>(height);
+  const size_t stride = static_cast<size_t>(channels);
+  const bool grey = channels < 3;
+  std::vector<Rgb> texels(n);
+  for (size_t i = 0; i < n; ++i) {
+    const size_t p = i * stride;
+    texels[i] = grey ? Rgb(value(p)) : Rgb(value(p), value(p + 1), value(p + 2));
+  }
+  return ImageTexture(width, height, std::move(texels));
+}
+
 Rgb ImageTexture::texel(int x, int y) const {
   return texels_[static_cast<size_t>(y) * static_cast<size_t>(width_) + static_cast<size_t>(x)];
 }

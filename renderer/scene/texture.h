@@ -22,6 +22,11 @@ enum class TextureEncoding { Srgb, Linear };
 class ImageTexture {
  public:
   static ImageTexture load(const std::filesystem::path& file, TextureEncoding encoding = TextureEncoding::Srgb);
+  // From decoded pixels (rows top to bottom, `channels` interleaved 8- or 16-bit values,
+  // little-endian for 16): grey and grey-alpha are replicated, alpha is dropped. `srgb`
+  // says whether the values are sRGB-encoded colour or linear data.
+  static ImageTexture fromPixels(int width, int height, int channels, int bitsPerChannel,
+                                 const unsigned char* data, bool srgb);
   ImageTexture(int width, int height, std::vector<Rgb> texels);
 
   Rgb lookup(Vec2f uv) const;

@@ -15,8 +15,13 @@ namespace {
 std::filesystem::path writeShot(const std::string& name, const std::string& json) {
   const auto folder = std::filesystem::temp_directory_path() / "pathfarm_shot_files";
   std::filesystem::create_directories(folder);
-  std::error_code exists;
-  std::filesystem::create_directory_symlink(test_support::sourceDir() / "scenes/cornell", folder / "cornell", exists);
+  // A link left by another checkout points elsewhere: replace it.
+  const auto target = test_support::sourceDir() / "scenes/cornell";
+  std::error_code error;
+  if (std::filesystem::read_symlink(folder / "cornell", error) != target) {
+    std::filesystem::remove(folder / "cornell", error);
+    std::filesystem::create_directory_symlink(target, folder / "cornell", error);
+  }
   const auto file = folder / ("test_" + name + ".json");
   std::ofstream(file) << json;
   return file;

@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# glTF scenes as a user brings them: `pathfarm render` of a .glb, a broken file refused
+# with exit status 2 naming the file and the JSON pointer, and the showroom shot (a JSON
+# scene including a .glb) finished by every pipeline on a local farm with finite frames.
+source "$(dirname "$0")/cli_test_support.sh"
+showroom="$source_dir/scenes/showroom"
+
+"$pathfarm" render "$showroom/showroom.glb" --frames 5:5 --res 32x18 --spp 2 --out "$work/glb" > "$work/log" 2>&1 ||
+  fail "render of showroom.glb failed: $(cat "$work/log")"
+[ -s "$work/glb/frame_0005.exr" ] || fail "no frame from showroom.glb"
+
+python3 - "$showroom/showroom.glb" "$work/broken.glb" <<'PY'
+import json, struct, sys
+data = open(sys.argv[1], "rb").read()
+length = struct.unpack_from("<I", data, 12)[0]
+gltf = json.loads(data[20:20 + length])
+gltf["accessors"][0]["count"] += 1000   # the first accessor now overruns its buffer view
+text = json.dumps(gltf).encode()
+text += b" " * (-len(text) % 4)
+rest = data[20 + length:]
+body = struct.pack("<I4s", len(text), b"JSON") + text + rest
+open(sys.argv[2], "wb").write(struct.pack("<4sII", b"glTF", 2, 12 + len(body)) + body)
+PY
+expect_refused render "$work/broken.glb" --out "$work/broken"
+grep -q "broken.glb: /meshes/0/primitives/0/attributes/POSITION: .* overrun" "$work/log" ||
+  fail "broken.glb message: $(cat "$work/log")"
+
+for pipeline in pt d du di dui tgpt pssmlt mlt tmlt; do
+  cat > "$work/$pipeline.json" <<JSON
+{"name": "showroom-$pipeline", "scene": "$showroom/scene.json", "frames": {"start": 0, "end": 3},
+ "resolution": [32, 18], "spp": 2, "max_depth": 4, "tile": 16, "pipeline": "$pipeline", "output": "out_$pipeline"}
+JSON
+  "$pathfarm" local "$work/$pipeline.json" --workers 2 --threads 1 > "$work/log" 2>&1 ||
+    { fail "$pipeline on the showroom failed: $(tail -5 "$work/log")"; continue; }
+  for frame in 0 1 2 3; do
+    exr="$work/out_$pipeline/frame_000$frame.exr"
+    [ -s "$exr" ] || { fail "$pipeline: no frame $frame"; continue; }
+    # compare counts the pixels that are NaN or infinite.
+    "$pathfarm" compare "$exr" "$exr" --json > "$work/compare" 2>&1 || fail "$pipeline: compare failed"
+    grep -q '"nonfinite": 0,' "$work/compare" || fail "$pipeline frame $frame not finite: $(cat "$work/compare")"
+  done
+done
+
+finish "glTF CLI"
