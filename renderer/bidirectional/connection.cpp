@@ -73,7 +73,9 @@ PathVertex asConnected(const PathVertex& x) {
 
 bool isConnectible(const Scene& scene, const PathVertex& x) {
   if (x.type != VertexType::Surface) return true;
-  return Bsdf(ShadedVertex::materialOf(scene, x.hit), Rgb(), scene.roughnessThreshold).hasNonDeltaLobe();
+  // At the point's own parameters: a roughness texture may make a glossy lobe a delta one.
+  const Material& material = ShadedVertex::materialOf(scene, x.hit);
+  return Bsdf(material, surfaceAt(scene, material, x.hit.uv), scene.roughnessThreshold).hasNonDeltaLobe();
 }
 
 std::optional<StrategySample> connectStrategy(const BdptScene& bdpt, float time, const Subpath& camera,

@@ -60,14 +60,16 @@ struct ChainSearch {
       const int next = automaton.next(state, symbol == LobeSymbol::R ? PathSymbol::R : PathSymbol::T);
       if (!automaton.alive(next, component)) continue;
       const bool refracts = symbol == LobeSymbol::T;
+      // Thin-walled transmission (metallic-roughness) passes straight through: index 1.
+      const double ior = isDielectric(material.type) ? material.ior : 1.0;
       const Vec3f n = hit.shadingNormal;
       Vec3f direction = reflectOff(ray.direction, n);
       if (refracts) {
-        const auto refracted = refractThrough(ray.direction, n, material.ior);
+        const auto refracted = refractThrough(ray.direction, n, ior);
         if (!refracted) continue;
         direction = normalize(*refracted);
       }
-      chain.links.push_back({hit.object, refracts, isDielectric(material.type) ? material.ior : 1.0});
+      chain.links.push_back({hit.object, refracts, ior});
       if (search({offsetRayOrigin(hit, direction), direction}, next, depth + 1)) return true;
       chain.links.pop_back();
     }

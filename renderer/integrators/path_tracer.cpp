@@ -55,7 +55,7 @@ Rgb PathTracer::radiance(Ray ray, float time, SampleStream& stream, RayCounts& c
         const Vec3f wi = frame.toLocal(light->direction);
         // The lobes sum to eval() exactly (bsdf.h), so the beauty keeps its bits.
         const LobeValues perLobe = decomposer ? bsdf.evalLobes(wo, wi) : LobeValues{};
-        const Rgb f = decomposer ? perLobe.value[0] + perLobe.value[1] : bsdf.eval(wo, wi);
+        const Rgb f = decomposer ? perLobe.sum() : bsdf.eval(wo, wi);
         if (!f.isBlack()) {
           ++counts.shadow;
           const bool visible = std::isinf(light->distance)

@@ -23,9 +23,24 @@ struct BounceSamples {
       : light(s.next1D()), lightPoint(s.next2D()), lobe(s.next1D()), direction(s.next2D()), roulette(s.next1D()) {}
 };
 
+// The diffuse reflectance at a point (the filters' albedo feature): the texture replaces
+// `reflectance`, except for glTF's base colour, which the texture multiplies.
 inline Rgb albedoAt(const Scene& scene, const Material& material, Vec2f uv) {
   if (material.reflectanceTexture < 0) return material.reflectance;
-  return scene.textures[static_cast<size_t>(material.reflectanceTexture)].lookup(uv);
+  const Rgb texel = scene.textures[static_cast<size_t>(material.reflectanceTexture)].lookup(uv);
+  return material.type == MaterialType::MetallicRoughness ? material.reflectance * texel : texel;
+}
+
+// Everything textured at a point. glTF's metallicRoughnessTexture holds linear data, metal
+// in B and roughness in G, scaling the material's factors.
+inline SurfaceParameters surfaceAt(const Scene& scene, const Material& material, Vec2f uv) {
+  SurfaceParameters surface = SurfaceParameters::of(material, albedoAt(scene, material, uv));
+  if (material.metallicRoughnessTexture >= 0) {
+    const Rgb texel = scene.textures[static_cast<size_t>(material.metallicRoughnessTexture)].lookup(uv);
+    surface.metallic *= texel.b;
+    surface.roughness *= texel.g;
+  }
+  return surface;
 }
 
 inline bool isTransmissive(MaterialType type) {
@@ -33,8 +48,9 @@ inline bool isTransmissive(MaterialType type) {
 }
 
 // A hit shaded for a ray arriving along `incoming`. Opaque surfaces are two-sided: the
-// side the ray arrived on is shaded (normals flipped towards it). Dielectrics keep the
-// outward normal so that the BSDF knows whether the ray is inside.
+// side the ray arrived on is shaded (normals flipped towards it), and so are the thin-walled
+// metallic-roughness sheets, whose transmission has no inside. Dielectrics keep the outward
+// normal so that the BSDF knows whether the ray is inside.
 struct ShadedVertex {
   SurfaceHit hit;
   Vec3f normal;
@@ -47,7 +63,7 @@ struct ShadedVertex {
         normal(surface.shadingNormal),
         frame(),
         wo(),
-        bsdf(materialOf(scene, surface), albedoAt(scene, materialOf(scene, surface), surface.uv),
+        bsdf(materialOf(scene, surface), surfaceAt(scene, materialOf(scene, surface), surface.uv),
              scene.roughnessThreshold) {
     if (!isTransmissive(materialOf(scene, surface).type) && dot(incoming, hit.geometricNormal) > 0) {
       normal = -normal;

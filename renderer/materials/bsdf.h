@@ -21,16 +21,20 @@ struct Lobe {
   bool delta;  // a Dirac distribution: cannot be hit by next-event estimation
 };
 
+inline constexpr int kMaxLobes = 3;
+
 struct LobeList {
-  Lobe lobes[2];
+  Lobe lobes[kMaxLobes];
   int count = 0;
 };
 
 // f(wo, wi) * |cos(wi)| of each lobe, index i for lobes().lobes[i]; entries past
-// lobes().count and those of delta lobes are zero. value[0] + value[1] == eval(wo, wi)
-// exactly (the same float additions eval performs, or an addition of zero).
+// lobes().count and those of delta lobes are zero. sum() == eval(wo, wi) exactly (the
+// same float additions eval performs, or additions of zero).
 struct LobeValues {
-  Rgb value[2];
+  Rgb value[kMaxLobes];
+
+  Rgb sum() const { return value[0] + value[1] + value[2]; }
 };
 
 struct BsdfSample {
@@ -41,31 +45,47 @@ struct BsdfSample {
   bool delta = false;
   // `weight` split by lobe (index as in lobes()). A delta sample puts all of `weight` on
   // the sampled lobe. A non-delta sample puts evalLobes(wo, wi).value[i] / pdf on lobe i,
-  // with the same total density `pdf` for every lobe; only the rough plastic has two
-  // non-delta lobes that overlap, and there each part is rounded on its own:
-  // lobeWeight[0] + lobeWeight[1] equals `weight` to a relative 4 * 2^-24 (2.4e-7; both
-  // parts are non-negative) rather than bit for bit, `weight` itself keeping the bits it
-  // always had. Everywhere else one entry is `weight` and the other zero, so the sum is
+  // with the same total density `pdf` for every lobe; only the rough plastic and the
+  // metallic-roughness material have non-delta lobes that overlap, and there each part is
+  // rounded on its own: the sum of lobeWeight equals `weight` to a relative 6 * 2^-24
+  // (all parts are non-negative) rather than bit for bit, `weight` itself keeping the bits
+  // it always had. Everywhere else one entry is `weight` and the others zero, so the sum is
   // exact.
-  Rgb lobeWeight[2];
-  // Index into lobes() of the lobe that sample() chose; with two non-delta lobes (rough
-  // plastic), lobeWeight may still give part of the weight to the other lobe.
+  Rgb lobeWeight[kMaxLobes];
+  // Index into lobes() of the lobe that sample() chose; with overlapping non-delta lobes,
+  // lobeWeight may still give part of the weight to the other lobes.
   int lobe = 0;
 };
 
 // For the lobe implementations: a sample whose whole weight belongs to the lobe `lobe`.
 inline BsdfSample oneLobeSample(Vec3f wi, Rgb weight, float pdf, LobeSymbol symbol, bool delta, int lobe) {
-  BsdfSample s{wi, weight, pdf, symbol, delta, {Rgb(), Rgb()}, lobe};
+  BsdfSample s{wi, weight, pdf, symbol, delta, {}, lobe};
   s.lobeWeight[lobe] = weight;
   return s;
 }
+
+// What a BSDF needs that may vary over a surface, textures already looked up at the hit
+// (surfaceAt in renderer/integrators/path_vertex.h). Code without a hit (the choice of
+// decomposition, the specular chain search) uses the material's own values, `of`.
+struct SurfaceParameters {
+  Rgb albedo;       // diffuse reflectance; the base colour of MetallicRoughness
+  float metallic;   // MetallicRoughness only, in [0, 1]
+  float roughness;  // MetallicRoughness only: perceptual, GGX alpha = roughness^2
+
+  static SurfaceParameters of(const Material& material, Rgb albedo) {
+    return {albedo, material.metallic, material.roughness};
+  }
+};
 
 // Radiance travels from wi towards wo (the camera side); transmission includes the
 // 1/eta^2 radiance scaling of the refracted direction.
 class Bsdf {
  public:
-  // `albedo` is the material's diffuse reflectance at this point (texture already looked up).
-  Bsdf(const Material& material, Rgb albedo, float roughnessThreshold);
+  Bsdf(const Material& material, const SurfaceParameters& surface, float roughnessThreshold);
+  // `albedo` is the material's diffuse reflectance at this point (texture already looked
+  // up); the other parameters are the material's own.
+  Bsdf(const Material& material, Rgb albedo, float roughnessThreshold)
+      : Bsdf(material, SurfaceParameters::of(material, albedo), roughnessThreshold) {}
 
   // f(wo, wi) * |cos(wi)|; zero for pairs only delta lobes connect.
   Rgb eval(Vec3f wo, Vec3f wi) const;
@@ -82,7 +102,7 @@ class Bsdf {
 
  private:
   const Material& material_;
-  Rgb albedo_;
+  SurfaceParameters surface_;
   float roughnessThreshold_;
 };
 

@@ -10,8 +10,6 @@ namespace pathfarm {
 
 class SmoothConductorBsdf {
  public:
-  static constexpr bool kHasNonDeltaLobe = false;
-
   explicit SmoothConductorBsdf(const Material& material) : material_(material) {}
 
   Rgb eval(Vec3f, Vec3f) const { return {}; }
@@ -27,8 +25,6 @@ class SmoothConductorBsdf {
 // Cook-Torrance reflection in the form of Walter et al. 2007, eq. 20.
 class RoughConductorBsdf {
  public:
-  static constexpr bool kHasNonDeltaLobe = true;
-
   RoughConductorBsdf(const Material& material, float roughnessThreshold);
 
   Rgb eval(Vec3f wo, Vec3f wi) const;

@@ -11,8 +11,6 @@ namespace pathfarm {
 
 class SmoothDielectricBsdf {
  public:
-  static constexpr bool kHasNonDeltaLobe = false;
-
   explicit SmoothDielectricBsdf(float ior) : ior_(ior) {}
 
   Rgb eval(Vec3f, Vec3f) const { return {}; }
@@ -29,8 +27,6 @@ class SmoothDielectricBsdf {
 
 class RoughDielectricBsdf {
  public:
-  static constexpr bool kHasNonDeltaLobe = true;
-
   RoughDielectricBsdf(const Material& material, float roughnessThreshold);
 
   Rgb eval(Vec3f wo, Vec3f wi) const { return Rgb(evaluate(wo, wi).value); }

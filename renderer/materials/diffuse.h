@@ -8,8 +8,6 @@ namespace pathfarm {
 
 class DiffuseBsdf {
  public:
-  static constexpr bool kHasNonDeltaLobe = true;
-
   explicit DiffuseBsdf(Rgb albedo) : albedo_(albedo) {}
 
   Rgb eval(Vec3f wo, Vec3f wi) const;

@@ -15,7 +15,10 @@ enum class MaterialType {
   RoughDielectric,  // microfacet glass (Walter et al. 2007)
   Plastic,          // smooth dielectric coating over a diffuse base (as in Mitsuba)
   RoughPlastic,     // microfacet coating over a diffuse base
-  MetallicRoughness,  // glTF 2.0 pbrMetallicRoughness with transmission and ior
+  // glTF 2.0 pbrMetallicRoughness with KHR_materials_transmission and KHR_materials_ior:
+  // GGX metal mixed with a GGX-coated diffuse and thin-walled transmission
+  // (metallic_roughness.h).
+  MetallicRoughness,
 };
 
 enum class MicrofacetType { GGX, Beckmann };
@@ -23,6 +26,8 @@ enum class MicrofacetType { GGX, Beckmann };
 struct Material {
   MaterialType type = MaterialType::Diffuse;
   // Diffuse albedo (Diffuse, Plastic, RoughPlastic); replaced by the texture when one is set.
+  // MetallicRoughness: the base colour (glTF baseColorFactor, linear), multiplied by the
+  // texture (baseColorTexture, sRGB-decoded) when one is set.
   Rgb reflectance{0.5f};
   int reflectanceTexture = -1;  // index into Scene::textures, -1 for none
   // Conductors: complex index of refraction eta + i k per channel, or, when
@@ -32,13 +37,15 @@ struct Material {
   bool useSpecularColor = false;
   Rgb specularColor{1.0f};
   // Dielectrics and plastic coatings: interior index of refraction (exterior is 1).
+  // MetallicRoughness: the dielectric part's index (KHR_materials_ior).
   float ior = 1.5f;
   // Rough materials.
   MicrofacetType distribution = MicrofacetType::GGX;
   float alpha = 0.1f;
-  // MetallicRoughness: `reflectance` is the base colour (times the texture's texel);
-  // roughness is perceptual (GGX alpha = roughness^2). The texture holds linear data:
-  // B = metal, G = roughness, multiplied by the factors.
+  // MetallicRoughness (glTF metallicFactor, roughnessFactor, metallicRoughnessTexture and
+  // KHR_materials_transmission's transmissionFactor). Roughness is perceptual: GGX
+  // alpha = roughness^2. The texture holds linear data, metal in B and roughness in G,
+  // multiplied by the factors.
   float metallic = 1;
   float roughness = 1;
   int metallicRoughnessTexture = -1;  // index into Scene::textures, -1 for none

@@ -40,8 +40,6 @@ class PlasticBase {
 
 class SmoothPlasticBsdf {
  public:
-  static constexpr bool kHasNonDeltaLobe = true;
-
   SmoothPlasticBsdf(const Material& material, Rgb albedo) : base_(albedo, material.ior) {}
 
   Rgb eval(Vec3f wo, Vec3f wi) const;
@@ -57,8 +55,6 @@ class SmoothPlasticBsdf {
 
 class RoughPlasticBsdf {
  public:
-  static constexpr bool kHasNonDeltaLobe = true;
-
   RoughPlasticBsdf(const Material& material, Rgb albedo, float roughnessThreshold);
 
   // The sum of evalLobes, coating + base: the same single addition it always was.

@@ -14,6 +14,7 @@ const std::map<std::string, MaterialType>& materialTypes() {
       {"rough_dielectric", MaterialType::RoughDielectric},
       {"plastic", MaterialType::Plastic},
       {"rough_plastic", MaterialType::RoughPlastic},
+      {"metallic_roughness", MaterialType::MetallicRoughness},
   };
   return types;
 }
@@ -31,7 +32,19 @@ bool isConductor(MaterialType t) {
 }
 bool hasIor(MaterialType t) { return !isConductor(t) && t != MaterialType::Diffuse; }
 
-// "reflectance": [r,g,b] | grey | {"texture": "file.png"}
+// Index of the texture `file` names, loaded into `textures`.
+int loadTexture(const JsonNode& file, const std::filesystem::path& folder, std::vector<ImageTexture>& textures,
+                TextureEncoding encoding) {
+  try {
+    textures.push_back(ImageTexture::load(folder / file.string(), encoding));
+  } catch (const TextureError& e) {
+    file.fail(e.what());
+  }
+  return static_cast<int>(textures.size()) - 1;
+}
+
+// "reflectance" (or a metallic_roughness material's "base_color"):
+// [r,g,b] | grey | {"texture": "file.png"}
 void parseReflectance(const JsonNode& node, const std::filesystem::path& folder,
                       std::vector<ImageTexture>& textures, Material& material) {
   if (!node.isObject()) {
@@ -39,13 +52,26 @@ void parseReflectance(const JsonNode& node, const std::filesystem::path& folder,
     return;
   }
   node.expectKeys({"texture"});
-  const JsonNode file = node["texture"];
-  try {
-    textures.push_back(ImageTexture::load(folder / file.string()));
-  } catch (const TextureError& e) {
-    file.fail(e.what());
+  material.reflectanceTexture = loadTexture(node["texture"], folder, textures, TextureEncoding::Srgb);
+}
+
+// glTF's pbrMetallicRoughness (+ transmission, ior). The base colour texture, as in glTF,
+// multiplies a factor that stays 1 unless given: {"texture": ...} alone means factor 1.
+void parseMetallicRoughness(const JsonNode& node, const std::filesystem::path& folder,
+                            std::vector<ImageTexture>& textures, Material& material) {
+  node.expectKeys({"type", "base_color", "metallic", "roughness", "metallic_roughness_texture", "transmission",
+                   "ior"});
+  material.reflectance = Rgb(1);
+  if (auto color = node.optional("base_color")) parseReflectance(*color, folder, textures, material);
+  if (auto metallic = node.optional("metallic")) material.metallic = static_cast<float>(metallic->number(0, 1));
+  if (auto roughness = node.optional("roughness")) material.roughness = static_cast<float>(roughness->number(0, 1));
+  if (auto t = node.optional("transmission")) material.transmission = static_cast<float>(t->number(0, 1));
+  // The BSDF's tabulated specular albedo covers [1, 3] (specular_albedo.h); glTF's
+  // KHR_materials_ior allows 1 (no reflection) and real materials stay below 2.5.
+  if (auto ior = node.optional("ior")) material.ior = static_cast<float>(ior->number(1, 3));
+  if (auto texture = node.optional("metallic_roughness_texture")) {
+    material.metallicRoughnessTexture = loadTexture(*texture, folder, textures, TextureEncoding::Linear);
   }
-  material.reflectanceTexture = static_cast<int>(textures.size()) - 1;
 }
 
 MaterialType parseType(const JsonNode& node) {
@@ -66,6 +92,10 @@ Material parseMaterial(const JsonNode& node, const std::filesystem::path& folder
   Material material;
   material.type = parseType(node["type"]);
   const MaterialType t = material.type;
+  if (t == MaterialType::MetallicRoughness) {
+    parseMetallicRoughness(node, folder, textures, material);
+    return material;
+  }
 
   std::vector<const char*> keys{"type"};
   if (hasDiffuseBase(t)) keys.push_back("reflectance");

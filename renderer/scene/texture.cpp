@@ -17,14 +17,21 @@ double srgbToLinear(double c) {
   return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
 }
 
-const std::array<float, 256>& srgb8Table() {
-  static const std::array<float, 256> table = [] {
-    std::array<float, 256> t{};
-    for (int i = 0; i < 256; ++i)
-      t[static_cast<size_t>(i)] = static_cast<float>(srgbToLinear(i / 255.0));
-    return t;
-  }();
-  return table;
+double decodeFraction(double c, TextureEncoding encoding) {
+  return encoding == TextureEncoding::Srgb ? srgbToLinear(c) : c;
+}
+
+std::array<float, 256> make8BitTable(TextureEncoding encoding) {
+  std::array<float, 256> t{};
+  for (int i = 0; i < 256; ++i)
+    t[static_cast<size_t>(i)] = static_cast<float>(decodeFraction(i / 255.0, encoding));
+  return t;
+}
+
+const std::array<float, 256>& table8Bit(TextureEncoding encoding) {
+  static const std::array<float, 256> srgb = make8BitTable(TextureEncoding::Srgb);
+  static const std::array<float, 256> linear = make8BitTable(TextureEncoding::Linear);
+  return encoding == TextureEncoding::Srgb ? srgb : linear;
 }
 
 [[noreturn]] void failLoad(const std::filesystem::path& file) {
@@ -55,7 +62,7 @@ ImageTexture::ImageTexture(int width, int height, std::vector<Rgb> texels)
   }
 }
 
-ImageTexture ImageTexture::load(const std::filesystem::path& file) {
+ImageTexture ImageTexture::load(const std::filesystem::path& file, TextureEncoding encoding) {
   const std::string name = file.string();
   constexpr int kChannels = 3;
   int w = 0, h = 0, channelsInFile = 0;
@@ -73,13 +80,13 @@ ImageTexture ImageTexture::load(const std::filesystem::path& file) {
       texels[i] = Rgb(p[0], p[1], p[2]);
     }
   } else if (stbi_is_16_bit(name.c_str())) {
-    // 16-bit PNG: keep the extra precision, still sRGB-encoded.
+    // 16-bit PNG: keep the extra precision.
     std::unique_ptr<stbi_us, StbFree> data(
         stbi_load_16(name.c_str(), &w, &h, &channelsInFile, kChannels));
     if (!data) failLoad(file);
     const size_t n = static_cast<size_t>(w) * static_cast<size_t>(h);
     texels.resize(n);
-    auto decode = [](stbi_us v) { return static_cast<float>(srgbToLinear(v / 65535.0)); };
+    auto decode = [&](stbi_us v) { return static_cast<float>(decodeFraction(v / 65535.0, encoding)); };
     for (size_t i = 0; i < n; ++i) {
       const stbi_us* p = data.get() + i * kChannels;
       texels[i] = Rgb(decode(p[0]), decode(p[1]), decode(p[2]));
@@ -88,7 +95,7 @@ ImageTexture ImageTexture::load(const std::filesystem::path& file) {
     std::unique_ptr<stbi_uc, StbFree> data(
         stbi_load(name.c_str(), &w, &h, &channelsInFile, kChannels));
     if (!data) failLoad(file);
-    const std::array<float, 256>& table = srgb8Table();
+    const std::array<float, 256>& table = table8Bit(encoding);
     const size_t n = static_cast<size_t>(w) * static_cast<size_t>(h);
     texels.resize(n);
     for (size_t i = 0; i < n; ++i) {
@@ -105,7 +112,7 @@ ImageTexture ImageTexture::fromPixels(int width, int height, int channels, int b
   if (width <= 0 || height <= 0 || channels < 1 || channels > 4 || (bitsPerChannel != 8 && bitsPerChannel != 16))
     throw TextureError("unsupported pixel layout: " + std::to_string(width) + "x" + std::to_string(height) + ", " +
                        std::to_string(channels) + " channels of " + std::to_string(bitsPerChannel) + " bits");
-  const std::array<float, 256>& table = srgb8Table();
+  const std::array<float, 256>& table = table8Bit(TextureEncoding::Srgb);
   const size_t bytes = static_cast<size_t>(bitsPerChannel / 8);
   const auto value = [&](size_t index) -> float {
     if (bytes == 1) return srgb ? table[data[index]] : data[index] / 255.0f;

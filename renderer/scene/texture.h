@@ -1,6 +1,7 @@
 #pragma once
 // An RGB image texture (PNG, JPEG, ... through stb_image), stored as linear floats.
-// 8-bit images are taken as sRGB-encoded; lookups are bilinear with repeat wrapping.
+// 8- and 16-bit images are taken as sRGB-encoded colour unless loaded as linear data
+// (glTF's metallicRoughnessTexture); lookups are bilinear with repeat wrapping.
 #include <filesystem>
 #include <stdexcept>
 #include <vector>
@@ -14,9 +15,13 @@ class TextureError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// How integer texels map to values: colour through the sRGB curve, or data (metal,
+// roughness) as plain fractions of the full scale. Float (HDR) images are linear either way.
+enum class TextureEncoding { Srgb, Linear };
+
 class ImageTexture {
  public:
-  static ImageTexture load(const std::filesystem::path& file);
+  static ImageTexture load(const std::filesystem::path& file, TextureEncoding encoding = TextureEncoding::Srgb);
   // From decoded pixels (rows top to bottom, `channels` interleaved 8- or 16-bit values,
   // little-endian for 16): grey and grey-alpha are replicated, alpha is dropped. `srgb`
   // says whether the values are sRGB-encoded colour or linear data.

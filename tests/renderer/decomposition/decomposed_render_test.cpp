@@ -75,6 +75,28 @@ TEST(DecomposedRender, ComponentsAddUpToTheBeautyOfTheSameSamples) {
   expectComponentsAddUpToBeauty(lobes, "plastic, rough plastic, rough conductor, rough dielectric");
 }
 
+// The metallic-roughness material has three lobes at once (R, D, T): each routes its part.
+TEST(DecomposedRender, MetallicRoughnessComponentsAddUpToTheBeauty) {
+  const Scene scene = test_support::sceneFromJson(R"({
+    "camera": {"position": [0, 1, 4], "look_at": [0, 0.5, 0], "fov": 50},
+    "materials": {"floor": {"type": "diffuse", "reflectance": 0.6},
+                  "sharp": {"type": "metallic_roughness", "base_color": [0.8, 0.5, 0.3], "metallic": 0.3,
+                            "roughness": 0.2, "transmission": 0.5},
+                  "smooth": {"type": "metallic_roughness", "base_color": [0.3, 0.6, 0.8], "metallic": 0,
+                             "roughness": 0, "transmission": 0.4},
+                  "rough": {"type": "metallic_roughness", "base_color": 0.7, "metallic": 0.5, "roughness": 0.8}},
+    "environment": {"radiance": [0.3, 0.3, 0.35]},
+    "shapes": [
+      {"type": "rectangle", "size": [8, 8], "material": "floor", "transform": {"rotate": {"axis": [1, 0, 0], "angle": -90}}},
+      {"type": "sphere", "radius": 0.4, "material": "sharp", "transform": {"translate": [-0.9, 0.4, 0]}},
+      {"type": "sphere", "radius": 0.4, "material": "smooth", "transform": {"translate": [0, 0.4, 0]}},
+      {"type": "sphere", "radius": 0.4, "material": "rough", "transform": {"translate": [0.9, 0.4, 0]}},
+      {"type": "rectangle", "size": [1, 1], "material": "floor", "emission": 8,
+       "transform": {"translate": [0, 2.5, 1], "rotate": {"axis": [1, 0, 0], "angle": 90}}}]
+  })");
+  expectComponentsAddUpToBeauty(scene, "metallic roughness");
+}
+
 TEST(DecomposedRender, IrradianceTimesReflectanceGivesTheColorBack) {
   const FrameImage image = renderDecomposed(loadScene(test_support::sourceDir() / "scenes/materials/scene.json"), 32, 18, 4);
   int guarded = 0;

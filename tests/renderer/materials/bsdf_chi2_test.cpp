@@ -26,14 +26,6 @@ int cellOf(Vec3f w) {
   return i * kPhiBins + j;
 }
 
-// Upper quantile of the chi-square distribution, Wilson and Hilferty 1931: (X/k)^(1/3) is
-// close to normal with mean 1 - 2/(9k) and variance 2/(9k).
-double chiSquareQuantile(int dof, double normalQuantile) {
-  const double v = 2.0 / (9.0 * dof);
-  const double c = 1 - v + normalQuantile * std::sqrt(v);
-  return dof * c * c * c;
-}
-
 class BsdfChi2 : public ::testing::TestWithParam<MaterialCase> {};
 
 TEST_P(BsdfChi2, SampleDistributionMatchesPdf) {

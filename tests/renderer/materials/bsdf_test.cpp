@@ -32,9 +32,10 @@ Vec3f randomDirection(Uniform& rng, bool sphere) {
 float refractionEta(const Material& m, Vec3f wo) { return wo.z > 0 ? m.ior : 1 / m.ior; }
 
 // The sample weight as a flux ratio: transmitted radiance weights carry 1 / eta^2, which
-// is a change of units between media, not energy created or lost.
+// is a change of units between media, not energy created or lost. The thin-walled
+// metallic-roughness transmission stays in the same medium.
 Rgb fluxWeight(const Material& m, Vec3f wo, const BsdfSample& s) {
-  if (wo.z * s.wi.z >= 0) return s.weight;
+  if (wo.z * s.wi.z >= 0 || m.type == MaterialType::MetallicRoughness) return s.weight;
   const float eta = refractionEta(m, wo);
   return s.weight * (eta * eta);
 }

@@ -97,7 +97,19 @@ inline Material makeMaterial(MaterialType type, MicrofacetType distribution, flo
   return m;
 }
 
+inline Material metallicRoughness(float roughness, float metallic, float transmission, float ior = 1.5f) {
+  Material m;
+  m.type = MaterialType::MetallicRoughness;
+  m.roughness = roughness;
+  m.metallic = metallic;
+  m.transmission = transmission;
+  m.ior = ior;
+  return m;
+}
+
 // Every configuration with a non-delta lobe; colored albedo and default gold-like metal.
+// The metallic-roughness sheets are thin-walled: twoSided stays false, since the suites'
+// two-sided checks assume refraction (metallic_roughness_test.cpp checks both sides).
 inline std::vector<MaterialCase> nonDeltaCases() {
   using MT = MaterialType;
   using MF = MicrofacetType;
@@ -115,6 +127,13 @@ inline std::vector<MaterialCase> nonDeltaCases() {
       {"RoughPlasticGGX", makeMaterial(MT::RoughPlastic, MF::GGX, 0.2f), albedo, false},
       {"RoughPlasticBeckmann", makeMaterial(MT::RoughPlastic, MF::Beckmann, 0.4f), albedo, false},
       {"PlasticDiffusePart", makeMaterial(MT::Plastic, MF::GGX, 0), albedo, false},
+      {"MetallicRoughnessDielectric", metallicRoughness(0.5f, 0, 0), albedo, false},
+      {"MetallicRoughnessMetal", metallicRoughness(0.3f, 1, 0), albedo, false},
+      {"MetallicRoughnessSharp", metallicRoughness(0.15f, 0.5f, 0.5f), albedo, false},
+      {"MetallicRoughnessHalfMetalHalfTransmission", metallicRoughness(0.6f, 0.5f, 0.5f), albedo, false},
+      {"MetallicRoughnessTransmission", metallicRoughness(0.4f, 0, 1, 1.33f), albedo, false},
+      {"MetallicRoughnessRoughest", metallicRoughness(1, 0.5f, 0.5f, 2.4f), albedo, false},
+      {"MetallicRoughnessSmoothDiffusePart", metallicRoughness(0, 0, 0.5f), albedo, false},
   };
 }
 
@@ -133,5 +152,13 @@ inline std::vector<Vec3f> testDirections(bool twoSided) {
 }
 
 constexpr float kRoughnessThreshold = 0.1f;
+
+// Upper quantile of the chi-square distribution, Wilson and Hilferty 1931: (X/k)^(1/3) is
+// close to normal with mean 1 - 2/(9k) and variance 2/(9k).
+inline double chiSquareQuantile(int dof, double normalQuantile) {
+  const double v = 2.0 / (9.0 * dof);
+  const double c = 1 - v + normalQuantile * std::sqrt(v);
+  return dof * c * c * c;
+}
 
 }  // namespace pathfarm::bsdftest

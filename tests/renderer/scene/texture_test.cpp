@@ -70,6 +70,15 @@ TEST_F(TextureTest, PngIsSrgbDecodedWithTopRowAtVOne) {
   EXPECT_NEAR(srgbReference(128), 0.21586, 1e-5);
 }
 
+// Data textures (glTF's metallicRoughnessTexture) keep the code's fraction of full scale.
+TEST_F(TextureTest, PngLoadedAsLinearDataIsNotSrgbDecoded) {
+  const ImageTexture tex = ImageTexture::load(writePng("data.png", kPixels, 2, 2), TextureEncoding::Linear);
+  expectRgbNear(tex.lookup({0.25f, 0.75f}), Rgb(188 / 255.0f), 1e-6f);
+  expectRgbNear(tex.lookup({0.75f, 0.25f}), Rgb(0.0f, 128 / 255.0f, 1.0f), 1e-6f);
+  // The default is still colour.
+  EXPECT_NEAR(ImageTexture::load(dir_ / "data.png").lookup({0.25f, 0.75f}).r, srgbReference(188), 1e-6);
+}
+
 TEST_F(TextureTest, BilinearBetweenTexelCenters) {
   const ImageTexture tex = ImageTexture::load(writePng("b.png", kPixels, 2, 2));
   const float a = static_cast<float>(srgbReference(188));

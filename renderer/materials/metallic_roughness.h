@@ -1,0 +1,94 @@
+#pragma once
+// glTF 2.0's pbrMetallicRoughness with KHR_materials_transmission and KHR_materials_ior
+// (Material::type MetallicRoughness). At a point: base colour rho, metallic m, GGX
+// alpha = roughness^2, transmission t, index eta. With half vector h,
+//
+//   f = m f_metal + (1 - m) f_dielectric
+//   f_metal      = Schlick(wo.h; F0 = rho) D G / (4 cos_o cos_i)
+//   f_dielectric = F(wo.h; eta) D G / (4 cos_o cos_i)                       specular
+//                + (1 - t) rho (1 - E(cos_o)) (1 - E(cos_i)) / (pi (1 - E_avg))   diffuse
+//                + t rho (1 - F(wo.h'; eta)) D G / (4 cos_o |cos_i|)          transmission
+//
+// with D and G the GGX distribution and Smith shadowing of microfacet.h, F exact dielectric
+// Fresnel, and E the bound on the dielectric specular albedo of specular_albedo.h.
+//
+// Transmission is thin-walled, as glTF defines it without KHR_materials_volume: light
+// passes the surface without refraction, through the reflection lobe mirrored in the
+// tangent plane (wi' = (wi.x, wi.y, -wi.z), h' the half vector of wo and wi'), so a smooth
+// surface transmits straight through (wi = -wo) and there is no 1 / eta^2. Nothing tracks
+// an inside: the surface is two-sided, and wo below it mirrors both directions.
+//
+// Energy. Metal: Schlick <= 1 and the Smith single-scattering lobe loses energy. Dielectric,
+// with E_s the specular albedo: the transmission's albedo is at most
+// integral (1 - F) G1(wi') D_wo(m) dm <= 1 - E_s, and the diffuse one is exactly
+// rho (1 - E(cos_o)) <= 1 - E_s since E >= E_s, so with rho <= 1 the dielectric part's
+// albedo is at most E_s + t (1 - E_s) + (1 - t) (1 - E_s) = 1, and so is the mix. The
+// bound's slack (0.006 to 0.015 away from grazing) costs the diffuse lobe about 1 % of
+// rho. Every term is symmetric in wo and wi (wo.h = wi.h, and the mirrored transmission
+// is symmetric in wo and wi'), so the BSDF is reciprocal.
+//
+// Delta lobes: when alpha < kDeltaAlpha the specular reflection is a mirror and the
+// transmission passes straight through, each with its Fresnel weight at cos_o, like the
+// smooth conductor and dielectric.
+//
+// Lobes: up to three at once (reflection R, diffuse D, transmission T), so LobeList holds
+// three (bsdf.h): glTF materials with partial transmission need D and T together beside the
+// specular R, and merging any two would give one lobe two symbols. A lobe is listed when
+// the material can have it anywhere (reflection always; the diffuse base when the metallic
+// factor or texture can leave a dielectric part and t < 1; the transmission when that part
+// can exist and t > 0), so the list and its indices are the same at every point of a
+// material and for material-level code; where a texel zeroes a lobe, its values are zero.
+// Reflection and transmission count as R and T when alpha at the point is below the scene's
+// threshold, D otherwise (glossyLobeSymbol). Code without a hit (auto decomposition, the
+// specular chain search) decides from the roughness factor; a roughness texture only
+// lowers roughness, so textured points may be R or T where the material-level decision
+// said D: their paths then fall to the components the automaton has for them (often the
+// residual), and the specular chain search ends at such an object as if it were diffuse.
+//
+// Sampling: a lobe with probability proportional to an estimate of its albedo at wo
+// (macro-normal Fresnel for the specular and transmission parts, rho (1 - E) for the
+// diffuse), then visible GGX normals (reflected, or reflected and mirrored) or the cosine
+// hemisphere; the weight is eval over the mixture density of all non-delta lobes.
+#include <optional>
+
+#include "renderer/materials/bsdf.h"
+#include "renderer/materials/microfacet.h"
+
+namespace pathfarm {
+
+class MetallicRoughnessBsdf {
+ public:
+  // Below this GGX alpha the specular lobes are delta lobes (perceptual roughness ~0.03).
+  static constexpr float kDeltaAlpha = 1e-3f;
+
+  MetallicRoughnessBsdf(const Material& material, const SurfaceParameters& surface, float roughnessThreshold);
+
+  // evalLobes(wo, wi).sum(): reflection + diffuse + transmission, as the lobes are listed.
+  Rgb eval(Vec3f wo, Vec3f wi) const { return evalLobes(wo, wi).sum(); }
+  LobeValues evalLobes(Vec3f wo, Vec3f wi) const;
+  float pdf(Vec3f wo, Vec3f wi) const;
+  std::optional<BsdfSample> sample(Vec3f wo, float uLobe, Vec2f u) const;
+  LobeList lobes() const;
+
+ private:
+  struct LobeProbabilities {
+    float reflection = 1, diffuse = 0, transmission = 0;
+  };
+  // The methods below assume wo.z > 0 (mirrored by the public ones).
+  LobeProbabilities probabilities(Vec3f wo) const;
+  // m Schlick(rho) + (1 - m) F(eta): the shared specular lobe's Fresnel.
+  Rgb reflectionFresnel(float cosThetaI) const;
+  float dielectricFresnel(float cosThetaI) const;
+  float albedoBound(float cosTheta) const;
+  LobeValues evaluate(Vec3f wo, Vec3f wi) const;
+  float density(Vec3f wo, Vec3f wi) const;
+
+  Rgb baseColor_;
+  float metallic_, alpha_, ior_, transmission_;
+  MicrofacetDistribution distribution_;
+  bool delta_;
+  LobeSymbol reflectSymbol_, transmitSymbol_;
+  int diffuseLobe_, transmissionLobe_;  // indices into lobes(), -1 when not listed
+};
+
+}  // namespace pathfarm
