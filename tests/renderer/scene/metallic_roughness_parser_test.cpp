@@ -54,7 +54,8 @@ TEST(MetallicRoughnessParser, ReadsEveryKey) {
 
 // glTF's defaults: base colour 1, metallic 1, roughness 1, no transmission, ior 1.5.
 TEST(MetallicRoughnessParser, DefaultsAreGltfs) {
-  const Material& m = onlyMaterial(test_support::sceneFromJson(sceneWith(R"({"type": "metallic_roughness"})")));
+  const Scene scene = test_support::sceneFromJson(sceneWith(R"({"type": "metallic_roughness"})"));
+  const Material& m = onlyMaterial(scene);
   EXPECT_FLOAT_EQ(m.reflectance.g, 1);
   EXPECT_FLOAT_EQ(m.metallic, 1);
   EXPECT_FLOAT_EQ(m.roughness, 1);
