@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "renderer/lights/environment_light.h"
 #include "renderer/materials/material.h"
 #include "renderer/scene/animation.h"
 #include "renderer/scene/camera.h"
@@ -48,7 +49,7 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<ImageTexture> textures;
   std::vector<SceneObject> objects;
-  Rgb environment;  // constant radiance from every direction; black if none
+  EnvironmentLight environment;  // black if none
   RenderDefaults defaults;
 
   // The time in seconds of a point `shutterFraction` of the way through frame `frame`'s
