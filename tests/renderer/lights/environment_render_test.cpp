@@ -95,16 +95,16 @@ test_support::MeanEstimate bsdfSamplingOnly(const EnvironmentLight& sky, int n) 
 
 TEST(EnvironmentRender, SunSkyConvergesToTheBsdfSampledMean) {
   const Scene scene = floorUnder(sunSky());
-  const auto reference = bsdfSamplingOnly(scene.environment, 4'000'000);
-  for (const auto& [name, estimate] : {std::pair{"pt", ptMean(scene, 32)}, std::pair{"bdpt", bdptMean(scene, 32)}}) {
+  const auto reference = bsdfSamplingOnly(scene.environment, 16'000'000);
+  for (const auto& [name, estimate] : {std::pair{"pt", ptMean(scene, 128)}, std::pair{"bdpt", bdptMean(scene, 128)}}) {
     const double sigma = std::hypot(estimate.standardError, reference.standardError);
     EXPECT_NEAR(estimate.mean, reference.mean, 4 * sigma) << name << " against " << reference.mean;
     // Next-event estimation finds the sun. Per sample, BSDF sampling's variance is about
     // (albedo 200)^2 x the chance 0.0126 cos / pi of hitting the sun, some 35, while
     // sampling the map makes L / pdf nearly constant: a variance of the order of the
     // mean squared (0.25). A factor of 20 between them leaves room on both sides.
-    const double renderPerSample = estimate.standardError * estimate.standardError * 16 * 16 * 32;
-    const double referencePerSample = reference.standardError * reference.standardError * 4'000'000;
+    const double renderPerSample = estimate.standardError * estimate.standardError * 16 * 16 * 128;
+    const double referencePerSample = reference.standardError * reference.standardError * 16'000'000;
     EXPECT_LT(renderPerSample, referencePerSample / 20) << name;
   }
 }
