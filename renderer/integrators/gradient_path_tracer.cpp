@@ -99,7 +99,8 @@ GradientSample GradientPathTracer::trace(const Ray& cameraRay, const std::array<
         const bool replay = o.mode == OffsetPath::Mode::Replay;
         const bool offsetFound = replay ? o.found : found;
         const SurfaceHit& offsetHit = replay ? o.hit : hit;
-        const float offsetLightPdf = o.stepDelta ? 0 : lightPdfOf(offsetFound, offsetHit, o.previousPosition, o.incoming);
+        const float offsetLightPdf =
+            o.stepDelta ? 0 : lightPdfOf(offsetFound, offsetHit, o.previousPosition, o.incoming);
         const float scale = o.ratioBefore * o.stepJacobian;
         addWeighted(out, k, misWeight(previousPdf, lightPdf, previousPdf, scale * offsetLightPdf, scale * o.stepPdf),
                     base, o.throughput * emissionAt(offsetFound, offsetHit, o.incoming));

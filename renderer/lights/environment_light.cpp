@@ -73,9 +73,9 @@ EnvironmentLight::EnvironmentLight(int width, int height, std::vector<Rgb> texel
     }
   }
   std::vector<float> weights = footprintLuminance(width, height, texels);
-  for (int y = 0; y < height; ++y) {
-    const float sinTheta = std::sin(kPi * (static_cast<float>(y) + 0.5f) / static_cast<float>(height));
-    for (int x = 0; x < width; ++x) weights[static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)] *= sinTheta;
+  for (size_t i = 0; i < weights.size(); ++i) {
+    const float row = static_cast<float>(i / static_cast<size_t>(width));
+    weights[i] *= std::sin(kPi * (row + 0.5f) / static_cast<float>(height));
   }
   PiecewiseConstant2D distribution(weights, width, height);
   const float mean = static_cast<float>(weightedLuminance / (4 * kPiD));

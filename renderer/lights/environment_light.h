@@ -3,9 +3,10 @@
 // constant, or an equirectangular (latitude-longitude) map times a strength, turned about
 // +y. Black (the default) means the scene has no environment.
 //
-// Map orientation, the convention of Blender's environment texture and three.js's
-// equirectUv() in a +y-up world: with map coordinates (u, v), u across the image from its
-// left edge, v down from its top row, a map-space direction d = (x, y, z) is at
+// Map orientation, the convention of three.js's equirectUv(), and of Blender's
+// environment texture once Blender's +z-up world is turned +y-up as its glTF exporter
+// does (-y becoming +z): with map coordinates (u, v), u across the image from its left
+// edge and v down from its top row, a map-space direction d = (x, y, z) is at
 //   u = 1/2 + atan2(z, x) / (2 pi),   v = acos(y) / pi.
 // The top row is +y, the bottom row -y; the image's centre faces +x, its left and right
 // edges -x, u = 3/4 faces +z and u = 1/4 faces -z. Seen from inside, turning right (from
@@ -13,10 +14,11 @@
 // `rotation` turns the map by that many degrees about +y (right-handed): the centre then
 // faces (cos r, 0, -sin r), -z for 90 degrees.
 //
-// Sampling follows pbrt-v4's ImageInfiniteLight (Pharr et al., Section 12.5.2): a
-// piecewise-constant density over the map, proportional to each texel's mean radiance
-// luminance times sin(theta), mapped to solid angle by the Jacobian 2 pi^2 sin(theta).
-// The constant environment samples the sphere uniformly, as it always has.
+// Sampling as pbrt-v3's InfiniteAreaLight (Pharr, Jakob and Humphreys 2016, Section
+// 14.2.4): a piecewise-constant density over the map, proportional to each texel's mean
+// radiance luminance times sin(theta), mapped to solid angle by the Jacobian
+// 2 pi^2 sin(theta). The constant environment samples the sphere uniformly, as it always
+// has, so scenes with a constant sky render the same bits as before maps existed.
 #include <memory>
 #include <optional>
 #include <vector>

@@ -1,7 +1,7 @@
 #pragma once
 // Piecewise-constant densities on [0, 1) and [0, 1)^2, sampled by inverting their
-// cumulative distributions (pbrt-v4, Section A.5: PiecewiseConstant1D/2D). The 2D one is a
-// marginal density over rows and, per row, a conditional density over columns.
+// cumulative distributions (pbrt-v3, Sections 13.3.1 and 13.6.7: Distribution1D/2D). The
+// 2D one is a marginal density over rows and, per row, a conditional density over columns.
 #include <vector>
 
 #include "renderer/math/vecmath.h"

@@ -31,7 +31,8 @@ MapImage readHdr(const std::filesystem::path& file) {
     throw std::runtime_error(name + ": cannot load image (" + (reason ? reason : "unknown reason") + ")");
   }
   const size_t n = static_cast<size_t>(image.width) * static_cast<size_t>(image.height);
-  for (size_t i = 0; i < n; ++i) image.texels.emplace_back(data.get()[3 * i], data.get()[3 * i + 1], data.get()[3 * i + 2]);
+  const float* p = data.get();
+  for (size_t i = 0; i < n; ++i) image.texels.emplace_back(p[3 * i], p[3 * i + 1], p[3 * i + 2]);
   return image;
 }
 

@@ -75,7 +75,9 @@ void expectSkyFurnace(test_support::SkySource sky) {
   EXPECT_GT(means.sphere.standardError, 0);
 }
 
-TEST(BdptRender, SkyFurnaceReadsAlbedoOnTheSphereAndOneOnTheSky) { expectSkyFurnace(test_support::SkySource::Radiance); }
+TEST(BdptRender, SkyFurnaceReadsAlbedoOnTheSphereAndOneOnTheSky) {
+  expectSkyFurnace(test_support::SkySource::Radiance);
+}
 TEST(BdptRender, SkyFurnaceUnderAConstantMap) { expectSkyFurnace(test_support::SkySource::ConstantMap); }
 
 TEST(BdptRender, ThreadsAndTileSizesGiveIdenticalBits) {
