@@ -1,13 +1,15 @@
 // Renders under environment maps against answers found without the renderer's light
 // sampling: a floor under a sky of two hemispheres reflects albedo x the upper one, and
 // under a sky with a small sun it converges to the mean that BSDF sampling alone finds.
-// Both for the path tracer and BDPT, and with the same bits for any threads and tiles.
+// Both for the path tracer and BDPT (and gradient-domain differences that vanish where
+// they must), with the same bits for any threads and tiles.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
 #include "renderer/bidirectional/bdpt_frame_renderer.h"
+#include "renderer/integrators/gradient_frame_renderer.h"
 #include "renderer/math/sampling.h"
 #include "test_support.h"
 #include "tests/renderer/sky_map.h"
@@ -63,6 +65,19 @@ TEST(EnvironmentRender, FloorUnderAHemisphereSkyReflectsAlbedoTimesTheUpperHalf)
   for (const auto& [name, estimate] : {std::pair{"pt", ptMean(scene, 16)}, std::pair{"bdpt", bdptMean(scene, 16)}}) {
     EXPECT_NEAR(estimate.mean, kAlbedo * 1.0, 4 * estimate.standardError) << name;
     EXPECT_GT(estimate.standardError, 0) << name;
+  }
+}
+
+// Gradient-domain path tracing under the same sky: base and offset paths from any two
+// floor points see the same sky, so the finite differences vanish, and the primal reads
+// albedo x the upper half.
+TEST(EnvironmentRender, GradientDifferencesVanishOnAFloorUnderAHemisphereSky) {
+  const FrameImage image = GradientFrameRenderer(floorUnder(hemisphereSky()), settings(8), {}).render(0);
+  for (const char* c : {"R", "G", "B"}) {
+    for (const std::string layer : {"gradient_x.", "gradient_y."})
+      for (const float g : image.channel(layer + c)) ASSERT_NEAR(g, 0.0f, 1e-5f) << layer << c;
+    const auto mean = test_support::meanOverPixels(image, c);
+    EXPECT_NEAR(mean.mean, kAlbedo * 1.0, 4 * mean.standardError + 1e-6) << c;
   }
 }
 
