@@ -19,7 +19,7 @@ enum class VertexType : uint8_t {
   Camera,       // x0: hit.position is the lens point, hit.geometricNormal the viewing axis
   Surface,      // a scattering point (it may also emit, when a camera subpath ends on an emitter)
   Light,        // a point on a surface emitter that a light subpath starts from
-  Environment,  // the constant environment, in `direction` from the previous vertex
+  Environment,  // the environment, in `direction` from the previous vertex
 };
 
 struct PathVertex {

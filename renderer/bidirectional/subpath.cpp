@@ -110,9 +110,14 @@ int generateLightSubpath(const BdptScene& bdpt, float time, UniformSource& u, in
   if (maxVertices < 1 || bdpt.lights.empty()) return 0;
   PathVertex y0;
   if (bdpt.lights.choosesEnvironment(uLight)) {
+    const auto sky = bdpt.lights.sampleEnvironment(uPoint);
+    if (!sky) return 0;
     y0.type = VertexType::Environment;
-    y0.direction = sampleUniformSphere(uPoint);
-    y0.pdfFwd = bdpt.lights.environmentPdf();
+    y0.direction = sky->direction;
+    // From the direction, as complete paths evaluate it (lightStartDensity), so that MIS
+    // weights agree bit for bit.
+    y0.pdfFwd = bdpt.lights.environmentPdf(y0.direction);
+    if (!(y0.pdfFwd > 0)) return 0;
     y0.beta = Rgb(1 / y0.pdfFwd);
     path.push_back(y0);
     return 1;

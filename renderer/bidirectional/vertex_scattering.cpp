@@ -47,7 +47,7 @@ Rgb scattering(const Scene& scene, const PathVertex& x, Vec3f towardCamera, Vec3
 }
 
 Rgb emitted(const Scene& scene, const PathVertex& x, Vec3f toward) {
-  if (x.type == VertexType::Environment) return scene.environment;
+  if (x.type == VertexType::Environment) return scene.environment.radiance(x.direction);
   if (x.type == VertexType::Camera || dot(x.hit.geometricNormal, toward) <= 0) return {};
   return scene.objects[static_cast<size_t>(x.hit.object)].emission;
 }
@@ -70,7 +70,7 @@ float vertexDensity(const BdptScene& bdpt, float time, const PathVertex* before,
 }
 
 float lightStartDensity(const BdptScene& bdpt, float time, const PathVertex& x) {
-  if (x.type == VertexType::Environment) return bdpt.lights.environmentPdf();
+  if (x.type == VertexType::Environment) return bdpt.lights.environmentPdf(x.direction);
   return bdpt.lights.emitterPointPdf(bdpt.geometry, x.hit, time);
 }
 

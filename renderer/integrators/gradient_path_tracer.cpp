@@ -49,13 +49,14 @@ GradientSample GradientPathTracer::trace(const Ray& cameraRay, const std::array<
                                          float time, SampleStream& stream, RayCounts& counts) const {
   const Scene& scene = geometry_.shot().scene();
   const auto emissionAt = [&](bool found, const SurfaceHit& hit, Vec3f incoming) {
-    if (!found) return scene.environment;
+    if (!found) return scene.environment.radiance(incoming);
     const SceneObject& object = scene.objects[static_cast<size_t>(hit.object)];
     return object.isEmitter() && dot(incoming, hit.geometricNormal) < 0 ? object.emission : Rgb();
   };
-  // Density with which next-event estimation from `from` yields what a ray found.
-  const auto lightPdfOf = [&](bool found, const SurfaceHit& hit, Vec3f from) {
-    if (!found) return scene.environment.isBlack() ? 0.0f : lights_.environmentPdf();
+  // Density with which next-event estimation from `from` yields what a ray along
+  // `incoming` found.
+  const auto lightPdfOf = [&](bool found, const SurfaceHit& hit, Vec3f from, Vec3f incoming) {
+    if (!found) return scene.environment.isBlack() ? 0.0f : lights_.environmentPdf(incoming);
     return lights_.pdf(geometry_, from, hit, time);
   };
   const auto intersect = [&](const Ray& ray, SurfaceHit& hit) {
@@ -86,7 +87,7 @@ GradientSample GradientPathTracer::trace(const Ray& cameraRay, const std::array<
     if (depth == 0) {
       out.direct = emitted;
     } else {
-      const float lightPdf = previousDelta ? 0 : lightPdfOf(found, hit, previousPosition);
+      const float lightPdf = previousDelta ? 0 : lightPdfOf(found, hit, previousPosition, ray.direction);
       const Rgb base = throughput * emitted;
       out.radiance += base * (previousDelta ? 1 : powerHeuristic(previousPdf, lightPdf));
       for (size_t k = 0; k < 4; ++k) {
@@ -98,7 +99,8 @@ GradientSample GradientPathTracer::trace(const Ray& cameraRay, const std::array<
         const bool replay = o.mode == OffsetPath::Mode::Replay;
         const bool offsetFound = replay ? o.found : found;
         const SurfaceHit& offsetHit = replay ? o.hit : hit;
-        const float offsetLightPdf = o.stepDelta ? 0 : lightPdfOf(offsetFound, offsetHit, o.previousPosition);
+        const float offsetLightPdf =
+            o.stepDelta ? 0 : lightPdfOf(offsetFound, offsetHit, o.previousPosition, o.incoming);
         const float scale = o.ratioBefore * o.stepJacobian;
         addWeighted(out, k, misWeight(previousPdf, lightPdf, previousPdf, scale * offsetLightPdf, scale * o.stepPdf),
                     base, o.throughput * emissionAt(offsetFound, offsetHit, o.incoming));

@@ -19,9 +19,10 @@ Rgb PathTracer::radiance(Ray ray, float time, SampleStream& stream, RayCounts& c
     ++counts.closestHit;
     if (!geometry_.intersect(ray, time, hit)) {
       if (!scene.environment.isBlack()) {
-        const float weight = specularBounce ? 1 : powerHeuristic(previousPdf, lights_.environmentPdf());
-        result += throughput * scene.environment * weight;
-        if (decomposer) decomposer->addEmission(scene.environment * weight);
+        const Rgb sky = scene.environment.radiance(ray.direction);
+        const float weight = specularBounce ? 1 : powerHeuristic(previousPdf, lights_.environmentPdf(ray.direction));
+        result += throughput * sky * weight;
+        if (decomposer) decomposer->addEmission(sky * weight);
       }
       break;
     }

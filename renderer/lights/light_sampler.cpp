@@ -68,7 +68,7 @@ LightSampler::LightSampler(const ShotGeometry& shot)
   if (!scene.environment.isBlack()) {
     // Power an environment pours onto the scene's bounding sphere's cross-section.
     const float r = sceneRadius(shot);
-    power.push_back(scene.environment.luminance() * kPi * kPi * r * r);
+    power.push_back(scene.environment.meanLuminance() * kPi * kPi * r * r);
   }
   float total = 0;
   for (float p : power) total += p;
@@ -85,7 +85,9 @@ LightSampler::LightSampler(const ShotGeometry& shot)
   }
 }
 
-float LightSampler::environmentPdf() const { return environmentProbability_ * kUniformSpherePdf; }
+float LightSampler::environmentPdf(Vec3f direction) const {
+  return environmentProbability_ * shot_.scene().environment.pdf(direction);
+}
 
 float LightSampler::pointDensity(const FrameGeometry& frame, const Emitter& emitter,
                                  uint32_t triangle, float time) const {
@@ -150,9 +152,7 @@ std::optional<EmitterPoint> LightSampler::sampleEmitterPoint(const FrameGeometry
 std::optional<LightSample> LightSampler::sample(const FrameGeometry& frame, Vec3f from, float time,
                                                 float uLight, Vec2f uPoint) const {
   if (choosesEnvironment(uLight)) {
-    if (environmentProbability_ == 0) return std::nullopt;
-    return LightSample{sampleUniformSphere(uPoint), std::numeric_limits<float>::infinity(),
-                       shot_.scene().environment, environmentPdf()};
+    return sampleEnvironment(uPoint);
   }
   const auto point = sampleEmitterPoint(frame, time, uLight, uPoint);
   if (!point) return std::nullopt;
@@ -165,6 +165,14 @@ std::optional<LightSample> LightSampler::sample(const FrameGeometry& frame, Vec3
   const float pdf = point->pdfArea * distance * distance / cosLight;
   if (!(pdf > 0) || !std::isfinite(pdf)) return std::nullopt;
   return LightSample{direction, distance, point->radiance, pdf};
+}
+
+std::optional<LightSample> LightSampler::sampleEnvironment(Vec2f uPoint) const {
+  if (environmentProbability_ == 0) return std::nullopt;
+  const auto s = shot_.scene().environment.sample(uPoint);
+  if (!s) return std::nullopt;
+  return LightSample{s->direction, std::numeric_limits<float>::infinity(), s->radiance,
+                     environmentProbability_ * s->pdf};
 }
 
 float LightSampler::emitterPointPdf(const FrameGeometry& frame, const SurfaceHit& hit, float time) const {

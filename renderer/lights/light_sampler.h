@@ -1,6 +1,6 @@
 #pragma once
-// Next-event estimation: picks an emitter (area lights on any shape, and the constant
-// environment) in proportion to its power, then a point on it, and reports the
+// Next-event estimation: picks an emitter (area lights on any shape, and the environment,
+// environment_light.h) in proportion to its power, then a point on it, and reports the
 // density of that choice over solid angle so it can be combined with BSDF sampling by
 // multiple importance sampling.
 #include <optional>
@@ -36,12 +36,15 @@ class LightSampler {
                                     float uLight, Vec2f uPoint) const;
   // Density over solid angle with which sample() yields the emitter point `hit`, seen from `from`.
   float pdf(const FrameGeometry& frame, Vec3f from, const SurfaceHit& hit, float time) const;
-  float environmentPdf() const;
+  // Density over solid angle with which sample() yields the environment in `direction`.
+  float environmentPdf(Vec3f direction) const;
 
-  // For light subpaths: whether uLight chooses the constant environment rather than a
-  // surface emitter (the same choice sample() makes), and the point sample() would take
-  // on the surface emitter uLight chooses (nothing when it chooses the environment).
+  // For light subpaths: whether uLight chooses the environment rather than a surface
+  // emitter (the same choice sample() makes), the direction sample() then takes from
+  // uPoint, and the point sample() would take on the surface emitter uLight chooses
+  // (nothing when it chooses the environment).
   bool choosesEnvironment(float uLight) const;
+  std::optional<LightSample> sampleEnvironment(Vec2f uPoint) const;
   std::optional<EmitterPoint> sampleEmitterPoint(const FrameGeometry& frame, float time, float uLight,
                                                  Vec2f uPoint) const;
   // Area density with which sampleEmitterPoint() yields the emitter point `hit` (0 off emitters).

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "renderer/lights/environment_light.h"
 #include "renderer/materials/material.h"
 #include "renderer/scene/alpha_coverage.h"
 #include "renderer/scene/animation.h"
@@ -50,7 +51,7 @@ struct Scene {
   std::vector<ImageTexture> textures;
   std::vector<AlphaCoverage> coverages;  // cut-outs, indexed by Material::coverage
   std::vector<SceneObject> objects;
-  Rgb environment;  // constant radiance from every direction; black if none
+  EnvironmentLight environment;  // black if none
   RenderDefaults defaults;
 
   // The time in seconds of a point `shutterFraction` of the way through frame `frame`'s

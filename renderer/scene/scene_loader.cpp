@@ -223,10 +223,7 @@ Scene parseScene(std::string_view text, const std::filesystem::path& file) {
       scene.materials.push_back(material);
     }
   }
-  if (auto env = root.optional("environment")) {
-    env->expectKeys({"radiance"});
-    scene.environment = (*env)["radiance"].rgb(0, 1e9);
-  }
+  if (auto env = root.optional("environment")) scene.environment = parseEnvironment(*env, folder);
 
   std::set<uint32_t> ids;
   for (const SceneObject& object : scene.objects) ids.insert(object.objectId);

@@ -15,6 +15,10 @@ Quaternion parseRotation(const JsonNode& node);
 // "time" (seconds) or "frame" (converted with fps) and a value.
 void parseAnimation(const JsonNode& node, double fps, AnimatedTrs& animation);
 
+// {"radiance": RGB} or {"map": FILE, "strength": s, "rotation": degrees}; FILE relative
+// to `folder`.
+EnvironmentLight parseEnvironment(const JsonNode& node, const std::filesystem::path& folder);
+
 Material parseMaterial(const JsonNode& node, const std::filesystem::path& folder,
                        std::vector<ImageTexture>& textures);
 

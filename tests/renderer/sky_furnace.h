@@ -4,22 +4,32 @@
 // exactly albedo x sky, so every integrator's frame must read 0.5 on the sphere's pixels
 // and 1.0 on the sky's. Pixels that the sphere's silhouette crosses belong to neither.
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "image/frame_image.h"
 #include "test_support.h"
+#include "tests/renderer/sky_map.h"
 
 namespace pathfarm::test_support {
 
 constexpr double kSkyFurnaceSphere = 0.5, kSkyFurnaceSky = 1.0;
 
+// Where the sky comes from: a constant radiance, or a map file whose texels are all 2
+// at strength 1/2 (sky_map.h), which takes every integrator through the map's lookups and
+// importance sampling while the answer stays the same.
+enum class SkySource { Radiance, ConstantMap };
+
 // The unit sphere seen from 5 away with a 30 degree field of view: it covers about 45 %
 // of a square frame. The shutter [0, 0.5] is what the Metropolis integrators sample.
-inline Scene skyFurnaceScene(uint64_t seed = 0) {
+inline Scene skyFurnaceScene(uint64_t seed = 0, SkySource sky = SkySource::Radiance) {
+  const std::string environment = sky == SkySource::Radiance
+                                      ? R"({"radiance": 1})"
+                                      : R"({"map": ")" + constantSkyMap(2).string() + R"(", "strength": 0.5})";
   Scene scene = sceneFromJson(R"({
     "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0], "fov": 30, "shutter": [0, 0.5]},
     "materials": {"m": {"type": "diffuse", "reflectance": 0.5}},
-    "environment": {"radiance": 1},
+    "environment": )" + environment + R"(,
     "shapes": [{"type": "sphere", "radius": 1, "material": "m"}]
   })");
   scene.seed = seed;

@@ -62,8 +62,10 @@ std::optional<PathVertex> sampleLightEnd(const BdptScene& bdpt, float time, Samp
   if (bdpt.lights.empty()) return std::nullopt;
   PathVertex end;
   if (bdpt.lights.choosesEnvironment(uLight)) {
+    const auto sky = bdpt.lights.sampleEnvironment(uPoint);
+    if (!sky) return std::nullopt;
     end.type = VertexType::Environment;
-    end.direction = sampleUniformSphere(uPoint);
+    end.direction = sky->direction;
     return end;
   }
   const auto point = bdpt.lights.sampleEmitterPoint(bdpt.geometry, time, uLight, uPoint);

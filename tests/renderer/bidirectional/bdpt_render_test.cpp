@@ -67,13 +67,18 @@ TEST(BdptRender, AgreesWithThePathTracerOnTheMaterialsScene) {
 // and by connections towards it only, and their MIS weights must still add up to one.
 // The scene has no surface emitter, so no light-tracing splat leaves the variance
 // channel short: 4 standard errors of the pixel means.
-TEST(BdptRender, SkyFurnaceReadsAlbedoOnTheSphereAndOneOnTheSky) {
-  const auto means =
-      test_support::skyFurnaceMeans(BdptFrameRenderer(test_support::skyFurnaceScene(), smallSettings(24, 32)).render(0));
+void expectSkyFurnace(test_support::SkySource sky) {
+  const auto means = test_support::skyFurnaceMeans(
+      BdptFrameRenderer(test_support::skyFurnaceScene(0, sky), smallSettings(24, 32)).render(0));
   EXPECT_NEAR(means.sphere.mean, test_support::kSkyFurnaceSphere, 4 * means.sphere.standardError);
   EXPECT_NEAR(means.sky.mean, test_support::kSkyFurnaceSky, 1e-6);  // seen directly: no noise
   EXPECT_GT(means.sphere.standardError, 0);
 }
+
+TEST(BdptRender, SkyFurnaceReadsAlbedoOnTheSphereAndOneOnTheSky) {
+  expectSkyFurnace(test_support::SkySource::Radiance);
+}
+TEST(BdptRender, SkyFurnaceUnderAConstantMap) { expectSkyFurnace(test_support::SkySource::ConstantMap); }
 
 TEST(BdptRender, ThreadsAndTileSizesGiveIdenticalBits) {
   const Scene scene = loadScene(test_support::sourceDir() / "scenes/cornell/scene.json");

@@ -6,6 +6,7 @@
 #include "renderer/decomposition/effective_irradiance.h"
 #include "renderer/integrators/frame_renderer.h"
 #include "test_support.h"
+#include "tests/renderer/sky_map.h"
 
 namespace pathfarm {
 namespace {
@@ -95,6 +96,28 @@ TEST(DecomposedRender, MetallicRoughnessComponentsAddUpToTheBeauty) {
        "transform": {"translate": [0, 2.5, 1], "rotate": {"axis": [1, 0, 0], "angle": 90}}}]
   })");
   expectComponentsAddUpToBeauty(scene, "metallic roughness");
+
+// The same under an environment map with a sun and a bright lower half, turned: light by
+// direction reaches every component, and directly seen sky is the residual's.
+TEST(DecomposedRender, ComponentsAddUpUnderAnEnvironmentMap) {
+  const std::filesystem::path map = test_support::skyMapFolder() / "decomposed_sun.hdr";
+  test_support::writeSkyMap(map, 64, 32, test_support::skyMapTexels(64, 32, [](Vec3f d) {
+                              return d.y < 0 ? Rgb(0.5f, 0.25f, 0.125f) : d.x > 0.9f ? Rgb(100) : Rgb(0.25f, 0.5f, 1);
+                            }));
+  const Scene scene = test_support::sceneFromJson(R"({
+    "camera": {"position": [0, 1, 4], "look_at": [0, 0.5, 0], "fov": 50},
+    "materials": {"floor": {"type": "diffuse", "reflectance": 0.6},
+                  "metal": {"type": "rough_conductor", "alpha": 0.05},
+                  "mirror": {"type": "conductor", "specular_color": 0.9},
+                  "glass": {"type": "dielectric", "ior": 1.5}},
+    "environment": {"map": ")" + map.string() + R"(", "strength": 0.8, "rotation": 45},
+    "shapes": [
+      {"type": "rectangle", "size": [8, 8], "material": "floor", "transform": {"rotate": {"axis": [1, 0, 0], "angle": -90}}},
+      {"type": "sphere", "radius": 0.4, "material": "metal", "transform": {"translate": [-0.9, 0.4, 0]}},
+      {"type": "sphere", "radius": 0.4, "material": "mirror", "transform": {"translate": [0, 0.4, 0]}},
+      {"type": "sphere", "radius": 0.4, "material": "glass", "transform": {"translate": [0.9, 0.4, 0]}}]
+  })");
+  expectComponentsAddUpToBeauty(scene, "environment map");
 }
 
 TEST(DecomposedRender, IrradianceTimesReflectanceGivesTheColorBack) {

@@ -71,14 +71,20 @@ TEST(WhiteFurnace, RoughMaterialsNeverCreateEnergy) {
 
 // The sky furnace (sky_furnace.h) framed with the sky around the sphere: 0.5 on the
 // sphere's pixels and 1.0 on the sky's, within 4 standard errors of the pixel means.
-TEST(WhiteFurnace, SphereInTheSkyReadsAlbedoAndTheSkyOne) {
+void expectSkyFurnace(test_support::SkySource sky) {
   RenderSettings settings;
   settings.width = settings.height = 24;
   settings.spp = 32;
-  const auto means = test_support::skyFurnaceMeans(FrameRenderer(test_support::skyFurnaceScene(), settings).render(0));
+  const auto means =
+      test_support::skyFurnaceMeans(FrameRenderer(test_support::skyFurnaceScene(0, sky), settings).render(0));
   EXPECT_NEAR(means.sphere.mean, test_support::kSkyFurnaceSphere, 4 * means.sphere.standardError);
   EXPECT_NEAR(means.sky.mean, test_support::kSkyFurnaceSky, 1e-6);  // seen directly: no noise
   EXPECT_GT(means.sphere.standardError, 0);
+}
+
+TEST(WhiteFurnace, SphereInTheSkyReadsAlbedoAndTheSkyOne) { expectSkyFurnace(test_support::SkySource::Radiance); }
+TEST(WhiteFurnace, SphereUnderAConstantMapReadsAlbedoAndTheSkyOne) {
+  expectSkyFurnace(test_support::SkySource::ConstantMap);
 }
 
 // A closed cube of inward-facing emitting diffuse walls (emission Le, albedo rho) seen from

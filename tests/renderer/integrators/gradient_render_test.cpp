@@ -67,7 +67,7 @@ TEST(GradientRender, ConstantRadianceSceneHasZeroDifferences) {
 // seeds must lie within 5 standard errors of the answer, measured from the seeds' spread:
 // the differences' noise at the silhouette moves light between the regions, so the
 // primal's own variance would understate the reconstruction's.
-TEST(GradientRender, SkyFurnaceReconstructsAlbedoOnTheSphereAndOneOnTheSky) {
+void expectSkyFurnace(test_support::SkySource sky) {
   const int size = 24, seeds = 8;
   for (const bool temporal : {false, true}) {
     GradientSettings gradient;
@@ -77,7 +77,7 @@ TEST(GradientRender, SkyFurnaceReconstructsAlbedoOnTheSphereAndOneOnTheSky) {
     // Per frame and region (sphere, sky): sums over seeds of the region's mean and its square.
     double sum[2][2] = {}, squares[2][2] = {};
     for (int seed = 0; seed < seeds; ++seed) {
-      const Scene scene = test_support::skyFurnaceScene(static_cast<uint64_t>(seed));
+      const Scene scene = test_support::skyFurnaceScene(static_cast<uint64_t>(seed), sky);
       const GradientFrameRenderer renderer(scene, small(size, size, 16, 4), gradient);
       std::vector<GradientFrame> window;
       for (int64_t f = 0; f < frames; ++f) window.push_back(GradientFrame::fromImage(renderer.render(f), name));
@@ -103,6 +103,11 @@ TEST(GradientRender, SkyFurnaceReconstructsAlbedoOnTheSphereAndOneOnTheSky) {
       }
   }
 }
+
+TEST(GradientRender, SkyFurnaceReconstructsAlbedoOnTheSphereAndOneOnTheSky) {
+  expectSkyFurnace(test_support::SkySource::Radiance);
+}
+TEST(GradientRender, SkyFurnaceUnderAConstantMap) { expectSkyFurnace(test_support::SkySource::ConstantMap); }
 
 // The demo Cornell box for statistics: looked at from lower down, so that the lamp is out
 // of sight (the differences leave directly seen emitters out, the path tracer's image

@@ -20,11 +20,12 @@ using test_support::kSkyFurnaceSphere;
 // kind of path (one depth, sky or sphere) scales that kind's light by the random share
 // of chains seeded on it, an error of one seed that more mutations do not shrink, so
 // each seed is checked on its own rather than their average.
-void expectSkyFurnace(MetropolisMethod method, double sigma) {
+void expectSkyFurnace(MetropolisMethod method, double sigma,
+                      test_support::SkySource sky = test_support::SkySource::Radiance) {
   const MetropolisSettings settings = test_support::smallMetropolisSettings(method, 1024);
   for (uint64_t seed = 0; seed < 4; ++seed) {
     const std::vector<FrameImage> frames =
-        MetropolisRenderer(test_support::skyFurnaceScene(seed), settings).render({0, 1});
+        MetropolisRenderer(test_support::skyFurnaceScene(seed, sky), settings).render({0, 1});
     const test_support::SkyFurnaceMeans means = test_support::skyFurnaceMeans(frames[0]);
     EXPECT_NEAR(means.sphere.mean, kSkyFurnaceSphere, 5 * sigma) << nameOf(method) << " seed " << seed;
     EXPECT_NEAR(means.sky.mean, kSkyFurnaceSky, 5 * sigma) << nameOf(method) << " seed " << seed;
@@ -36,6 +37,18 @@ void expectSkyFurnace(MetropolisMethod method, double sigma) {
 TEST(MetropolisEnvironment, PssmltSkyFurnace) { expectSkyFurnace(MetropolisMethod::Pssmlt, 0.018); }
 TEST(MetropolisEnvironment, PathSpaceSkyFurnace) { expectSkyFurnace(MetropolisMethod::PathSpace, 0.017); }
 TEST(MetropolisEnvironment, TemporalSkyFurnace) { expectSkyFurnace(MetropolisMethod::Temporal, 0.022); }
+
+// The same under a map whose texels are all equal (sky_furnace.h): the map's lookups and
+// importance sampling in every method's path space, the same answer and spread.
+TEST(MetropolisEnvironment, PssmltSkyFurnaceUnderAConstantMap) {
+  expectSkyFurnace(MetropolisMethod::Pssmlt, 0.018, test_support::SkySource::ConstantMap);
+}
+TEST(MetropolisEnvironment, PathSpaceSkyFurnaceUnderAConstantMap) {
+  expectSkyFurnace(MetropolisMethod::PathSpace, 0.017, test_support::SkySource::ConstantMap);
+}
+TEST(MetropolisEnvironment, TemporalSkyFurnaceUnderAConstantMap) {
+  expectSkyFurnace(MetropolisMethod::Temporal, 0.022, test_support::SkySource::ConstantMap);
+}
 
 // Sky paths through a mirror and an animated glass sphere, with a lamp as well: mlt and
 // tmlt must render finite frames that carry light.

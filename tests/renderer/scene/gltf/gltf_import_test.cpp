@@ -206,7 +206,7 @@ TEST(GltfImport, JsonSceneIncludesAGltfFileAndOverridesByName) {
   EXPECT_FLOAT_EQ(floor.reflectance.r, 0.25f);
   EXPECT_EQ(scene.objects[1].type, ShapeType::Sphere);
   EXPECT_NE(scene.objects[0].objectId, scene.objects[1].objectId);
-  EXPECT_FLOAT_EQ(scene.environment.r, 1);
+  EXPECT_FLOAT_EQ(scene.environment.radiance({0, 1, 0}).r, 1);
 }
 
 }  // namespace
