@@ -96,6 +96,7 @@ TEST(DecomposedRender, MetallicRoughnessComponentsAddUpToTheBeauty) {
        "transform": {"translate": [0, 2.5, 1], "rotate": {"axis": [1, 0, 0], "angle": 90}}}]
   })");
   expectComponentsAddUpToBeauty(scene, "metallic roughness");
+}
 
 // The same under an environment map with a sun and a bright lower half, turned: light by
 // direction reaches every component, and directly seen sky is the residual's.
