@@ -180,7 +180,8 @@ def main():
                                                           "metallicFactor": 1, "roughnessFactor": 0.35})
     glass = w.material("glass", pbrMetallicRoughness={"metallicFactor": 0, "roughnessFactor": 0},
                        extensions={"KHR_materials_transmission": {"transmissionFactor": 1},
-                                   "KHR_materials_ior": {"ior": 1.5}})
+                                   "KHR_materials_ior": {"ior": 1.5},
+                                   "KHR_materials_volume": {"thicknessFactor": 0.6}})
     red = w.material("red_plastic", pbrMetallicRoughness={"baseColorFactor": [0.75, 0.08, 0.05, 1],
                                                           "metallicFactor": 0, "roughnessFactor": 0.3})
     stand = w.material("stand", pbrMetallicRoughness={"baseColorFactor": [0.3, 0.3, 0.32, 1],
@@ -188,7 +189,8 @@ def main():
     lamp = w.material("lamp", emissiveFactor=[1.0, 0.9, 0.75],
                       pbrMetallicRoughness={"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0},
                       extensions={"KHR_materials_emissive_strength": {"emissiveStrength": 14}})
-    w.gltf["extensionsUsed"] = ["KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_emissive_strength"]
+    w.gltf["extensionsUsed"] = ["KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_volume",
+                                "KHR_materials_emissive_strength"]
 
     sphere_mesh = sphere()
     floor_mesh = w.mesh("floor", *quad(6, 6, 6), floor)

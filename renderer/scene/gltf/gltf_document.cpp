@@ -17,7 +17,8 @@ constexpr size_t kMaxElements = size_t{1} << 27;
 // one cannot be rendered as its author intended.
 const std::set<std::string>& implementedExtensions() {
   static const std::set<std::string> names{"KHR_materials_emissive_strength", "KHR_materials_ior",
-                                           "KHR_materials_transmission", "KHR_texture_transform"};
+                                           "KHR_materials_transmission", "KHR_materials_volume",
+                                           "KHR_texture_transform"};
   return names;
 }
 

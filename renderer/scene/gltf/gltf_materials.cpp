@@ -12,7 +12,7 @@ namespace {
 // Material extensions whose parameters reach the material below.
 const std::set<std::string>& understoodExtensions() {
   static const std::set<std::string> names{"KHR_materials_emissive_strength", "KHR_materials_ior",
-                                           "KHR_materials_transmission"};
+                                           "KHR_materials_transmission", "KHR_materials_volume"};
   return names;
 }
 
@@ -153,6 +153,24 @@ void warnAboutUnsupported(const GltfDocument& document, const std::string& point
                   "transmission textures are not supported yet; transmissionFactor applies everywhere");
 }
 
+// KHR_materials_volume makes a transmissive surface the boundary of a solid: light
+// refracts into it and out again. A fully transmissive non-metal becomes pathfarm's
+// (rough) dielectric; the volume's attenuation and a tinted base colour are not modelled.
+void solidDielectric(const GltfDocument& document, const std::string& pointer, Material& material) {
+  const std::string p = pointer + "/extensions/KHR_materials_volume";
+  if (material.transmission < 1 || material.metallic > 0 || material.metallicRoughnessTexture >= 0) {
+    document.warn(p, "a volume is rendered only for fully transmissive non-metals; this surface stays thin-walled");
+    return;
+  }
+  if (material.reflectance.r < 1 || material.reflectance.g < 1 || material.reflectance.b < 1 ||
+      material.reflectanceTexture >= 0)
+    document.warn(p, "the base colour's tint of a solid is not rendered; it refracts untinted");
+  const float alpha = material.roughness * material.roughness;
+  material.type = alpha < 1e-3f ? MaterialType::Dielectric : MaterialType::RoughDielectric;
+  material.alpha = alpha;
+  material.distribution = MicrofacetType::GGX;
+}
+
 std::string uniqueName(const std::string& wanted, const std::vector<std::string>& taken) {
   std::string name = wanted;
   for (int suffix = 2; std::find(taken.begin(), taken.end(), name) != taken.end(); ++suffix)
@@ -244,8 +262,9 @@ GltfMaterials importMaterials(const GltfDocument& document, Scene& scene) {
     }
     if (const tinygltf::Value* ior = extension(m.extensions, "KHR_materials_ior")) {
       material.ior = factor(document, pointer + "/extensions/KHR_materials_ior/ior", numberOr(*ior, "ior", 1.5), 1.0001,
-                            10);
+                            3);
     }
+    if (extension(m.extensions, "KHR_materials_volume")) solidDielectric(document, pointer, material);
 
     scene.materialNames.push_back(
         uniqueName(m.name.empty() ? "material" + std::to_string(i) : m.name, scene.materialNames));

@@ -121,6 +121,28 @@ TEST(GltfImport, MaterialFactorsAndExtensionsReachTheMaterial) {
   EXPECT_FLOAT_EQ(scene.objects[2].emission.b, 2);
 }
 
+TEST(GltfImport, AVolumeMakesAFullyTransmissiveSurfaceASolidDielectric) {
+  GltfBuilder b;
+  const nlohmann::json volume = {{"KHR_materials_transmission", {{"transmissionFactor", 1}}},
+                                 {"KHR_materials_ior", {{"ior", 1.4}}},
+                                 {"KHR_materials_volume", {{"thicknessFactor", 1}}}};
+  b.doc()["materials"] = {
+      {{"pbrMetallicRoughness", {{"metallicFactor", 0}, {"roughnessFactor", 0}}}, {"extensions", volume}},
+      {{"pbrMetallicRoughness", {{"metallicFactor", 0}, {"roughnessFactor", 0.5}}}, {"extensions", volume}},
+      {{"pbrMetallicRoughness", {{"metallicFactor", 0}}},
+       {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1}}}}}}};
+  b.scene({b.node({{"mesh", b.square(0)}}), b.node({{"mesh", b.square(1)}}), b.node({{"mesh", b.square(2)}}),
+           b.camera({0, 0, 10})});
+  const Scene scene = loadScene(b.write(testFolder("volume"), "volume"));
+  const auto material = [&](size_t i) { return scene.materials[static_cast<size_t>(scene.objects[i].material)]; };
+  EXPECT_EQ(material(0).type, MaterialType::Dielectric);
+  EXPECT_FLOAT_EQ(material(0).ior, 1.4f);
+  EXPECT_EQ(material(1).type, MaterialType::RoughDielectric);
+  EXPECT_FLOAT_EQ(material(1).alpha, 0.25f);
+  // Without a volume, glTF transmission is thin-walled: the metallic-roughness material.
+  EXPECT_EQ(material(2).type, MaterialType::MetallicRoughness);
+}
+
 TEST(GltfImport, PrimitivesWithoutMaterialGetTheGltfDefault) {
   GltfBuilder b;
   b.scene({b.node({{"mesh", b.square()}}), b.camera({0, 0, 10})});
