@@ -2,6 +2,7 @@
 
 #include <stb_image.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <memory>
@@ -48,6 +49,36 @@ struct StbFree {
 int wrap(int i, int n) {
   const int r = i % n;
   return r < 0 ? r + n : r;
+}
+
+// The two texels a bilinear lookup blends along one axis, and the weight of the second.
+struct AxisTexels {
+  int i0, i1;
+  float weight;
+};
+
+// `t` in texture coordinates along an axis of `n` texels, counted from the other end
+// when `reversed` (rows run from v = 1 down). Coordinates are reduced to one period
+// first, so huge or non-finite values cannot overflow the integer arithmetic.
+AxisTexels axisTexels(float t, int n, TextureWrap mode, bool reversed) {
+  if (!std::isfinite(t)) t = 0;
+  if (mode == TextureWrap::Repeat) {
+    const float f = t - std::floor(t);
+    t = f < 1.0f ? f : 0.0f;
+  } else if (mode == TextureWrap::Mirror) {
+    const float f = t - 2 * std::floor(t / 2);  // [0, 2)
+    t = f > 1 ? 2 - f : f;
+  } else {
+    t = std::clamp(t, 0.0f, 1.0f);
+  }
+  if (reversed) t = 1.0f - t;
+  // Texel centres sit at (i + 0.5) / n.
+  const float s = t * static_cast<float>(n) - 0.5f;
+  const float sFloor = std::floor(s);
+  const int i0 = static_cast<int>(sFloor);
+  if (mode == TextureWrap::Repeat) return {wrap(i0, n), wrap(i0 + 1, n), s - sFloor};
+  // Clamp and mirror hold the edge texel beyond the last centre.
+  return {std::clamp(i0, 0, n - 1), std::clamp(i0 + 1, 0, n - 1), s - sFloor};
 }
 
 }  // namespace
@@ -135,31 +166,11 @@ Rgb ImageTexture::texel(int x, int y) const {
 }
 
 Rgb ImageTexture::lookup(Vec2f uv) const {
-  // Reduce to [0, 1) first so huge or non-finite coordinates cannot overflow the
-  // integer texel arithmetic below.
-  auto fractional = [](float t) {
-    if (!std::isfinite(t)) return 0.0f;
-    const float f = t - std::floor(t);
-    return f < 1.0f ? f : 0.0f;
-  };
-  const float u = fractional(uv.x);
-  const float v = fractional(uv.y);
-
-  // Texel centers sit at (i + 0.5) / size; row 0 is the top of the image (v = 1).
-  const float s = u * static_cast<float>(width_) - 0.5f;
-  const float t = (1.0f - v) * static_cast<float>(height_) - 0.5f;
-  const float sFloor = std::floor(s);
-  const float tFloor = std::floor(t);
-  const float fs = s - sFloor;
-  const float ft = t - tFloor;
-  const int x0 = wrap(static_cast<int>(sFloor), width_);
-  const int y0 = wrap(static_cast<int>(tFloor), height_);
-  const int x1 = wrap(x0 + 1, width_);
-  const int y1 = wrap(y0 + 1, height_);
-
-  const Rgb top = texel(x0, y0) * (1 - fs) + texel(x1, y0) * fs;
-  const Rgb bottom = texel(x0, y1) * (1 - fs) + texel(x1, y1) * fs;
-  return top * (1 - ft) + bottom * ft;
+  const AxisTexels x = axisTexels(uv.x, width_, wrapU_, false);
+  const AxisTexels y = axisTexels(uv.y, height_, wrapV_, true);  // row 0 is the top (v = 1)
+  const Rgb top = texel(x.i0, y.i0) * (1 - x.weight) + texel(x.i1, y.i0) * x.weight;
+  const Rgb bottom = texel(x.i0, y.i1) * (1 - x.weight) + texel(x.i1, y.i1) * x.weight;
+  return top * (1 - y.weight) + bottom * y.weight;
 }
 
 }  // namespace pathfarm

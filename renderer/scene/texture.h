@@ -19,6 +19,9 @@ class TextureError : public std::runtime_error {
 // roughness) as plain fractions of the full scale. Float (HDR) images are linear either way.
 enum class TextureEncoding { Srgb, Linear };
 
+// What a lookup outside [0, 1] reads (glTF's sampler wrap modes).
+enum class TextureWrap { Repeat, Clamp, Mirror };
+
 class ImageTexture {
  public:
   static ImageTexture load(const std::filesystem::path& file, TextureEncoding encoding = TextureEncoding::Srgb);
@@ -29,7 +32,12 @@ class ImageTexture {
                                  const unsigned char* data, bool srgb);
   ImageTexture(int width, int height, std::vector<Rgb> texels);
 
+  // Bilinear; outside [0, 1] as the wrap modes say (repeat unless set).
   Rgb lookup(Vec2f uv) const;
+  void setWrap(TextureWrap u, TextureWrap v) {
+    wrapU_ = u;
+    wrapV_ = v;
+  }
   int width() const { return width_; }
   int height() const { return height_; }
 
@@ -37,6 +45,7 @@ class ImageTexture {
   Rgb texel(int x, int y) const;
   int width_, height_;
   std::vector<Rgb> texels_;  // row 0 is the top of the image (v = 1)
+  TextureWrap wrapU_ = TextureWrap::Repeat, wrapV_ = TextureWrap::Repeat;
 };
 
 }  // namespace pathfarm

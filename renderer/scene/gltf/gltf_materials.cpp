@@ -5,6 +5,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <tuple>
 
 namespace pathfarm {
 namespace {
@@ -36,6 +37,14 @@ float factor(const GltfDocument& document, const std::string& pointer, double va
   return static_cast<float>(value);
 }
 
+TextureWrap wrapMode(int gltfWrap) {
+  switch (gltfWrap) {
+    case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return TextureWrap::Clamp;
+    case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return TextureWrap::Mirror;
+    default: return TextureWrap::Repeat;
+  }
+}
+
 class TextureImporter {
  public:
   TextureImporter(const GltfDocument& document, Scene& scene) : document_(document), scene_(scene) {}
@@ -49,14 +58,15 @@ class TextureImporter {
     const std::string texturePointer = gltfPointer("textures", index);
     if (texture.source < 0 || static_cast<size_t>(texture.source) >= model.images.size())
       document_.fail(texturePointer + "/source", "image " + std::to_string(texture.source) + " does not exist");
-    if (texture.sampler >= 0 && static_cast<size_t>(texture.sampler) < model.samplers.size()) {
+    TextureWrap wrapS = TextureWrap::Repeat, wrapT = TextureWrap::Repeat;
+    if (texture.sampler >= 0) {
+      if (static_cast<size_t>(texture.sampler) >= model.samplers.size())
+        document_.fail(texturePointer + "/sampler", "sampler " + std::to_string(texture.sampler) + " does not exist");
       const tinygltf::Sampler& sampler = model.samplers[static_cast<size_t>(texture.sampler)];
-      if ((sampler.wrapS != -1 && sampler.wrapS != TINYGLTF_TEXTURE_WRAP_REPEAT) ||
-          (sampler.wrapT != -1 && sampler.wrapT != TINYGLTF_TEXTURE_WRAP_REPEAT))
-        document_.warn(gltfPointer("samplers", texture.sampler),
-                       "clamp and mirror wrap modes are not supported yet; the texture repeats");
+      wrapS = wrapMode(sampler.wrapS);
+      wrapT = wrapMode(sampler.wrapT);
     }
-    const auto key = std::make_pair(texture.source, srgb);
+    const auto key = std::make_tuple(texture.source, srgb, wrapS, wrapT);
     if (const auto it = cache_.find(key); it != cache_.end()) return it->second;
     const tinygltf::Image& image = model.images[static_cast<size_t>(texture.source)];
     const std::string imagePointer = gltfPointer("images", texture.source);
@@ -71,6 +81,7 @@ class TextureImporter {
     } catch (const TextureError& e) {
       document_.fail(imagePointer, e.what());
     }
+    scene_.textures.back().setWrap(wrapS, wrapT);
     const int sceneIndex = static_cast<int>(scene_.textures.size()) - 1;
     cache_[key] = sceneIndex;
     return sceneIndex;
@@ -104,7 +115,7 @@ class TextureImporter {
  private:
   const GltfDocument& document_;
   Scene& scene_;
-  std::map<std::pair<int, bool>, int> cache_;
+  std::map<std::tuple<int, bool, TextureWrap, TextureWrap>, int> cache_;
 };
 
 // The TEXCOORD set and KHR_texture_transform of a texture reference (glTF 2.0 and the

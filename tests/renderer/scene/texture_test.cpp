@@ -142,3 +142,31 @@ TEST(ImageTexture, ConstructorChecksSize) {
 
 }  // namespace
 }  // namespace pathfarm
+
+namespace pathfarm {
+namespace {
+
+// A 4 x 1 ramp 0, 1, 2, 3 (texel centres at u = 1/8, 3/8, 5/8, 7/8).
+ImageTexture ramp(TextureWrap mode) {
+  ImageTexture t(4, 1, {Rgb(0.0f), Rgb(1.0f), Rgb(2.0f), Rgb(3.0f)});
+  t.setWrap(mode, mode);
+  return t;
+}
+
+TEST(TextureWrapModes, RepeatClampAndMirrorOutsideTheUnitSquare) {
+  // u = 1.125 is texel 0's centre one period on (repeat), past the edge (clamp: texel 3),
+  // and mirrored back to u = 0.875, texel 3's centre (mirror).
+  EXPECT_FLOAT_EQ(ramp(TextureWrap::Repeat).lookup({1.125f, 0.5f}).r, 0.0f);
+  EXPECT_FLOAT_EQ(ramp(TextureWrap::Clamp).lookup({1.125f, 0.5f}).r, 3.0f);
+  EXPECT_FLOAT_EQ(ramp(TextureWrap::Mirror).lookup({1.125f, 0.5f}).r, 3.0f);
+  // u = -0.375 repeats to 0.625 (texel 2), clamps to 0 (texel 0), mirrors to 0.375 (texel 1).
+  EXPECT_FLOAT_EQ(ramp(TextureWrap::Repeat).lookup({-0.375f, 0.5f}).r, 2.0f);
+  EXPECT_FLOAT_EQ(ramp(TextureWrap::Clamp).lookup({-0.375f, 0.5f}).r, 0.0f);
+  EXPECT_FLOAT_EQ(ramp(TextureWrap::Mirror).lookup({-0.375f, 0.5f}).r, 1.0f);
+  // At the right edge (u = 1) repeat blends texels 3 and 0 halfway; clamp holds texel 3.
+  EXPECT_FLOAT_EQ(ramp(TextureWrap::Repeat).lookup({0.9999f, 0.5f}).r, 3.0f * 0.5004f + 0.0f * 0.4996f);
+  EXPECT_FLOAT_EQ(ramp(TextureWrap::Clamp).lookup({1.0f, 0.5f}).r, 3.0f);
+}
+
+}  // namespace
+}  // namespace pathfarm

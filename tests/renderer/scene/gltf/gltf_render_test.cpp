@@ -93,6 +93,24 @@ TEST(GltfRender, BaseColourTexturesAreSrgbAndMetallicRoughnessTexturesLinear) {
   EXPECT_NEAR(data.g, 64 / 255.0, 1e-6);
 }
 
+TEST(GltfRender, SamplerWrapModesReachTheTexture) {
+  // The 2 x 1 image: texel 0 = (255, 128, 0), texel 1 = (64, 64, 64).
+  const unsigned char pixels[] = {255, 128, 0, 64, 64, 64};
+  std::filesystem::create_directories(folder());
+  ASSERT_NE(stbi_write_png((folder() / "wrap.png").c_str(), 2, 1, 3, pixels, 6), 0);
+  GltfBuilder b;
+  b.doc()["images"] = {{{"uri", "wrap.png"}}};
+  b.doc()["samplers"] = {{{"wrapS", 33071}, {"wrapT", 33648}}};  // CLAMP_TO_EDGE, MIRRORED_REPEAT
+  b.doc()["textures"] = {{{"source", 0}, {"sampler", 0}}};
+  b.doc()["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}};
+  b.scene({b.node({{"mesh", b.square(0)}}), b.camera({0, 0, 3})});
+  const Scene scene = loadScene(b.write(folder(), "wrapped"));
+  const ImageTexture& texture =
+      scene.textures[static_cast<size_t>(scene.materials[static_cast<size_t>(scene.objects[0].material)].reflectanceTexture)];
+  // u = 1.25 clamps to the right edge, texel 1; repeating it would read texel 0.
+  EXPECT_NEAR(texture.lookup({1.25f, 0.5f}).r, srgbDecoded(64), 1e-6);
+}
+
 TEST(GltfRender, TextureTransformMovesTheUvsAsTheExtensionSays) {
   const unsigned char pixels[] = {255, 255, 255};
   std::filesystem::create_directories(folder());
