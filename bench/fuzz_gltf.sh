@@ -31,10 +31,13 @@ sources=(
 )
 flags=(-std=c++20 -O1 -g -fno-omit-frame-pointer -fsanitize=fuzzer-no-link,address,undefined
        -fno-sanitize-recover=undefined -I. $(pkg-config --cflags stb))
+# Any header change rebuilds every object: a stale object compiled against an older
+# class layout would make the fuzzer report crashes that are not in the code.
+newest_header=$(find renderer fuzz -name '*.h' -printf '%T@ %p\n' | sort -n | tail -1 | cut -d' ' -f2)
 objects=()
 for source in "${sources[@]}"; do
   object="$work/objects/$(echo "$source" | tr / _).o"
-  if [[ ! -f "$object" || "$source" -nt "$object" ]]; then
+  if [[ ! -f "$object" || "$source" -nt "$object" || "$newest_header" -nt "$object" ]]; then
     echo "fuzz: compiling $source"
     clang++ "${flags[@]}" -c "$source" -o "$object"
   fi
