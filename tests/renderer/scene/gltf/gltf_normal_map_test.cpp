@@ -29,11 +29,13 @@ Vec3f expectedNormal(Vec3f tangent, Vec3f bitangent, Vec3f normal, float scale) 
   return normalize(tangent * x + bitangent * y + normal * z);
 }
 
-GltfBuilder normalMappedSquare(float scale) {
+// Each test writes its own image: ctest runs the tests as parallel processes.
+GltfBuilder normalMappedSquare(float scale, const std::string& name) {
   std::filesystem::create_directories(folder());
-  EXPECT_NE(stbi_write_png((folder() / "bump.png").c_str(), 1, 1, 3, kTexel, 3), 0);
+  const std::string image = name + "_bump.png";
+  EXPECT_NE(stbi_write_png((folder() / image).c_str(), 1, 1, 3, kTexel, 3), 0);
   GltfBuilder b;
-  b.doc()["images"] = {{{"uri", "bump.png"}}};
+  b.doc()["images"] = {{{"uri", image}}};
   b.doc()["textures"] = {{{"source", 0}}};
   b.doc()["materials"] = {{{"normalTexture", {{"index", 0}, {"scale", scale}}}}};
   return b;
@@ -50,7 +52,7 @@ Vec3f shadingNormalAtCentre(const Scene& scene) {
 }
 
 TEST(GltfNormalMap, UvFrameBendsTheNormalTowardsTangentAndBitangent) {
-  GltfBuilder b = normalMappedSquare(0.5f);
+  GltfBuilder b = normalMappedSquare(0.5f, "uv_frame");
   // The square's u grows along +x and its image-up (v in pathfarm) along +y.
   b.scene({b.node({{"mesh", b.square(0)}}), b.camera({0, 0, 5})});
   const Scene scene = loadScene(b.write(folder(), "uv_frame"));
@@ -58,7 +60,7 @@ TEST(GltfNormalMap, UvFrameBendsTheNormalTowardsTangentAndBitangent) {
 }
 
 TEST(GltfNormalMap, MeshTangentsAndAQuarterTurnMoveTheBendWithTheSurface) {
-  GltfBuilder b = normalMappedSquare(1.0f);
+  GltfBuilder b = normalMappedSquare(1.0f, "tangents");
   // The same square with TANGENT = +y and handedness -1 (bitangent = cross(+z, +y) * -1
   // = +x), turned a quarter about z: tangent -> -x, bitangent -> +y.
   const int position = b.floats({-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0}, "VEC3", true);
@@ -74,7 +76,7 @@ TEST(GltfNormalMap, MeshTangentsAndAQuarterTurnMoveTheBendWithTheSurface) {
 }
 
 TEST(GltfNormalMap, AMirroredAnimatedSquareKeepsTheBendOnTheMirroredSide) {
-  GltfBuilder b = normalMappedSquare(1.0f);
+  GltfBuilder b = normalMappedSquare(1.0f, "mirrored");
   // Mirrored in x (scale -1, 1, 1) and moving: the uv frame's u now grows along -x.
   const int node = b.node({{"mesh", b.square(0)}, {"scale", {-1, 1, 1}}});
   b.scene({node, b.camera({0, 0, 5})});
@@ -88,7 +90,7 @@ TEST(GltfNormalMap, AMirroredAnimatedSquareKeepsTheBendOnTheMirroredSide) {
 }
 
 TEST(GltfNormalMap, ADegenerateTangentIsRefused) {
-  GltfBuilder b = normalMappedSquare(1.0f);
+  GltfBuilder b = normalMappedSquare(1.0f, "zero_tangent");
   const int position = b.floats({-1, -1, 0, 1, -1, 0, 1, 1, 0}, "VEC3", true);
   const int normal = b.floats({0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3");
   const int tangent = b.floats({1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 0, 1}, "VEC4");
