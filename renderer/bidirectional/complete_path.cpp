@@ -8,7 +8,8 @@ PathMeasurement measure(const BdptScene& bdpt, const CompletePath& path) {
   PathMeasurement m;
   const std::vector<PathVertex>& x = path.vertices;
   const int k = path.length();
-  if (k < 1 || x[0].type != VertexType::Camera) return m;
+  // A punctual light has no area for the camera to see (connection.cpp).
+  if (k < 1 || x[0].type != VertexType::Camera || (k == 1 && x[1].isPunctual())) return m;
   const Scene& scene = bdpt.scene();
   const double seconds = bdpt.seconds(path.time);
   const Vec3f first = directionBetween(x[0], x[1]);

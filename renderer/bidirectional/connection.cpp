@@ -98,6 +98,8 @@ std::optional<StrategySample> connectStrategy(const BdptScene& bdpt, float time,
     if (t == 1) {
       const Vec2f uLens = connection.next2D();
       if (qs.type == VertexType::Environment) return std::nullopt;
+      // A point or spot light has no area: the camera does not see it, as in the path tracer.
+      if (s == 1 && qs.isPunctual()) return std::nullopt;
       const auto c = bdpt.camera.connect(qs.position(), bdpt.seconds(time), uLens);
       if (!c) return std::nullopt;
       pt = PathVertex{};

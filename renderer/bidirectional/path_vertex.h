@@ -18,8 +18,8 @@ namespace pathfarm {
 enum class VertexType : uint8_t {
   Camera,       // x0: hit.position is the lens point, hit.geometricNormal the viewing axis
   Surface,      // a scattering point (it may also emit, when a camera subpath ends on an emitter)
-  Light,        // a point on a surface emitter that a light subpath starts from
-  Environment,  // the environment, in `direction` from the previous vertex
+  Light,        // a point on a surface emitter, or a point or spot light, that a light subpath starts from
+  Environment,  // the environment or a directional light, in `direction` from the previous vertex
 };
 
 struct PathVertex {
@@ -27,6 +27,12 @@ struct PathVertex {
   SurfaceHit hit;
   Vec3f direction;     // Environment: the unit direction towards it
   bool delta = false;  // Surface: scattered by a Dirac lobe; such a vertex cannot be connected
+  // Light and Environment ends: the punctual light (index into Scene::punctualLights) the
+  // vertex is on, or -1. A point or spot light's vertex keeps the light's position in
+  // hit.position and the direction it points along in hit.geometricNormal, with
+  // hit.object -1. No walk can hit a punctual light: densities of sampling one from a
+  // neighbour are 0, so only strategies that start light subpaths on it count.
+  int punctual = -1;
   // Subpath throughput: the estimate f/p of the subpath up to this vertex, without the
   // scattering at this vertex. Camera subpaths: the product of BSDF sample weights, as
   // in the path tracer. Light subpaths: see subpath.h.
@@ -36,6 +42,7 @@ struct PathVertex {
 
   Vec3f position() const { return hit.position; }
   bool isSurfaceLike() const { return type == VertexType::Surface || type == VertexType::Light; }
+  bool isPunctual() const { return punctual >= 0; }
 };
 
 using Subpath = std::vector<PathVertex>;

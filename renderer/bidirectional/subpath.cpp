@@ -108,19 +108,30 @@ int generateLightSubpath(const BdptScene& bdpt, float time, UniformSource& u, in
   const float uLight = u.next1D();
   const Vec2f uPoint = u.next2D(), uDirection = u.next2D();
   if (maxVertices < 1 || bdpt.lights.empty()) return 0;
+  const LightChoice choice = bdpt.lights.choose(uLight);
   PathVertex y0;
-  if (bdpt.lights.choosesEnvironment(uLight)) {
-    const auto sky = bdpt.lights.sampleEnvironment(uPoint);
-    if (!sky) return 0;
-    y0.type = VertexType::Environment;
-    y0.direction = sky->direction;
-    // From the direction, as complete paths evaluate it (lightStartDensity), so that MIS
-    // weights agree bit for bit.
-    y0.pdfFwd = bdpt.lights.environmentPdf(y0.direction);
+  if (choice.kind != LightChoice::Kind::Emitter) {
+    if (choice.kind == LightChoice::Kind::Punctual) {
+      y0 = punctualLightEnd(bdpt, time, choice.index);
+    } else {
+      const auto sky = bdpt.lights.sampleEnvironment(uPoint);
+      if (!sky) return 0;
+      y0.type = VertexType::Environment;
+      y0.direction = sky->direction;
+    }
+    // From the vertex, as complete paths evaluate it, so that MIS weights agree bit for bit.
+    y0.pdfFwd = lightStartDensity(bdpt, time, y0);
     if (!(y0.pdfFwd > 0)) return 0;
     y0.beta = Rgb(1 / y0.pdfFwd);
     path.push_back(y0);
-    return 1;
+    if (y0.type == VertexType::Environment) return 1;
+    const PunctualLight& light = bdpt.scene().punctualLights[static_cast<size_t>(y0.punctual)];
+    const auto emission = light.sampleEmission(uDirection, y0.hit.geometricNormal);
+    if (!emission) return 1;
+    // I beta / pdf: a point light has no emission cosine.
+    randomWalk(bdpt, time, {offsetRayOrigin(y0.hit, emission->direction), emission->direction},
+               emission->intensity * y0.beta / emission->pdf, u, maxVertices, Direction::FromLight, path);
+    return static_cast<int>(path.size());
   }
   const auto point = bdpt.lights.sampleEmitterPoint(bdpt.geometry, time, uLight, uPoint);
   if (!point) return 0;

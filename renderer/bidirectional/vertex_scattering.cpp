@@ -17,7 +17,13 @@ Rgb deltaCoefficient(const Bsdf& bsdf, Vec3f wo, Vec3f wi) {
   return {};
 }
 
-float cosineAt(const PathVertex& x, Vec3f direction) { return std::abs(dot(x.hit.geometricNormal, direction)); }
+float cosineAt(const PathVertex& x, Vec3f direction) {
+  return x.isPunctual() ? 1.0f : std::abs(dot(x.hit.geometricNormal, direction));
+}
+
+const PunctualLight& punctualLightOf(const Scene& scene, const PathVertex& x) {
+  return scene.punctualLights[static_cast<size_t>(x.punctual)];
+}
 
 }  // namespace
 
@@ -47,6 +53,10 @@ Rgb scattering(const Scene& scene, const PathVertex& x, Vec3f towardCamera, Vec3
 }
 
 Rgb emitted(const Scene& scene, const PathVertex& x, Vec3f toward) {
+  if (x.isPunctual()) {
+    const PunctualLight& light = punctualLightOf(scene, x);
+    return x.type == VertexType::Environment ? light.intensity : light.intensityToward(toward, x.hit.geometricNormal);
+  }
   if (x.type == VertexType::Environment) return scene.environment.radiance(x.direction);
   if (x.type == VertexType::Camera || dot(x.hit.geometricNormal, toward) <= 0) return {};
   return scene.objects[static_cast<size_t>(x.hit.object)].emission;
@@ -54,10 +64,12 @@ Rgb emitted(const Scene& scene, const PathVertex& x, Vec3f toward) {
 
 float vertexDensity(const BdptScene& bdpt, float time, const PathVertex* before, const PathVertex& from,
                     const PathVertex& to) {
-  if (from.type == VertexType::Environment || from.delta) return 0;
+  if (from.type == VertexType::Environment || from.delta || to.isPunctual()) return 0;
   const Vec3f direction = directionBetween(from, to);
   float pdf = 0;
-  if (from.type == VertexType::Camera) {
+  if (from.isPunctual()) {
+    pdf = punctualLightOf(bdpt.scene(), from).emissionPdf(direction, from.hit.geometricNormal);
+  } else if (from.type == VertexType::Camera) {
     pdf = bdpt.camera.directionPdf(from.position(), direction, bdpt.seconds(time));
   } else if (!before) {
     // An emitter point emits cosine-weighted into its front hemisphere.
@@ -70,8 +82,27 @@ float vertexDensity(const BdptScene& bdpt, float time, const PathVertex* before,
 }
 
 float lightStartDensity(const BdptScene& bdpt, float time, const PathVertex& x) {
+  if (x.isPunctual()) return bdpt.lights.punctualProbability(x.punctual);
   if (x.type == VertexType::Environment) return bdpt.lights.environmentPdf(x.direction);
   return bdpt.lights.emitterPointPdf(bdpt.geometry, x.hit, time);
+}
+
+PathVertex punctualLightEnd(const BdptScene& bdpt, float time, int light) {
+  const PunctualLight& source = bdpt.scene().punctualLights[static_cast<size_t>(light)];
+  const double seconds = bdpt.seconds(time);
+  PathVertex end;
+  end.punctual = light;
+  if (source.type == PunctualType::Directional) {
+    end.type = VertexType::Environment;
+    end.direction = -source.forward(seconds);
+    return end;
+  }
+  end.type = VertexType::Light;
+  end.hit.object = -1;
+  end.hit.position = source.position(seconds);
+  end.hit.geometricNormal = source.forward(seconds);
+  end.hit.shadingNormal = end.hit.geometricNormal;
+  return end;
 }
 
 }  // namespace pathfarm

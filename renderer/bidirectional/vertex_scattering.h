@@ -5,7 +5,7 @@
 // The measurement contribution (radiance form, as the path tracer estimates it):
 //   f(X) = We(x0 -> x1) cos0 * prod_{i<k} g(x_i, x_i+1) * prod_{0<i<k} fs(x_i) * Le(xk -> xk-1)
 // with g(a, b) = |cos at b| / |a - b|^2 (geometric normal of b, the vertex on the light
-// side of the edge; 1 for an environment direction), fs(x_i) = Bsdf::eval(to x_i-1,
+// side of the edge; no cosine at a point or spot light; 1 for an environment direction), fs(x_i) = Bsdf::eval(to x_i-1,
 // to x_i+1), which holds the shading cosine at x_i towards the light side, and We the
 // film's importance (camera_importance.h): a pixel's value is W H times the integral of
 // f over the paths that land in it. With shading normals equal to geometric ones
@@ -27,7 +27,8 @@ float edgeFactor(const PathVertex& cameraSide, const PathVertex& lightSide);
 // Dirac lobe connecting the two directions (its sample weight times its selection
 // probability), or black when none does.
 Rgb scattering(const Scene& scene, const PathVertex& x, Vec3f towardCamera, Vec3f towardLight);
-// Radiance an emitter vertex (surface or environment) sends towards `toward`.
+// Radiance an emitter vertex (surface or environment) sends towards `toward`; intensity
+// for a point or spot light, irradiance for a directional one.
 Rgb emitted(const Scene& scene, const PathVertex& x, Vec3f toward);
 
 // Area density (solid angle for an environment `to`) of sampling `to` from `from`, where
@@ -36,7 +37,10 @@ Rgb emitted(const Scene& scene, const PathVertex& x, Vec3f toward);
 float vertexDensity(const BdptScene& bdpt, float time, const PathVertex* before, const PathVertex& from,
                     const PathVertex& to);
 // Density of choosing the light end `x` of a path as light subpaths do: area density on
-// a surface emitter, solid-angle density for the environment.
+// a surface emitter, solid-angle density for the environment, the probability of the
+// choice for a punctual light.
 float lightStartDensity(const BdptScene& bdpt, float time, const PathVertex& x);
+// The light end on punctual light `light` at `time` (see PathVertex::punctual).
+PathVertex punctualLightEnd(const BdptScene& bdpt, float time, int light);
 
 }  // namespace pathfarm

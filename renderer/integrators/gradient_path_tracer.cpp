@@ -126,7 +126,8 @@ GradientSample GradientPathTracer::trace(const Ray& cameraRay, const std::array<
       if (const auto light = lights_.sample(geometry_, vertex.hit.position, time, u.light, u.lightPoint)) {
         const Vec3f wi = vertex.frame.toLocal(light->direction);
         const Rgb f = vertex.bsdf.eval(vertex.wo, wi);
-        const float bsdfPdf = vertex.bsdf.pdf(vertex.wo, wi);
+        // BSDF sampling never reaches a punctual light: its technique's density is 0.
+        const float bsdfPdf = light->delta ? 0 : vertex.bsdf.pdf(vertex.wo, wi);
         bool visible = false;
         if (!f.isBlack()) {
           ++counts.shadow;
@@ -168,7 +169,8 @@ GradientSample GradientPathTracer::trace(const Ray& cameraRay, const std::array<
           const float scale = o.ratio * jacobian;
           addWeighted(
               out, k,
-              misWeight(light->pdf, light->pdf, bsdfPdf, scale * offsetLight->pdf, scale * y.bsdf.pdf(y.wo, offsetWi)),
+              misWeight(light->pdf, light->pdf, bsdfPdf, scale * offsetLight->pdf,
+                        light->delta ? 0 : scale * y.bsdf.pdf(y.wo, offsetWi)),
               base, offset);
         }
       }

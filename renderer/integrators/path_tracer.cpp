@@ -63,7 +63,7 @@ Rgb PathTracer::radiance(Ray ray, float time, SampleStream& stream, RayCounts& c
                                    ? geometry_.escapes(hit, light->direction, time)
                                    : geometry_.connects(hit, hit.position + light->direction * light->distance, time);
           if (visible) {
-            const float weight = powerHeuristic(light->pdf, bsdf.pdf(wo, wi));
+            const float weight = light->delta ? 1 : powerHeuristic(light->pdf, bsdf.pdf(wo, wi));
             result += throughput * f * light->radiance * (weight / light->pdf);
             if (decomposer) decomposer->addLightSample(lobes, perLobe, light->radiance * (weight / light->pdf));
           }

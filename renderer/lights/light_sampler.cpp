@@ -65,24 +65,52 @@ LightSampler::LightSampler(const ShotGeometry& shot)
     emitters_.push_back(std::move(emitter));
     power.push_back(object.emission.luminance() * kPi * worldArea(object, shape));
   }
-  if (!scene.environment.isBlack()) {
-    // Power an environment pours onto the scene's bounding sphere's cross-section.
-    const float r = sceneRadius(shot);
-    power.push_back(scene.environment.meanLuminance() * kPi * kPi * r * r);
-  }
+  const bool needsRadius = !scene.environment.isBlack() ||
+                           std::any_of(scene.punctualLights.begin(), scene.punctualLights.end(),
+                                       [](const PunctualLight& l) { return l.type == PunctualType::Directional; });
+  const float radius = needsRadius ? sceneRadius(shot) : 1;
+  for (const PunctualLight& light : scene.punctualLights) power.push_back(light.power(radius));
+  // Power an environment pours onto the scene's bounding sphere's cross-section.
+  if (!scene.environment.isBlack()) power.push_back(scene.environment.meanLuminance() * kPi * kPi * radius * radius);
+
   float total = 0;
   for (float p : power) total += p;
   float running = 0;
   for (size_t i = 0; i < power.size(); ++i) {
     running += power[i];
     const float probability = total > 0 ? power[i] / total : 0;
+    cdf_.push_back(total > 0 ? running / total : 0);
     if (i < emitters_.size()) {
       emitters_[i].probability = probability;
-      emitterCdf_.push_back(total > 0 ? running / total : 0);
+    } else if (i < emitters_.size() + scene.punctualLights.size()) {
+      punctualProbability_.push_back(probability);
     } else {
       environmentProbability_ = probability;
     }
   }
+}
+
+LightChoice LightSampler::choose(float uLight) const {
+  if (empty()) return {};
+  const size_t i = std::min<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), uLight) - cdf_.begin(), cdf_.size() - 1);
+  const float low = i == 0 ? 0 : cdf_[i - 1];
+  LightChoice choice;
+  const size_t punctualEnd = emitters_.size() + punctualProbability_.size();
+  float probability;
+  if (i < emitters_.size()) {
+    choice.kind = LightChoice::Kind::Emitter;
+    choice.index = static_cast<int>(i);
+    probability = emitters_[i].probability;
+  } else if (i < punctualEnd) {
+    choice.kind = LightChoice::Kind::Punctual;
+    choice.index = static_cast<int>(i - emitters_.size());
+    probability = punctualProbability_[static_cast<size_t>(choice.index)];
+  } else {
+    choice.kind = LightChoice::Kind::Environment;
+    probability = environmentProbability_;
+  }
+  choice.remainder = std::min((uLight - low) / probability, 0x1.fffffep-1f);
+  return choice;
 }
 
 float LightSampler::environmentPdf(Vec3f direction) const {
@@ -108,15 +136,11 @@ float LightSampler::pointDensity(const FrameGeometry& frame, const Emitter& emit
   return area > 0 ? choice / area : 0;
 }
 
-bool LightSampler::choosesEnvironment(float uLight) const {
-  return std::upper_bound(emitterCdf_.begin(), emitterCdf_.end(), uLight) == emitterCdf_.end();
-}
-
 std::optional<EmitterPoint> LightSampler::sampleEmitterPoint(const FrameGeometry& frame, float time, float uLight,
                                                              Vec2f uPoint) const {
-  const auto chosen = std::upper_bound(emitterCdf_.begin(), emitterCdf_.end(), uLight);
-  if (chosen == emitterCdf_.end()) return std::nullopt;
-  const Emitter& emitter = emitters_[static_cast<size_t>(chosen - emitterCdf_.begin())];
+  const LightChoice choice = choose(uLight);
+  if (choice.kind != LightChoice::Kind::Emitter) return std::nullopt;
+  const Emitter& emitter = emitters_[static_cast<size_t>(choice.index)];
   const PreparedShape& shape = shot_.shape(emitter.object);
   const Transform toWorld = frame.shapeToWorld(emitter.object, time);
 
@@ -128,9 +152,7 @@ std::optional<EmitterPoint> LightSampler::sampleEmitterPoint(const FrameGeometry
     hit.geometricNormal = normalize(toWorld.normal(n));
   } else {
     // Reuse what is left of uLight inside the chosen emitter's interval to pick a triangle.
-    const float low = chosen == emitterCdf_.begin() ? 0 : *(chosen - 1);
-    const float u = std::min((uLight - low) / emitter.probability, 0x1.fffffep-1f) *
-                    emitter.triangleCdf.back();
+    const float u = choice.remainder * emitter.triangleCdf.back();
     hit.primitive = static_cast<uint32_t>(
         std::min<size_t>(std::upper_bound(emitter.triangleCdf.begin(), emitter.triangleCdf.end(), u) -
                              emitter.triangleCdf.begin(),
@@ -151,9 +173,10 @@ std::optional<EmitterPoint> LightSampler::sampleEmitterPoint(const FrameGeometry
 
 std::optional<LightSample> LightSampler::sample(const FrameGeometry& frame, Vec3f from, float time,
                                                 float uLight, Vec2f uPoint) const {
-  if (choosesEnvironment(uLight)) {
-    return sampleEnvironment(uPoint);
-  }
+  const LightChoice choice = choose(uLight);
+  if (choice.kind == LightChoice::Kind::Environment) return sampleEnvironment(uPoint);
+  if (choice.kind == LightChoice::Kind::Punctual)
+    return samplePunctual(choice.index, from, shot_.scene().timeAt(frame.frame(), time));
   const auto point = sampleEmitterPoint(frame, time, uLight, uPoint);
   if (!point) return std::nullopt;
   const Vec3f toLight = point->hit.position - from;
@@ -173,6 +196,23 @@ std::optional<LightSample> LightSampler::sampleEnvironment(Vec2f uPoint) const {
   if (!s) return std::nullopt;
   return LightSample{s->direction, std::numeric_limits<float>::infinity(), s->radiance,
                      environmentProbability_ * s->pdf};
+}
+
+std::optional<LightSample> LightSampler::samplePunctual(int index, Vec3f from, double seconds) const {
+  const PunctualLight& light = shot_.scene().punctualLights[static_cast<size_t>(index)];
+  const float probability = punctualProbability(index);
+  if (!(probability > 0)) return std::nullopt;
+  if (light.type == PunctualType::Directional) {
+    return LightSample{-light.forward(seconds), std::numeric_limits<float>::infinity(), light.intensity,
+                       probability, true};
+  }
+  const Vec3f toLight = light.position(seconds) - from;
+  const float distance = length(toLight);
+  if (!(distance > 0)) return std::nullopt;
+  const Vec3f direction = toLight / distance;
+  const Rgb irradiance = light.intensityToward(-direction, light.forward(seconds)) / (distance * distance);
+  if (irradiance.isBlack() || !irradiance.isFinite()) return std::nullopt;
+  return LightSample{direction, distance, irradiance, probability, true};
 }
 
 float LightSampler::emitterPointPdf(const FrameGeometry& frame, const SurfaceHit& hit, float time) const {

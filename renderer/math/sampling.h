@@ -33,6 +33,15 @@ inline Vec3f sampleUniformSphere(Vec2f u) {
 }
 inline constexpr float kUniformSpherePdf = 1.0f / (4 * kPi);
 
+// Directions uniform inside the cone of half-angle acos(cosMax) around +z.
+inline Vec3f sampleUniformCone(Vec2f u, float cosMax) {
+  const float z = 1 - u.x * (1 - cosMax);
+  const float r = std::sqrt(std::max(0.0f, 1 - z * z));
+  const float phi = 2 * kPi * u.y;
+  return {r * std::cos(phi), r * std::sin(phi), z};
+}
+inline float uniformConePdf(float cosMax) { return 1 / (2 * kPi * (1 - cosMax)); }
+
 // Barycentric coordinates (b1, b2) uniformly distributed over a triangle.
 inline Vec2f sampleUniformTriangle(Vec2f u) {
   const float su = std::sqrt(u.x);

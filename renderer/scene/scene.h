@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "renderer/lights/environment_light.h"
+#include "renderer/lights/punctual_light.h"
 #include "renderer/materials/material.h"
 #include "renderer/scene/alpha_coverage.h"
 #include "renderer/scene/animation.h"
@@ -52,6 +53,7 @@ struct Scene {
   std::vector<AlphaCoverage> coverages;  // cut-outs, indexed by Material::coverage
   std::vector<SceneObject> objects;
   EnvironmentLight environment;  // black if none
+  std::vector<PunctualLight> punctualLights;
   RenderDefaults defaults;
 
   // The time in seconds of a point `shutterFraction` of the way through frame `frame`'s

@@ -177,6 +177,19 @@ Scene parseInclude(const JsonNode& node, const std::filesystem::path& folder, do
   return scene;
 }
 
+// A light named like one already in the scene (from an include) replaces it.
+void addLight(Scene& scene, PunctualLight light) {
+  if (!light.name.empty()) {
+    for (PunctualLight& existing : scene.punctualLights) {
+      if (existing.name == light.name) {
+        existing = std::move(light);
+        return;
+      }
+    }
+  }
+  scene.punctualLights.push_back(std::move(light));
+}
+
 }  // namespace
 
 Scene parseScene(std::string_view text, const std::filesystem::path& file) {
@@ -189,7 +202,7 @@ Scene parseScene(std::string_view text, const std::filesystem::path& file) {
   }
   const JsonNode root(document, "", label);
   root.expectKeys({"include", "fps", "seed", "roughness_threshold", "render", "camera", "materials",
-                   "environment", "shapes"});
+                   "environment", "lights", "shapes"});
 
   const std::filesystem::path folder = file.parent_path();
   const double fps = root.has("fps") ? root["fps"].number(1e-3, 1e6) : 24;
@@ -224,6 +237,9 @@ Scene parseScene(std::string_view text, const std::filesystem::path& file) {
     }
   }
   if (auto env = root.optional("environment")) scene.environment = parseEnvironment(*env, folder);
+  if (auto lights = root.optional("lights")) {
+    for (const JsonNode& node : lights->elements()) addLight(scene, parsePunctualLight(node, scene.fps));
+  }
 
   std::set<uint32_t> ids;
   for (const SceneObject& object : scene.objects) ids.insert(object.objectId);

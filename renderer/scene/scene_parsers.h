@@ -19,6 +19,10 @@ void parseAnimation(const JsonNode& node, double fps, AnimatedTrs& animation);
 // to `folder`.
 EnvironmentLight parseEnvironment(const JsonNode& node, const std::filesystem::path& folder);
 
+// {"type": "point"|"spot"|"directional", "intensity": RGB, "position", "direction",
+// "transform", "animation", "inner_cone", "outer_cone", "name"}
+PunctualLight parsePunctualLight(const JsonNode& node, double fps);
+
 Material parseMaterial(const JsonNode& node, const std::filesystem::path& folder,
                        std::vector<ImageTexture>& textures);
 

@@ -128,8 +128,9 @@ PathMutation bidirectionalMutation(const WindowScene& scene, const PathSpaceStat
   const int t = std::min(static_cast<int>(random.next1D() * static_cast<float>(added + 1)), added), s = added - t;
   const bool connected = !(lightEndDeleted && s == 0);
   // Keeping x_k as x_l (l = k, m = k + 1) turns the old light end into a scattering
-  // vertex: an environment direction cannot be one.
-  if (connected && cameraSide.back().type == VertexType::Environment) return result;
+  // vertex: neither an environment direction nor a punctual light can be one.
+  const bool endKept = cameraSide.back().type == VertexType::Environment || cameraSide.back().isPunctual();
+  if (endKept && (connected || t > 0)) return result;
 
   if (!extend(bdpt, time, cameraSide, t, !connected, random)) return result;
   std::vector<PathVertex> lightSide;  // from the light end inwards

@@ -33,6 +33,11 @@ std::optional<PathVertex> walkFrom(const BdptScene& bdpt, float time, const Path
     ray.origin = from.position();
   } else if (from.type == VertexType::Environment) {
     return std::nullopt;  // light subpaths do not leave the environment (subpath.h)
+  } else if (!before && from.isPunctual()) {
+    const PunctualLight& light = bdpt.scene().punctualLights[static_cast<size_t>(from.punctual)];
+    const auto emission = light.sampleEmission(random.next2D(), from.hit.geometricNormal);
+    if (!emission) return std::nullopt;
+    ray = {offsetRayOrigin(from.hit, emission->direction), emission->direction};
   } else if (!before) {
     const Vec3f local = sampleCosineHemisphere(random.next2D());
     if (!(local.z > 0)) return std::nullopt;
@@ -60,8 +65,10 @@ std::optional<PathVertex> sampleLightEnd(const BdptScene& bdpt, float time, Samp
   const float uLight = random.next1D();
   const Vec2f uPoint = random.next2D();
   if (bdpt.lights.empty()) return std::nullopt;
+  const LightChoice choice = bdpt.lights.choose(uLight);
+  if (choice.kind == LightChoice::Kind::Punctual) return punctualLightEnd(bdpt, time, choice.index);
   PathVertex end;
-  if (bdpt.lights.choosesEnvironment(uLight)) {
+  if (choice.kind == LightChoice::Kind::Environment) {
     const auto sky = bdpt.lights.sampleEnvironment(uPoint);
     if (!sky) return std::nullopt;
     end.type = VertexType::Environment;

@@ -2,9 +2,10 @@
 // Random walks that extend a path from one of its vertices, and the densities with which
 // they sample a vertex, for the path-space mutations (Veach and Guibas 1997). A walk
 // samples what bidirectional subpaths sample (subpath.h): from the camera a direction
-// uniform over the film, from an emitter point a cosine-weighted direction, from a
-// surface a BSDF sample; a new light end is an emitter point (or an environment direction)
-// chosen by the light sampler.
+// uniform over the film, from an emitter point a cosine-weighted direction, from a point
+// or spot light a direction uniform over its sphere or cone, from a surface a BSDF
+// sample; a new light end is an emitter point, a punctual light or an environment
+// direction, chosen by the light sampler.
 //
 // Densities are area densities (solid angle for environment directions), as
 // vertexDensity() gives them, except from a delta vertex: there the Dirac density is
@@ -25,7 +26,7 @@ namespace pathfarm {
 // nothing when no direction could be sampled.
 std::optional<PathVertex> walkFrom(const BdptScene& bdpt, float time, const PathVertex* before, PathVertex& from,
                                    SampleStream& random);
-// A new light end: an emitter point or an environment direction.
+// A new light end: an emitter point, a punctual light or an environment direction.
 std::optional<PathVertex> sampleLightEnd(const BdptScene& bdpt, float time, SampleStream& random);
 
 // The density with which walkFrom(before, from) yields `to`, as above.

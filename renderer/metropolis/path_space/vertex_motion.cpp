@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "renderer/bidirectional/vertex_scattering.h"
+
 namespace pathfarm {
 namespace {
 
@@ -26,10 +28,15 @@ Vec3f shapeNormal(const Transform& toWorld, Vec3f n) {
                          m[2] * n.x + m[6] * n.y + m[10] * n.z});
 }
 
+const PunctualLight& punctualLightOf(const WindowScene& scene, const PathVertex& x) {
+  return scene.geometry.frame(scene.time.window().first).shot().scene().punctualLights[static_cast<size_t>(x.punctual)];
+}
+
 }  // namespace
 
 bool movesWithTime(const WindowScene& scene, const PathVertex& x) {
   if (x.type == VertexType::Camera) return scene.camera.camera().isAnimated();
+  if (x.isPunctual()) return punctualLightOf(scene, x).transform.isAnimated();
   return onAnimatedObject(scene, x);
 }
 
@@ -40,6 +47,12 @@ PathVertex placedAt(const WindowScene& scene, const PathVertex& x, WindowInstant
     const double s = seconds(scene, from), t = seconds(scene, to);
     moved.hit.position = camera.cameraToWorld(t).point(camera.cameraToWorld(s).inversePoint(x.position()));
     moved.hit.geometricNormal = scene.camera.viewDirection(t);
+    return moved;
+  }
+  if (x.isPunctual()) {
+    const PathVertex placed = punctualLightEnd(scene.frame(to.frame), to.shutterFraction, x.punctual);
+    moved.hit = placed.hit;
+    moved.direction = placed.direction;
     return moved;
   }
   if (!onAnimatedObject(scene, x)) return x;

@@ -18,7 +18,7 @@ constexpr size_t kMaxElements = size_t{1} << 27;
 const std::set<std::string>& implementedExtensions() {
   static const std::set<std::string> names{"KHR_materials_emissive_strength", "KHR_materials_ior",
                                            "KHR_materials_transmission", "KHR_materials_volume",
-                                           "KHR_texture_transform"};
+                                           "KHR_lights_punctual", "KHR_texture_transform"};
   return names;
 }
 
@@ -237,6 +237,24 @@ std::vector<uint32_t> GltfDocument::readIndices(int index, size_t vertexCount, c
     result[i] = static_cast<uint32_t>(values[i]);
   }
   return result;
+}
+
+double gltfNumberOr(const tinygltf::Value& object, const char* key, double fallback) {
+  if (key && (!object.IsObject() || !object.Has(key))) return fallback;
+  const tinygltf::Value& v = key ? object.Get(key) : object;
+  return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
+}
+
+float gltfFactor(const GltfDocument& document, const std::string& pointer, double value, double min, double max) {
+  if (!std::isfinite(value) || value < min || value > max)
+    document.fail(pointer, "value " + std::to_string(value) + " is outside [" + std::to_string(min) + ", " +
+                               std::to_string(max) + "]");
+  return static_cast<float>(value);
+}
+
+const tinygltf::Value* gltfExtension(const tinygltf::ExtensionMap& extensions, const char* name) {
+  const auto it = extensions.find(name);
+  return it == extensions.end() ? nullptr : &it->second;
 }
 
 }  // namespace pathfarm

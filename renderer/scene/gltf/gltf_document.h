@@ -61,4 +61,11 @@ class GltfDocument {
 // "/meshes/3" style JSON pointers.
 std::string gltfPointer(const char* collection, int index);
 
+// A number member of `object` (or `object` itself when key is null), else `fallback`.
+double gltfNumberOr(const tinygltf::Value& object, const char* key, double fallback);
+// A number from the file, checked to be finite and within [min, max].
+float gltfFactor(const GltfDocument& document, const std::string& pointer, double value, double min, double max);
+// The extension object `name` of an entry, or null.
+const tinygltf::Value* gltfExtension(const tinygltf::ExtensionMap& extensions, const char* name);
+
 }  // namespace pathfarm

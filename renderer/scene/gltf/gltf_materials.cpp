@@ -17,25 +17,6 @@ const std::set<std::string>& understoodExtensions() {
   return names;
 }
 
-// A number member of `object` (or `object` itself when key is null), else `fallback`.
-double numberOr(const tinygltf::Value& object, const char* key, double fallback) {
-  if (key && (!object.IsObject() || !object.Has(key))) return fallback;
-  const tinygltf::Value& v = key ? object.Get(key) : object;
-  return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
-}
-
-const tinygltf::Value* extension(const tinygltf::ExtensionMap& extensions, const char* name) {
-  const auto it = extensions.find(name);
-  return it == extensions.end() ? nullptr : &it->second;
-}
-
-// A factor from the file, checked to be finite and within [min, max].
-float factor(const GltfDocument& document, const std::string& pointer, double value, double min, double max) {
-  if (!std::isfinite(value) || value < min || value > max)
-    document.fail(pointer, "value " + std::to_string(value) + " is outside [" + std::to_string(min) + ", " +
-                               std::to_string(max) + "]");
-  return static_cast<float>(value);
-}
 
 TextureWrap wrapMode(int gltfWrap) {
   switch (gltfWrap) {
@@ -92,9 +73,9 @@ class TextureImporter {
   AlphaCoverage coverage(const tinygltf::Material& m, const std::string& pointer) const {
     const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
     const double factorAlpha = pbr.baseColorFactor.size() == 4 ? pbr.baseColorFactor[3] : 1.0;
-    const float factorValue = factor(document_, pointer + "/pbrMetallicRoughness/baseColorFactor", factorAlpha, 0, 1);
+    const float factorValue = gltfFactor(document_, pointer + "/pbrMetallicRoughness/baseColorFactor", factorAlpha, 0, 1);
     const auto mode = m.alphaMode == "MASK" ? AlphaCoverage::Mode::Mask : AlphaCoverage::Mode::Blend;
-    const float cutoff = factor(document_, pointer + "/alphaCutoff", m.alphaCutoff, 0, 1);
+    const float cutoff = gltfFactor(document_, pointer + "/alphaCutoff", m.alphaCutoff, 0, 1);
     const tinygltf::Model& model = document_.model();
     if (pbr.baseColorTexture.index < 0) return AlphaCoverage(mode, cutoff, factorValue, 0, 0, {});
     // get() has checked the texture and its image already.
@@ -125,24 +106,24 @@ TextureCoordinates coordinatesOf(const GltfDocument& document, const std::string
                                  const tinygltf::ExtensionMap& extensions) {
   TextureCoordinates c;
   c.set = texCoord;
-  if (const tinygltf::Value* t = extension(extensions, "KHR_texture_transform")) {
+  if (const tinygltf::Value* t = gltfExtension(extensions, "KHR_texture_transform")) {
     const std::string p = pointer + "/extensions/KHR_texture_transform";
     const auto pair = [&](const char* key, double fallback) {
       std::array<double, 2> v{fallback, fallback};
       if (t->IsObject() && t->Has(key) && t->Get(key).IsArray() && t->Get(key).ArrayLen() == 2)
-        for (int i = 0; i < 2; ++i) v[static_cast<size_t>(i)] = numberOr(t->Get(key).Get(i), nullptr, fallback);
+        for (int i = 0; i < 2; ++i) v[static_cast<size_t>(i)] = gltfNumberOr(t->Get(key).Get(i), nullptr, fallback);
       return v;
     };
     const auto offset = pair("offset", 0), scale = pair("scale", 1);
-    const double rotation = numberOr(*t, "rotation", 0);
-    const float ox = factor(document, p + "/offset", offset[0], -1e6, 1e6);
-    const float oy = factor(document, p + "/offset", offset[1], -1e6, 1e6);
-    const float sx = factor(document, p + "/scale", scale[0], -1e6, 1e6);
-    const float sy = factor(document, p + "/scale", scale[1], -1e6, 1e6);
-    const double r = factor(document, p + "/rotation", rotation, -1e6, 1e6);
+    const double rotation = gltfNumberOr(*t, "rotation", 0);
+    const float ox = gltfFactor(document, p + "/offset", offset[0], -1e6, 1e6);
+    const float oy = gltfFactor(document, p + "/offset", offset[1], -1e6, 1e6);
+    const float sx = gltfFactor(document, p + "/scale", scale[0], -1e6, 1e6);
+    const float sy = gltfFactor(document, p + "/scale", scale[1], -1e6, 1e6);
+    const double r = gltfFactor(document, p + "/rotation", rotation, -1e6, 1e6);
     const auto cosR = static_cast<float>(std::cos(r)), sinR = static_cast<float>(std::sin(r));
     c.m = {cosR * sx, sinR * sy, ox, -sinR * sx, cosR * sy, oy};
-    c.set = static_cast<int>(factor(document, p + "/texCoord", numberOr(*t, "texCoord", texCoord), 0, 1));
+    c.set = static_cast<int>(gltfFactor(document, p + "/texCoord", gltfNumberOr(*t, "texCoord", texCoord), 0, 1));
   }
   if (c.set != 0 && c.set != 1)
     document.fail(pointer + "/texCoord", "TEXCOORD_" + std::to_string(c.set) + " is not supported (only 0 and 1)");
@@ -158,7 +139,7 @@ void warnAboutUnsupported(const GltfDocument& document, const std::string& point
     if (!understoodExtensions().count(name))
       document.warn(pointer + "/extensions/" + name, "extension not supported; its effect is ignored");
   }
-  if (const tinygltf::Value* t = extension(m.extensions, "KHR_materials_transmission");
+  if (const tinygltf::Value* t = gltfExtension(m.extensions, "KHR_materials_transmission");
       t && t->IsObject() && t->Has("transmissionTexture"))
     document.warn(pointer + "/extensions/KHR_materials_transmission/transmissionTexture",
                   "transmission textures are not supported yet; transmissionFactor applies everywhere");
@@ -218,12 +199,12 @@ GltfMaterials importMaterials(const GltfDocument& document, Scene& scene) {
     material.type = MaterialType::MetallicRoughness;
     const std::string pbrPointer = pointer + "/pbrMetallicRoughness";
     if (pbr.baseColorFactor.size() >= 3) {
-      material.reflectance = Rgb(factor(document, pbrPointer + "/baseColorFactor", pbr.baseColorFactor[0], 0, 1),
-                                 factor(document, pbrPointer + "/baseColorFactor", pbr.baseColorFactor[1], 0, 1),
-                                 factor(document, pbrPointer + "/baseColorFactor", pbr.baseColorFactor[2], 0, 1));
+      material.reflectance = Rgb(gltfFactor(document, pbrPointer + "/baseColorFactor", pbr.baseColorFactor[0], 0, 1),
+                                 gltfFactor(document, pbrPointer + "/baseColorFactor", pbr.baseColorFactor[1], 0, 1),
+                                 gltfFactor(document, pbrPointer + "/baseColorFactor", pbr.baseColorFactor[2], 0, 1));
     }
-    material.metallic = factor(document, pbrPointer + "/metallicFactor", pbr.metallicFactor, 0, 1);
-    material.roughness = factor(document, pbrPointer + "/roughnessFactor", pbr.roughnessFactor, 0, 1);
+    material.metallic = gltfFactor(document, pbrPointer + "/metallicFactor", pbr.metallicFactor, 0, 1);
+    material.roughness = gltfFactor(document, pbrPointer + "/roughnessFactor", pbr.roughnessFactor, 0, 1);
     std::optional<TextureCoordinates> coordinates;
     if (pbr.baseColorTexture.index >= 0) {
       const std::string p = pbrPointer + "/baseColorTexture";
@@ -249,7 +230,7 @@ GltfMaterials importMaterials(const GltfDocument& document, Scene& scene) {
     if (m.normalTexture.index >= 0) {
       const std::string p = pointer + "/normalTexture";
       material.normalTexture = textures.get(m.normalTexture.index, false, p);
-      material.normalScale = factor(document, p + "/scale", m.normalTexture.scale, -100, 100);
+      material.normalScale = gltfFactor(document, p + "/scale", m.normalTexture.scale, -100, 100);
       if (!coordinates) {
         coordinates = coordinatesOf(document, p, m.normalTexture.texCoord, m.normalTexture.extensions);
       } else if (!(coordinatesOf(document, p, m.normalTexture.texCoord, m.normalTexture.extensions) == *coordinates)) {
@@ -259,23 +240,23 @@ GltfMaterials importMaterials(const GltfDocument& document, Scene& scene) {
 
     Rgb emission;
     if (m.emissiveFactor.size() == 3) {
-      const tinygltf::Value* strengthExtension = extension(m.extensions, "KHR_materials_emissive_strength");
-      const double strength = strengthExtension ? numberOr(*strengthExtension, "emissiveStrength", 1.0) : 1.0;
-      const float s = factor(document, pointer + "/extensions/KHR_materials_emissive_strength/emissiveStrength",
+      const tinygltf::Value* strengthExtension = gltfExtension(m.extensions, "KHR_materials_emissive_strength");
+      const double strength = strengthExtension ? gltfNumberOr(*strengthExtension, "emissiveStrength", 1.0) : 1.0;
+      const float s = gltfFactor(document, pointer + "/extensions/KHR_materials_emissive_strength/emissiveStrength",
                              strength, 0, 1e9);
-      emission = Rgb(factor(document, pointer + "/emissiveFactor", m.emissiveFactor[0], 0, 1),
-                     factor(document, pointer + "/emissiveFactor", m.emissiveFactor[1], 0, 1),
-                     factor(document, pointer + "/emissiveFactor", m.emissiveFactor[2], 0, 1)) * s;
+      emission = Rgb(gltfFactor(document, pointer + "/emissiveFactor", m.emissiveFactor[0], 0, 1),
+                     gltfFactor(document, pointer + "/emissiveFactor", m.emissiveFactor[1], 0, 1),
+                     gltfFactor(document, pointer + "/emissiveFactor", m.emissiveFactor[2], 0, 1)) * s;
     }
-    if (const tinygltf::Value* t = extension(m.extensions, "KHR_materials_transmission")) {
-      material.transmission = factor(document, pointer + "/extensions/KHR_materials_transmission/transmissionFactor",
-                                     numberOr(*t, "transmissionFactor", 0), 0, 1);
+    if (const tinygltf::Value* t = gltfExtension(m.extensions, "KHR_materials_transmission")) {
+      material.transmission = gltfFactor(document, pointer + "/extensions/KHR_materials_transmission/transmissionFactor",
+                                     gltfNumberOr(*t, "transmissionFactor", 0), 0, 1);
     }
-    if (const tinygltf::Value* ior = extension(m.extensions, "KHR_materials_ior")) {
-      material.ior = factor(document, pointer + "/extensions/KHR_materials_ior/ior", numberOr(*ior, "ior", 1.5), 1.0001,
+    if (const tinygltf::Value* ior = gltfExtension(m.extensions, "KHR_materials_ior")) {
+      material.ior = gltfFactor(document, pointer + "/extensions/KHR_materials_ior/ior", gltfNumberOr(*ior, "ior", 1.5), 1.0001,
                             3);
     }
-    if (extension(m.extensions, "KHR_materials_volume")) solidDielectric(document, pointer, material);
+    if (gltfExtension(m.extensions, "KHR_materials_volume")) solidDielectric(document, pointer, material);
 
     scene.materialNames.push_back(
         uniqueName(m.name.empty() ? "material" + std::to_string(i) : m.name, scene.materialNames));

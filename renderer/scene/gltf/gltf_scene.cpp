@@ -4,6 +4,7 @@
 #include <map>
 
 #include "renderer/scene/gltf/gltf_animation.h"
+#include "renderer/scene/gltf/gltf_lights.h"
 #include "renderer/scene/gltf/gltf_materials.h"
 #include "renderer/scene/gltf/gltf_mesh.h"
 
@@ -147,9 +148,7 @@ Scene importGltfScene(const GltfDocument& document, const GltfImportOptions& opt
   }
   if (scene.objects.empty()) document.fail("", "the scene has no mesh with triangles to render");
   importCamera(document, animation, nodes, options, scene);
-  if (!model.lights.empty())
-    document.warn("/extensions/KHR_lights_punctual", "punctual lights are not supported yet and give no light; "
-                                                    "the scene is lit by emissive surfaces and the environment");
+  importPunctualLights(document, animation, nodes, scene);
   if (animation.duration() > 0)
     scene.defaults.frameEnd = static_cast<int>(std::ceil(animation.duration() * options.fps - 1e-9));
   return scene;
