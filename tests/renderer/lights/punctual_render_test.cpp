@@ -13,13 +13,14 @@
 #include "renderer/integrators/gradient_frame_renderer.h"
 #include "renderer/metropolis/metropolis_renderer.h"
 #include "test_support.h"
+#include "tests/renderer/lights/lit_floor.h"
 #include "tests/renderer/metropolis/metropolis_test_support.h"
 
 namespace pathfarm {
 namespace {
 
 constexpr double kAlbedo = 0.5;
-constexpr double kPiD = 3.14159265358979323846;
+constexpr double kPiD = test_support::kLitFloorPi;
 // The camera 2 above the floor with a 40 degree field of view sees |x|, |z| <= 2 tan 20.
 const double kHalfWidth = 2 * std::tan(20 * kPiD / 180);
 
@@ -32,22 +33,12 @@ Scene floorLitBy(const std::string& light) {
                 "transform": {"rotate": {"axis": [1, 0, 0], "angle": -90}}}]})");
 }
 
-// The mean over the seen square of the floor of a radiance L(x, z), by the midpoint rule.
 double meanOverSquare(const std::function<double(double, double)>& radiance) {
-  const int n = 1000;
-  double sum = 0;
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j)
-      sum += radiance(((i + 0.5) / n * 2 - 1) * kHalfWidth, ((j + 0.5) / n * 2 - 1) * kHalfWidth);
-  return sum / (static_cast<double>(n) * n);
+  return test_support::meanOverSquare(kHalfWidth, radiance);
 }
 
-// A light of intensity I at (lx, h, lz) gives a Lambertian floor the radiance
-// albedo / pi * I * falloff * cos / r^2 with cos = h / r.
 double pointRadiance(double x, double z, double lx, double h, double lz, double intensity, double falloff = 1) {
-  const double dx = x - lx, dz = z - lz;
-  const double r = std::sqrt(dx * dx + dz * dz + h * h);
-  return kAlbedo / kPiD * intensity * falloff * h / (r * r * r);
+  return test_support::pointLitRadiance(kAlbedo, x, z, lx, h, lz, intensity, falloff);
 }
 
 const std::string kPoint = R"({"type": "point", "position": [0.3, 1, 0.2], "intensity": 2})";
