@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # glTF scenes as a user brings them: `pathfarm render` of a .glb, a broken file refused
-# with exit status 2 naming the file and the JSON pointer, and the showroom shot (a JSON
-# scene including a .glb) finished by every pipeline on a local farm with finite frames.
+# with exit status 2 naming the file and the JSON pointer, and the showroom (a JSON scene
+# including a .glb, with punctual lights added) finished by every pipeline on a local farm
+# with finite frames.
 source "$(dirname "$0")/cli_test_support.sh"
 showroom="$source_dir/scenes/showroom"
 
@@ -25,9 +26,23 @@ expect_refused render "$work/broken.glb" --out "$work/broken"
 grep -q "broken.glb: /meshes/0/primitives/0/attributes/POSITION: .* overrun" "$work/log" ||
   fail "broken.glb message: $(cat "$work/log")"
 
+# The showroom as its scene.json sets it up, with a spot, a point and a moving
+# directional light added: every pipeline meets punctual lights beside area lights and
+# the sky map.
+cat > "$work/lit_showroom.json" <<JSON
+{"include": {"file": "$showroom/showroom.glb", "camera": "dolly", "shutter": [0, 0.5]},
+ "environment": {"map": "$source_dir/scenes/sky/sky.hdr", "rotation": 60},
+ "lights": [
+   {"type": "spot", "position": [-1, 2.5, 1], "direction": [0.4, -1, -0.3], "intensity": 20,
+    "inner_cone": 15, "outer_cone": 30},
+   {"type": "point", "position": [1, 1.2, -1], "intensity": [4, 3, 2]},
+   {"type": "directional", "intensity": 1.5, "transform": {"rotate": {"axis": [1, 0, 0], "angle": -60}},
+    "animation": {"rotate": [{"frame": 0, "axis": [1, 0, 0], "angle": -60},
+                             {"frame": 3, "axis": [1, 0.3, 0], "angle": -50}]}}]}
+JSON
 for pipeline in pt d du di dui tgpt pssmlt mlt tmlt; do
   cat > "$work/$pipeline.json" <<JSON
-{"name": "showroom-$pipeline", "scene": "$showroom/scene.json", "frames": {"start": 0, "end": 3},
+{"name": "showroom-$pipeline", "scene": "$work/lit_showroom.json", "frames": {"start": 0, "end": 3},
  "resolution": [32, 18], "spp": 2, "max_depth": 4, "tile": 16, "pipeline": "$pipeline", "output": "out_$pipeline"}
 JSON
   "$pathfarm" local "$work/$pipeline.json" --workers 2 --threads 1 > "$work/log" 2>&1 ||
