@@ -26,6 +26,7 @@ sources=(
   fuzz/gltf_loader_fuzzer.cpp fuzz/tinygltf_implementation.cpp
   renderer/scene/gltf/gltf_document.cpp renderer/scene/gltf/gltf_animation.cpp
   renderer/scene/gltf/gltf_materials.cpp renderer/scene/gltf/gltf_mesh.cpp renderer/scene/gltf/gltf_scene.cpp
+  renderer/scene/gltf/gltf_lights.cpp
   renderer/scene/animation.cpp renderer/scene/texture.cpp renderer/scene/json_node.cpp renderer/scene/alpha_coverage.cpp
   renderer/math/quaternion.cpp renderer/math/transform.cpp
 )
