@@ -59,7 +59,7 @@ Rgb emitted(const Scene& scene, const PathVertex& x, Vec3f toward) {
   }
   if (x.type == VertexType::Environment) return scene.environment.radiance(x.direction);
   if (x.type == VertexType::Camera || dot(x.hit.geometricNormal, toward) <= 0) return {};
-  return scene.objects[static_cast<size_t>(x.hit.object)].emission;
+  return emissionAt(scene, scene.objects[static_cast<size_t>(x.hit.object)], x.hit.uv);
 }
 
 float vertexDensity(const BdptScene& bdpt, float time, const PathVertex* before, const PathVertex& from,

@@ -48,10 +48,10 @@ void addWeighted(GradientSample& out, size_t k, float weight, const Rgb& base, c
 GradientSample GradientPathTracer::trace(const Ray& cameraRay, const std::array<std::optional<Ray>, 4>& offsetRays,
                                          float time, SampleStream& stream, RayCounts& counts) const {
   const Scene& scene = geometry_.shot().scene();
-  const auto emissionAt = [&](bool found, const SurfaceHit& hit, Vec3f incoming) {
+  const auto arrivingEmission = [&](bool found, const SurfaceHit& hit, Vec3f incoming) {
     if (!found) return scene.environment.radiance(incoming);
     const SceneObject& object = scene.objects[static_cast<size_t>(hit.object)];
-    return object.isEmitter() && dot(incoming, hit.geometricNormal) < 0 ? object.emission : Rgb();
+    return object.isEmitter() && dot(incoming, hit.geometricNormal) < 0 ? emissionAt(scene, object, hit.uv) : Rgb();
   };
   // Density with which next-event estimation from `from` yields what a ray along
   // `incoming` found.
@@ -83,7 +83,7 @@ GradientSample GradientPathTracer::trace(const Ray& cameraRay, const std::array<
   Vec3f previousPosition;
 
   for (int depth = 0;; ++depth) {
-    const Rgb emitted = emissionAt(found, hit, ray.direction);
+    const Rgb emitted = arrivingEmission(found, hit, ray.direction);
     if (depth == 0) {
       out.direct = emitted;
     } else {
@@ -103,7 +103,7 @@ GradientSample GradientPathTracer::trace(const Ray& cameraRay, const std::array<
             o.stepDelta ? 0 : lightPdfOf(offsetFound, offsetHit, o.previousPosition, o.incoming);
         const float scale = o.ratioBefore * o.stepJacobian;
         addWeighted(out, k, misWeight(previousPdf, lightPdf, previousPdf, scale * offsetLightPdf, scale * o.stepPdf),
-                    base, o.throughput * emissionAt(offsetFound, offsetHit, o.incoming));
+                    base, o.throughput * arrivingEmission(offsetFound, offsetHit, o.incoming));
       }
     }
     if (!found || depth >= settings_.maxDepth) break;

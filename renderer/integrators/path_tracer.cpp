@@ -37,8 +37,9 @@ Rgb PathTracer::radiance(Ray ray, float time, SampleStream& stream, RayCounts& c
       const float weight = specularBounce
                                ? 1
                                : powerHeuristic(previousPdf, lights_.pdf(geometry_, previousPosition, hit, time));
-      result += throughput * object.emission * weight;
-      if (decomposer) decomposer->addEmission(object.emission * weight);
+      const Rgb emission = emissionAt(scene, object, hit.uv);
+      result += throughput * emission * weight;
+      if (decomposer) decomposer->addEmission(emission * weight);
     }
     if (depth >= settings_.maxDepth) break;
 

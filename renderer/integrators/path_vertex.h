@@ -32,7 +32,7 @@ inline Rgb albedoAt(const Scene& scene, const Material& material, Vec2f uv) {
 }
 
 // Everything textured at a point. glTF's metallicRoughnessTexture holds linear data, metal
-// in B and roughness in G, scaling the material's factors.
+// in B and roughness in G, and the transmission texture in R, scaling the material's factors.
 inline SurfaceParameters surfaceAt(const Scene& scene, const Material& material, Vec2f uv) {
   SurfaceParameters surface = SurfaceParameters::of(material, albedoAt(scene, material, uv));
   if (material.metallicRoughnessTexture >= 0) {
@@ -40,6 +40,8 @@ inline SurfaceParameters surfaceAt(const Scene& scene, const Material& material,
     surface.metallic *= texel.b;
     surface.roughness *= texel.g;
   }
+  if (material.transmissionTexture >= 0)
+    surface.transmission *= scene.textures[static_cast<size_t>(material.transmissionTexture)].lookup(uv).r;
   return surface;
 }
 

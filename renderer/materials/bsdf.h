@@ -71,9 +71,10 @@ struct SurfaceParameters {
   Rgb albedo;       // diffuse reflectance; the base colour of MetallicRoughness
   float metallic;   // MetallicRoughness only, in [0, 1]
   float roughness;  // MetallicRoughness only: perceptual, GGX alpha = roughness^2
+  float transmission;  // MetallicRoughness only, in [0, 1]
 
   static SurfaceParameters of(const Material& material, Rgb albedo) {
-    return {albedo, material.metallic, material.roughness};
+    return {albedo, material.metallic, material.roughness, material.transmission};
   }
 };
 

@@ -50,6 +50,8 @@ struct Material {
   float roughness = 1;
   int metallicRoughnessTexture = -1;  // index into Scene::textures, -1 for none
   float transmission = 0;
+  // KHR_materials_transmission's transmissionTexture: linear, its R scales `transmission`.
+  int transmissionTexture = -1;  // index into Scene::textures, -1 for none
   // A tangent-space normal map (linear data) and the scale of its x and y (any type).
   int normalTexture = -1;
   float normalScale = 1;

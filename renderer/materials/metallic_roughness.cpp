@@ -25,7 +25,7 @@ MetallicRoughnessBsdf::MetallicRoughnessBsdf(const Material& material, const Sur
       // The albedo bound is tabulated up to kMaxSpecularAlbedoIor; every Fresnel term uses
       // the same clamped index, so the energy argument holds for any input.
       ior_(std::clamp(material.ior, 1.0f, kMaxSpecularAlbedoIor)),
-      transmission_(std::clamp(material.transmission, 0.0f, 1.0f)),
+      transmission_(std::clamp(surface.transmission, 0.0f, 1.0f)),
       distribution_(MicrofacetType::GGX, alpha_),
       delta_(alpha_ < kDeltaAlpha),
       reflectSymbol_(glossyLobeSymbol(alpha_, roughnessThreshold, LobeSymbol::R)),
@@ -33,7 +33,7 @@ MetallicRoughnessBsdf::MetallicRoughnessBsdf(const Material& material, const Sur
   // Listed from the material, not the point, so that every point agrees (see the header).
   const bool dielectricAnywhere = material.metallic < 1 || material.metallicRoughnessTexture >= 0;
   int next = 1;
-  diffuseLobe_ = dielectricAnywhere && material.transmission < 1 ? next++ : -1;
+  diffuseLobe_ = dielectricAnywhere && (material.transmission < 1 || material.transmissionTexture >= 0) ? next++ : -1;
   transmissionLobe_ = dielectricAnywhere && material.transmission > 0 ? next++ : -1;
 }
 

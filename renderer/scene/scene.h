@@ -28,6 +28,7 @@ struct SceneObject {
   std::shared_ptr<const TriangleMesh> mesh;  // rectangles, boxes and meshes
   int material = 0;  // index into Scene::materials
   Rgb emission;      // radiance emitted from the front side (outward normal); black if none
+  int emissionTexture = -1;  // into Scene::textures: emission is multiplied by it at the hit's uv
   AnimatedTrs transform;  // object to world
 
   bool isEmitter() const { return !emission.isBlack(); }
@@ -63,5 +64,11 @@ struct Scene {
     return (static_cast<double>(frame) + open + shutterFraction * (close - open)) / fps;
   }
 };
+
+// The radiance `object` emits at surface coordinates `uv` (from its front side).
+inline Rgb emissionAt(const Scene& scene, const SceneObject& object, Vec2f uv) {
+  if (object.emissionTexture < 0) return object.emission;
+  return object.emission * scene.textures[static_cast<size_t>(object.emissionTexture)].lookup(uv);
+}
 
 }  // namespace pathfarm

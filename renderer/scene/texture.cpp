@@ -165,6 +165,12 @@ Rgb ImageTexture::texel(int x, int y) const {
   return texels_[static_cast<size_t>(y) * static_cast<size_t>(width_) + static_cast<size_t>(x)];
 }
 
+Rgb ImageTexture::average() const {
+  Rgb sum;
+  for (const Rgb& t : texels_) sum += t;
+  return texels_.empty() ? Rgb() : sum / static_cast<float>(texels_.size());
+}
+
 Rgb ImageTexture::lookup(Vec2f uv) const {
   const AxisTexels x = axisTexels(uv.x, width_, wrapU_, false);
   const AxisTexels y = axisTexels(uv.y, height_, wrapV_, true);  // row 0 is the top (v = 1)

@@ -38,6 +38,8 @@ class ImageTexture {
     wrapU_ = u;
     wrapV_ = v;
   }
+  // The mean of the texels, as repeat-wrapped bilinear lookups average over the unit square.
+  Rgb average() const;
   int width() const { return width_; }
   int height() const { return height_; }
 

@@ -132,17 +132,33 @@ TextureCoordinates coordinatesOf(const GltfDocument& document, const std::string
 
 // What the renderer does not model yet, said once per material.
 void warnAboutUnsupported(const GltfDocument& document, const std::string& pointer, const tinygltf::Material& m) {
-  if (m.emissiveTexture.index >= 0)
-    document.warn(pointer + "/emissiveTexture",
-                  "emissive textures are not supported yet; the surface emits emissiveFactor uniformly");
   for (const auto& [name, value] : m.extensions) {
     if (!understoodExtensions().count(name))
       document.warn(pointer + "/extensions/" + name, "extension not supported; its effect is ignored");
   }
-  if (const tinygltf::Value* t = gltfExtension(m.extensions, "KHR_materials_transmission");
-      t && t->IsObject() && t->Has("transmissionTexture"))
-    document.warn(pointer + "/extensions/KHR_materials_transmission/transmissionTexture",
-                  "transmission textures are not supported yet; transmissionFactor applies everywhere");
+}
+
+// A textureInfo inside an extension's object (tinygltf parses those only as values): the
+// texture's index, its TEXCOORD set and its own extensions.
+struct ExtensionTextureInfo {
+  int index = -1;
+  int texCoord = 0;
+  tinygltf::ExtensionMap extensions;
+};
+
+std::optional<ExtensionTextureInfo> extensionTextureInfo(const GltfDocument& document, const std::string& pointer,
+                                                         const tinygltf::Value& extension, const char* key) {
+  if (!extension.IsObject() || !extension.Has(key)) return std::nullopt;
+  const tinygltf::Value& info = extension.Get(key);
+  if (!info.IsObject()) document.fail(pointer, "must be a textureInfo object");
+  ExtensionTextureInfo result;
+  result.index = static_cast<int>(gltfFactor(document, pointer + "/index", gltfNumberOr(info, "index", -1), 0, 1e9));
+  result.texCoord = static_cast<int>(gltfFactor(document, pointer + "/texCoord", gltfNumberOr(info, "texCoord", 0), 0, 1e9));
+  if (info.Has("extensions") && info.Get("extensions").IsObject()) {
+    const tinygltf::Value& extensions = info.Get("extensions");
+    for (const std::string& name : extensions.Keys()) result.extensions[name] = extensions.Get(name);
+  }
+  return result;
 }
 
 // KHR_materials_volume makes a transmissive surface the boundary of a solid: light
@@ -150,7 +166,8 @@ void warnAboutUnsupported(const GltfDocument& document, const std::string& point
 // (rough) dielectric; the volume's attenuation and a tinted base colour are not modelled.
 void solidDielectric(const GltfDocument& document, const std::string& pointer, Material& material) {
   const std::string p = pointer + "/extensions/KHR_materials_volume";
-  if (material.transmission < 1 || material.metallic > 0 || material.metallicRoughnessTexture >= 0) {
+  if (material.transmission < 1 || material.transmissionTexture >= 0 || material.metallic > 0 ||
+      material.metallicRoughnessTexture >= 0) {
     document.warn(p, "a volume is rendered only for fully transmissive non-metals; this surface stays thin-walled");
     return;
   }
@@ -211,14 +228,20 @@ GltfMaterials importMaterials(const GltfDocument& document, Scene& scene) {
       material.reflectanceTexture = textures.get(pbr.baseColorTexture.index, true, p);
       coordinates = coordinatesOf(document, p, pbr.baseColorTexture.texCoord, pbr.baseColorTexture.extensions);
     }
+    // Every texture of a material reads one set of coordinates (the mesh holds one uv per
+    // vertex): the first texture's, the base colour's when there is one.
+    const auto shareCoordinates = [&](const std::string& p, const auto& info) {
+      const TextureCoordinates own = coordinatesOf(document, p, info.texCoord, info.extensions);
+      if (!coordinates) {
+        coordinates = own;
+      } else if (!(own == *coordinates)) {
+        document.warn(p, "reads other texture coordinates than the base colour; the base colour's apply to both");
+      }
+    };
     if (pbr.metallicRoughnessTexture.index >= 0) {
       const std::string p = pbrPointer + "/metallicRoughnessTexture";
       material.metallicRoughnessTexture = textures.get(pbr.metallicRoughnessTexture.index, false, p);
-      const TextureCoordinates own =
-          coordinatesOf(document, p, pbr.metallicRoughnessTexture.texCoord, pbr.metallicRoughnessTexture.extensions);
-      if (coordinates && !(own == *coordinates))
-        document.warn(p, "reads other texture coordinates than the base colour; the base colour's apply to both");
-      if (!coordinates) coordinates = own;
+      shareCoordinates(p, pbr.metallicRoughnessTexture);
     }
 
     if (m.alphaMode == "MASK" || m.alphaMode == "BLEND") {
@@ -231,11 +254,7 @@ GltfMaterials importMaterials(const GltfDocument& document, Scene& scene) {
       const std::string p = pointer + "/normalTexture";
       material.normalTexture = textures.get(m.normalTexture.index, false, p);
       material.normalScale = gltfFactor(document, p + "/scale", m.normalTexture.scale, -100, 100);
-      if (!coordinates) {
-        coordinates = coordinatesOf(document, p, m.normalTexture.texCoord, m.normalTexture.extensions);
-      } else if (!(coordinatesOf(document, p, m.normalTexture.texCoord, m.normalTexture.extensions) == *coordinates)) {
-        document.warn(p, "reads other texture coordinates than the base colour; the base colour's apply to both");
-      }
+      shareCoordinates(p, m.normalTexture);
     }
 
     Rgb emission;
@@ -248,9 +267,21 @@ GltfMaterials importMaterials(const GltfDocument& document, Scene& scene) {
                      gltfFactor(document, pointer + "/emissiveFactor", m.emissiveFactor[1], 0, 1),
                      gltfFactor(document, pointer + "/emissiveFactor", m.emissiveFactor[2], 0, 1)) * s;
     }
+    int emissionTexture = -1;
+    if (m.emissiveTexture.index >= 0 && !emission.isBlack()) {
+      const std::string p = pointer + "/emissiveTexture";
+      emissionTexture = textures.get(m.emissiveTexture.index, true, p);
+      shareCoordinates(p, m.emissiveTexture);
+    }
     if (const tinygltf::Value* t = gltfExtension(m.extensions, "KHR_materials_transmission")) {
-      material.transmission = gltfFactor(document, pointer + "/extensions/KHR_materials_transmission/transmissionFactor",
-                                     gltfNumberOr(*t, "transmissionFactor", 0), 0, 1);
+      const std::string p = pointer + "/extensions/KHR_materials_transmission";
+      material.transmission = gltfFactor(document, p + "/transmissionFactor", gltfNumberOr(*t, "transmissionFactor", 0), 0, 1);
+      const std::string texturePointer = p + "/transmissionTexture";
+      if (const auto info = extensionTextureInfo(document, texturePointer, *t, "transmissionTexture");
+          info && material.transmission > 0) {
+        material.transmissionTexture = textures.get(info->index, false, texturePointer);
+        shareCoordinates(texturePointer, *info);
+      }
     }
     if (const tinygltf::Value* ior = gltfExtension(m.extensions, "KHR_materials_ior")) {
       material.ior = gltfFactor(document, pointer + "/extensions/KHR_materials_ior/ior", gltfNumberOr(*ior, "ior", 1.5), 1.0001,
@@ -263,6 +294,7 @@ GltfMaterials importMaterials(const GltfDocument& document, Scene& scene) {
     scene.materials.push_back(material);
     result.sceneIndex.push_back(static_cast<int>(scene.materials.size()) - 1);
     result.emission.push_back(emission);
+    result.emissionTexture.push_back(emissionTexture);
     result.coordinates.push_back(coordinates.value_or(TextureCoordinates{}));
   }
   return result;

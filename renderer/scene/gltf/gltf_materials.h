@@ -13,10 +13,12 @@
 namespace pathfarm {
 
 struct GltfMaterials {
-  // Per glTF material, its index in Scene::materials, emitted radiance and the texture
-  // coordinates its textures read.
+  // Per glTF material, its index in Scene::materials, emitted radiance (a factor of the
+  // emission texture, an index into Scene::textures or -1) and the texture coordinates
+  // its textures read.
   std::vector<int> sceneIndex;
   std::vector<Rgb> emission;
+  std::vector<int> emissionTexture;
   std::vector<TextureCoordinates> coordinates;
   // The glTF default material (for primitives without one), added on first use.
   int defaultMaterial(Scene& scene);

@@ -141,7 +141,10 @@ Scene importGltfScene(const GltfDocument& document, const GltfImportOptions& opt
       object.mesh = mesh;
       object.material = material >= 0 ? materials.sceneIndex[static_cast<size_t>(material)]
                                       : materials.defaultMaterial(scene);
-      if (material >= 0) object.emission = materials.emission[static_cast<size_t>(material)];
+      if (material >= 0) {
+        object.emission = materials.emission[static_cast<size_t>(material)];
+        object.emissionTexture = materials.emissionTexture[static_cast<size_t>(material)];
+      }
       object.transform = placement;
       scene.objects.push_back(std::move(object));
     }
