@@ -29,32 +29,32 @@ unsigned timeStepsFor(const AnimatedTrs& animation, double open, double close) {
   return animation.hasKeyInside(open, close) ? 17 : 2;
 }
 
+}  // namespace
+
 Vec2f sphereUv(Vec3f n) {
   const float phi = std::atan2(n.y, n.x);
   return {(phi < 0 ? phi + 2 * kPi : phi) / (2 * kPi), std::acos(std::clamp(n.z, -1.0f, 1.0f)) * kInvPi};
 }
 
-}  // namespace
-
 FrameGeometry::FrameGeometry(const ShotGeometry& shot, int64_t frame)
     : shot_(shot), frame_(frame), timeSteps_(shot.scene().objects.size()) {
   const Scene& scene = shot.scene();
-  bool anyAnimated = false;
-  for (size_t i = 0; i < scene.objects.size(); ++i) anyAnimated |= shot.shape(static_cast<int>(i)).animated;
-  if (!anyAnimated) {
+  if (!shot.placesObjects()) {
     top_ = shot.staticScene();  // nothing moves: trace the static BVH directly
     return;
   }
   RTCDevice device = shot.device().get();
   top_ = rtcNewScene(device);
   ownsTop_ = true;
-  rtcSetSceneBuildQuality(top_, RTC_BUILD_QUALITY_LOW);  // a handful of instances, rebuilt per frame
+  rtcSetSceneBuildQuality(top_, RTC_BUILD_QUALITY_LOW);  // instances only, rebuilt per frame
   auto attach = [&](RTCScene child, int object) {
     RTCGeometry instance = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
     rtcSetGeometryInstancedScene(instance, child);
     if (object < 0) {
       const float identity[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
       rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, identity);
+    } else if (shot.shape(object).instanced) {
+      rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, shot.shape(object).placement.matrix().data());
     } else {
       const AnimatedTrs& animation = scene.objects[static_cast<size_t>(object)].transform;
       const double open = scene.timeAt(frame, 0), close = scene.timeAt(frame, 1);
@@ -79,7 +79,7 @@ FrameGeometry::FrameGeometry(const ShotGeometry& shot, int64_t frame)
     if (RTCScene child = shot.objectScene(static_cast<int>(i))) attach(child, static_cast<int>(i));
   }
   rtcCommitScene(top_);
-  shot.device().check("placing the animated objects of a frame");
+  shot.device().check("placing the animated and instanced objects of a frame");
 }
 
 FrameGeometry::~FrameGeometry() {
@@ -88,7 +88,7 @@ FrameGeometry::~FrameGeometry() {
 
 Transform FrameGeometry::shapeToWorld(int object, float time) const {
   const auto& steps = timeSteps_[static_cast<size_t>(object)];
-  if (steps.empty()) return {};
+  if (steps.empty()) return shot_.shape(object).placement;
   if (steps.size() == 1) return Transform::fromTrs(steps[0]);
   // Embree's quaternion motion blur: linear in translation and scale, slerp in rotation,
   // between the two time steps around `time`.

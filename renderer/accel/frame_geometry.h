@@ -52,6 +52,8 @@ class FrameGeometry {
   std::vector<std::vector<Trs>> timeSteps_;
 };
 
+// The surface coordinates of a sphere's point with object-space unit normal n.
+Vec2f sphereUv(Vec3f n);
 // Moves a ray's origin off the surface it leaves, to the side `direction` points to,
 // so it cannot hit that surface again through rounding.
 Vec3f offsetRayOrigin(const SurfaceHit& hit, Vec3f direction);

@@ -1,6 +1,7 @@
 #include "renderer/accel/precise_shape.h"
 
 #include <limits>
+#include <map>
 
 namespace pathfarm {
 namespace {
@@ -31,10 +32,14 @@ std::optional<PreciseShape::LocalHit> PreciseShape::intersectSphere(Vec3d o, Vec
   return hit;
 }
 
+PreciseShape::PreciseShape(const SceneObject& object, std::shared_ptr<const TriangleBvh> bvh)
+    : object_(object),
+      animated_(object.transform.isAnimated()),
+      still_(object.transform.motionAt(0)),
+      bvh_(std::move(bvh)) {}
+
 PreciseShape::PreciseShape(const SceneObject& object)
-    : object_(object), animated_(object.transform.isAnimated()), still_(object.transform.motionAt(0)) {
-  if (object.type != ShapeType::Sphere) bvh_.emplace(*object.mesh);
-}
+    : PreciseShape(object, object.type == ShapeType::Sphere ? nullptr : std::make_shared<const TriangleBvh>(*object.mesh)) {}
 
 std::optional<PreciseShape::LocalHit> PreciseShape::intersectMesh(Vec3d o, Vec3d d, double minDistance) const {
   double nearest = std::numeric_limits<double>::infinity();
@@ -121,7 +126,16 @@ std::optional<SurfaceDifferentials> PreciseShape::intersect(Vec3d origin, Vec3d 
 std::vector<PreciseShape> preciseShapesOf(const Scene& scene) {
   std::vector<PreciseShape> shapes;
   shapes.reserve(scene.objects.size());
-  for (const SceneObject& object : scene.objects) shapes.emplace_back(object);
+  std::map<const TriangleMesh*, std::shared_ptr<const TriangleBvh>> bvhOfMesh;
+  for (const SceneObject& object : scene.objects) {
+    std::shared_ptr<const TriangleBvh> bvh;
+    if (object.type != ShapeType::Sphere) {
+      auto& shared = bvhOfMesh[object.mesh.get()];
+      if (!shared) shared = std::make_shared<const TriangleBvh>(*object.mesh);
+      bvh = shared;
+    }
+    shapes.emplace_back(object, std::move(bvh));
+  }
   return shapes;
 }
 

@@ -5,6 +5,7 @@
 // Spheres are exact; triangles interpolate their vertex normals, as shading does. The
 // specular manifold walk differentiates through these (Jakob 2013, Section 4.3.1).
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -27,6 +28,10 @@ struct SurfaceDifferentials {
 
 class PreciseShape {
  public:
+  // `bvh` is the mesh's double-precision BVH (null for spheres), shared by every object
+  // that places the same mesh.
+  PreciseShape(const SceneObject& object, std::shared_ptr<const TriangleBvh> bvh);
+  // With a BVH of its own.
   explicit PreciseShape(const SceneObject& object);
 
   bool isAnimated() const { return animated_; }
@@ -52,7 +57,7 @@ class PreciseShape {
   const SceneObject& object_;
   bool animated_;
   AffineMotion still_;  // the placement of an object that does not move
-  std::optional<TriangleBvh> bvh_;  // meshes
+  std::shared_ptr<const TriangleBvh> bvh_;  // meshes
 };
 
 // One per scene object, in the scene's order.

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
+#include <map>
 
 namespace pathfarm {
 namespace {
@@ -68,14 +70,23 @@ void coverageFilter(const RTCFilterFunctionNArguments* args) {
   }
 }
 
-PreparedShape prepare(const Scene& scene, const SceneObject& object) {
+// Static meshes with the same mesh and cut-out share one BVH when placed more than once.
+using SharingKey = std::pair<const TriangleMesh*, int>;
+SharingKey sharingKey(const Scene& scene, const SceneObject& object) {
+  return {object.mesh.get(), scene.materials[static_cast<size_t>(object.material)].coverage};
+}
+
+PreparedShape prepare(const Scene& scene, const SceneObject& object, bool instanced) {
   PreparedShape shape;
   const int coverage = scene.materials[static_cast<size_t>(object.material)].coverage;
   if (coverage >= 0 && object.type != ShapeType::Sphere) shape.coverage = &scene.coverages[static_cast<size_t>(coverage)];
   shape.type = object.type;
   shape.animated = object.transform.isAnimated();
-  // Animated objects keep their object space (identity here); Embree places them per frame.
-  const Transform toWorld = shape.animated ? Transform() : object.transform.transformAt(0);
+  shape.instanced = instanced;
+  if (instanced) shape.placement = object.transform.transformAt(0);
+  // Animated and instanced objects keep their object space (identity here); Embree places
+  // them per frame.
+  const Transform toWorld = shape.animated || instanced ? Transform() : object.transform.transformAt(0);
   if (object.type == ShapeType::Sphere) {
     shape.center = toWorld.point({0, 0, 0});
     shape.radius = object.radius * length(toWorld.vector({1, 0, 0}));
@@ -124,20 +135,62 @@ RTCScene newScene(RTCDevice device) {
   return scene;
 }
 
+// The world-space box around `local` placed by `toWorld`.
+RTCBounds placedBounds(const RTCBounds& local, const Transform& toWorld) {
+  RTCBounds world{};
+  world.lower_x = world.lower_y = world.lower_z = std::numeric_limits<float>::infinity();
+  world.upper_x = world.upper_y = world.upper_z = -std::numeric_limits<float>::infinity();
+  for (int corner = 0; corner < 8; ++corner) {
+    const Vec3f p = toWorld.point({corner & 1 ? local.upper_x : local.lower_x, corner & 2 ? local.upper_y : local.lower_y,
+                                   corner & 4 ? local.upper_z : local.lower_z});
+    world.lower_x = std::min(world.lower_x, p.x), world.upper_x = std::max(world.upper_x, p.x);
+    world.lower_y = std::min(world.lower_y, p.y), world.upper_y = std::max(world.upper_y, p.y);
+    world.lower_z = std::min(world.lower_z, p.z), world.upper_z = std::max(world.upper_z, p.z);
+  }
+  return world;
+}
+
+void extend(RTCBounds& bounds, const RTCBounds& by) {
+  bounds.lower_x = std::min(bounds.lower_x, by.lower_x), bounds.upper_x = std::max(bounds.upper_x, by.upper_x);
+  bounds.lower_y = std::min(bounds.lower_y, by.lower_y), bounds.upper_y = std::max(bounds.upper_y, by.upper_y);
+  bounds.lower_z = std::min(bounds.lower_z, by.lower_z), bounds.upper_z = std::max(bounds.upper_z, by.upper_z);
+}
+
 }  // namespace
 
 ShotGeometry::ShotGeometry(const Scene& scene, const EmbreeDevice& device)
     : scene_(scene), device_(device), objectScenes_(scene.objects.size(), nullptr) {
+  std::map<SharingKey, int> placements;
+  for (const SceneObject& object : scene.objects)
+    if (object.type != ShapeType::Sphere && !object.transform.isAnimated()) ++placements[sharingKey(scene, object)];
+  std::map<SharingKey, size_t> firstInstance;  // whose prepared mesh and BVH the others share
+
   shapes_.reserve(scene.objects.size());  // the coverage filters hold pointers to them
   for (size_t i = 0; i < scene.objects.size(); ++i) {
-    shapes_.push_back(prepare(scene, scene.objects[i]));
+    const SceneObject& object = scene.objects[i];
+    const bool instanced = object.type != ShapeType::Sphere && !object.transform.isAnimated() &&
+                           placements[sharingKey(scene, object)] > 1;
+    if (instanced) {
+      const auto [first, isFirst] = firstInstance.try_emplace(sharingKey(scene, object), i);
+      if (!isFirst) {
+        PreparedShape shape = shapes_[first->second];
+        shape.placement = object.transform.transformAt(0);
+        shapes_.push_back(std::move(shape));
+        objectScenes_[i] = objectScenes_[first->second];
+        placesObjects_ = true;
+        continue;
+      }
+    }
+    shapes_.push_back(prepare(scene, object, instanced));
     const PreparedShape& shape = shapes_.back();
     RTCGeometry geometry = makeGeometry(device.get(), shape);
     rtcCommitGeometry(geometry);
-    if (shape.animated) {
+    if (shape.animated || shape.instanced) {
       objectScenes_[i] = newScene(device.get());
+      ownedScenes_.push_back(objectScenes_[i]);
       rtcAttachGeometry(objectScenes_[i], geometry);
       rtcCommitScene(objectScenes_[i]);
+      placesObjects_ = true;
     } else {
       if (!staticScene_) staticScene_ = newScene(device.get());
       const unsigned id = rtcAttachGeometry(staticScene_, geometry);
@@ -148,13 +201,24 @@ ShotGeometry::ShotGeometry(const Scene& scene, const EmbreeDevice& device)
   }
   if (staticScene_) rtcCommitScene(staticScene_);
   device.check("building the shot's geometry");
+
+  staticBounds_.lower_x = staticBounds_.lower_y = staticBounds_.lower_z = std::numeric_limits<float>::infinity();
+  staticBounds_.upper_x = staticBounds_.upper_y = staticBounds_.upper_z = -std::numeric_limits<float>::infinity();
+  RTCBounds local;
+  if (staticScene_) {
+    rtcGetSceneBounds(staticScene_, &local);
+    extend(staticBounds_, local);
+  }
+  for (size_t i = 0; i < shapes_.size(); ++i) {
+    if (!shapes_[i].instanced) continue;
+    rtcGetSceneBounds(objectScenes_[i], &local);
+    extend(staticBounds_, placedBounds(local, shapes_[i].placement));
+  }
 }
 
 ShotGeometry::~ShotGeometry() {
   if (staticScene_) rtcReleaseScene(staticScene_);
-  for (RTCScene s : objectScenes_) {
-    if (s) rtcReleaseScene(s);
-  }
+  for (RTCScene s : ownedScenes_) rtcReleaseScene(s);
 }
 
 }  // namespace pathfarm

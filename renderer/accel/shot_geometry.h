@@ -1,7 +1,9 @@
 #pragma once
 // The geometry of a shot, built once: one Embree BVH holding every static object in
-// world space, and one BVH per animated object in its own object space. Frames only
-// place the animated objects (FrameGeometry); nothing here is rebuilt per frame.
+// world space, one BVH per animated object in its own object space, and one object-space
+// BVH per mesh that several static objects share (instanced, so that its memory does
+// not grow with the number of copies). Frames only place the animated and instanced
+// objects (FrameGeometry); nothing here is rebuilt per frame.
 #include <memory>
 #include <vector>
 
@@ -11,13 +13,18 @@
 namespace pathfarm {
 
 // An object's shape in the space its BVH was built in: world space for static objects,
-// object space for animated ones.
+// object space for animated and instanced ones.
 struct PreparedShape {
   ShapeType type = ShapeType::Mesh;
   Vec3f center;    // spheres
   float radius = 0;  // spheres
-  std::shared_ptr<const TriangleMesh> mesh;  // triangles
+  std::shared_ptr<const TriangleMesh> mesh;  // triangles; one for all instances of a mesh
   bool animated = false;
+  // Static, but placed by an Embree instance of its mesh's shared BVH.
+  bool instanced = false;
+  // To world space for objects that do not move: the placement of an instanced object,
+  // identity for shapes built in world space.
+  Transform placement;
   const AlphaCoverage* coverage = nullptr;  // cut-out triangles, tested by Embree's filter
 };
 
@@ -35,8 +42,13 @@ class ShotGeometry {
   // its geometries is.
   RTCScene staticScene() const { return staticScene_; }
   int staticObject(unsigned geomId) const { return staticObjects_[geomId]; }
-  // The object-space BVH of an animated object (null for static objects).
+  // The object-space BVH of an animated or instanced object (null for the others); the
+  // instances of one mesh share theirs.
   RTCScene objectScene(int object) const { return objectScenes_[static_cast<size_t>(object)]; }
+  // Whether some object must be placed per frame (animated or instanced).
+  bool placesObjects() const { return placesObjects_; }
+  // The world-space bounds of everything that does not move, instances included.
+  const RTCBounds& staticBounds() const { return staticBounds_; }
 
  private:
   const Scene& scene_;
@@ -45,6 +57,9 @@ class ShotGeometry {
   RTCScene staticScene_ = nullptr;
   std::vector<int> staticObjects_;
   std::vector<RTCScene> objectScenes_;
+  std::vector<RTCScene> ownedScenes_;  // every object-space BVH, once
+  bool placesObjects_ = false;
+  RTCBounds staticBounds_{};
 };
 
 }  // namespace pathfarm

@@ -24,7 +24,7 @@ std::vector<float> triangleCdf(const TriangleMesh& mesh) {
 
 // Surface area in world space at the start of the shot, for choosing among emitters.
 float worldArea(const SceneObject& object, const PreparedShape& shape) {
-  const Transform toWorld = shape.animated ? object.transform.transformAt(0) : Transform();
+  const Transform toWorld = shape.animated ? object.transform.transformAt(0) : shape.placement;
   if (shape.type == ShapeType::Sphere) {
     const float r = shape.radius * length(toWorld.vector({1, 0, 0}));
     return 4 * kPi * r * r;
@@ -41,10 +41,8 @@ float worldArea(const SceneObject& object, const PreparedShape& shape) {
 
 // Radius of a sphere around every static shape, for the environment's share of power.
 float sceneRadius(const ShotGeometry& shot) {
-  RTCScene scene = shot.staticScene();
-  if (!scene) return 1;
-  RTCBounds b;
-  rtcGetSceneBounds(scene, &b);
+  const RTCBounds& b = shot.staticBounds();
+  if (!(b.lower_x <= b.upper_x)) return 1;  // nothing static
   const Vec3f extent{b.upper_x - b.lower_x, b.upper_y - b.lower_y, b.upper_z - b.lower_z};
   return std::max(0.5f * length(extent), 1e-3f);
 }
@@ -63,7 +61,11 @@ LightSampler::LightSampler(const ShotGeometry& shot)
     if (shape.type != ShapeType::Sphere) emitter.triangleCdf = triangleCdf(*shape.mesh);
     emitterOfObject_[i] = static_cast<int>(emitters_.size());
     emitters_.push_back(std::move(emitter));
-    power.push_back(object.emission.luminance() * kPi * worldArea(object, shape));
+    // A textured emitter by its mean radiance; points on it are still chosen by area.
+    const Rgb meanEmission = object.emissionTexture < 0
+                                 ? object.emission
+                                 : object.emission * scene.textures[static_cast<size_t>(object.emissionTexture)].average();
+    power.push_back(meanEmission.luminance() * kPi * worldArea(object, shape));
   }
   const bool needsRadius = !scene.environment.isBlack() ||
                            std::any_of(scene.punctualLights.begin(), scene.punctualLights.end(),
@@ -150,6 +152,7 @@ std::optional<EmitterPoint> LightSampler::sampleEmitterPoint(const FrameGeometry
     const Vec3f n = sampleUniformSphere(uPoint);
     hit.position = toWorld.point(shape.center + n * shape.radius);
     hit.geometricNormal = normalize(toWorld.normal(n));
+    hit.uv = sphereUv(n);  // as a ray hitting it would find, for textured emission
   } else {
     // Reuse what is left of uLight inside the chosen emitter's interval to pick a triangle.
     const float u = choice.remainder * emitter.triangleCdf.back();
@@ -158,17 +161,26 @@ std::optional<EmitterPoint> LightSampler::sampleEmitterPoint(const FrameGeometry
                              emitter.triangleCdf.begin(),
                          emitter.triangleCdf.size() - 1));
     const TriangleMesh& m = *shape.mesh;
-    const Vec3f p0 = toWorld.point(m.positions[m.indices[3 * hit.primitive]]);
-    const Vec3f p1 = toWorld.point(m.positions[m.indices[3 * hit.primitive + 1]]);
-    const Vec3f p2 = toWorld.point(m.positions[m.indices[3 * hit.primitive + 2]]);
+    const Vec3f q0 = m.positions[m.indices[3 * hit.primitive]], q1 = m.positions[m.indices[3 * hit.primitive + 1]],
+                q2 = m.positions[m.indices[3 * hit.primitive + 2]];
     const Vec2f b = sampleUniformTriangle(uPoint);
-    hit.position = p0 * (1 - b.x - b.y) + p1 * b.x + p2 * b.y;
-    hit.geometricNormal = normalize(cross(p1 - p0, p2 - p0));
+    hit.position = toWorld.point(q0 * (1 - b.x - b.y) + q1 * b.x + q2 * b.y);
+    // As FrameGeometry's hits have it: the prepared triangle's normal carried to world
+    // space, so that a mirroring placement keeps the emitting side.
+    hit.geometricNormal = normalize(toWorld.normal(cross(q1 - q0, q2 - q0)));
+    hit.uv = b;  // as a ray hitting it would find, for textured emission
+    if (!m.uvs.empty()) {
+      const Vec2f t0 = m.uvs[m.indices[3 * hit.primitive]], t1 = m.uvs[m.indices[3 * hit.primitive + 1]],
+                  t2 = m.uvs[m.indices[3 * hit.primitive + 2]];
+      const float b0 = 1 - b.x - b.y;
+      hit.uv = {t0.x * b0 + t1.x * b.x + t2.x * b.y, t0.y * b0 + t1.y * b.x + t2.y * b.y};
+    }
   }
   hit.shadingNormal = hit.geometricNormal;
   const float pdfArea = emitter.probability * pointDensity(frame, emitter, hit.primitive, time);
   if (!(pdfArea > 0) || !std::isfinite(pdfArea)) return std::nullopt;
-  return EmitterPoint{hit, shot_.scene().objects[static_cast<size_t>(emitter.object)].emission, pdfArea};
+  const Scene& scene = shot_.scene();
+  return EmitterPoint{hit, emissionAt(scene, scene.objects[static_cast<size_t>(emitter.object)], hit.uv), pdfArea};
 }
 
 std::optional<LightSample> LightSampler::sample(const FrameGeometry& frame, Vec3f from, float time,

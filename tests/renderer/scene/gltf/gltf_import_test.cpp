@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "renderer/accel/frame_geometry.h"
 #include "renderer/scene/gltf/gltf_scene.h"
 #include "renderer/scene/scene_loader.h"
 #include "tests/renderer/scene/gltf/gltf_builder.h"
@@ -76,6 +77,18 @@ TEST(GltfImport, AMeshUsedByManyNodesIsSharedNotCopied) {
   ASSERT_EQ(scene.objects.size(), 2u);
   EXPECT_EQ(scene.objects[0].mesh.get(), scene.objects[1].mesh.get());
   EXPECT_NE(scene.objects[0].objectId, scene.objects[1].objectId);
+  // The ray tracer places both with one BVH (tests/renderer/accel/instancing_test.cpp).
+  const EmbreeDevice device;
+  const ShotGeometry shot(scene, device);
+  EXPECT_TRUE(shot.shape(0).instanced && shot.shape(1).instanced);
+  EXPECT_EQ(shot.objectScene(0), shot.objectScene(1));
+  const FrameGeometry frame(shot, 0);
+  for (const float x : {-2.0f, 2.0f}) {
+    SurfaceHit hit;
+    ASSERT_TRUE(frame.intersect({{x + 0.5f, 0.25f, 5}, {0, 0, -1}}, 0.5f, hit));
+    EXPECT_EQ(hit.object, x < 0 ? 0 : 1);
+    EXPECT_NEAR(hit.distance, 5, 1e-5);
+  }
 }
 
 TEST(GltfImport, CameraFieldOfViewAndPlacementComeFromTheNode) {
