@@ -9,55 +9,22 @@
 // rays (origins inside the scene's bounds, uniform directions) against the same frame's
 // geometry, and the ratio of the two ray rates. With --decompose, also the time of a
 // decomposed render against the plain one at equal spp, interleaved run by run.
-#include <embree3/rtcore.h>
-#include <tbb/parallel_for.h>
-
 #include <CLI/CLI.hpp>
-#include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <vector>
 
+#include "bench/embree_rays.h"
 #include "bench/median.h"
 #include "renderer/accel/frame_geometry.h"
 #include "renderer/decomposition/auto_decomposition.h"
 #include "renderer/integrators/frame_renderer.h"
-#include "renderer/math/sampling.h"
 #include "renderer/scene/scene_loader.h"
 
 namespace {
 
 using namespace pathfarm;
+using bench::embreeRaysPerSecond;
 using bench::median;
-
-// Traces `count` random rays with rtcIntersect1 in parallel; returns rays per second.
-double embreeRaysPerSecond(const FrameGeometry& geometry, uint64_t count) {
-  const Bounds3 b = geometry.bounds();
-  const auto start = std::chrono::steady_clock::now();
-  tbb::parallel_for(tbb::blocked_range<uint64_t>(0, count, 4096), [&](const tbb::blocked_range<uint64_t>& r) {
-    SampleStream stream({7, 0, static_cast<int32_t>(r.begin() >> 12), 0, 0});
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    for (uint64_t i = r.begin(); i != r.end(); ++i) {
-      const Vec3f u{stream.next1D(), stream.next1D(), stream.next1D()};
-      const Vec3f d = sampleUniformSphere(stream.next2D());
-      RTCRayHit rh{};
-      rh.ray.org_x = b.lower.x + u.x * (b.upper.x - b.lower.x);
-      rh.ray.org_y = b.lower.y + u.y * (b.upper.y - b.lower.y);
-      rh.ray.org_z = b.lower.z + u.z * (b.upper.z - b.lower.z);
-      rh.ray.dir_x = d.x;
-      rh.ray.dir_y = d.y;
-      rh.ray.dir_z = d.z;
-      rh.ray.tfar = 1e30f;
-      rh.ray.time = stream.next1D();
-      rh.ray.mask = 0xffffffffu;
-      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-      rtcIntersect1(geometry.embreeScene(), &context, &rh);
-    }
-  });
-  return static_cast<double>(count) / std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 }  // namespace
 
