@@ -91,12 +91,7 @@ ShotSpec loadShotFile(const std::filesystem::path& file) {
   if (!in) throw SceneError(label + ": cannot open the shot file");
   std::ostringstream text;
   text << in.rdbuf();
-  nlohmann::json document;
-  try {
-    document = nlohmann::json::parse(text.str());
-  } catch (const nlohmann::json::parse_error& e) {
-    throw SceneError(label + ": invalid JSON: " + e.what());
-  }
+  const nlohmann::json document = parseJsonDocument(text.str(), label);
   const JsonNode root(document, "", label);
   root.expectKeys({"name", "scene", "frames", "resolution", "spp", "max_depth", "pipeline", "tile", "output",
                    "priority", "max_attempts", "noop_tasks", "decompose", "keyframe_interval", "rerender_bound",

@@ -5,6 +5,14 @@
 #include <sstream>
 
 namespace pathfarm {
+
+nlohmann::json parseJsonDocument(std::string_view text, const std::string& label) {
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) {
+    throw SceneError(label + ": invalid JSON: " + e.what());
+  }
+}
 namespace {
 
 std::string typeName(const nlohmann::json& v) {

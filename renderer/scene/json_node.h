@@ -4,6 +4,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -17,6 +18,10 @@ class SceneError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+// A JSON document parsed from `text`; anything nlohmann refuses (a syntax error, a number
+// beyond double's range) is a SceneError "label: invalid JSON: ...".
+nlohmann::json parseJsonDocument(std::string_view text, const std::string& label);
 
 class JsonNode {
  public:

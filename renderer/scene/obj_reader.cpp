@@ -1,9 +1,11 @@
 // Wavefront OBJ reader, on top of tinyobjloader.
 #include <tiny_obj_loader.h>
 
+#include <charconv>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <sstream>
 #include <string>
 #include <unordered_map>
 
@@ -40,10 +42,28 @@ std::string firstLine(const std::string& text) {
   return line.empty() ? std::string("unknown error") : line;
 }
 
+// tinyobjloader reads a number it cannot parse ("nan", "1e999", "x") as 0 without a word,
+// which would move a vertex silently: every number of a v, vn and vt line must be finite.
+void refuseUnreadableNumbers(const fs::path& file, const std::string& text) {
+  std::istringstream lines(text);
+  std::string line, keyword, word;
+  for (size_t lineNumber = 1; std::getline(lines, line); ++lineNumber) {
+    std::istringstream words(line.substr(0, line.find('#')));
+    if (!(words >> keyword) || (keyword != "v" && keyword != "vn" && keyword != "vt")) continue;
+    while (words >> word) {
+      double value = 0;
+      const auto [rest, error] = std::from_chars(word.data(), word.data() + word.size(), value);
+      if (error != std::errc() || rest != word.data() + word.size() || !std::isfinite(value))
+        fail(file, "line " + std::to_string(lineNumber) + ": \"" + word + "\" is not a finite number");
+    }
+  }
+}
+
 }  // namespace
 
 TriangleMesh loadObj(const fs::path& file) {
   const std::string text = readWholeFile(file);
+  refuseUnreadableNumbers(file, text);
 
   // Parsed from memory with an empty material library: materials are not ours to load
   // here, and this keeps `mtllib` lines from opening other files.

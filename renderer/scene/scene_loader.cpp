@@ -194,12 +194,7 @@ void addLight(Scene& scene, PunctualLight light) {
 
 Scene parseScene(std::string_view text, const std::filesystem::path& file) {
   const std::string label = file.string();
-  nlohmann::json document;
-  try {
-    document = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw SceneError(label + ": invalid JSON: " + e.what());
-  }
+  const nlohmann::json document = parseJsonDocument(text, label);
   const JsonNode root(document, "", label);
   root.expectKeys({"include", "fps", "seed", "roughness_threshold", "render", "camera", "materials",
                    "environment", "lights", "shapes"});

@@ -79,6 +79,7 @@ TEST(ShotFile, BadShotsAreRefusedWithFileAndKey) {
             std::string::npos);
   EXPECT_NE(errorOf(R"({"scene": "cornell/scene.json", "tile": 2})").find("tile: 2 is out of range"), std::string::npos);
   EXPECT_NE(errorOf(R"({"scene": )").find("invalid JSON"), std::string::npos);
+  EXPECT_NE(errorOf(R"({"scene": "cornell/scene.json", "spp": 1e400})").find("invalid JSON"), std::string::npos);
   EXPECT_NE(errorOf(R"({"scene": "cornell/scene.json", "decompose": "x=E(D"})").find("decompose: light-path expression"),
             std::string::npos);
 }

@@ -514,6 +514,10 @@ TEST_F(MeshIoTest, ObjErrors) {
   expectMeshError(write("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n"), "no faces");
   expectMeshError(write("empty.obj", ""), "no faces");
   expectMeshError(write("huge.obj", "v 1e39 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), "non-finite");
+  // tinyobjloader would read these as 0 without a word.
+  expectMeshError(write("nan.obj", "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), "line 1: \"nan\" is not a finite number");
+  expectMeshError(write("word.obj", "v 0 0 0\nv 1 x 0\nv 0 1 0\nf 1 2 3\n"), "line 2: \"x\" is not a finite number");
+  expectMeshError(write("nan_uv.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 inf\nf 1/1 2/1 3/1\n"), "line 4: \"inf\"");
 }
 
 TEST_F(MeshIoTest, ObjIgnoresMaterialLibraries) {

@@ -95,6 +95,7 @@ TEST(SceneLoader, EachBadInputNamesFileAndKey) {
        "shapes: a scene needs at least one shape"},
       {R"([1, 2])", "(top level): expected an object, found an array"},
       {R"({"camera": )", "/scenes/scene.json: invalid JSON"},
+      {mutated(R"("spp": 4)", R"("spp": 1e400)"), "/scenes/scene.json: invalid JSON"},  // beyond double
   };
   for (const auto& [json, expected] : cases) {
     const std::string message = errorOf(json);
