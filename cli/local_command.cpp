@@ -72,6 +72,11 @@ int runLocal(const LocalArguments& arguments) {
     spdlog::info("{} EXR frames in {}; report.md and report.json there too", files.size(), out.string());
     spdlog::info("relative cost {:.3f} (resolution gain {:.2f}, overhead {:.2f}), re-render rate {:.1f}%",
                  report.relative_cost(), report.resolution_gain(), report.overhead(), 100 * report.rerender_rate());
+    if (report.cost_at_equal_error() >= 1) {
+      spdlog::warn("{}", report.verdict());
+    } else if (!report.verdict().empty()) {
+      spdlog::info("{}", report.verdict());
+    }
     const bool done = summary.state() == farm::SHOT_DONE;
     if (done && !arguments.keepFarm) removeIntermediateData(out / "farm");
     return done ? kExitOk : kExitFailure;

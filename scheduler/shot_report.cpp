@@ -64,6 +64,34 @@ std::string format(const char* pattern, double value) {
   return text;
 }
 
+// The pipeline against plain pt at equal error, and the verdict a user reads first.
+void judge(ShotReport& report, const std::map<std::string, double>& errors) {
+  report.set_cost_at_equal_error(-1);
+  const auto figure = [&](const std::string& name) {
+    const auto it = errors.find(name);
+    return it == errors.end() ? 0.0 : it->second;
+  };
+  const double final = figure("relmse.final"), baseline = figure("relmse.baseline");
+  if (report.pipeline() == "pt" || !(report.relative_cost() > 0) || !(final > 0) || !(baseline > 0)) return;
+  const double cost = report.relative_cost() * final / baseline;
+  report.set_cost_at_equal_error(cost);
+  const std::string figures = " (relative cost " + format("%.2f", report.relative_cost()) + " at relMSE " +
+                              format("%.4f", final) + ", pt " + format("%.4f", baseline) + " at the same spp)";
+  std::string verdict =
+      cost < 1 ? report.pipeline() + " paid off: " + format("%.2f", cost) +
+                     " of plain pt's core-seconds for the same error" + figures + "."
+               : report.pipeline() + " did not pay off: it cost " + format("%.2f", cost) +
+                     "x what plain pt would for the same error" + figures + "; plain pt is the cheaper choice here.";
+  const double worstTile = figure("worst_tile.final"), ptWorstTile = figure("worst_tile.baseline");
+  if (ptWorstTile > 0 && worstTile > 2 * ptWorstTile)
+    verdict += " Its worst 16x16 tile has " + format("%.1f", worstTile / ptWorstTile) + "x pt's relMSE: look for artifacts.";
+  if (report.temporal_error() > 0 && report.baseline_temporal_error() > 0 &&
+      report.temporal_error() > report.baseline_temporal_error())
+    verdict += " It flickers more than pt (temporal error " + format("%.4f", report.temporal_error()) + " against " +
+               format("%.4f", report.baseline_temporal_error()) + ").";
+  report.set_verdict(verdict);
+}
+
 }  // namespace
 
 ShotReport buildReport(const ShotSummary& summary, const ShotSpec& spec, const std::vector<TaskRecord>& tasks) {
@@ -181,6 +209,7 @@ ShotReport buildReport(const ShotSummary& summary, const ShotSpec& spec, const s
   }
   if (errors.count("temporal.final")) report.set_temporal_error(errors.at("temporal.final"));
   if (errors.count("temporal.baseline")) report.set_baseline_temporal_error(errors.at("temporal.baseline"));
+  judge(report, errors);
   return report;
 }
 
@@ -219,6 +248,7 @@ std::string reportMarkdown(const ShotReport& r) {
   md += "Pipeline `" + r.pipeline() + "`, " + std::to_string(r.frames()) + " frames at " + std::to_string(r.width()) +
         "x" + std::to_string(r.height()) + ", " + std::to_string(r.spp()) + " spp; state " + ShotState_Name(r.state()) +
         ", " + std::to_string(r.tasks_done()) + " of " + std::to_string(r.tasks_total()) + " tasks done.\n\n";
+  if (!r.verdict().empty()) md += "**Verdict:** " + r.verdict() + "\n\n";
   md += "Keyframes: " + std::to_string(r.keyframes()) + " (" + r.keyframe_reason() + ").\n\n";
   md += "| stage | tasks | core-seconds | core-seconds per frame | share |\n| --- | ---: | ---: | ---: | ---: |\n";
   for (const StageCost& s : r.stages())
@@ -233,6 +263,9 @@ std::string reportMarkdown(const ShotReport& r) {
   md += "| resolution gain (pixel-samples of pt / traced) | " + format("%.2f", r.resolution_gain()) + " |\n";
   md += "| overhead (relative cost x resolution gain) | " + format("%.2f", r.overhead()) + " |\n";
   md += "| **relative cost** (core-seconds per frame / pt's) | " + format("%.3f", r.relative_cost()) + " |\n";
+  if (r.cost_at_equal_error() >= 0)
+    md += "| **cost at equal error** (relative cost x relMSE / pt's, pt's relMSE taken as 1/spp) | " +
+          format("%.3f", r.cost_at_equal_error()) + " |\n";
   md += "| re-render rate, all frames | " + format("%.2f%%", 100 * r.rerender_rate()) + " |\n";
   md += "| re-render rate, interpolated frames | " + format("%.2f%%", 100 * r.interpolation_rerender_rate()) + " |\n";
   for (const auto& [cause, share] : r.interpolation_rerender_causes())

@@ -96,6 +96,34 @@ TEST(ShotReport, CostsRatesAndErrorsFollowFromTheTasks) {
   EXPECT_NE(reportMarkdown(withSheet).find("![contact sheet](contact_sheet.png)"), std::string::npos);
   EXPECT_EQ(reportJson(withSheet).find("iVBOR"), std::string::npos);  // the bytes (base64) stay out of the JSON
   EXPECT_NE(reportJson(report).find("\"relative_cost\""), std::string::npos);
+
+  // relMSE 0.01 against pt's 0.03: pt would need 3x the samples, so 3x its cost.
+  EXPECT_DOUBLE_EQ(report.cost_at_equal_error(), report.relative_cost() * 0.01 / 0.03);
+  EXPECT_EQ(report.verdict().rfind("dui paid off: 0.11 of plain pt's core-seconds for the same error", 0), 0u)
+      << report.verdict();
+  EXPECT_NE(md.find("**Verdict:** dui paid off"), std::string::npos);
+}
+
+TEST(ShotReport, TheVerdictSaysPlainlyWhenThePipelineLost) {
+  std::vector<TaskRecord> tasks;
+  tasks.push_back(record(TASK_RENDER_TILE, ROLE_KEYFRAME, 0, 16.0));  // 4 core-seconds per frame
+  tasks.push_back(record(TASK_RENDER_TILE, ROLE_BASELINE, 1, 1.5));   // pt: 2 per frame
+  tasks.push_back(record(TASK_ASSEMBLE_FRAME, ROLE_BASELINE, 1, 0.5));
+  tasks.push_back(record(TASK_EVALUATE, ROLE_UNSPECIFIED, 0, 0.25));
+  tasks.back().metrics = {{"relmse.final", 0.02},       {"relmse.baseline", 0.01},      {"worst_tile.final", 3.0},
+                          {"worst_tile.baseline", 0.5}, {"temporal.final", 0.2},        {"temporal.baseline", 0.1}};
+  const ShotReport report = buildReport(ShotSummary(), spec(), tasks);
+  EXPECT_DOUBLE_EQ(report.relative_cost(), 2.0);
+  EXPECT_DOUBLE_EQ(report.cost_at_equal_error(), 4.0);  // twice the cost at twice the error
+  const std::string& verdict = report.verdict();
+  EXPECT_EQ(verdict.rfind("dui did not pay off: it cost 4.00x what plain pt would for the same error", 0), 0u) << verdict;
+  EXPECT_NE(verdict.find("worst 16x16 tile has 6.0x pt's"), std::string::npos) << verdict;
+  EXPECT_NE(verdict.find("flickers more than pt"), std::string::npos) << verdict;
+
+  // No reference, no verdict; pt is its own baseline.
+  tasks.pop_back();
+  EXPECT_TRUE(buildReport(ShotSummary(), spec(), tasks).verdict().empty());
+  EXPECT_EQ(buildReport(ShotSummary(), spec(), tasks).cost_at_equal_error(), -1);
 }
 
 TEST(ShotReport, APtShotIsItsOwnBaselineAndAGivenCostIsUsed) {
