@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# The glTF scale figures of docs/performance.md: a one-million-triangle mesh, and one
+# The glTF scale figures of docs/performance.md: a one-million-triangle mesh, one
 # 100k-triangle mesh placed 1, 10 and 100 times (Embree instances: memory should stay
-# flat), each imported and rendered by build/bin/scene_scale.
+# flat), and the 100 placements as 100 separate meshes (copies, for comparison), each
+# imported and rendered by build/bin/scene_scale.
 #
 #   bench/gltf_scale.sh [--build build] [--work /tmp/pathfarm_gltf_scale] [--res 320x180] [--spp 4] [--repeat 3]
 set -euo pipefail
@@ -20,7 +21,7 @@ done
 [ -x "$build/bin/scene_scale" ] || { echo "gltf_scale.sh: build $build/bin/scene_scale first" >&2; exit 2; }
 python3 bench/gltf_scale/make_scale_scenes.py "$work"
 ls -l "$work"/*.glb
-for scene in terrain rocks_1 rocks_10 rocks_100; do
+for scene in terrain rocks_1 rocks_10 rocks_100 rocks_100_copies; do
   echo
   "$build/bin/scene_scale" --scene "$work/$scene.json" --res "$res" --spp "$spp" --repeat "$repeat"
 done

@@ -5,6 +5,9 @@
                  into rolling hills, with normals and uvs) under a camera
   rocks_N.glb    one bumpy sphere mesh of 100,352 triangles placed by N nodes in a grid
                  (N = 1, 10, 100), each turned and scaled its own way
+  rocks_100_copies.glb  the same 100 placements, each node with a mesh of its own (100
+                 glTF meshes reading the same accessors), which the importer loads as
+                 100 meshes: the baseline that instancing is measured against
 
 and beside each a JSON scene that includes it under a constant sky. Standard library
 only; the binary chunk is written with array, so a million triangles take a few seconds.
@@ -138,15 +141,17 @@ def main():
     write(out, "terrain", document, payload)
 
     sphere = bumpy_sphere()
-    for count in (1, 10, 100):
+    for count, copies in ((1, False), (10, False), (100, False), (100, True)):
         document, payload = mesh_document(*sphere)
+        if copies:
+            document["meshes"] = [document["meshes"][0]] * count
         document["nodes"] = []
         side = math.ceil(math.sqrt(count))
         for k in range(count):
             i, j = k % side, k // side
             angle = 0.7 * k
             scale = 0.35 + 0.1 * ((k * 37) % 5) / 4
-            document["nodes"].append({"name": f"rock{k}", "mesh": 0,
+            document["nodes"].append({"name": f"rock{k}", "mesh": k if copies else 0,
                                       "translation": [(i - (side - 1) / 2) * 1.1, scale, (j - (side - 1) / 2) * 1.1],
                                       "rotation": [0, math.sin(angle / 2), 0, math.cos(angle / 2)],
                                       "scale": [scale, scale * 0.8, scale]})
@@ -154,7 +159,7 @@ def main():
         roots.append(camera_node(document, (0, 0.6 * side + 1.5, 0.9 * side + 2.5), (0, 0, 0)))
         document["scenes"] = [{"nodes": roots}]
         document["scene"] = 0
-        write(out, f"rocks_{count}", document, payload)
+        write(out, f"rocks_{count}" + ("_copies" if copies else ""), document, payload)
 
 
 if __name__ == "__main__":
