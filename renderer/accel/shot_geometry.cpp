@@ -160,21 +160,25 @@ void extend(RTCBounds& bounds, const RTCBounds& by) {
 
 ShotGeometry::ShotGeometry(const Scene& scene, const EmbreeDevice& device)
     : scene_(scene), device_(device), objectScenes_(scene.objects.size(), nullptr) {
+  // A mesh placed more than once, still or animated, gets one object-space BVH that every
+  // placement instances.
   std::map<SharingKey, int> placements;
   for (const SceneObject& object : scene.objects)
-    if (object.type != ShapeType::Sphere && !object.transform.isAnimated()) ++placements[sharingKey(scene, object)];
-  std::map<SharingKey, size_t> firstInstance;  // whose prepared mesh and BVH the others share
+    if (object.type != ShapeType::Sphere) ++placements[sharingKey(scene, object)];
+  std::map<SharingKey, size_t> firstPlacement;  // whose prepared mesh and BVH the others share
 
   shapes_.reserve(scene.objects.size());  // the coverage filters hold pointers to them
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     const SceneObject& object = scene.objects[i];
-    const bool instanced = object.type != ShapeType::Sphere && !object.transform.isAnimated() &&
-                           placements[sharingKey(scene, object)] > 1;
-    if (instanced) {
-      const auto [first, isFirst] = firstInstance.try_emplace(sharingKey(scene, object), i);
+    const bool shared = object.type != ShapeType::Sphere && placements[sharingKey(scene, object)] > 1;
+    const bool instanced = shared && !object.transform.isAnimated();
+    if (shared) {
+      const auto [first, isFirst] = firstPlacement.try_emplace(sharingKey(scene, object), i);
       if (!isFirst) {
         PreparedShape shape = shapes_[first->second];
-        shape.placement = object.transform.transformAt(0);
+        shape.animated = object.transform.isAnimated();
+        shape.instanced = instanced;
+        shape.placement = instanced ? object.transform.transformAt(0) : Transform();
         shapes_.push_back(std::move(shape));
         objectScenes_[i] = objectScenes_[first->second];
         placesObjects_ = true;

@@ -1,9 +1,9 @@
 #pragma once
 // The geometry of a shot, built once: one Embree BVH holding every static object in
-// world space, one BVH per animated object in its own object space, and one object-space
-// BVH per mesh that several static objects share (instanced, so that its memory does
-// not grow with the number of copies). Frames only place the animated and instanced
-// objects (FrameGeometry); nothing here is rebuilt per frame.
+// world space, and one object-space BVH per animated object or per mesh that several
+// objects place (still or animated: the placements instance it, so memory does not grow
+// with the number of copies). Frames only place the animated and instanced objects
+// (FrameGeometry); nothing here is rebuilt per frame.
 #include <memory>
 #include <vector>
 
@@ -43,7 +43,7 @@ class ShotGeometry {
   RTCScene staticScene() const { return staticScene_; }
   int staticObject(unsigned geomId) const { return staticObjects_[geomId]; }
   // The object-space BVH of an animated or instanced object (null for the others); the
-  // instances of one mesh share theirs.
+  // placements of one mesh share theirs.
   RTCScene objectScene(int object) const { return objectScenes_[static_cast<size_t>(object)]; }
   // Whether some object must be placed per frame (animated or instanced).
   bool placesObjects() const { return placesObjects_; }

@@ -1,4 +1,5 @@
-// Static objects that share a mesh are traced as Embree instances of one object-space BVH.
+// Objects that share a mesh, still or moving, are traced as Embree instances of one
+// object-space BVH.
 // Checked against the same scene with a private copy of the mesh per object (baked into
 // world space, as before instancing): rays find the same surfaces, and the light sampler
 // sees instanced emitters, mirrored ones included, as a ray does.
@@ -13,8 +14,8 @@
 namespace pathfarm {
 namespace {
 
-// Four boxes of one size (turned, stretched, mirrored) on a floor, lit by two lamps of one
-// size, the second mirrored; no sky.
+// Four boxes of one size (turned, stretched and moving, mirrored) on a floor, lit by two
+// lamps of one size, the second mirrored; no sky.
 Scene boxesAndLamps() {
   return test_support::sceneFromJson(R"({
     "render": {"resolution": [32, 32], "spp": 64, "max_depth": 4},
@@ -28,7 +29,8 @@ Scene boxesAndLamps() {
       {"type": "box", "size": [0.5, 0.5, 0.5], "material": "white",
        "transform": {"translate": [0.8, 0.25, 0.3], "rotate": {"axis": [0, 1, 0], "angle": 30}}},
       {"type": "box", "size": [0.5, 0.5, 0.5], "material": "white",
-       "transform": {"translate": [0, 0.5, -1], "scale": [0.5, 2, 1.5]}},
+       "transform": {"translate": [0, 0.5, -1], "scale": [0.5, 2, 1.5]},
+       "animation": {"translate": [{"frame": 0, "value": [0, 0.5, -1]}, {"frame": 4, "value": [0.4, 0.5, -1.2]}]}},
       {"type": "box", "size": [0.5, 0.5, 0.5], "material": "white",
        "transform": {"translate": [0.2, 0.2, 1], "rotate": {"axis": [1, 1, 0], "angle": 20}, "scale": [-1, 0.8, 1]}},
       {"type": "rectangle", "size": [0.6, 0.6], "material": "lamp", "emission": [8, 6, 4],
@@ -52,7 +54,9 @@ TEST(Instancing, SharedStaticMeshesShareOneBvh) {
   const ShotGeometry copied(copies, device), instanced(shared, device);
   for (int object = 0; object < 7; ++object) EXPECT_FALSE(copied.shape(object).instanced) << object;
   EXPECT_FALSE(instanced.shape(0).instanced);  // the floor's mesh is its own
-  for (int object = 1; object < 7; ++object) EXPECT_TRUE(instanced.shape(object).instanced) << object;
+  for (int object = 1; object < 7; ++object)
+    EXPECT_EQ(instanced.shape(object).instanced, object != 3) << object;  // box 3 moves: placed per frame
+  EXPECT_TRUE(instanced.shape(3).animated);
   for (const int box : {2, 3, 4}) {
     EXPECT_EQ(instanced.objectScene(box), instanced.objectScene(1));
     EXPECT_EQ(instanced.shape(box).mesh, instanced.shape(1).mesh);
