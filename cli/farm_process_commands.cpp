@@ -79,6 +79,8 @@ std::vector<Command> addFarmProcessCommands(CLI::App& app) {
       ->check(CLI::Range(0.0, 3600.0))
       ->capture_default_str();
   s->add_option("--port-file", scheduler->portFile, "write the bound port here (for --listen HOST:0)");
+  s->add_flag("--insecure", scheduler->options.insecure,
+              "serve beyond loopback over an unencrypted channel (the token and frames cross in clear)");
 
   auto worker = std::make_shared<WorkerArguments>();
   CLI::App* w = app.add_subcommand("worker", "run a worker that leases and renders tasks");

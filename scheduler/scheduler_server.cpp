@@ -6,11 +6,30 @@
 #include <spdlog/spdlog.h>
 
 #include "proto/wire/connection.h"
+#include "scheduler/exclusive_database.h"
 #include "scheduler/scheduler_services.h"
 
 namespace pathfarm::farm {
 
+namespace {
+
+// The listening address against the farm's protection: beyond loopback a token is always
+// needed, and, since the channel is not encrypted, the user's word that this is wanted.
+void checkExposure(const SchedulerOptions& o) {
+  if (isLoopbackAddress(o.listen)) return;
+  if (o.token.empty())
+    throw std::runtime_error("--listen " + o.listen +
+                             " reaches beyond this machine: give an access token (--token-file or PATHFARM_TOKEN[_FILE])");
+  if (!o.insecure)
+    throw std::runtime_error("--listen " + o.listen +
+                             " reaches beyond this machine over an unencrypted channel (the token and every frame "
+                             "cross the network in clear); pass --insecure to serve there anyway");
+}
+
+}  // namespace
+
 struct SchedulerServer::Services {
+  ExclusiveDatabase exclusive;  // first: before the database is opened
   FarmState state;
   ChunkStore store;
   FarmSignal signal;
@@ -18,14 +37,16 @@ struct SchedulerServer::Services {
   ClientServiceImpl clientService;
 
   explicit Services(const SchedulerOptions& o)
-      : state(o.database.string(), o.farm, wallClockSeconds()),
+      : exclusive(o.database),
+        state(o.database.string(), o.farm, wallClockSeconds()),
         store(o.store),
         workerService({state, store, signal, o.token}),
         clientService({state, store, signal, o.token}) {}
 };
 
-SchedulerServer::SchedulerServer(SchedulerOptions options)
-    : options_(std::move(options)), services_(std::make_unique<Services>(options_)) {
+SchedulerServer::SchedulerServer(SchedulerOptions options) : options_(std::move(options)) {
+  checkExposure(options_);
+  services_ = std::make_unique<Services>(options_);
   grpc::ServerBuilder builder;
   configureServer(builder);
   builder.AddListeningPort(options_.listen, grpc::InsecureServerCredentials(), &port_);

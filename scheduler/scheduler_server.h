@@ -20,13 +20,17 @@ struct SchedulerOptions {
   std::filesystem::path database = "farm.db";
   std::filesystem::path store = "chunks";
   std::string token;  // empty: no access control
+  // Serve beyond loopback although the channel is not encrypted (the token and every
+  // chunk cross the network in clear): refused without it.
+  bool insecure = false;
   FarmSettings farm;
 };
 
 class SchedulerServer {
  public:
   // Opens the database and store and starts serving; throws std::runtime_error when the
-  // address cannot be bound.
+  // address cannot be bound, another scheduler has the database, or the address reaches
+  // beyond loopback without a token, or without `insecure`.
   explicit SchedulerServer(SchedulerOptions options);
   ~SchedulerServer();
 

@@ -39,6 +39,12 @@ std::shared_ptr<grpc::Channel> makeChannel(const std::string& address) {
   return grpc::CreateCustomChannel(address, grpc::InsecureChannelCredentials(), arguments);
 }
 
+bool isLoopbackAddress(const std::string& address) {
+  const size_t colon = address.rfind(':');
+  const std::string host = address.substr(0, colon == std::string::npos ? address.size() : colon);
+  return host == "localhost" || host.rfind("127.", 0) == 0 || host == "[::1]";
+}
+
 void configureServer(grpc::ServerBuilder& builder) {
   builder.SetMaxReceiveMessageSize(kMaxMessageBytes);
   builder.SetMaxSendMessageSize(kMaxMessageBytes);
@@ -47,7 +53,11 @@ void configureServer(grpc::ServerBuilder& builder) {
 std::string loadToken(const std::string& tokenFile) {
   if (!tokenFile.empty()) return readTokenFile(tokenFile);
   if (const char* file = std::getenv("PATHFARM_TOKEN_FILE"); file && *file) return readTokenFile(file);
-  if (const char* token = std::getenv("PATHFARM_TOKEN")) return token;
+  if (const char* token = std::getenv("PATHFARM_TOKEN")) {
+    // An empty value must not turn access control off in silence.
+    if (!*token) throw std::runtime_error("PATHFARM_TOKEN is set but empty: unset it, or give the farm's token");
+    return token;
+  }
   return "";
 }
 

@@ -14,10 +14,12 @@ inline constexpr int kMaxMessageBytes = 8 << 20;
 inline constexpr size_t kMaxChunkBytes = size_t{2} << 30;
 
 std::shared_ptr<grpc::Channel> makeChannel(const std::string& address);
+// Whether `address` (HOST:PORT) reaches only this machine: localhost, 127.0.0.0/8 or [::1].
+bool isLoopbackAddress(const std::string& address);
 void configureServer(grpc::ServerBuilder& builder);
 
 // The shared token: from `tokenFile` if given, else the file named by PATHFARM_TOKEN_FILE,
-// else the PATHFARM_TOKEN variable; empty when none is configured. Throws
+// else the PATHFARM_TOKEN variable (set but empty is an error); empty when none is configured. Throws
 // std::runtime_error if a named file cannot be read or is empty.
 std::string loadToken(const std::string& tokenFile);
 
