@@ -78,6 +78,10 @@ std::vector<Command> addFarmProcessCommands(CLI::App& app) {
   s->add_option("--retry-backoff", scheduler->options.farm.retryBackoffSeconds, "first retry delay in seconds")
       ->check(CLI::Range(0.0, 3600.0))
       ->capture_default_str();
+  s->add_option("--max-lost-workers", scheduler->options.farm.maxLostWorkers,
+                "a task whose lease expires this often (its workers vanish) fails the shot; not charged to max_attempts")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
   s->add_option("--port-file", scheduler->portFile, "write the bound port here (for --listen HOST:0)");
   s->add_flag("--insecure", scheduler->options.insecure,
               "serve beyond loopback over an unencrypted channel (the token and frames cross in clear)");

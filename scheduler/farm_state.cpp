@@ -61,7 +61,7 @@ auto FarmState::transact(Body body) -> decltype(body()) {
 struct FarmState::AttemptRow {
   int64_t id, taskId, shotId, workerId;
   TaskKind kind;
-  int failures, maxAttempts;
+  int failures, maxAttempts, lost;
   TaskParams params;
 };
 
@@ -228,13 +228,13 @@ std::optional<Lease> FarmState::lease(int64_t workerId, double now) {
 
 std::optional<FarmState::AttemptRow> FarmState::currentAttempt(int64_t attemptId) {
   Statement& q = db_.query(
-      "SELECT a.id, a.task_id, t.shot_id, a.worker_id, t.kind, t.failures, t.max_attempts, t.params "
+      "SELECT a.id, a.task_id, t.shot_id, a.worker_id, t.kind, t.failures, t.max_attempts, t.params, t.lost "
       "FROM attempts a JOIN tasks t ON t.id = a.task_id "
       "WHERE a.id = ?1 AND a.state = ?2 AND t.attempt_id = a.id AND t.state = ?3");
   q.bind(1, attemptId).bind(2, int64_t{kRunning}).bind(3, asInt(TaskState::Leased));
   if (!q.step()) return std::nullopt;
   AttemptRow row{q.integer(0), q.integer(1), q.integer(2), q.integer(3), static_cast<TaskKind>(q.integer(4)),
-                 static_cast<int>(q.integer(5)), static_cast<int>(q.integer(6)), {}};
+                 static_cast<int>(q.integer(5)), static_cast<int>(q.integer(6)), static_cast<int>(q.integer(8)), {}};
   row.params.ParseFromString(q.blob(7));
   q.reset();
   return row;
@@ -372,6 +372,32 @@ void FarmState::retryOrFail(const AttemptRow& attempt, const std::string& reason
       .run();
 }
 
+void FarmState::retryLost(const AttemptRow& attempt, const std::string& reason, double now) {
+  const int lost = attempt.lost + 1;
+  const std::string task = describeTask(attempt.taskId, attempt.kind, attempt.params);
+  addEvent(attempt.shotId, task + " lost worker " + std::to_string(attempt.workerId) + " (" + reason + "); loss " +
+                               std::to_string(lost) + " of at most " + std::to_string(settings_.maxLostWorkers) +
+                               ", not counted as a failure",
+           now);
+  if (lost >= settings_.maxLostWorkers) {
+    db_.query("UPDATE tasks SET state = ?1, lost = ?2, attempt_id = NULL WHERE id = ?3")
+        .bind(1, asInt(TaskState::Failed))
+        .bind(2, int64_t{lost})
+        .bind(3, attempt.taskId)
+        .run();
+    endShot(attempt.shotId, SHOT_FAILED,
+            task + " lost its worker " + std::to_string(lost) + " times (it may be what kills them); last: " + reason,
+            now);
+    return;
+  }
+  db_.query("UPDATE tasks SET state = ?1, lost = ?2, attempt_id = NULL, not_before = ?3 WHERE id = ?4")
+      .bind(1, asInt(TaskState::Ready))
+      .bind(2, int64_t{lost})
+      .bind(3, now + settings_.retryBackoffSeconds)
+      .bind(4, attempt.taskId)
+      .run();
+}
+
 int FarmState::expireLeases(double now) {
   return transact([&]() -> int {
     std::vector<std::pair<int64_t, bool>> ended;  // attempt, hung (rather than expired)
@@ -387,7 +413,12 @@ int FarmState::expireLeases(double now) {
                                             " s: the task is hung and its lease was revoked"
                                       : "the lease expired: the worker stopped renewing it";
       endAttempt(*attempt, static_cast<int>(hung ? AttemptState::Revoked : AttemptState::Expired), reason, now);
-      retryOrFail(*attempt, reason, false, now);
+      // A hung task is the task's doing; a vanished worker is not.
+      if (hung) {
+        retryOrFail(*attempt, reason, false, now);
+      } else {
+        retryLost(*attempt, reason, now);
+      }
       ++count;
     }
     return count;

@@ -25,6 +25,10 @@ struct FarmSettings {
   int blocklistAfter = 3;          // a worker failing this many tasks of a shot is blocklisted for
                                    // it; when no live worker is left, the shot fails
   int defaultMaxAttempts = 3;
+  // A lease that expires (the worker vanished: killed, preempted, cut off) is not charged
+  // to the task's max_attempts; a task whose workers vanish this often may be what kills
+  // them, and fails the shot.
+  int maxLostWorkers = 10;
 };
 
 // A task as the shot's report sees it.
@@ -91,6 +95,7 @@ class FarmState {
   std::optional<AttemptRow> currentAttempt(int64_t attemptId);
   void endAttempt(const AttemptRow& attempt, int state, const std::string& error, double now);
   void retryOrFail(const AttemptRow& attempt, const std::string& reason, bool blameWorker, double now);
+  void retryLost(const AttemptRow& attempt, const std::string& reason, double now);
   int64_t insertTask(int64_t shotId, TaskKind kind, const TaskParams& params, size_t dependencies,
                      int64_t maxAttempts, bool output);
   void addFollowUps(const AttemptRow& attempt, const google::protobuf::RepeatedPtrField<TaskParams>& followUps,

@@ -88,6 +88,11 @@ const std::vector<const char*>& migrations() {
         value REAL NOT NULL,
         PRIMARY KEY (task_id, name));
       )sql",
+      // 3: attempts whose worker vanished (a lease that expired) are counted apart from
+      // failures: a lost node is not the task's fault.
+      R"sql(
+      ALTER TABLE tasks ADD COLUMN lost INTEGER NOT NULL DEFAULT 0;
+      )sql",
   };
   return list;
 }

@@ -142,6 +142,44 @@ TEST_F(FarmStateTest, ExpiredLeaseIsRequeuedAndItsLateReportsRefused) {
   EXPECT_EQ(state_->summary(shot, now_).attempts(), 3);
 }
 
+TEST_F(FarmStateTest, ALostWorkerIsNotChargedToTheTasksAttempts) {
+  const int64_t shot = submitFrame(0, 2);  // two failures would fail it
+  const int64_t worker = state_->registerWorker("w", 1, now_);
+  const Lease other = leaseFor(worker);
+  ASSERT_TRUE(complete(other.attempt_id(), storedChunk("other tile"), now_).accepted());
+  int64_t task = 0;
+  for (int loss = 1; loss < settings_.maxLostWorkers; ++loss) {
+    const Lease lease = leaseFor(worker);
+    if (task) EXPECT_EQ(lease.task_id(), task);
+    task = lease.task_id();
+    now_ += settings_.leaseSeconds + 1;  // the worker vanished: no heartbeat
+    ASSERT_EQ(state_->expireLeases(now_), 1);
+    EXPECT_EQ(state_->summary(shot, now_).state(), SHOT_RUNNING) << "after " << loss << " losses";
+    now_ += settings_.retryBackoffSeconds;
+  }
+  const Lease last = leaseFor(worker);
+  EXPECT_EQ(last.task_id(), task);
+  ASSERT_TRUE(complete(last.attempt_id(), storedChunk("tile"), now_).accepted());
+  EXPECT_EQ(leaseFor(worker).kind(), TASK_ASSEMBLE_FRAME);
+}
+
+TEST_F(FarmStateTest, ATaskThatLosesEveryWorkerFailsTheShotInTheEnd) {
+  const int64_t shot = submitFrame(0, 2);
+  const int64_t worker = state_->registerWorker("w", 1, now_);
+  ASSERT_TRUE(complete(leaseFor(worker).attempt_id(), storedChunk("other tile"), now_).accepted());
+  for (int loss = 0; loss < settings_.maxLostWorkers; ++loss) {
+    ASSERT_EQ(state_->summary(shot, now_).state(), SHOT_RUNNING) << "after " << loss << " losses";
+    leaseFor(worker);
+    now_ += settings_.leaseSeconds + 1;
+    ASSERT_EQ(state_->expireLeases(now_), 1);
+    now_ += settings_.retryBackoffSeconds;
+  }
+  const ShotSummary summary = state_->summary(shot, now_);
+  EXPECT_EQ(summary.state(), SHOT_FAILED);
+  EXPECT_NE(summary.failure().find("lost its worker 10 times"), std::string::npos) << summary.failure();
+  EXPECT_NE(summary.failure().find("the lease expired"), std::string::npos) << summary.failure();
+}
+
 TEST_F(FarmStateTest, FailuresBackOffThenFailTheShotWithTheReason) {
   const int64_t shot = submitFrame(0, 2);
   const int64_t worker = state_->registerWorker("w", 1, now_);
