@@ -1,6 +1,7 @@
 #include "image/frame_image.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <utility>
 
@@ -42,6 +43,18 @@ void FrameImage::paste(const FrameImage& part, int x0, int y0) {
                 target.begin() + (static_cast<ptrdiff_t>(y0 + y) * width_ + x0));
     }
   }
+}
+
+std::string FrameImage::firstNonFinite() const {
+  for (const std::string& name : names_) {
+    const std::vector<float>& plane = planes_.at(name);
+    const auto bad = std::find_if(plane.begin(), plane.end(), [](float v) { return !std::isfinite(v); });
+    if (bad == plane.end()) continue;
+    const auto p = static_cast<size_t>(bad - plane.begin());
+    const auto w = static_cast<size_t>(std::max(width_, 1));
+    return "channel " + name + " at pixel (" + std::to_string(p % w) + ", " + std::to_string(p / w) + ")";
+  }
+  return {};
 }
 
 FrameImage FrameImage::crop(int x0, int y0, int width, int height) const {

@@ -33,6 +33,9 @@ class FrameImage {
   // The pixels [x0, x0 + width) x [y0, y0 + height) of every channel, with the attributes;
   // throws std::invalid_argument if they do not lie inside.
   FrameImage crop(int x0, int y0, int width, int height) const;
+  // The first NaN or infinity, as "channel C at pixel (x, y)", or empty when every value
+  // is finite: what a task checks before it trusts a chunk another one made.
+  std::string firstNonFinite() const;
 
   std::map<std::string, std::string>& attributes() { return attributes_; }
   const std::map<std::string, std::string>& attributes() const { return attributes_; }

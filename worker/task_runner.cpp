@@ -153,6 +153,8 @@ std::vector<TaskInput> TaskRunner::inputsOf(const Lease& lease, const ChunkFetch
     const bool image = lease.input_kinds(i) != TASK_EVALUATE;
     inputs.push_back({lease.input_kinds(i), lease.input_params(i),
                       image ? decodeExr(fetch(ref), "input chunk " + ref.sha256()) : FrameImage{}});
+    if (const std::string bad = inputs.back().image.firstNonFinite(); !bad.empty())
+      throw std::runtime_error("input chunk " + ref.sha256() + " holds a non-finite value (" + bad + ")");
     // Fetching and decoding is the first half of a filter task's work, as far as anyone can tell.
     progress = 0.5 * static_cast<double>(i + 1) / static_cast<double>(lease.inputs_size());
   }
@@ -191,6 +193,9 @@ std::string TaskRunner::assembleFrame(const Lease& lease, const ChunkFetcher& fe
     const auto& window = lease.input_params(i).window();
     if (tile.width() != window.x1() - window.x0() || tile.height() != window.y1() - window.y0())
       throw std::runtime_error("tile chunk " + lease.inputs(i).sha256() + " does not have its window's size");
+    if (const std::string bad = tile.firstNonFinite(); !bad.empty())
+      throw std::runtime_error("tile chunk " + lease.inputs(i).sha256() + " holds a non-finite value (" + bad +
+                               "): not pasted into the frame");
     frame.paste(tile, window.x0(), window.y0());
     // The frame carries the tiles' header; the count of dropped samples is their sum.
     for (const auto& [key, value] : tile.attributes()) frame.attributes()[key] = value;

@@ -1,0 +1,93 @@
+// The assembly of a frame from its tiles trusts nothing it fetched: a tile of the wrong
+// size or holding a NaN is refused with a reason (the attempt fails) instead of being
+// pasted into the frame; good tiles make the frame.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include "image/exr_io.h"
+#include "worker/task_runner.h"
+
+namespace pathfarm::farm {
+namespace {
+
+// A tile of the window's size with a constant beauty, as a renderer's chunk would be.
+FrameImage tile(int width, int height, float value) {
+  FrameImage image(width, height);
+  for (const char* c : {"R", "G", "B"}) image.addChannel(c).assign(image.pixelCount(), value);
+  image.attributes()["pathfarm.nonfinite_samples"] = "0";
+  return image;
+}
+
+struct Assembly {
+  Lease lease;
+  std::map<std::string, std::string> chunks;  // by digest
+
+  Assembly() {
+    lease.set_kind(TASK_ASSEMBLE_FRAME);
+    lease.mutable_spec()->set_width(4);
+    lease.mutable_spec()->set_height(2);
+  }
+  // Adds the tile covering [x0, x0 + 2) x [0, 2).
+  void add(int x0, const FrameImage& image) {
+    const std::string name = "tile" + std::to_string(x0);
+    chunks[name] = encodeExr(image, ExrCompression::Fast);
+    lease.add_inputs()->set_sha256(name);
+    TaskParams* params = lease.add_input_params();
+    params->mutable_window()->set_x0(x0);
+    params->mutable_window()->set_y0(0);
+    params->mutable_window()->set_x1(x0 + 2);
+    params->mutable_window()->set_y1(2);
+    lease.add_input_kinds(TASK_RENDER_TILE);
+  }
+  FrameImage run() {
+    TaskRunner runner(1);
+    std::atomic<double> progress{0};
+    std::atomic<bool> abandon{false};
+    const TaskOutput output =
+        runner.run(lease, [&](const ChunkRef& ref) { return chunks.at(ref.sha256()); }, progress, abandon);
+    return decodeExr(output.chunk, "assembled frame");
+  }
+};
+
+TEST(AssembleFrame, GoodTilesMakeTheFrame) {
+  Assembly assembly;
+  assembly.add(0, tile(2, 2, 1.0f));
+  assembly.add(2, tile(2, 2, 2.0f));
+  const FrameImage frame = assembly.run();
+  EXPECT_EQ(frame.channel("R"), (std::vector<float>{1, 1, 2, 2, 1, 1, 2, 2}));
+}
+
+TEST(AssembleFrame, ATileHoldingANanIsRefusedNotPasted) {
+  Assembly assembly;
+  assembly.add(0, tile(2, 2, 1.0f));
+  FrameImage poisoned = tile(2, 2, 2.0f);
+  poisoned.channel("G")[3] = std::numeric_limits<float>::quiet_NaN();
+  assembly.add(2, poisoned);
+  try {
+    assembly.run();
+    FAIL() << "a tile with a NaN was pasted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("tile chunk tile2 holds a non-finite value (channel G at pixel (1, 1))"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(AssembleFrame, ATileOfTheWrongSizeIsRefused) {
+  Assembly assembly;
+  assembly.add(0, tile(2, 1, 1.0f));
+  EXPECT_THROW(assembly.run(), std::runtime_error);
+}
+
+TEST(FrameImageCheck, FirstNonFiniteNamesTheChannelAndPixel) {
+  FrameImage image = tile(3, 2, 0.5f);
+  EXPECT_EQ(image.firstNonFinite(), "");
+  image.channel("B")[4] = std::numeric_limits<float>::infinity();
+  EXPECT_EQ(image.firstNonFinite(), "channel B at pixel (1, 1)");
+}
+
+}  // namespace
+}  // namespace pathfarm::farm
