@@ -18,6 +18,7 @@ struct SchedulerArguments {
   farm::SchedulerOptions options;
   std::string tokenFile;
   std::string portFile;
+  std::string httpPortFile;
 };
 
 int runScheduler(SchedulerArguments& arguments) {
@@ -25,12 +26,15 @@ int runScheduler(SchedulerArguments& arguments) {
   try {
     arguments.options.token = farm::loadToken(arguments.tokenFile);
     farm::SchedulerServer server(arguments.options);
-    if (!arguments.portFile.empty()) {
-      // Written after the port is bound, renamed into place so a reader never sees half.
-      const std::string partial = arguments.portFile + ".partial";
-      std::ofstream(partial) << server.port() << "\n";
-      std::filesystem::rename(partial, arguments.portFile);
-    }
+    // Written after the port is bound, renamed into place so a reader never sees half.
+    const auto writePort = [](const std::string& file, int port) {
+      if (file.empty()) return;
+      const std::string partial = file + ".partial";
+      std::ofstream(partial) << port << "\n";
+      std::filesystem::rename(partial, file);
+    };
+    writePort(arguments.httpPortFile, server.httpPort());
+    writePort(arguments.portFile, server.port());
     while (!stop) std::this_thread::sleep_for(std::chrono::milliseconds(100));
     spdlog::info("scheduler stopping");
     server.shutdown();
@@ -83,6 +87,9 @@ std::vector<Command> addFarmProcessCommands(CLI::App& app) {
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();
   s->add_option("--port-file", scheduler->portFile, "write the bound port here (for --listen HOST:0)");
+  s->add_option("--http", scheduler->options.http,
+                "HOST:PORT serving Prometheus metrics at /metrics (loopback unless --insecure)");
+  s->add_option("--http-port-file", scheduler->httpPortFile, "write the bound HTTP port here (for --http HOST:0)");
   s->add_flag("--insecure", scheduler->options.insecure,
               "serve beyond loopback over an unencrypted channel (the token and frames cross in clear)");
 

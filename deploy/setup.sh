@@ -10,7 +10,7 @@ PACKAGES=(
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler
   libsqlite3-dev libssl-dev libspdlog-dev libfmt-dev libgtest-dev libgmock-dev
   libcli11-dev nlohmann-json3-dev libtinyobjloader-dev libstb-dev libtinygltf-dev
-  clang libclang-rt-14-dev
+  clang libclang-rt-14-dev libcpp-httplib-dev prometheus-cpp-dev
 )
 
 missing=()

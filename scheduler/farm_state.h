@@ -12,6 +12,7 @@
 
 #include "pathfarm/client_service.pb.h"
 #include "pathfarm/worker_service.pb.h"
+#include "scheduler/farm_metrics.h"
 #include "scheduler/planner.h"
 #include "scheduler/sqlite_db.h"
 
@@ -83,6 +84,9 @@ class FarmState {
   std::vector<WorkerInfo> workers(double now);
   // The shot's spec and every task's figures, for its report. Throws std::out_of_range.
   std::pair<ShotSpec, std::vector<TaskRecord>> taskRecords(int64_t shotId);
+  // The figures /metrics serves (farm_state_metrics.cpp); the chunk traffic is the
+  // store's, filled in by the caller.
+  FarmMetrics metrics(double now);
 
   const FarmSettings& settings() const { return settings_; }
 

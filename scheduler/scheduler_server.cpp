@@ -26,6 +26,14 @@ void checkExposure(const SchedulerOptions& o) {
                              "cross the network in clear); pass --insecure to serve there anyway");
 }
 
+// The HTTP side asks for no token: beyond loopback it needs the user's word.
+void checkHttpExposure(const SchedulerOptions& o) {
+  if (o.http.empty() || isLoopbackAddress(o.http) || o.insecure) return;
+  throw std::runtime_error("--http " + o.http +
+                           " reaches beyond this machine and /metrics asks for no token; pass --insecure to serve there "
+                           "anyway");
+}
+
 }  // namespace
 
 struct SchedulerServer::Services {
@@ -46,6 +54,7 @@ struct SchedulerServer::Services {
 
 SchedulerServer::SchedulerServer(SchedulerOptions options) : options_(std::move(options)) {
   checkExposure(options_);
+  checkHttpExposure(options_);
   services_ = std::make_unique<Services>(options_);
   grpc::ServerBuilder builder;
   configureServer(builder);
@@ -67,6 +76,14 @@ SchedulerServer::SchedulerServer(SchedulerOptions options) : options_(std::move(
       std::this_thread::sleep_for(std::chrono::duration<double>(period));
     }
   });
+  if (!options_.http.empty()) {
+    http_ = std::make_unique<HttpServer>(options_.http, [this] {
+      FarmMetrics metrics = services_->state.metrics(wallClockSeconds());
+      metrics.chunkBytesIn = services_->store.bytesIn();
+      metrics.chunkBytesOut = services_->store.bytesOut();
+      return prometheusText(metrics);
+    });
+  }
   spdlog::info("scheduler listening on {} (database {}, store {}{})", address(), options_.database.string(),
                options_.store.string(), options_.token.empty() ? ", no access token" : ", token required");
 }
@@ -82,8 +99,11 @@ void SchedulerServer::wait() {
   if (server_) server_->Wait();
 }
 
+int SchedulerServer::httpPort() const { return http_ ? http_->port() : 0; }
+
 void SchedulerServer::shutdown() {
   if (stopping_.exchange(true)) return;
+  http_.reset();
   services_->signal.notify();
   // Open long-polls and watches get a moment to return, then are cut.
   server_->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(1));

@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "scheduler/farm_state.h"
+#include "scheduler/http_server.h"
 
 namespace grpc {
 class Server;
@@ -23,6 +24,8 @@ struct SchedulerOptions {
   // Serve beyond loopback although the channel is not encrypted (the token and every
   // chunk cross the network in clear): refused without it.
   bool insecure = false;
+  // HOST:PORT serving /metrics over HTTP (port 0: any free port); empty: none.
+  std::string http;
   FarmSettings farm;
 };
 
@@ -35,6 +38,7 @@ class SchedulerServer {
   ~SchedulerServer();
 
   int port() const { return port_; }
+  int httpPort() const;  // 0 without an HTTP side
   std::string address() const;
   void wait();      // until shutdown()
   void shutdown();  // stops accepting calls, ends the open ones, stops the checker
@@ -44,6 +48,7 @@ class SchedulerServer {
   SchedulerOptions options_;
   std::unique_ptr<Services> services_;
   std::unique_ptr<grpc::Server> server_;
+  std::unique_ptr<HttpServer> http_;
   int port_ = 0;
   std::atomic<bool> stopping_{false};
   std::thread checker_;

@@ -30,6 +30,7 @@ ChunkRef ChunkStore::put(const std::string& bytes, const ChunkRef& expected) {
   if (expected.size() != 0 && expected.size() != ref.size())
     throw ChunkError("chunk size mismatch: announced " + std::to_string(expected.size()) + " bytes, received " +
                      std::to_string(ref.size()));
+  bytesIn_ += bytes.size();
   if (has(ref.sha256())) return ref;
   const auto target = pathOf(ref.sha256());
   std::filesystem::create_directories(target.parent_path());
@@ -58,6 +59,7 @@ std::optional<std::string> ChunkStore::get(const std::string& sha256) const {
     std::filesystem::remove(pathOf(sha256), ignored);
     return std::nullopt;
   }
+  bytesOut_ += data.size();
   return data;
 }
 

@@ -3,6 +3,8 @@
 // named by its SHA-256. Writes go to a temporary file that is fsynced and renamed, so a
 // chunk is either wholly there or absent, and a reader verifies the digest again, so a
 // file damaged on disk is noticed rather than served.
+#include <atomic>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <stdexcept>
@@ -29,10 +31,15 @@ class ChunkStore {
   // reported as absent.
   std::optional<std::string> get(const std::string& sha256) const;
   const std::filesystem::path& root() const { return root_; }
+  // Bytes put into and read out of the store since it was opened (the farm's metrics).
+  uint64_t bytesIn() const { return bytesIn_; }
+  uint64_t bytesOut() const { return bytesOut_; }
 
  private:
   std::filesystem::path pathOf(const std::string& sha256) const;
   std::filesystem::path root_;
+  std::atomic<uint64_t> bytesIn_{0};
+  mutable std::atomic<uint64_t> bytesOut_{0};
 };
 
 bool isSha256Hex(const std::string& text);

@@ -38,6 +38,9 @@ TEST_F(FarmTest, ListeningBeyondLoopbackNeedsATokenAndInsecure) {
   const CommandResult clear = run({"--listen", "[::]:0", "--token-file", tokenFile.string()});
   EXPECT_EQ(clear.status, 1) << clear.output;
   EXPECT_TRUE(contains(clear.output, "pass --insecure")) << clear.output;
+  const CommandResult metrics = run({"--listen", "127.0.0.1:0", "--http", "0.0.0.0:0"});
+  EXPECT_EQ(metrics.status, 1) << metrics.output;
+  EXPECT_TRUE(contains(metrics.output, "/metrics asks for no token; pass --insecure")) << metrics.output;
   EXPECT_FALSE(fs::exists(dir() / "exposed.db")) << "refused before the database was opened";
 }
 

@@ -107,6 +107,7 @@ struct SchedulerConfig {
   double leaseSeconds = 30;
   double retryBackoffSeconds = 1;
   fs::path tokenFile;  // empty: no access token
+  std::vector<std::string> extraArguments;
 };
 
 struct CommandResult {
@@ -211,6 +212,7 @@ class FarmTest : public ::testing::Test {
       argv.push_back("--token-file");
       argv.push_back(config.tokenFile.string());
     }
+    argv.insert(argv.end(), config.extraArguments.begin(), config.extraArguments.end());
     const fs::path log = logFile("scheduler-" + std::to_string(run));
     scheduler_.emplace(argv, log.string());
     std::string text;

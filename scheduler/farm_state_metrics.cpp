@@ -1,0 +1,93 @@
+// FarmState::metrics: the figures /metrics serves (scheduler/farm_metrics.h), read in one
+// transaction so that they agree with each other.
+#include <algorithm>
+#include <cctype>
+
+#include "scheduler/farm_metrics.h"
+#include "scheduler/farm_state.h"
+#include "scheduler/schema.h"
+
+namespace pathfarm::farm {
+namespace {
+
+// "TASK_RENDER_TILE" -> "render_tile", "SHOT_RUNNING" -> "running".
+std::string lowerSuffix(const std::string& name, const std::string& prefix) {
+  std::string text = name.rfind(prefix, 0) == 0 ? name.substr(prefix.size()) : name;
+  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
+  return text;
+}
+
+std::string kindName(int64_t kind) { return lowerSuffix(TaskKind_Name(static_cast<TaskKind>(kind)), "TASK_"); }
+
+std::string taskStateName(int64_t state) {
+  switch (static_cast<TaskState>(state)) {
+    case TaskState::Waiting: return "waiting";
+    case TaskState::Ready: return "ready";
+    case TaskState::Leased: return "leased";
+    case TaskState::Done: return "done";
+    case TaskState::Failed: return "failed";
+  }
+  return "unknown";
+}
+
+}  // namespace
+
+FarmMetrics FarmState::metrics(double now) {
+  const std::lock_guard lock(mutex_);
+  Transaction transaction(db_);
+  FarmMetrics m;
+  Statement& tasks = db_.query("SELECT kind, state, COUNT(*) FROM tasks GROUP BY kind, state");
+  while (tasks.step()) m.tasks[{kindName(tasks.integer(0)), taskStateName(tasks.integer(1))}] = tasks.integer(2);
+
+  // Busy: holding a lease; idle: seen within two lease periods (as anyWorkerCanRun counts
+  // the live ones); gone: neither.
+  Statement& workers = db_.query(
+      "SELECT CASE WHEN EXISTS (SELECT 1 FROM attempts a WHERE a.worker_id = w.id AND a.state = ?1) THEN 'busy' "
+      "WHEN w.last_seen >= ?2 THEN 'idle' ELSE 'gone' END AS s, COUNT(*) FROM workers w GROUP BY s");
+  workers.bind(1, static_cast<int64_t>(AttemptState::Running)).bind(2, now - 2 * settings_.leaseSeconds);
+  for (const char* state : {"busy", "idle", "gone"}) m.workers[state] = 0;
+  while (workers.step()) m.workers[workers.text(0)] = workers.integer(1);
+
+  const std::vector<double>& bounds = durationBuckets();
+  std::string bucketColumns;
+  for (size_t b = 0; b < bounds.size(); ++b)
+    bucketColumns += ", SUM(d <= " + std::to_string(bounds[b]) + ")";
+  Statement& durations = db_.query(
+      "SELECT kind, COUNT(*), SUM(d)" + bucketColumns +
+      " FROM (SELECT t.kind AS kind, a.finished_at - a.leased_at AS d FROM attempts a JOIN tasks t ON t.id = a.task_id "
+      "WHERE a.state = ?1) GROUP BY kind");
+  durations.bind(1, static_cast<int64_t>(AttemptState::Done));
+  while (durations.step()) {
+    FarmMetrics::Durations& d = m.durations[kindName(durations.integer(0))];
+    d.count = static_cast<uint64_t>(durations.integer(1));
+    d.sum = durations.real(2);
+    for (size_t b = 0; b < bounds.size(); ++b)
+      d.cumulative.push_back(static_cast<uint64_t>(durations.integer(static_cast<int>(3 + b))));
+  }
+
+  for (const char* cause : {"failed", "lost", "revoked"}) m.attemptsEnded[cause] = 0;
+  Statement& ended = db_.query("SELECT state, COUNT(*) FROM attempts WHERE state IN (?1, ?2, ?3) GROUP BY state");
+  ended.bind(1, static_cast<int64_t>(AttemptState::Failed))
+      .bind(2, static_cast<int64_t>(AttemptState::Expired))
+      .bind(3, static_cast<int64_t>(AttemptState::Revoked));
+  while (ended.step()) {
+    const auto state = static_cast<AttemptState>(ended.integer(0));
+    m.attemptsEnded[state == AttemptState::Failed ? "failed" : state == AttemptState::Expired ? "lost" : "revoked"] =
+        ended.integer(1);
+  }
+
+  Statement& shots = db_.query(
+      "SELECT s.id, s.name, s.state, (SELECT COUNT(*) FROM tasks t WHERE t.shot_id = s.id), s.tasks_left FROM shots s");
+  while (shots.step()) {
+    const auto state = static_cast<ShotState>(shots.integer(2));
+    ++m.shots[lowerSuffix(ShotState_Name(state), "SHOT_")];
+    if (state != SHOT_QUEUED && state != SHOT_RUNNING) continue;
+    const auto total = static_cast<double>(shots.integer(3));
+    m.progress.push_back({shots.integer(0), shots.text(1),
+                          total > 0 ? 1.0 - static_cast<double>(shots.integer(4)) / total : 0.0});
+  }
+  transaction.commit();
+  return m;
+}
+
+}  // namespace pathfarm::farm
