@@ -348,13 +348,7 @@ void FarmState::retryOrFail(const AttemptRow& attempt, const std::string& reason
       addEvent(attempt.shotId, "worker " + std::to_string(attempt.workerId) + " is blocklisted for this shot", now);
   }
   if (failures >= attempt.maxAttempts) {
-    db_.query("UPDATE tasks SET state = ?1, failures = ?2, attempt_id = NULL WHERE id = ?3")
-        .bind(1, asInt(TaskState::Failed))
-        .bind(2, int64_t{failures})
-        .bind(3, attempt.taskId)
-        .run();
-    endShot(attempt.shotId, SHOT_FAILED,
-            task + " failed " + std::to_string(failures) + " times; last: " + reason, now);
+    failTask(attempt, "failures", failures, task + " failed " + std::to_string(failures) + " times; last: " + reason, now);
     return;
   }
   if (blocklisted && !anyWorkerCanRun(attempt.shotId, now)) {
@@ -364,10 +358,25 @@ void FarmState::retryOrFail(const AttemptRow& attempt, const std::string& reason
   }
   const double backoff =
       std::min(settings_.maxBackoffSeconds, settings_.retryBackoffSeconds * std::pow(2.0, failures - 1));
-  db_.query("UPDATE tasks SET state = ?1, failures = ?2, attempt_id = NULL, not_before = ?3 WHERE id = ?4")
+  requeueTask(attempt, "failures", failures, now + backoff);
+}
+
+void FarmState::failTask(const AttemptRow& attempt, const char* counter, int count, const std::string& why,
+                         double now) {
+  db_.query(std::string("UPDATE tasks SET state = ?1, ") + counter + " = ?2, attempt_id = NULL WHERE id = ?3")
+      .bind(1, asInt(TaskState::Failed))
+      .bind(2, int64_t{count})
+      .bind(3, attempt.taskId)
+      .run();
+  endShot(attempt.shotId, SHOT_FAILED, why, now);
+}
+
+void FarmState::requeueTask(const AttemptRow& attempt, const char* counter, int count, double notBefore) {
+  db_.query(std::string("UPDATE tasks SET state = ?1, ") + counter +
+            " = ?2, attempt_id = NULL, not_before = ?3 WHERE id = ?4")
       .bind(1, asInt(TaskState::Ready))
-      .bind(2, int64_t{failures})
-      .bind(3, now + backoff)
+      .bind(2, int64_t{count})
+      .bind(3, notBefore)
       .bind(4, attempt.taskId)
       .run();
 }
@@ -380,22 +389,12 @@ void FarmState::retryLost(const AttemptRow& attempt, const std::string& reason, 
                                ", not counted as a failure",
            now);
   if (lost >= settings_.maxLostWorkers) {
-    db_.query("UPDATE tasks SET state = ?1, lost = ?2, attempt_id = NULL WHERE id = ?3")
-        .bind(1, asInt(TaskState::Failed))
-        .bind(2, int64_t{lost})
-        .bind(3, attempt.taskId)
-        .run();
-    endShot(attempt.shotId, SHOT_FAILED,
-            task + " lost its worker " + std::to_string(lost) + " times (it may be what kills them); last: " + reason,
-            now);
+    failTask(attempt, "lost", lost,
+             task + " lost its worker " + std::to_string(lost) + " times (it may be what kills them); last: " + reason,
+             now);
     return;
   }
-  db_.query("UPDATE tasks SET state = ?1, lost = ?2, attempt_id = NULL, not_before = ?3 WHERE id = ?4")
-      .bind(1, asInt(TaskState::Ready))
-      .bind(2, int64_t{lost})
-      .bind(3, now + settings_.retryBackoffSeconds)
-      .bind(4, attempt.taskId)
-      .run();
+  requeueTask(attempt, "lost", lost, now + settings_.retryBackoffSeconds);
 }
 
 int FarmState::expireLeases(double now) {

@@ -100,6 +100,11 @@ class FarmState {
   void endAttempt(const AttemptRow& attempt, int state, const std::string& error, double now);
   void retryOrFail(const AttemptRow& attempt, const std::string& reason, bool blameWorker, double now);
   void retryLost(const AttemptRow& attempt, const std::string& reason, double now);
+  // The task failed for good, and its shot with `why`; `counter` (failures or lost) is
+  // recorded as `count`.
+  void failTask(const AttemptRow& attempt, const char* counter, int count, const std::string& why, double now);
+  // The task is ready again from `notBefore`, with `counter` recorded as `count`.
+  void requeueTask(const AttemptRow& attempt, const char* counter, int count, double notBefore);
   int64_t insertTask(int64_t shotId, TaskKind kind, const TaskParams& params, size_t dependencies,
                      int64_t maxAttempts, bool output);
   void addFollowUps(const AttemptRow& attempt, const google::protobuf::RepeatedPtrField<TaskParams>& followUps,
