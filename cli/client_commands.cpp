@@ -1,4 +1,4 @@
-// `pathfarm submit | status | watch | fetch | report | cancel | pause | resume | workers`: thin
+// `pathfarm submit | status | watch | fetch | report | cancel | pause | resume | retry | workers`: thin
 // calls through FarmClient.
 #include <spdlog/spdlog.h>
 
@@ -129,6 +129,7 @@ std::vector<Command> addClientCommands(CLI::App& app) {
   control("cancel", "cancel a shot", [](farm::FarmClient& c, int64_t id) { return c.cancel(id); });
   control("pause", "stop leasing a shot's tasks", [](farm::FarmClient& c, int64_t id) { return c.pause(id); });
   control("resume", "lease a paused shot's tasks again", [](farm::FarmClient& c, int64_t id) { return c.resume(id); });
+  control("retry", "run a failed shot again from what is done", [](farm::FarmClient& c, int64_t id) { return c.retry(id); });
   add("workers", "list the workers the scheduler knows", [](CLI::App*, ClientArguments&) {},
       [](farm::FarmClient& client, const ClientArguments&) {
         for (const auto& w : client.workers())

@@ -103,6 +103,11 @@ grpc::Status ClientServiceImpl::ResumeShot(grpc::ServerContext* context, const S
   return controlShot(context, request, reply, &FarmState::resume);
 }
 
+grpc::Status ClientServiceImpl::RetryShot(grpc::ServerContext* context, const ShotRequest* request,
+                                          ControlReply* reply) {
+  return controlShot(context, request, reply, &FarmState::retry);
+}
+
 grpc::Status ClientServiceImpl::FetchOutputs(grpc::ServerContext* context, const ShotRequest* request,
                                              grpc::ServerWriter<OutputPart>* writer) {
   return guarded(c_, context, [&] {

@@ -79,6 +79,10 @@ ShotSummary FarmClient::resume(int64_t id) {
   return aboutShot<ControlReply>(&ClientService::Stub::ResumeShot, id).summary();
 }
 
+ShotSummary FarmClient::retry(int64_t id) {
+  return aboutShot<ControlReply>(&ClientService::Stub::RetryShot, id).summary();
+}
+
 std::vector<std::filesystem::path> FarmClient::fetch(int64_t id, const std::filesystem::path& folder) {
   ShotRequest request;
   request.set_shot_id(id);

@@ -35,6 +35,7 @@ class FarmClient {
   ShotSummary cancel(int64_t id);
   ShotSummary pause(int64_t id);
   ShotSummary resume(int64_t id);
+  ShotSummary retry(int64_t id);
   // Writes every finished frame as DIR/frame_NNNN.exr (verified, atomically); returns the files.
   std::vector<std::filesystem::path> fetch(int64_t id, const std::filesystem::path& folder);
   std::vector<WorkerInfo> workers();

@@ -629,12 +629,32 @@ ShotSummary FarmState::pause(int64_t shotId, double now) {
 
 ShotSummary FarmState::resume(int64_t shotId, double now) {
   return changeShot(shotId, now, [&](ShotState state) {
-    if (state != SHOT_PAUSED) return;
-    Statement& q = db_.query("SELECT started_at IS NOT NULL FROM shots WHERE id = ?1").bind(1, shotId);
-    q.step();
-    const bool started = q.integer(0) != 0;
-    q.reset();
-    setShotState(shotId, started ? SHOT_RUNNING : SHOT_QUEUED, now);
+    if (state == SHOT_PAUSED) reactivate(shotId, now);
+  });
+}
+
+void FarmState::reactivate(int64_t shotId, double now) {
+  Statement& q = db_.query("SELECT started_at IS NOT NULL FROM shots WHERE id = ?1").bind(1, shotId);
+  q.step();
+  const bool started = q.integer(0) != 0;
+  q.reset();
+  setShotState(shotId, started ? SHOT_RUNNING : SHOT_QUEUED, now);
+}
+
+ShotSummary FarmState::retry(int64_t shotId, double now) {
+  return changeShot(shotId, now, [&](ShotState state) {
+    if (state != SHOT_FAILED) return;
+    db_.query("UPDATE tasks SET state = ?1, failures = 0, lost = 0, not_before = 0 WHERE shot_id = ?2 AND state = ?3")
+        .bind(1, asInt(TaskState::Ready))
+        .bind(2, shotId)
+        .bind(3, asInt(TaskState::Failed))
+        .run();
+    const int64_t restarted = db_.changes();
+    db_.query("DELETE FROM worker_failures WHERE shot_id = ?1").bind(1, shotId).run();
+    db_.query("UPDATE shots SET finished_at = NULL, failure = '' WHERE id = ?1").bind(1, shotId).run();
+    addEvent(shotId, "retried: " + std::to_string(restarted) + " failed task(s) start over; what is done stays done",
+             now);
+    reactivate(shotId, now);
   });
 }
 

@@ -79,6 +79,9 @@ class FarmState {
   ShotSummary cancel(int64_t shotId, double now);
   ShotSummary pause(int64_t shotId, double now);
   ShotSummary resume(int64_t shotId, double now);
+  // A FAILED shot runs again: its failed tasks are ready with fresh counts, its
+  // blocklist is cleared, and everything done stays done. Other shots are left as they are.
+  ShotSummary retry(int64_t shotId, double now);
   // The frames a shot has produced: (frame, chunk) in frame order.
   std::vector<std::pair<int64_t, ChunkRef>> outputs(int64_t shotId);
   std::vector<WorkerInfo> workers(double now);
@@ -113,6 +116,8 @@ class FarmState {
   bool anyWorkerCanRun(int64_t shotId, double now);
   void endShot(int64_t shotId, ShotState state, const std::string& failure, double now);
   void setShotState(int64_t shotId, ShotState state, double now);
+  // Queued or running again, as far as it had got.
+  void reactivate(int64_t shotId, double now);
   // One transaction: `change` gets the shot's state; the summary after is returned.
   template <class Change>
   ShotSummary changeShot(int64_t shotId, double now, Change change);

@@ -43,6 +43,7 @@ class ClientServiceImpl final : public ClientService::Service {
   grpc::Status CancelShot(grpc::ServerContext*, const ShotRequest*, ControlReply*) override;
   grpc::Status PauseShot(grpc::ServerContext*, const ShotRequest*, ControlReply*) override;
   grpc::Status ResumeShot(grpc::ServerContext*, const ShotRequest*, ControlReply*) override;
+  grpc::Status RetryShot(grpc::ServerContext*, const ShotRequest*, ControlReply*) override;
   grpc::Status FetchOutputs(grpc::ServerContext*, const ShotRequest*, grpc::ServerWriter<OutputPart>*) override;
   grpc::Status ListWorkers(grpc::ServerContext*, const ListWorkersRequest*, ListWorkersReply*) override;
 

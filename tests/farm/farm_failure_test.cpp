@@ -1,5 +1,6 @@
-// A shot whose task fails on every attempt: it ends SHOT_FAILED with the reason, and
-// the workers that failed it keep running and keep working.
+// A shot whose task fails on every attempt: it ends SHOT_FAILED with the reason, the
+// workers that failed it keep running and keep working, and once the cause is mended
+// `pathfarm retry` finishes it.
 #include "farm/farm_fixture.h"
 
 namespace pathfarm::farmtest {
@@ -68,6 +69,16 @@ TEST_F(FarmTest, ShotFailingEveryAttemptEndsFailedWithItsReasonAndWorkersSurvive
   const farm::ShotSummary after = waitForShot(next, 30s);
   EXPECT_EQ(after.state(), farm::SHOT_DONE) << describe(after);
   EXPECT_EQ(client().shot(id).summary().state(), farm::SHOT_FAILED);
+
+  // The scene turns up: `pathfarm retry` runs the failed shot again and it finishes.
+  fs::create_directories(missingScene.parent_path());
+  fs::copy_file(cornellScene(), missingScene);
+  const CommandResult retried = runPathfarm({"retry", std::to_string(id), "--scheduler", scheduler});
+  EXPECT_EQ(retried.status, 0) << retried.output;
+  EXPECT_TRUE(contains(retried.output, "SHOT_RUNNING")) << retried.output;
+  const farm::ShotSummary mended = waitForShot(id, 30s);
+  EXPECT_EQ(mended.state(), farm::SHOT_DONE) << describe(mended);
+  EXPECT_EQ(mended.frames_done(), 1);
 }
 
 }  // namespace

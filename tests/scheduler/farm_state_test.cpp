@@ -198,6 +198,32 @@ TEST_F(FarmStateTest, FailuresBackOffThenFailTheShotWithTheReason) {
   EXPECT_FALSE(state_->lease(worker, now_ + 100).has_value());
 }
 
+TEST_F(FarmStateTest, AFailedShotRetriesItsFailedTasksAndKeepsWhatIsDone) {
+  const int64_t shot = submitFrame(0, 1);
+  const int64_t worker = state_->registerWorker("w", 1, now_);
+  const Lease good = leaseFor(worker), bad = leaseFor(worker);
+  ASSERT_TRUE(complete(good.attempt_id(), storedChunk("good tile"), now_).accepted());
+  ASSERT_TRUE(state_->fail(bad.attempt_id(), "scene.json: cannot open the scene file", now_).accepted());
+  ASSERT_EQ(state_->summary(shot, now_).state(), SHOT_FAILED);
+  EXPECT_FALSE(state_->lease(worker, now_ + 100).has_value());
+
+  // The scene is back: the shot runs again, the failed tile only, with a fresh count.
+  const ShotSummary retried = state_->retry(shot, now_);
+  EXPECT_EQ(retried.state(), SHOT_RUNNING);
+  EXPECT_TRUE(retried.failure().empty()) << retried.failure();
+  const Lease again = leaseFor(worker);
+  EXPECT_EQ(again.task_id(), bad.task_id());
+  ASSERT_TRUE(complete(again.attempt_id(), storedChunk("bad tile, now good"), now_).accepted());
+  const Lease assemble = leaseFor(worker);
+  EXPECT_EQ(assemble.kind(), TASK_ASSEMBLE_FRAME);
+  ASSERT_TRUE(complete(assemble.attempt_id(), storedChunk("frame"), now_).accepted());
+  EXPECT_EQ(state_->summary(shot, now_).state(), SHOT_DONE);
+  EXPECT_EQ(state_->summary(shot, now_).attempts(), 4);  // the good tile never ran again
+
+  // Only a failed shot is retried.
+  EXPECT_EQ(state_->retry(shot, now_).state(), SHOT_DONE);
+}
+
 TEST_F(FarmStateTest, WorkerFailingTooOftenIsBlocklistedForThatShot) {
   const int64_t shot = submitFrame(0, 10);
   const int64_t bad = state_->registerWorker("bad", 1, now_), good = state_->registerWorker("good", 1, now_);
