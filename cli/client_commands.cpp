@@ -20,6 +20,7 @@ struct ClientArguments {
   std::string scheduler = "127.0.0.1:7700";
   std::string tokenFile;
   std::string shotFile;
+  std::string submitKey;
   int64_t shotId = 0;
   std::string out;
   bool json = false;
@@ -70,10 +71,14 @@ std::vector<Command> addClientCommands(CLI::App& app) {
   };
 
   add("submit", "queue a shot file; prints the shot id",
-      [](CLI::App* c, ClientArguments& a) { c->add_option("shot", a.shotFile, "shot file (JSON)")->required(); },
+      [](CLI::App* c, ClientArguments& a) {
+        c->add_option("shot", a.shotFile, "shot file (JSON)")->required();
+        c->add_option("--submit-key", a.submitKey,
+                      "names this submit: submitting again with the same key prints the same shot, adds nothing");
+      },
       [](farm::FarmClient& client, const ClientArguments& a) {
         const farm::ShotSpec spec = farm::loadShotFile(a.shotFile);  // validated before anything is queued
-        std::printf("%lld\n", static_cast<long long>(client.submit(spec)));
+        std::printf("%lld\n", static_cast<long long>(client.submit(spec, a.submitKey)));
         return kExitOk;
       });
   add("status", "list every shot, or show one with its events",

@@ -18,7 +18,7 @@ grpc::Status ClientServiceImpl::Submit(grpc::ServerContext* context, const Submi
                                        SubmitReply* reply) {
   return guarded(c_, context, [&] {
     const auto plan = planShot(request->spec());
-    reply->set_shot_id(c_.state.submit(request->spec(), plan, wallClockSeconds()));
+    reply->set_shot_id(c_.state.submit(request->spec(), plan, wallClockSeconds(), request->submit_key()));
     c_.signal.notify();
     return grpc::Status::OK;
   });

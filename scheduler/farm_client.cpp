@@ -1,6 +1,9 @@
 #include "scheduler/farm_client.h"
 
+#include <chrono>
 #include <cstdio>
+#include <random>
+#include <thread>
 
 #include "image/atomic_file.h"
 #include "proto/wire/chunk_transfer.h"
@@ -32,12 +35,28 @@ std::unique_ptr<grpc::ClientContext> FarmClient::context(bool stream) const {
   return context;
 }
 
-int64_t FarmClient::submit(const ShotSpec& spec) {
+int64_t FarmClient::submit(const ShotSpec& spec, std::string submitKey) {
   SubmitRequest request;
   *request.mutable_spec() = spec;
-  SubmitReply reply;
-  check(stub_->Submit(context(false).get(), request, &reply));
-  return reply.shot_id();
+  if (submitKey.empty()) {
+    std::random_device entropy;
+    char key[33];
+    std::snprintf(key, sizeof key, "%08x%08x%08x%08x", entropy(), entropy(), entropy(), entropy());
+    submitKey = key;
+  }
+  request.set_submit_key(submitKey);
+  constexpr int kTries = 3;
+  for (int attempt = 1;; ++attempt) {
+    SubmitReply reply;
+    const grpc::Status status = stub_->Submit(context(false).get(), request, &reply);
+    const bool retry = status.error_code() == grpc::StatusCode::DEADLINE_EXCEEDED ||
+                       status.error_code() == grpc::StatusCode::UNAVAILABLE;
+    if (!retry || attempt == kTries) {
+      check(status);
+      return reply.shot_id();
+    }
+    std::this_thread::sleep_for(std::chrono::seconds(attempt));
+  }
 }
 
 std::vector<ShotSummary> FarmClient::shots() {

@@ -26,7 +26,9 @@ class FarmClient {
  public:
   FarmClient(const std::string& address, std::string token);
 
-  int64_t submit(const ShotSpec& spec);
+  // Queues the shot under `submitKey` (a random one when empty), retrying a call that
+  // timed out or found the scheduler away with the same key, so it makes one shot.
+  int64_t submit(const ShotSpec& spec, std::string submitKey = "");
   std::vector<ShotSummary> shots();
   ShotReply shot(int64_t id);
   ShotReport report(int64_t id);

@@ -77,16 +77,32 @@ FarmState::FarmState(const std::string& databaseFile, FarmSettings settings, dou
   transaction.commit();
 }
 
-int64_t FarmState::submit(const ShotSpec& spec, const std::vector<PlannedTask>& plan, double now) {
+int64_t FarmState::submit(const ShotSpec& spec, const std::vector<PlannedTask>& plan, double now,
+                          const std::string& submitKey) {
   return transact([&]() -> int64_t {
-    db_.query("INSERT INTO shots (name, spec, state, priority, tasks_left, submitted_at) VALUES (?1, ?2, ?3, ?4, ?5, ?6)")
-        .bind(1, spec.name())
+    if (!submitKey.empty()) {
+      Statement& earlier = db_.query("SELECT id FROM shots WHERE submit_key = ?1").bind(1, submitKey);
+      if (earlier.step()) {
+        const int64_t id = earlier.integer(0);
+        earlier.reset();
+        return id;
+      }
+    }
+    Statement& insert = db_.query(
+        "INSERT INTO shots (name, spec, state, priority, tasks_left, submitted_at, submit_key) "
+        "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7)");
+    insert.bind(1, spec.name())
         .bindBlob(2, spec.SerializeAsString())
         .bind(3, int64_t{SHOT_QUEUED})
         .bind(4, int64_t{spec.priority()})
         .bind(5, static_cast<int64_t>(plan.size()))
-        .bind(6, now)
-        .run();
+        .bind(6, now);
+    if (submitKey.empty()) {
+      insert.bindNull(7);
+    } else {
+      insert.bind(7, submitKey);
+    }
+    insert.run();
     const int64_t shotId = db_.lastInsertId();
     const int64_t maxAttempts = spec.max_attempts() > 0 ? spec.max_attempts() : settings_.defaultMaxAttempts;
     std::vector<int64_t> ids;

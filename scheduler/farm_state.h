@@ -53,7 +53,11 @@ class FarmState {
   // get one more lease period, so their workers can reconnect and deliver.
   FarmState(const std::string& databaseFile, FarmSettings settings, double now);
 
-  int64_t submit(const ShotSpec& spec, const std::vector<PlannedTask>& plan, double now);
+  // A shot and its tasks; with a `submitKey` that an earlier submit carried, nothing is
+  // added and that submit's shot is returned (a client retrying a submit it did not hear
+  // back from makes one shot, not two).
+  int64_t submit(const ShotSpec& spec, const std::vector<PlannedTask>& plan, double now,
+                 const std::string& submitKey = "");
   int64_t registerWorker(const std::string& name, int slots, double now);
   bool workerExists(int64_t workerId);
 

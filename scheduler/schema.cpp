@@ -93,6 +93,11 @@ const std::vector<const char*>& migrations() {
       R"sql(
       ALTER TABLE tasks ADD COLUMN lost INTEGER NOT NULL DEFAULT 0;
       )sql",
+      // 4: a submit names itself, so that a retried submit returns the shot it made.
+      R"sql(
+      ALTER TABLE shots ADD COLUMN submit_key TEXT;
+      CREATE UNIQUE INDEX shots_by_submit_key ON shots(submit_key) WHERE submit_key IS NOT NULL;
+      )sql",
   };
   return list;
 }

@@ -224,6 +224,28 @@ TEST_F(FarmStateTest, AFailedShotRetriesItsFailedTasksAndKeepsWhatIsDone) {
   EXPECT_EQ(state_->retry(shot, now_).state(), SHOT_DONE);
 }
 
+TEST_F(FarmStateTest, ASubmitRetriedWithItsKeyMakesOneShot) {
+  ShotSpec spec;
+  spec.set_name("keyed");
+  spec.set_scene("scene.json");
+  spec.set_frame_start(0);
+  spec.set_frame_end(0);
+  spec.set_width(16);
+  spec.set_height(16);
+  spec.set_spp(1);
+  spec.set_tile(16);
+  spec.set_pipeline("pt");
+  const auto plan = planShot(spec);
+  const int64_t first = state_->submit(spec, plan, now_, "key-1");
+  EXPECT_EQ(state_->submit(spec, plan, now_ + 1, "key-1"), first);
+  EXPECT_EQ(state_->shots(now_).size(), 1u);
+  const int64_t other = state_->submit(spec, plan, now_, "key-2");
+  EXPECT_NE(other, first);
+  const int64_t unkeyed = state_->submit(spec, plan, now_), again = state_->submit(spec, plan, now_);
+  EXPECT_NE(unkeyed, again);  // without a key every submit is a shot
+  EXPECT_EQ(state_->shots(now_).size(), 4u);
+}
+
 TEST_F(FarmStateTest, WorkerFailingTooOftenIsBlocklistedForThatShot) {
   const int64_t shot = submitFrame(0, 10);
   const int64_t bad = state_->registerWorker("bad", 1, now_), good = state_->registerWorker("good", 1, now_);
@@ -363,7 +385,7 @@ TEST(Schema, MigratesOnceAndRefusesANewerDatabase) {
   {
     Database db(file.string());
     migrate(db);
-    EXPECT_EQ(schemaVersion(db), 3);
+    EXPECT_EQ(schemaVersion(db), 4);
     EXPECT_NO_THROW(db.execute("SELECT lost FROM tasks"));  // migration 3's column
     migrate(db);  // nothing to do the second time
     db.execute("PRAGMA user_version = 99");
