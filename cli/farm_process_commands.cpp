@@ -82,6 +82,12 @@ std::vector<Command> addFarmProcessCommands(CLI::App& app) {
   s->add_option("--retry-backoff", scheduler->options.farm.retryBackoffSeconds, "first retry delay in seconds")
       ->check(CLI::Range(0.0, 3600.0))
       ->capture_default_str();
+  s->add_option("--max-tasks-per-shot", scheduler->options.limits.maxTasks, "a shot planning more tasks is refused")
+      ->check(CLI::Range(int64_t{1}, int64_t{1'000'000'000}))
+      ->capture_default_str();
+  s->add_option("--max-frames-per-shot", scheduler->options.limits.maxFrames, "a shot with more frames is refused")
+      ->check(CLI::Range(int64_t{1}, int64_t{1'000'000'000}))
+      ->capture_default_str();
   s->add_option("--max-lost-workers", scheduler->options.farm.maxLostWorkers,
                 "a task whose lease expires this often (its workers vanish) fails the shot; not charged to max_attempts")
       ->check(CLI::Range(1, 1000000))

@@ -310,4 +310,21 @@ std::vector<PlannedTask> planShot(const ShotSpec& spec) {
   return plan;
 }
 
+std::vector<PlannedTask> planShotWithin(const ShotSpec& spec, const ShotLimits& limits) {
+  const int64_t frames = spec.frame_end() - spec.frame_start() + 1;
+  if (frames > limits.maxFrames)
+    throw PlanError("frames: " + std::to_string(frames) + " frames is more than this scheduler takes in one shot (" +
+                    std::to_string(limits.maxFrames) + "); split the shot");
+  const double pixelFrames = static_cast<double>(spec.width()) * spec.height() * static_cast<double>(frames);
+  if (pixelFrames > limits.maxPixelFrames)
+    throw PlanError("resolution x frames: " + std::to_string(static_cast<int64_t>(pixelFrames)) +
+                    " pixel-frames is more than this scheduler takes in one shot (" +
+                    std::to_string(static_cast<int64_t>(limits.maxPixelFrames)) + "); split the shot");
+  std::vector<PlannedTask> plan = planShot(spec);
+  if (static_cast<int64_t>(plan.size()) > limits.maxTasks)
+    throw PlanError("the shot plans " + std::to_string(plan.size()) + " tasks, more than this scheduler takes (" +
+                    std::to_string(limits.maxTasks) + ", --max-tasks-per-shot); use larger tiles or split the shot");
+  return plan;
+}
+
 }  // namespace pathfarm::farm

@@ -52,4 +52,15 @@ std::vector<int64_t> keyframesOf(const ShotSpec& spec);
 // Throws PlanError for a spec the farm cannot run (unknown pipeline, empty frame range...).
 std::vector<PlannedTask> planShot(const ShotSpec& spec);
 
+// What one shot may ask of a scheduler, so that a mistyped frame range cannot plan
+// billions of tasks or hold the database in one transaction for minutes.
+struct ShotLimits {
+  int64_t maxFrames = 1'000'000;
+  double maxPixelFrames = 1e12;  // width x height x frames
+  int64_t maxTasks = 1'000'000;
+};
+// The plan of a spec within `limits`: the frames and pixels are checked before planning,
+// the task count after; throws PlanError naming the limit and how to raise it.
+std::vector<PlannedTask> planShotWithin(const ShotSpec& spec, const ShotLimits& limits);
+
 }  // namespace pathfarm::farm

@@ -48,8 +48,8 @@ struct SchedulerServer::Services {
       : exclusive(o.database),
         state(o.database.string(), o.farm, wallClockSeconds()),
         store(o.store),
-        workerService({state, store, signal, o.token}),
-        clientService({state, store, signal, o.token}) {}
+        workerService({state, store, signal, o.token, o.limits}),
+        clientService({state, store, signal, o.token, o.limits}) {}
 };
 
 SchedulerServer::SchedulerServer(SchedulerOptions options) : options_(std::move(options)) {

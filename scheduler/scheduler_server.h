@@ -26,6 +26,7 @@ struct SchedulerOptions {
   bool insecure = false;
   // HOST:PORT serving /metrics over HTTP (port 0: any free port); empty: none.
   std::string http;
+  ShotLimits limits;  // what one submitted shot may ask for
   FarmSettings farm;
 };
 

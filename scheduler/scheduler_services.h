@@ -13,6 +13,7 @@ struct SchedulerContext {
   ChunkStore& store;
   FarmSignal& signal;
   std::string token;  // empty: no access control
+  ShotLimits limits;
 };
 
 class WorkerServiceImpl final : public WorkerService::Service {

@@ -51,6 +51,37 @@ TEST(Planner, TilesCoverEachFrameOnceAndAssemblyWaitsForThem) {
   }
 }
 
+TEST(Planner, AShotBeyondTheSchedulersLimitsIsRefusedBeforeItIsPlanned) {
+  const ShotLimits limits;  // the defaults: 1e6 frames, 1e12 pixel-frames, 1e6 tasks
+  const auto refusal = [&](const ShotSpec& spec) {
+    try {
+      planShotWithin(spec, limits);
+    } catch (const PlanError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  ShotSpec spec = renderSpec();
+  EXPECT_EQ(refusal(spec), "accepted");
+  spec.set_frame_end(int64_t{3'000'000'000});  // a typo: billions of frames, refused before any is planned
+  EXPECT_NE(refusal(spec).find("frames: 2999999998 frames is more than this scheduler takes"), std::string::npos)
+      << refusal(spec);
+  spec = renderSpec();
+  spec.set_width(16384);
+  spec.set_height(16384);
+  spec.set_frame_end(10'000);  // 2.7e12 pixel-frames
+  EXPECT_NE(refusal(spec).find("pixel-frames is more than"), std::string::npos) << refusal(spec);
+  spec = renderSpec();
+  spec.set_width(8192);
+  spec.set_height(4096);
+  spec.set_tile(8);  // half a million tiles a frame
+  EXPECT_NE(refusal(spec).find("plans 1048578 tasks, more than this scheduler takes (1000000"), std::string::npos)
+      << refusal(spec);
+  ShotLimits generous;
+  generous.maxTasks = 2'000'000;
+  EXPECT_EQ(planShotWithin(spec, generous).size(), 1048578u);  // 2 frames of 1024 x 512 tiles and their assemblies
+}
+
 TEST(Planner, RefusesWhatItCannotRun) {
   ShotSpec spec = renderSpec();
   spec.set_pipeline("tgpt-not-yet");
