@@ -127,6 +127,7 @@ class FarmState {
   ShotSummary changeShot(int64_t shotId, double now, Change change);
   void addEvent(int64_t shotId, const std::string& message, double now);
   ShotSummary summaryLocked(int64_t shotId, double now);
+  FarmMetrics metricsLocked(double now);
   std::optional<int64_t> nextTask(int64_t workerId, double now);
 
   std::mutex mutex_;  // one writer: every public method is one transaction under it

@@ -5,7 +5,7 @@
 
 #include "scheduler/farm_metrics.h"
 #include "scheduler/farm_state.h"
-#include "scheduler/schema.h"
+#include "scheduler/farm_state_internal.h"
 
 namespace pathfarm::farm {
 namespace {
@@ -33,8 +33,10 @@ std::string taskStateName(int64_t state) {
 }  // namespace
 
 FarmMetrics FarmState::metrics(double now) {
-  const std::lock_guard lock(mutex_);
-  Transaction transaction(db_);
+  return transact([&]() -> FarmMetrics { return metricsLocked(now); });
+}
+
+FarmMetrics FarmState::metricsLocked(double now) {
   FarmMetrics m;
   Statement& tasks = db_.query("SELECT kind, state, COUNT(*) FROM tasks GROUP BY kind, state");
   while (tasks.step()) m.tasks[{kindName(tasks.integer(0)), taskStateName(tasks.integer(1))}] = tasks.integer(2);
@@ -44,7 +46,7 @@ FarmMetrics FarmState::metrics(double now) {
   Statement& workers = db_.query(
       "SELECT CASE WHEN EXISTS (SELECT 1 FROM attempts a WHERE a.worker_id = w.id AND a.state = ?1) THEN 'busy' "
       "WHEN w.last_seen >= ?2 THEN 'idle' ELSE 'gone' END AS s, COUNT(*) FROM workers w GROUP BY s");
-  workers.bind(1, static_cast<int64_t>(AttemptState::Running)).bind(2, now - 2 * settings_.leaseSeconds);
+  workers.bind(1, asInt(AttemptState::Running)).bind(2, now - 2 * settings_.leaseSeconds);
   for (const char* state : {"busy", "idle", "gone"}) m.workers[state] = 0;
   while (workers.step()) m.workers[workers.text(0)] = workers.integer(1);
 
@@ -56,7 +58,7 @@ FarmMetrics FarmState::metrics(double now) {
       "SELECT kind, COUNT(*), SUM(d)" + bucketColumns +
       " FROM (SELECT t.kind AS kind, a.finished_at - a.leased_at AS d FROM attempts a JOIN tasks t ON t.id = a.task_id "
       "WHERE a.state = ?1) GROUP BY kind");
-  durations.bind(1, static_cast<int64_t>(AttemptState::Done));
+  durations.bind(1, asInt(AttemptState::Done));
   while (durations.step()) {
     FarmMetrics::Durations& d = m.durations[kindName(durations.integer(0))];
     d.count = static_cast<uint64_t>(durations.integer(1));
@@ -67,9 +69,9 @@ FarmMetrics FarmState::metrics(double now) {
 
   for (const char* cause : {"failed", "lost", "revoked"}) m.attemptsEnded[cause] = 0;
   Statement& ended = db_.query("SELECT state, COUNT(*) FROM attempts WHERE state IN (?1, ?2, ?3) GROUP BY state");
-  ended.bind(1, static_cast<int64_t>(AttemptState::Failed))
-      .bind(2, static_cast<int64_t>(AttemptState::Expired))
-      .bind(3, static_cast<int64_t>(AttemptState::Revoked));
+  ended.bind(1, asInt(AttemptState::Failed))
+      .bind(2, asInt(AttemptState::Expired))
+      .bind(3, asInt(AttemptState::Revoked));
   while (ended.step()) {
     const auto state = static_cast<AttemptState>(ended.integer(0));
     m.attemptsEnded[state == AttemptState::Failed ? "failed" : state == AttemptState::Expired ? "lost" : "revoked"] =
@@ -86,7 +88,6 @@ FarmMetrics FarmState::metrics(double now) {
     m.progress.push_back({shots.integer(0), shots.text(1),
                           total > 0 ? 1.0 - static_cast<double>(shots.integer(4)) / total : 0.0});
   }
-  transaction.commit();
   return m;
 }
 
