@@ -1,5 +1,5 @@
-// `pathfarm submit | status | watch | fetch | report | cancel | pause | resume | retry | workers`: thin
-// calls through FarmClient.
+// `pathfarm submit | status | watch | fetch | report | cancel | pause | resume | retry | priority |
+// blocklist | workers`: thin calls through FarmClient.
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
@@ -22,6 +22,9 @@ struct ClientArguments {
   std::string shotFile;
   std::string submitKey;
   int64_t shotId = 0;
+  int priority = 0;
+  bool clear = false;
+  int64_t workerId = 0;
   std::string out;
   bool json = false;
 };
@@ -135,6 +138,30 @@ std::vector<Command> addClientCommands(CLI::App& app) {
   control("pause", "stop leasing a shot's tasks", [](farm::FarmClient& c, int64_t id) { return c.pause(id); });
   control("resume", "lease a paused shot's tasks again", [](farm::FarmClient& c, int64_t id) { return c.resume(id); });
   control("retry", "run a failed shot again from what is done", [](farm::FarmClient& c, int64_t id) { return c.retry(id); });
+  add("priority", "change a shot's priority (higher runs first)",
+      [](CLI::App* c, ClientArguments& a) {
+        c->add_option("id", a.shotId, "shot id")->required();
+        c->add_option("priority", a.priority, "the new priority")->required();
+      },
+      [](farm::FarmClient& client, const ClientArguments& a) {
+        std::printf("%s\n", describeShot(client.setPriority(a.shotId, a.priority)).c_str());
+        return kExitOk;
+      });
+  add("blocklist", "list the workers kept away from a shot (every shot without an id), or --clear them",
+      [](CLI::App* c, ClientArguments& a) {
+        c->add_option("id", a.shotId, "shot id");
+        c->add_flag("--clear", a.clear, "let the shot's blocklisted workers (or --worker W) lease its tasks again");
+        c->add_option("--worker", a.workerId, "with --clear: only this worker id");
+      },
+      [](farm::FarmClient& client, const ClientArguments& a) {
+        if (a.clear && a.shotId == 0) throw std::invalid_argument("--clear needs a shot id");
+        const auto entries = a.clear ? client.clearBlocklist(a.shotId, a.workerId) : client.blocklist(a.shotId);
+        for (const auto& e : entries)
+          std::printf("shot %lld: worker %lld %s, %d failures\n", static_cast<long long>(e.shot_id()),
+                      static_cast<long long>(e.worker_id()), e.worker_name().c_str(), e.failures());
+        if (entries.empty()) std::printf("no worker is blocklisted\n");
+        return kExitOk;
+      });
   add("workers", "list the workers the scheduler knows", [](CLI::App*, ClientArguments&) {},
       [](farm::FarmClient& client, const ClientArguments&) {
         for (const auto& w : client.workers())

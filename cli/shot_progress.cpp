@@ -16,6 +16,7 @@ std::string describeShot(const farm::ShotSummary& s) {
                 static_cast<long long>(s.tasks_running()), static_cast<long long>(s.frames_done()),
                 static_cast<long long>(s.frames_total()), s.workers_busy(), s.elapsed_seconds());
   std::string text = line;
+  if (s.priority() != 0) text += ", priority " + std::to_string(s.priority());
   if (!s.failure().empty()) text += "\n  failure: " + s.failure();
   return text;
 }

@@ -141,4 +141,31 @@ grpc::Status ClientServiceImpl::ListWorkers(grpc::ServerContext* context, const 
   });
 }
 
+grpc::Status ClientServiceImpl::SetPriority(grpc::ServerContext* context, const PriorityRequest* request,
+                                            ControlReply* reply) {
+  return guarded(c_, context, [&] {
+    *reply->mutable_summary() = c_.state.setPriority(request->shot_id(), request->priority(), wallClockSeconds());
+    c_.signal.notify();
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status ClientServiceImpl::ListBlocklist(grpc::ServerContext* context, const BlocklistRequest* request,
+                                              BlocklistReply* reply) {
+  return guarded(c_, context, [&] {
+    for (BlocklistEntry& e : c_.state.blocklist(request->shot_id())) *reply->add_entries() = std::move(e);
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status ClientServiceImpl::ClearBlocklist(grpc::ServerContext* context, const BlocklistRequest* request,
+                                               BlocklistReply* reply) {
+  return guarded(c_, context, [&] {
+    c_.state.clearBlocklist(request->shot_id(), request->worker_id(), wallClockSeconds());
+    for (BlocklistEntry& e : c_.state.blocklist(request->shot_id())) *reply->add_entries() = std::move(e);
+    c_.signal.notify();
+    return grpc::Status::OK;
+  });
+}
+
 }  // namespace pathfarm::farm

@@ -98,6 +98,32 @@ ShotSummary FarmClient::resume(int64_t id) {
   return aboutShot<ControlReply>(&ClientService::Stub::ResumeShot, id).summary();
 }
 
+ShotSummary FarmClient::setPriority(int64_t id, int priority) {
+  PriorityRequest request;
+  request.set_shot_id(id);
+  request.set_priority(priority);
+  ControlReply reply;
+  check(stub_->SetPriority(context(false).get(), request, &reply));
+  return reply.summary();
+}
+
+std::vector<BlocklistEntry> FarmClient::blocklist(int64_t shotId) {
+  BlocklistRequest request;
+  request.set_shot_id(shotId);
+  BlocklistReply reply;
+  check(stub_->ListBlocklist(context(false).get(), request, &reply));
+  return {reply.entries().begin(), reply.entries().end()};
+}
+
+std::vector<BlocklistEntry> FarmClient::clearBlocklist(int64_t shotId, int64_t workerId) {
+  BlocklistRequest request;
+  request.set_shot_id(shotId);
+  request.set_worker_id(workerId);
+  BlocklistReply reply;
+  check(stub_->ClearBlocklist(context(false).get(), request, &reply));
+  return {reply.entries().begin(), reply.entries().end()};
+}
+
 ShotSummary FarmClient::retry(int64_t id) {
   return aboutShot<ControlReply>(&ClientService::Stub::RetryShot, id).summary();
 }

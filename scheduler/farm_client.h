@@ -38,6 +38,9 @@ class FarmClient {
   ShotSummary pause(int64_t id);
   ShotSummary resume(int64_t id);
   ShotSummary retry(int64_t id);
+  ShotSummary setPriority(int64_t id, int priority);
+  std::vector<BlocklistEntry> blocklist(int64_t shotId);  // 0: every shot
+  std::vector<BlocklistEntry> clearBlocklist(int64_t shotId, int64_t workerId);  // what is left
   // Writes every finished frame as DIR/frame_NNNN.exr (verified, atomically); returns the files.
   std::vector<std::filesystem::path> fetch(int64_t id, const std::filesystem::path& folder);
   std::vector<WorkerInfo> workers();

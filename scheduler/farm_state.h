@@ -86,6 +86,11 @@ class FarmState {
   // A FAILED shot runs again: its failed tasks are ready with fresh counts, its
   // blocklist is cleared, and everything done stays done. Other shots are left as they are.
   ShotSummary retry(int64_t shotId, double now);
+  ShotSummary setPriority(int64_t shotId, int priority, double now);
+  // Blocklisted workers of one shot, or of every shot with 0.
+  std::vector<BlocklistEntry> blocklist(int64_t shotId);
+  // Lifts the blocklist of `workerId` (0: every worker) for the shot.
+  void clearBlocklist(int64_t shotId, int64_t workerId, double now);
   // The frames a shot has produced: (frame, chunk) in frame order.
   std::vector<std::pair<int64_t, ChunkRef>> outputs(int64_t shotId);
   std::vector<WorkerInfo> workers(double now);

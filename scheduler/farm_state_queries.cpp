@@ -205,4 +205,42 @@ std::vector<WorkerInfo> FarmState::workers(double now) {
   });
 }
 
+ShotSummary FarmState::setPriority(int64_t shotId, int priority, double now) {
+  return changeShot(shotId, now, [&](ShotState) {
+    db_.query("UPDATE shots SET priority = ?1 WHERE id = ?2").bind(1, int64_t{priority}).bind(2, shotId).run();
+    addEvent(shotId, "priority set to " + std::to_string(priority), now);
+  });
+}
+
+std::vector<BlocklistEntry> FarmState::blocklist(int64_t shotId) {
+  return transact([&]() -> std::vector<BlocklistEntry> {
+    std::vector<BlocklistEntry> entries;
+    Statement& q = db_.query(
+        "SELECT f.shot_id, f.worker_id, w.name, f.failures FROM worker_failures f JOIN workers w ON w.id = f.worker_id "
+        "WHERE f.blocklisted AND (?1 = 0 OR f.shot_id = ?1) ORDER BY f.shot_id, f.worker_id");
+    q.bind(1, shotId);
+    while (q.step()) {
+      BlocklistEntry& e = entries.emplace_back();
+      e.set_shot_id(q.integer(0));
+      e.set_worker_id(q.integer(1));
+      e.set_worker_name(q.text(2));
+      e.set_failures(static_cast<int32_t>(q.integer(3)));
+    }
+    return entries;
+  });
+}
+
+void FarmState::clearBlocklist(int64_t shotId, int64_t workerId, double now) {
+  transact([&] {
+    summaryLocked(shotId, now);  // throws std::out_of_range for an unknown shot
+    db_.query("DELETE FROM worker_failures WHERE shot_id = ?1 AND (?2 = 0 OR worker_id = ?2)")
+        .bind(1, shotId)
+        .bind(2, workerId)
+        .run();
+    addEvent(shotId,
+             workerId == 0 ? "blocklist cleared" : "worker " + std::to_string(workerId) + " taken off the blocklist",
+             now);
+  });
+}
+
 }  // namespace pathfarm::farm

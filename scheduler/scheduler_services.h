@@ -47,6 +47,9 @@ class ClientServiceImpl final : public ClientService::Service {
   grpc::Status RetryShot(grpc::ServerContext*, const ShotRequest*, ControlReply*) override;
   grpc::Status FetchOutputs(grpc::ServerContext*, const ShotRequest*, grpc::ServerWriter<OutputPart>*) override;
   grpc::Status ListWorkers(grpc::ServerContext*, const ListWorkersRequest*, ListWorkersReply*) override;
+  grpc::Status SetPriority(grpc::ServerContext*, const PriorityRequest*, ControlReply*) override;
+  grpc::Status ListBlocklist(grpc::ServerContext*, const BlocklistRequest*, BlocklistReply*) override;
+  grpc::Status ClearBlocklist(grpc::ServerContext*, const BlocklistRequest*, BlocklistReply*) override;
 
  private:
   template <class Change>

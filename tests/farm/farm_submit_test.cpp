@@ -1,5 +1,6 @@
 // A submit repeated with its key (a script retrying `pathfarm submit` after a timeout)
 // prints the same shot and queues nothing more; without a key each submit is a shot.
+// After submission the shot's priority changes and the blocklist is listed by the CLI.
 #include "farm/farm_fixture.h"
 
 namespace pathfarm::farmtest {
@@ -23,6 +24,18 @@ TEST_F(FarmTest, ASubmitRepeatedWithItsKeyMakesOneShot) {
   EXPECT_NE(submit({}), first);
   EXPECT_EQ(client().shots().size(), 2u);
   EXPECT_EQ(database().integer("SELECT COUNT(*) FROM tasks WHERE shot_id = " + std::to_string(first)), spec.tasks());
+
+  // The controls an operator has after submission.
+  const CommandResult raised = runPathfarm({"priority", std::to_string(first), "7", "--scheduler", scheduler});
+  EXPECT_EQ(raised.status, 0) << raised.output;
+  EXPECT_TRUE(contains(raised.output, ", priority 7")) << raised.output;
+  EXPECT_EQ(client().shot(first).summary().priority(), 7);
+  const CommandResult listed = runPathfarm({"blocklist", "--scheduler", scheduler});
+  EXPECT_EQ(listed.status, 0) << listed.output;
+  EXPECT_TRUE(contains(listed.output, "no worker is blocklisted")) << listed.output;
+  const CommandResult cleared = runPathfarm({"blocklist", "--clear", "--scheduler", scheduler});
+  EXPECT_NE(cleared.status, 0) << cleared.output;
+  EXPECT_TRUE(contains(cleared.output, "--clear needs a shot id")) << cleared.output;
 }
 
 }  // namespace

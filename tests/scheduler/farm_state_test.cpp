@@ -260,6 +260,36 @@ TEST_F(FarmStateTest, WorkerFailingTooOftenIsBlocklistedForThatShot) {
   EXPECT_EQ(leaseFor(bad).shot_id(), other);  // blocklisted for one shot only
 }
 
+TEST_F(FarmStateTest, ABlocklistIsListedAndClearedByHand) {
+  const int64_t shot = submitFrame(0, 10);
+  const int64_t bad = state_->registerWorker("bad", 1, now_);
+  state_->registerWorker("good", 1, now_);  // alive: the shot does not fail when "bad" is blocklisted
+  const Lease first = leaseFor(bad), second = leaseFor(bad);
+  EXPECT_TRUE(state_->fail(first.attempt_id(), "out of memory", now_).accepted());
+  EXPECT_TRUE(state_->fail(second.attempt_id(), "out of memory", now_).accepted());
+  const auto entries = state_->blocklist(shot);
+  ASSERT_EQ(entries.size(), 1u);
+  EXPECT_EQ(entries[0].worker_id(), bad);
+  EXPECT_EQ(entries[0].worker_name(), "bad");
+  EXPECT_EQ(entries[0].failures(), 2);
+  EXPECT_EQ(state_->blocklist(0).size(), 1u);
+  EXPECT_TRUE(state_->blocklist(shot + 1).empty());
+  now_ += settings_.retryBackoffSeconds;
+  EXPECT_FALSE(state_->lease(bad, now_).has_value());
+  state_->clearBlocklist(shot, bad, now_);  // the operator fixed its memory
+  EXPECT_TRUE(state_->blocklist(shot).empty());
+  EXPECT_EQ(leaseFor(bad).shot_id(), shot);
+  EXPECT_THROW(state_->clearBlocklist(shot + 100, 0, now_), std::out_of_range);
+}
+
+TEST_F(FarmStateTest, PriorityCanChangeAfterSubmission) {
+  const int64_t older = submitFrame(0), newer = submitFrame(0);
+  const int64_t worker = state_->registerWorker("w", 1, now_);
+  EXPECT_EQ(state_->setPriority(newer, 5, now_).priority(), 5);
+  EXPECT_EQ(leaseFor(worker).shot_id(), newer);  // the raised shot goes first now
+  EXPECT_EQ(state_->summary(older, now_).priority(), 0);
+}
+
 TEST_F(FarmStateTest, ShotFailsWhenEveryLiveWorkerIsBlocklisted) {
   const int64_t shot = submitFrame(0, 10);
   const int64_t only = state_->registerWorker("only", 1, now_);
