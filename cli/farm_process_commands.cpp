@@ -106,6 +106,8 @@ std::vector<Command> addFarmProcessCommands(CLI::App& app) {
   w->add_option("--threads", worker->options.threads, "render threads per task (0: every core)")
       ->check(CLI::Range(0, 1024));
   w->add_option("--name", worker->options.name, "name shown by `pathfarm workers` (default host:pid)");
+  w->add_option("--tags", worker->options.tags, "tags this worker offers, e.g. gpu,big: shots requiring them")
+      ->delimiter(',');
   w->add_option("--cache", worker->options.cache, "folder caching input chunks");
   w->add_option("--token-file", worker->tokenFile, "file holding the farm's access token (or PATHFARM_TOKEN[_FILE])");
 

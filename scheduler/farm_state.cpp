@@ -25,6 +25,24 @@ ReportReply accepted() {
   return reply;
 }
 
+// Tags as stored: ",a,b," (every tag between commas, so a lookup is one search), "" for none.
+template <class Iterator>
+std::string tagList(Iterator first, Iterator last) {
+  std::string list;
+  for (; first != last; ++first) list += "," + *first;
+  return list.empty() ? list : list + ",";
+}
+
+bool carriesEveryTag(const std::string& offered, const std::string& required) {
+  size_t start = 1;
+  while (start < required.size()) {
+    const size_t end = required.find(',', start);
+    if (offered.find(required.substr(start - 1, end - start + 2)) == std::string::npos) return false;
+    start = end + 1;
+  }
+  return true;
+}
+
 std::string describeTask(int64_t taskId, TaskKind kind, const TaskParams& params) {
   std::string text = "task " + std::to_string(taskId) + " (" + TaskKind_Name(kind);
   if (kind != TASK_NOOP) text += ", frame " + std::to_string(params.frame());
@@ -69,14 +87,16 @@ int64_t FarmState::submit(const ShotSpec& spec, const std::vector<PlannedTask>& 
       }
     }
     Statement& insert = db_.query(
-        "INSERT INTO shots (name, spec, state, priority, tasks_left, submitted_at, submit_key) "
-        "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7)");
+        "INSERT INTO shots (name, spec, state, priority, tasks_left, submitted_at, submit_key, required_tags, "
+        "max_workers) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9)");
     insert.bind(1, spec.name())
         .bindBlob(2, spec.SerializeAsString())
         .bind(3, int64_t{SHOT_QUEUED})
         .bind(4, int64_t{spec.priority()})
         .bind(5, static_cast<int64_t>(plan.size()))
-        .bind(6, now);
+        .bind(6, now)
+        .bind(8, tagList(spec.required_tags().begin(), spec.required_tags().end()))
+        .bind(9, int64_t{std::max(0, spec.max_workers())});
     if (submitKey.empty()) {
       insert.bindNull(7);
     } else {
@@ -116,12 +136,14 @@ int64_t FarmState::insertTask(int64_t shotId, TaskKind kind, const TaskParams& p
   return db_.lastInsertId();
 }
 
-int64_t FarmState::registerWorker(const std::string& name, int slots, double now) {
+int64_t FarmState::registerWorker(const std::string& name, int slots, double now,
+                                  const std::vector<std::string>& tags) {
   return transact([&]() -> int64_t {
-    db_.query("INSERT INTO workers (name, slots, registered_at, last_seen) VALUES (?1, ?2, ?3, ?3)")
+    db_.query("INSERT INTO workers (name, slots, registered_at, last_seen, tags) VALUES (?1, ?2, ?3, ?3, ?4)")
         .bind(1, name)
         .bind(2, int64_t{slots})
         .bind(3, now)
+        .bind(4, tagList(tags.begin(), tags.end()))
         .run();
     const int64_t id = db_.lastInsertId();
     return id;
@@ -138,14 +160,27 @@ bool FarmState::workerExists(int64_t workerId) {
 }
 
 std::optional<int64_t> FarmState::nextTask(int64_t workerId, double now) {
-  // Rule order: active shots only; not blocklisted for this worker; priority, then age.
+  // Rule order: active shots only; not blocklisted for this worker; the worker carries
+  // every tag the shot requires; the shot's cap on workers is not reached (or this worker
+  // is already one of them); priority, then age.
+  Statement& workerQuery = db_.query("SELECT tags FROM workers WHERE id = ?1").bind(1, workerId);
+  const std::string workerTags = workerQuery.step() ? workerQuery.text(0) : std::string();
+  workerQuery.reset();
   std::vector<int64_t> shots;
   Statement& shotQuery = db_.query(
-      "SELECT id FROM shots WHERE state IN (?1, ?2) AND id NOT IN "
+      "SELECT s.id, s.required_tags, s.max_workers, "
+      "CASE WHEN s.max_workers > 0 THEN (SELECT COUNT(DISTINCT a.worker_id) FROM attempts a "
+      " JOIN tasks t ON t.id = a.task_id WHERE t.shot_id = s.id AND a.state = ?4 AND a.worker_id != ?3) ELSE 0 END "
+      "FROM shots s WHERE s.state IN (?1, ?2) AND s.id NOT IN "
       "(SELECT shot_id FROM worker_failures WHERE worker_id = ?3 AND blocklisted = 1) "
-      "ORDER BY priority DESC, id ASC");
-  shotQuery.bind(1, int64_t{SHOT_QUEUED}).bind(2, int64_t{SHOT_RUNNING}).bind(3, workerId);
-  while (shotQuery.step()) shots.push_back(shotQuery.integer(0));
+      "ORDER BY s.priority DESC, s.id ASC");
+  shotQuery.bind(1, int64_t{SHOT_QUEUED}).bind(2, int64_t{SHOT_RUNNING}).bind(3, workerId).bind(4, int64_t{kRunning});
+  while (shotQuery.step()) {
+    if (!carriesEveryTag(workerTags, shotQuery.text(1))) continue;
+    const int64_t cap = shotQuery.integer(2), others = shotQuery.integer(3);
+    if (cap > 0 && others >= cap) continue;
+    shots.push_back(shotQuery.integer(0));
+  }
   // Then: a ready task, not in retry backoff, in the order the planner made them.
   for (const int64_t shot : shots) {
     Statement& taskQuery = db_.query(

@@ -58,7 +58,7 @@ class FarmState {
   // back from makes one shot, not two).
   int64_t submit(const ShotSpec& spec, const std::vector<PlannedTask>& plan, double now,
                  const std::string& submitKey = "");
-  int64_t registerWorker(const std::string& name, int slots, double now);
+  int64_t registerWorker(const std::string& name, int slots, double now, const std::vector<std::string>& tags = {});
   bool workerExists(int64_t workerId);
 
   // The next task for this worker, or nothing: ready tasks of running or queued shots

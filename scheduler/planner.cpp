@@ -1,6 +1,7 @@
 #include "scheduler/planner.h"
 
 #include <algorithm>
+#include <cctype>
 #include <functional>
 #include <map>
 #include <string>
@@ -310,7 +311,15 @@ std::vector<PlannedTask> planShot(const ShotSpec& spec) {
   return plan;
 }
 
+bool isValidTag(const std::string& tag) {
+  return !tag.empty() && tag.size() <= 64 && std::all_of(tag.begin(), tag.end(), [](unsigned char c) {
+    return std::isalnum(c) || c == '-' || c == '_' || c == '.';
+  });
+}
+
 std::vector<PlannedTask> planShotWithin(const ShotSpec& spec, const ShotLimits& limits) {
+  for (const std::string& tag : spec.required_tags())
+    if (!isValidTag(tag)) throw PlanError("required_tags: \"" + tag + "\" is not a tag (letters, digits, '-', '_', '.')");
   const int64_t frames = spec.frame_end() - spec.frame_start() + 1;
   if (frames > limits.maxFrames)
     throw PlanError("frames: " + std::to_string(frames) + " frames is more than this scheduler takes in one shot (" +

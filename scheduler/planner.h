@@ -52,6 +52,9 @@ std::vector<int64_t> keyframesOf(const ShotSpec& spec);
 // Throws PlanError for a spec the farm cannot run (unknown pipeline, empty frame range...).
 std::vector<PlannedTask> planShot(const ShotSpec& spec);
 
+// A worker tag or a shot's required tag: 1 to 64 letters, digits, '-', '_' or '.'.
+bool isValidTag(const std::string& tag);
+
 // What one shot may ask of a scheduler, so that a mistyped frame range cannot plan
 // billions of tasks or hold the database in one transaction for minutes.
 struct ShotLimits {

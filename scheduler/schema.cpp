@@ -98,6 +98,12 @@ const std::vector<const char*>& migrations() {
       ALTER TABLE shots ADD COLUMN submit_key TEXT;
       CREATE UNIQUE INDEX shots_by_submit_key ON shots(submit_key) WHERE submit_key IS NOT NULL;
       )sql",
+      // 5: pools. Tags as ",a,b," (empty: none); a shot's cap on workers (0: none).
+      R"sql(
+      ALTER TABLE workers ADD COLUMN tags TEXT NOT NULL DEFAULT '';
+      ALTER TABLE shots ADD COLUMN required_tags TEXT NOT NULL DEFAULT '';
+      ALTER TABLE shots ADD COLUMN max_workers INTEGER NOT NULL DEFAULT 0;
+      )sql",
   };
   return list;
 }

@@ -98,7 +98,7 @@ ShotSpec loadShotFile(const std::filesystem::path& file) {
                    "feature_spp", "reference_spp", "evaluation_frames", "baseline_core_seconds",
                    "poisson_window", "poisson_overlap", "poisson_norm", "mlt_window", "mutations_per_pixel",
                    "mlt_chains", "chains_per_block", "chain_tasks", "temporal_delta", "tune_delta",
-                   "bootstrap_samples"});
+                   "bootstrap_samples", "required_tags", "max_workers"});
   const std::filesystem::path folder = std::filesystem::absolute(file).parent_path();
 
   ShotSpec spec;
@@ -111,6 +111,14 @@ ShotSpec loadShotFile(const std::filesystem::path& file) {
                           "\" (this farm runs: pt, d, du, di, dui, tgpt, pssmlt, mlt, tmlt, noop)");
   spec.set_priority(root.has("priority") ? root["priority"].integer(-1000, 1000) : 0);
   spec.set_max_attempts(root.has("max_attempts") ? root["max_attempts"].integer(1, 100) : 3);
+  if (const auto tags = root.optional("required_tags")) {
+    for (const JsonNode& tag : tags->elements()) {
+      const std::string text = tag.string();
+      if (!isValidTag(text)) tag.fail("a tag is letters, digits, '-', '_' or '.' (1 to 64 of them)");
+      spec.add_required_tags(text);
+    }
+  }
+  spec.set_max_workers(root.has("max_workers") ? root["max_workers"].integer(1, 1'000'000) : 0);
   spec.set_tile(root.has("tile") ? root["tile"].integer(8, 4096) : 64);
   spec.set_output((folder / (root.has("output") ? root["output"].string() : "output/" + spec.name()))
                       .lexically_normal()

@@ -10,7 +10,12 @@ grpc::Status WorkerServiceImpl::Register(grpc::ServerContext* context, const Reg
                                          RegisterReply* reply) {
   return guarded(c_, context, [&] {
     const int slots = std::max(1, request->slots());
-    reply->set_worker_id(c_.state.registerWorker(request->name(), slots, wallClockSeconds()));
+    for (const std::string& tag : request->tags())
+      if (!isValidTag(tag))
+        return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
+                            "tag \"" + tag + "\" is not letters, digits, '-', '_' or '.'");
+    reply->set_worker_id(c_.state.registerWorker(request->name(), slots, wallClockSeconds(),
+                                                 {request->tags().begin(), request->tags().end()}));
     // Three heartbeats fit in a lease: one lost message does not lose the lease.
     reply->set_heartbeat_seconds(c_.state.settings().leaseSeconds / 3);
     return grpc::Status::OK;

@@ -22,10 +22,12 @@ std::unique_ptr<grpc::ClientContext> SchedulerLink::context(double seconds) cons
   return context;
 }
 
-grpc::Status SchedulerLink::registerWorker(const std::string& name, int slots, RegisterReply& reply) {
+grpc::Status SchedulerLink::registerWorker(const std::string& name, int slots, const std::vector<std::string>& tags,
+                                           RegisterReply& reply) {
   RegisterRequest request;
   request.set_name(name);
   request.set_slots(slots);
+  for (const std::string& tag : tags) request.add_tags(tag);
   return stub_->Register(context(kCallSeconds).get(), request, &reply);
 }
 

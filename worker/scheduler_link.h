@@ -5,6 +5,7 @@
 #include <mutex>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "pathfarm/worker_service.grpc.pb.h"
 
@@ -14,7 +15,8 @@ class SchedulerLink {
  public:
   SchedulerLink(const std::string& address, std::string token);
 
-  grpc::Status registerWorker(const std::string& name, int slots, RegisterReply& reply);
+  grpc::Status registerWorker(const std::string& name, int slots, const std::vector<std::string>& tags,
+                              RegisterReply& reply);
   // A long-poll for a task; returns CANCELLED at once after stopLeasing().
   grpc::Status lease(int64_t workerId, double waitSeconds, LeaseReply& reply);
   // Ends the long-polls under way and refuses new ones: a stopping worker need not wait

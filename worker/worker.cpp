@@ -82,7 +82,7 @@ class Slot {
  private:
   bool reregister() {
     RegisterReply reply;
-    if (!link_.registerWorker(options_.name, options_.slots, reply).ok()) return false;
+    if (!link_.registerWorker(options_.name, options_.slots, options_.tags, reply).ok()) return false;
     workerId_ = reply.worker_id();
     return true;
   }
@@ -205,7 +205,7 @@ void Worker::run(const std::atomic<bool>& stop) {
   RegisterReply registration;
   Backoff backoff;
   for (;;) {
-    const grpc::Status status = link.registerWorker(options_.name, options_.slots, registration);
+    const grpc::Status status = link.registerWorker(options_.name, options_.slots, options_.tags, registration);
     if (status.ok()) break;
     if (status.error_code() == grpc::StatusCode::UNAUTHENTICATED)
       throw std::runtime_error("the scheduler refused this worker: " + status.error_message());

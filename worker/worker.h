@@ -7,6 +7,7 @@
 #include <atomic>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace pathfarm::farm {
 
@@ -17,6 +18,7 @@ struct WorkerOptions {
   std::string name;
   std::string token;
   std::filesystem::path cache;  // input chunks; default: a folder under the temp dir
+  std::vector<std::string> tags;  // the pools this worker serves (shots' required_tags)
 };
 
 class Worker {

@@ -86,7 +86,7 @@ TEST_F(FarmTest, CorruptUploadsAndLateCompletionsAreRefused) {
   const int64_t id = client().submit(shotSpec(spec));
 
   farm::RegisterReply registration;
-  ASSERT_TRUE(link.registerWorker("silent", 1, registration).ok());
+  ASSERT_TRUE(link.registerWorker("silent", 1, {}, registration).ok());
   farm::LeaseReply leased;
   ASSERT_TRUE(link.lease(registration.worker_id(), 5, leased).ok());
   ASSERT_TRUE(leased.has_task());

@@ -38,5 +38,26 @@ TEST_F(FarmTest, ASubmitRepeatedWithItsKeyMakesOneShot) {
   EXPECT_TRUE(contains(cleared.output, "--clear needs a shot id")) << cleared.output;
 }
 
+TEST_F(FarmTest, AShotRequiringTagsRunsOnlyOnWorkersCarryingThem) {
+  startScheduler();
+  startWorker("plain");
+  startWorker("tagged", {"--tags", "gpu,big"});
+  RenderSpec spec;
+  spec.name = "pooled";
+  spec.tile = 16;
+  farm::ShotSpec shot = shotSpec(spec);
+  shot.add_required_tags("big");
+  const int64_t id = client().submit(shot);
+  ASSERT_EQ(waitForShot(id, 60s).state(), farm::SHOT_DONE);
+  const FarmDatabase db = database();
+  EXPECT_EQ(db.integer("SELECT COUNT(*) FROM attempts a JOIN workers w ON w.id = a.worker_id WHERE w.name = 'plain'"), 0);
+  EXPECT_EQ(db.integer("SELECT COUNT(*) FROM attempts a JOIN workers w ON w.id = a.worker_id WHERE w.name = 'tagged'"),
+            spec.tasks());
+  // A tag the scheduler cannot store is refused at submission.
+  farm::ShotSpec bad = shotSpec(spec);
+  bad.add_required_tags("no,commas");
+  EXPECT_THROW(client().submit(bad), farm::FarmError);
+}
+
 }  // namespace
 }  // namespace pathfarm::farmtest

@@ -290,6 +290,36 @@ TEST_F(FarmStateTest, PriorityCanChangeAfterSubmission) {
   EXPECT_EQ(state_->summary(older, now_).priority(), 0);
 }
 
+TEST_F(FarmStateTest, PoolsAndCapsDecideWhoMayLease) {
+  ShotSpec spec;
+  spec.set_name("pooled");
+  spec.set_pipeline("pt");
+  spec.set_width(64);
+  spec.set_height(64);
+  spec.set_spp(1);
+  spec.set_tile(16);  // 16 tiles: work for everyone
+  spec.add_required_tags("gpu");
+  spec.add_required_tags("big");
+  spec.set_max_workers(1);
+  const int64_t shot = state_->submit(spec, planShot(spec), now_);
+  const int64_t plain = state_->registerWorker("plain", 1, now_);
+  const int64_t gpuOnly = state_->registerWorker("gpu-only", 1, now_, {"gpu"});
+  const int64_t first = state_->registerWorker("first", 2, now_, {"big", "gpu", "fast"});
+  const int64_t second = state_->registerWorker("second", 1, now_, {"gpu", "big"});
+  EXPECT_FALSE(state_->lease(plain, now_).has_value()) << "no tags";
+  EXPECT_FALSE(state_->lease(gpuOnly, now_).has_value()) << "one of the two tags";
+  const Lease a = leaseFor(first);
+  EXPECT_EQ(a.shot_id(), shot);
+  EXPECT_FALSE(state_->lease(second, now_).has_value()) << "the cap of one worker is reached";
+  EXPECT_EQ(leaseFor(first).shot_id(), shot) << "the worker already on the shot may take another task";
+  // Once the first worker's tasks are done, the second may come in.
+  ASSERT_TRUE(complete(a.attempt_id(), storedChunk("a"), now_).accepted());
+  EXPECT_FALSE(state_->lease(second, now_).has_value()) << "the first still holds its second task";
+  // Another shot without requirements is anyone's.
+  const int64_t open = submitFrame();
+  EXPECT_EQ(leaseFor(plain).shot_id(), open);
+}
+
 TEST_F(FarmStateTest, ShotFailsWhenEveryLiveWorkerIsBlocklisted) {
   const int64_t shot = submitFrame(0, 10);
   const int64_t only = state_->registerWorker("only", 1, now_);
@@ -415,7 +445,7 @@ TEST(Schema, MigratesOnceAndRefusesANewerDatabase) {
   {
     Database db(file.string());
     migrate(db);
-    EXPECT_EQ(schemaVersion(db), 4);
+    EXPECT_EQ(schemaVersion(db), 5);
     EXPECT_NO_THROW(db.execute("SELECT lost FROM tasks"));  // migration 3's column
     migrate(db);  // nothing to do the second time
     db.execute("PRAGMA user_version = 99");
