@@ -163,23 +163,16 @@ std::optional<int64_t> FarmState::nextTask(int64_t workerId, double now) {
   // Rule order: active shots only; not blocklisted for this worker; the worker carries
   // every tag the shot requires; the shot's cap on workers is not reached (or this worker
   // is already one of them); priority, then age.
-  Statement& workerQuery = db_.query("SELECT tags FROM workers WHERE id = ?1").bind(1, workerId);
-  const std::string workerTags = workerQuery.step() ? workerQuery.text(0) : std::string();
-  workerQuery.reset();
   std::vector<int64_t> shots;
   Statement& shotQuery = db_.query(
-      "SELECT s.id, s.required_tags, s.max_workers, "
-      "CASE WHEN s.max_workers > 0 THEN (SELECT COUNT(DISTINCT a.worker_id) FROM attempts a "
-      " JOIN tasks t ON t.id = a.task_id WHERE t.shot_id = s.id AND a.state = ?4 AND a.worker_id != ?3) ELSE 0 END "
-      "FROM shots s WHERE s.state IN (?1, ?2) AND s.id NOT IN "
+      "SELECT id, required_tags != '' OR max_workers > 0 FROM shots WHERE state IN (?1, ?2) AND id NOT IN "
       "(SELECT shot_id FROM worker_failures WHERE worker_id = ?3 AND blocklisted = 1) "
-      "ORDER BY s.priority DESC, s.id ASC");
-  shotQuery.bind(1, int64_t{SHOT_QUEUED}).bind(2, int64_t{SHOT_RUNNING}).bind(3, workerId).bind(4, int64_t{kRunning});
+      "ORDER BY priority DESC, id ASC");
+  shotQuery.bind(1, int64_t{SHOT_QUEUED}).bind(2, int64_t{SHOT_RUNNING}).bind(3, workerId);
   while (shotQuery.step()) {
-    if (!carriesEveryTag(workerTags, shotQuery.text(1))) continue;
-    const int64_t cap = shotQuery.integer(2), others = shotQuery.integer(3);
-    if (cap > 0 && others >= cap) continue;
-    shots.push_back(shotQuery.integer(0));
+    const int64_t shot = shotQuery.integer(0);
+    // The pool rules are read only for shots that have any: a farm without pools pays nothing.
+    if (shotQuery.integer(1) == 0 || workerMayJoin(workerId, shot)) shots.push_back(shot);
   }
   // Then: a ready task, not in retry backoff, in the order the planner made them.
   for (const int64_t shot : shots) {
@@ -193,6 +186,19 @@ std::optional<int64_t> FarmState::nextTask(int64_t workerId, double now) {
     }
   }
   return std::nullopt;
+}
+
+bool FarmState::workerMayJoin(int64_t workerId, int64_t shotId) {
+  Statement& q = db_.query(
+      "SELECT s.required_tags, w.tags, s.max_workers, (SELECT COUNT(DISTINCT a.worker_id) FROM attempts a "
+      "JOIN tasks t ON t.id = a.task_id WHERE t.shot_id = s.id AND a.state = ?3 AND a.worker_id != w.id) "
+      "FROM shots s, workers w WHERE s.id = ?1 AND w.id = ?2");
+  q.bind(1, shotId).bind(2, workerId).bind(3, int64_t{kRunning});
+  if (!q.step()) return false;
+  const bool tagged = carriesEveryTag(q.text(1), q.text(0));
+  const int64_t cap = q.integer(2), others = q.integer(3);
+  q.reset();
+  return tagged && (cap == 0 || others < cap);
 }
 
 std::optional<Lease> FarmState::lease(int64_t workerId, double now) {

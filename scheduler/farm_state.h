@@ -134,6 +134,8 @@ class FarmState {
   ShotSummary summaryLocked(int64_t shotId, double now);
   FarmMetrics metricsLocked(double now);
   std::optional<int64_t> nextTask(int64_t workerId, double now);
+  // The pool rules: the worker carries the shot's required tags and its cap allows it.
+  bool workerMayJoin(int64_t workerId, int64_t shotId);
 
   std::mutex mutex_;  // one writer: every public method is one transaction under it
   Database db_;
