@@ -31,8 +31,8 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 mkdir -p "$figures"
 
-echo "| scene | pipeline | k | probe's predicted re-render | core-s/frame | pt core-s/frame | relative cost | relMSE | pt relMSE | worst tile | pt worst tile | error in worst 1 % | pt | temporal | pt temporal | re-render, interpolated |"
-echo "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+echo "| scene | pipeline | k | probe's predicted re-render | core-s/frame | pt core-s/frame | relative cost | cost at equal error | relMSE | pt relMSE | worst tile | pt worst tile | error in worst 1 % | pt | temporal | pt temporal | re-render, interpolated |"
+echo "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
 for scene in $scenes; do
   for pipeline in $pipelines; do
     out="$work/$scene-$pipeline"
@@ -51,9 +51,9 @@ chosen = re.search(r"k = %s: ([0-9.]+%%)" % r.get("keyframe_interval", 0), r.get
 errors = {e["stage"]: e for e in r["errors"]}
 final, base = errors.get("final", {}), errors.get("baseline", {})
 f = lambda v, p="%.4f": p % v if isinstance(v, (int, float)) and v >= 0 else "-"
-print("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+print("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
     sys.argv[2], sys.argv[3], r.get("keyframe_interval", "-"), chosen.group(1) if chosen else "-", f(r["core_seconds_per_frame"], "%.2f"),
-    f(r["baseline_core_seconds_per_frame"], "%.2f"), f(r["relative_cost"], "%.3f"),
+    f(r["baseline_core_seconds_per_frame"], "%.2f"), f(r["relative_cost"], "%.3f"), f(r.get("cost_at_equal_error", -1), "%.3f"),
     f(final.get("relmse")), f(base.get("relmse")), f(final.get("worst_tile_relmse")), f(base.get("worst_tile_relmse")),
     f(100 * final.get("worst_percent_share", -0.01), "%.0f%%"), f(100 * base.get("worst_percent_share", -0.01), "%.0f%%"),
     f(r["temporal_error"]), f(r["baseline_temporal_error"]), f(100 * r["interpolation_rerender_rate"], "%.1f%%")))
