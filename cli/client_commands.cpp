@@ -1,9 +1,10 @@
 // `pathfarm submit | status | watch | fetch | report | cancel | pause | resume | retry | priority |
-// blocklist | workers`: thin calls through FarmClient.
+// requeue | blocklist | workers`: thin calls through FarmClient.
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 #include "cli/command.h"
 #include "cli/shot_progress.h"
@@ -25,6 +26,8 @@ struct ClientArguments {
   int priority = 0;
   bool clear = false;
   int64_t workerId = 0;
+  std::optional<int64_t> taskId;
+  std::optional<int64_t> frame;
   std::string out;
   bool json = false;
 };
@@ -46,7 +49,8 @@ int withClient(const ClientArguments& arguments, Body body) {
     return kExitBadInput;
   } catch (const farm::FarmError& e) {
     spdlog::error("{}", e.what());
-    const bool badRequest = e.code() == grpc::StatusCode::INVALID_ARGUMENT || e.code() == grpc::StatusCode::NOT_FOUND;
+    const bool badRequest = e.code() == grpc::StatusCode::INVALID_ARGUMENT || e.code() == grpc::StatusCode::NOT_FOUND ||
+                            e.code() == grpc::StatusCode::FAILED_PRECONDITION;
     return badRequest ? kExitBadInput : kExitFailure;
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
@@ -145,6 +149,19 @@ std::vector<Command> addClientCommands(CLI::App& app) {
       },
       [](farm::FarmClient& client, const ClientArguments& a) {
         std::printf("%s\n", describeShot(client.setPriority(a.shotId, a.priority)).c_str());
+        return kExitOk;
+      });
+  add("requeue", "run a task or a frame again, with every task that used it (a done shot runs again)",
+      [](CLI::App* c, ClientArguments& a) {
+        c->add_option("id", a.shotId, "shot id")->required();
+        auto* task = c->add_option("--task", a.taskId, "the task id (as the shot's events and the dashboard name it)");
+        task->excludes(c->add_option("--frame", a.frame, "the frame number"));
+      },
+      [](farm::FarmClient& client, const ClientArguments& a) {
+        if (!a.taskId && !a.frame) throw std::invalid_argument("requeue: give --task ID or --frame N");
+        const auto summary =
+            a.taskId ? client.requeueTask(a.shotId, *a.taskId) : client.requeueFrame(a.shotId, *a.frame);
+        std::printf("%s\n", describeShot(summary).c_str());
         return kExitOk;
       });
   add("blocklist", "list the workers kept away from a shot (every shot without an id), or --clear them",

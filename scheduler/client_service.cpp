@@ -150,6 +150,25 @@ grpc::Status ClientServiceImpl::SetPriority(grpc::ServerContext* context, const 
   });
 }
 
+grpc::Status ClientServiceImpl::Requeue(grpc::ServerContext* context, const RequeueRequest* request,
+                                        ControlReply* reply) {
+  return guarded(c_, context, [&] {
+    const double now = wallClockSeconds();
+    switch (request->what_case()) {
+      case RequeueRequest::kTaskId:
+        *reply->mutable_summary() = c_.state.requeueTask(request->shot_id(), request->task_id(), now);
+        break;
+      case RequeueRequest::kFrame:
+        *reply->mutable_summary() = c_.state.requeueFrame(request->shot_id(), request->frame(), now);
+        break;
+      case RequeueRequest::WHAT_NOT_SET:
+        return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT, "requeue: name a task or a frame");
+    }
+    c_.signal.notify();
+    return grpc::Status::OK;
+  });
+}
+
 grpc::Status ClientServiceImpl::ListBlocklist(grpc::ServerContext* context, const BlocklistRequest* request,
                                               BlocklistReply* reply) {
   return guarded(c_, context, [&] {

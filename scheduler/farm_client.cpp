@@ -107,6 +107,24 @@ ShotSummary FarmClient::setPriority(int64_t id, int priority) {
   return reply.summary();
 }
 
+ShotSummary FarmClient::requeueTask(int64_t id, int64_t taskId) {
+  RequeueRequest request;
+  request.set_shot_id(id);
+  request.set_task_id(taskId);
+  ControlReply reply;
+  check(stub_->Requeue(context(false).get(), request, &reply));
+  return reply.summary();
+}
+
+ShotSummary FarmClient::requeueFrame(int64_t id, int64_t frame) {
+  RequeueRequest request;
+  request.set_shot_id(id);
+  request.set_frame(frame);
+  ControlReply reply;
+  check(stub_->Requeue(context(false).get(), request, &reply));
+  return reply.summary();
+}
+
 std::vector<BlocklistEntry> FarmClient::blocklist(int64_t shotId) {
   BlocklistRequest request;
   request.set_shot_id(shotId);

@@ -39,6 +39,8 @@ class FarmClient {
   ShotSummary resume(int64_t id);
   ShotSummary retry(int64_t id);
   ShotSummary setPriority(int64_t id, int priority);
+  ShotSummary requeueTask(int64_t id, int64_t taskId);
+  ShotSummary requeueFrame(int64_t id, int64_t frame);
   std::vector<BlocklistEntry> blocklist(int64_t shotId);  // 0: every shot
   std::vector<BlocklistEntry> clearBlocklist(int64_t shotId, int64_t workerId);  // what is left
   // Writes every finished frame as DIR/frame_NNNN.exr (verified, atomically); returns the files.

@@ -395,7 +395,7 @@ void FarmState::retryOrFail(const AttemptRow& attempt, const std::string& reason
   }
   const double backoff =
       std::min(settings_.maxBackoffSeconds, settings_.retryBackoffSeconds * std::pow(2.0, failures - 1));
-  requeueTask(attempt, "failures", failures, now + backoff);
+  retryLater(attempt, "failures", failures, now + backoff);
 }
 
 void FarmState::failTask(const AttemptRow& attempt, const char* counter, int count, const std::string& why,
@@ -408,7 +408,7 @@ void FarmState::failTask(const AttemptRow& attempt, const char* counter, int cou
   endShot(attempt.shotId, SHOT_FAILED, why, now);
 }
 
-void FarmState::requeueTask(const AttemptRow& attempt, const char* counter, int count, double notBefore) {
+void FarmState::retryLater(const AttemptRow& attempt, const char* counter, int count, double notBefore) {
   db_.query(std::string("UPDATE tasks SET state = ?1, ") + counter +
             " = ?2, attempt_id = NULL, not_before = ?3 WHERE id = ?4")
       .bind(1, asInt(TaskState::Ready))
@@ -431,7 +431,7 @@ void FarmState::retryLost(const AttemptRow& attempt, const std::string& reason, 
              now);
     return;
   }
-  requeueTask(attempt, "lost", lost, now + settings_.retryBackoffSeconds);
+  retryLater(attempt, "lost", lost, now + settings_.retryBackoffSeconds);
 }
 
 int FarmState::expireLeases(double now) {
@@ -485,6 +485,7 @@ void FarmState::addFollowUps(const AttemptRow& attempt, const google::protobuf::
   while (q.step()) composites.push_back(q.integer(0));
   for (const TaskParams& params : followUps) {
     const int64_t id = insertTask(attempt.shotId, TASK_RENDER_TILE, params, 0, attempt.maxAttempts, false);
+    db_.query("UPDATE tasks SET created_by = ?1 WHERE id = ?2").bind(1, attempt.taskId).bind(2, id).run();
     for (const int64_t composite : composites) {
       db_.query("INSERT INTO task_deps (task_id, depends_on) VALUES (?1, ?2)").bind(1, composite).bind(2, id).run();
       db_.query("UPDATE tasks SET pending_deps = pending_deps + 1 WHERE id = ?1").bind(1, composite).run();

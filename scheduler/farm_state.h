@@ -87,6 +87,14 @@ class FarmState {
   // blocklist is cleared, and everything done stays done. Other shots are left as they are.
   ShotSummary retry(int64_t shotId, double now);
   ShotSummary setPriority(int64_t shotId, int priority, double now);
+  // The task runs again (a running attempt is revoked), and so does every task that used
+  // its output, directly or not; re-render tiles those tasks asked for are dropped, to be
+  // asked for again. A done shot becomes active again; a failed shot (retry it first), a
+  // cancelled one, a task of another shot or an unknown task is refused with
+  // std::invalid_argument, an unknown shot with std::out_of_range (farm_state_requeue.cpp).
+  ShotSummary requeueTask(int64_t shotId, int64_t taskId, double now);
+  // The same for every task of one frame: its tiles, filters and output.
+  ShotSummary requeueFrame(int64_t shotId, int64_t frame, double now);
   // Blocklisted workers of one shot, or of every shot with 0.
   std::vector<BlocklistEntry> blocklist(int64_t shotId);
   // Lifts the blocklist of `workerId` (0: every worker) for the shot.
@@ -102,6 +110,43 @@ class FarmState {
 
   const FarmSettings& settings() const { return settings_; }
 
+  // The dashboard's reads (farm_state_dashboard.cpp): what the tasks and attempts tables
+  // hold, as they are, for people to look at.
+  struct AttemptDetail {
+    int64_t id = 0;
+    int64_t workerId = 0;
+    std::string workerName;
+    int state = 0;  // an AttemptState
+    double leasedAt = 0;
+    std::optional<double> finishedAt;
+    double progress = 0;
+    std::string error;
+  };
+  struct TaskDetail {
+    int64_t id = 0;
+    TaskKind kind = TASK_KIND_UNSPECIFIED;
+    TaskParams params;
+    int state = 0;  // a TaskState
+    int64_t failures = 0, lost = 0, maxAttempts = 0;
+    double coreSeconds = 0;
+    std::vector<AttemptDetail> attempts;  // oldest first
+  };
+  struct TaskPage {
+    int64_t matching = 0;  // tasks passing the filter, of which `tasks` is a slice
+    std::vector<TaskDetail> tasks;
+  };
+  // A shot's tasks in task order, only those in `state` (a TaskState) if given, `limit`
+  // from `offset`. Throws std::out_of_range for an unknown shot.
+  TaskPage taskDetails(int64_t shotId, std::optional<int> state, int64_t offset, int64_t limit);
+  struct RunningTask {
+    int64_t workerId = 0, shotId = 0, taskId = 0, attemptId = 0;
+    TaskKind kind = TASK_KIND_UNSPECIFIED;
+    int64_t frame = 0;
+    double leasedAt = 0, progress = 0;
+  };
+  // Every attempt running now, by worker.
+  std::vector<RunningTask> runningTasks();
+
  private:
   struct AttemptRow;
   // Runs `body` as one transaction under the lock; commits when it returns normally and
@@ -116,7 +161,7 @@ class FarmState {
   // recorded as `count`.
   void failTask(const AttemptRow& attempt, const char* counter, int count, const std::string& why, double now);
   // The task is ready again from `notBefore`, with `counter` recorded as `count`.
-  void requeueTask(const AttemptRow& attempt, const char* counter, int count, double notBefore);
+  void retryLater(const AttemptRow& attempt, const char* counter, int count, double notBefore);
   int64_t insertTask(int64_t shotId, TaskKind kind, const TaskParams& params, size_t dependencies,
                      int64_t maxAttempts, bool output);
   void addFollowUps(const AttemptRow& attempt, const google::protobuf::RepeatedPtrField<TaskParams>& followUps,
@@ -127,6 +172,8 @@ class FarmState {
   void setShotState(int64_t shotId, ShotState state, double now);
   // Queued or running again, as far as it had got.
   void reactivate(int64_t shotId, double now);
+  // Runs `seeds` and everything downstream of them again (farm_state_requeue.cpp).
+  ShotSummary requeueLocked(int64_t shotId, const std::vector<int64_t>& seeds, const std::string& what, double now);
   // One transaction: `change` gets the shot's state; the summary after is returned.
   template <class Change>
   ShotSummary changeShot(int64_t shotId, double now, Change change);

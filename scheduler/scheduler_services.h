@@ -48,6 +48,7 @@ class ClientServiceImpl final : public ClientService::Service {
   grpc::Status FetchOutputs(grpc::ServerContext*, const ShotRequest*, grpc::ServerWriter<OutputPart>*) override;
   grpc::Status ListWorkers(grpc::ServerContext*, const ListWorkersRequest*, ListWorkersReply*) override;
   grpc::Status SetPriority(grpc::ServerContext*, const PriorityRequest*, ControlReply*) override;
+  grpc::Status Requeue(grpc::ServerContext*, const RequeueRequest*, ControlReply*) override;
   grpc::Status ListBlocklist(grpc::ServerContext*, const BlocklistRequest*, BlocklistReply*) override;
   grpc::Status ClearBlocklist(grpc::ServerContext*, const BlocklistRequest*, BlocklistReply*) override;
 

@@ -104,6 +104,11 @@ const std::vector<const char*>& migrations() {
       ALTER TABLE shots ADD COLUMN required_tags TEXT NOT NULL DEFAULT '';
       ALTER TABLE shots ADD COLUMN max_workers INTEGER NOT NULL DEFAULT 0;
       )sql",
+      // 6: a re-render tile remembers the task that asked for it, so that requeueing that
+      // task drops the tile (the task asks again when it runs).
+      R"sql(
+      ALTER TABLE tasks ADD COLUMN created_by INTEGER REFERENCES tasks(id) ON DELETE CASCADE;
+      )sql",
   };
   return list;
 }

@@ -22,6 +22,8 @@ grpc::Status guarded(const SchedulerContext& c, grpc::ServerContext* context, Bo
     return {grpc::StatusCode::NOT_FOUND, e.what()};
   } catch (const PlanError& e) {
     return {grpc::StatusCode::INVALID_ARGUMENT, e.what()};
+  } catch (const std::invalid_argument& e) {
+    return {grpc::StatusCode::FAILED_PRECONDITION, e.what()};
   } catch (const ChunkError& e) {
     return {grpc::StatusCode::DATA_LOSS, e.what()};
   } catch (const std::exception& e) {

@@ -1,0 +1,74 @@
+#pragma once
+// FarmState on a fresh database in a folder of its own, with a clock the test controls,
+// and the small steps most of its tests take: submit a frame, lease, store, complete.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "scheduler/farm_state.h"
+
+namespace pathfarm::farm {
+
+class FarmStateTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    folder_ = std::filesystem::temp_directory_path() /
+              ("pathfarm_state_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    std::filesystem::remove_all(folder_);
+    std::filesystem::create_directories(folder_);
+    settings_.leaseSeconds = 10;
+    settings_.hungSeconds = 100;
+    settings_.retryBackoffSeconds = 2;
+    settings_.blocklistAfter = 2;
+    open();
+  }
+  void TearDown() override {
+    state_.reset();
+    std::filesystem::remove_all(folder_);
+  }
+  void open() { state_ = std::make_unique<FarmState>((folder_ / "farm.db").string(), settings_, now_); }
+
+  // One frame of 2x1 tiles plus its assembly, as the planner makes for "pt".
+  int64_t submitFrame(int priority = 0, int maxAttempts = 3) {
+    ShotSpec spec;
+    spec.set_name("shot");
+    spec.set_pipeline("pt");
+    spec.set_width(64);
+    spec.set_height(32);
+    spec.set_spp(1);
+    spec.set_tile(32);
+    spec.set_priority(priority);
+    spec.set_max_attempts(maxAttempts);
+    return state_->submit(spec, planShot(spec), now_);
+  }
+  ChunkRef storedChunk(const std::string& name) {
+    ChunkRef ref;
+    ref.set_sha256(std::string(64 - name.size(), '0') + name);
+    ref.set_size(10);
+    state_->recordChunk(ref, now_);
+    return ref;
+  }
+  ReportReply complete(int64_t attemptId, const ChunkRef& output, double now,
+                       const std::vector<TaskParams>& followUps = {}) {
+    CompleteRequest request;
+    request.set_attempt_id(attemptId);
+    *request.mutable_output() = output;
+    for (const TaskParams& params : followUps) *request.add_follow_ups() = params;
+    return state_->complete(request, now);
+  }
+  Lease leaseFor(int64_t worker) {
+    auto lease = state_->lease(worker, now_);
+    EXPECT_TRUE(lease.has_value());
+    return lease.value_or(Lease{});
+  }
+
+  std::filesystem::path folder_;
+  FarmSettings settings_;
+  double now_ = 1000;
+  std::unique_ptr<FarmState> state_;
+};
+
+}  // namespace pathfarm::farm
