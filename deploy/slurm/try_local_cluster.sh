@@ -248,12 +248,20 @@ for pid in $(worker_pids); do
 done
 log "worker processes: $(worker_pids | wc -l), each with SLURM_ARRAY_JOB_ID=$job in its environment"
 
+# `pathfarm submit` prints the shot id on a line of its own (log lines may come too).
+submit() {
+  local id
+  id=$("$pathfarm" submit --scheduler "$address" "$1" | grep -E '^[0-9]+$' | tail -n 1) || true
+  [ -n "$id" ] || die "pathfarm submit $1 printed no shot id"
+  echo "$id"
+}
+
 # --- 6. a tiny shot --------------------------------------------------------------------
 cat > "$work/shot.json" <<JSON
 {"name": "slurm-try", "scene": "$root/scenes/cornell/scene.json", "frames": {"start": 0, "end": 3},
  "resolution": [64, 64], "spp": 4, "max_depth": 4, "tile": 32, "pipeline": "pt"}
 JSON
-shot=$("$pathfarm" submit --scheduler "$address" "$work/shot.json")
+shot=$(submit "$work/shot.json")
 log "submitted shot $shot (4 frames, 64x64, 4 spp, 16 tiles)"
 timeout "$timeout_seconds" "$pathfarm" watch --scheduler "$address" "$shot" > "$work/watch.log" 2>&1 ||
   die "shot $shot did not finish within ${timeout_seconds} s: $(tail -n 3 "$work/watch.log")"
@@ -279,7 +287,7 @@ cat > "$work/long.json" <<JSON
 {"name": "slurm-cancel", "scene": "$root/scenes/cornell/scene.json", "frames": {"start": 0, "end": 0},
  "resolution": [64, 64], "spp": 1024, "max_depth": 4, "tile": 64, "pipeline": "pt"}
 JSON
-long=$("$pathfarm" submit --scheduler "$address" "$work/long.json")
+long=$(submit "$work/long.json")
 one_running() { "$pathfarm" status --scheduler "$address" "$long" | head -1 | grep -q ' 1 running'; }
 wait_for "shot $long's one tile to be leased" one_running
 log "shot $long (one 64x64 tile at 1024 spp) is rendering; scancel $job"

@@ -148,7 +148,8 @@ env -u PATHFARM_TOKEN_FILE PATHFARM_TOKEN=wrong "$pathfarm" workers --scheduler 
   fail "the scheduler answered a call with a wrong token"
 grep -q "requires its access token" "$tmp/refused.out" || fail "a wrong token was not refused as such: $(cat "$tmp/refused.out")"
 if curl --version > /dev/null 2>&1; then
-  curl -fsS "http://127.0.0.1:$((port + 1))/metrics" | grep -q '^pathfarm_workers' || fail "no metrics on PATHFARM_HTTP"
+  # The token is sent too, for a scheduler that asks for it on HTTP as well.
+  curl -fsS -H "Authorization: Bearer $(cat "$PATHFARM_TOKEN_FILE")" "http://127.0.0.1:$((port + 1))/metrics" | grep -q '^pathfarm_workers' || fail "no metrics on PATHFARM_HTTP"
   log "metrics served on 127.0.0.1:$((port + 1)) (PATHFARM_HTTP)"
 fi
 
@@ -162,7 +163,9 @@ cat > "$tmp/tagged.json" <<JSON
  "resolution": [48, 48], "spp": 2, "max_depth": 4, "tile": 24, "pipeline": "pt", "required_tags": ["big"]}
 JSON
 for shot_file in shot tagged; do
-  id=$("$pathfarm" submit --scheduler "$address" "$tmp/$shot_file.json")
+  # The shot id is the line that is a number (log lines may come too).
+  id=$("$pathfarm" submit --scheduler "$address" "$tmp/$shot_file.json" | grep -E '^[0-9]+$' | tail -n 1) || true
+  [ -n "$id" ] || fail "pathfarm submit $shot_file.json printed no shot id"
   timeout 120 "$pathfarm" watch --scheduler "$address" "$id" > "$tmp/watch-$id.log" 2>&1 ||
     fail "shot $id ($shot_file) did not finish: $(tail -n 3 "$tmp/watch-$id.log")"
   "$pathfarm" fetch --scheduler "$address" "$id" --out "$tmp/frames-$id" > /dev/null
