@@ -11,6 +11,7 @@
 #include "proto/wire/connection.h"
 #include "renderer/scene/json_node.h"
 #include "scheduler/farm_client.h"
+#include "scheduler/scene_upload.h"
 #include "scheduler/shot_file.h"
 #include "scheduler/shot_report.h"
 
@@ -30,6 +31,7 @@ struct ClientArguments {
   std::optional<int64_t> frame;
   std::string out;
   bool json = false;
+  bool sharedPaths = false;
 };
 
 void addConnectionOptions(CLI::App* command, ClientArguments& arguments) {
@@ -82,9 +84,16 @@ std::vector<Command> addClientCommands(CLI::App& app) {
         c->add_option("shot", a.shotFile, "shot file (JSON)")->required();
         c->add_option("--submit-key", a.submitKey,
                       "names this submit: submitting again with the same key prints the same shot, adds nothing");
+        c->add_flag("--shared-paths", a.sharedPaths,
+                    "upload nothing: workers read the scene at its absolute path on storage they share with you");
       },
       [](farm::FarmClient& client, const ClientArguments& a) {
-        const farm::ShotSpec spec = farm::loadShotFile(a.shotFile);  // validated before anything is queued
+        farm::ShotSpec spec = farm::loadShotFile(a.shotFile);  // validated before anything is queued
+        if (!a.sharedPaths) {
+          const farm::UploadSummary sent = farm::uploadSceneInputs(client, spec);
+          spdlog::info("scene: {} files, {:.1f} MB; sent {} ({:.1f} MB), the farm had the rest", sent.files,
+                       static_cast<double>(sent.bytes) / 1e6, sent.filesSent, static_cast<double>(sent.bytesSent) / 1e6);
+        }
         std::printf("%lld\n", static_cast<long long>(client.submit(spec, a.submitKey)));
         return kExitOk;
       });

@@ -48,12 +48,14 @@ int runScheduler(SchedulerArguments& arguments) {
 struct WorkerArguments {
   farm::WorkerOptions options;
   std::string tokenFile;
+  double cacheMaxGb = 20;
 };
 
 int runWorker(WorkerArguments& arguments) {
   const auto& stop = stopRequested();
   try {
     arguments.options.token = farm::loadToken(arguments.tokenFile);
+    arguments.options.cacheMaxBytes = static_cast<uint64_t>(arguments.cacheMaxGb * 1e9);
     farm::Worker(arguments.options).run(stop);
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
@@ -94,7 +96,8 @@ std::vector<Command> addFarmProcessCommands(CLI::App& app) {
       ->capture_default_str();
   s->add_option("--port-file", scheduler->portFile, "write the bound port here (for --listen HOST:0)");
   s->add_option("--http", scheduler->options.http,
-                "HOST:PORT serving Prometheus metrics at /metrics (loopback unless --insecure)");
+                "HOST:PORT serving the dashboard at / and Prometheus metrics at /metrics (loopback unless a "
+                "token and --insecure; docs/dashboard.md)");
   s->add_option("--http-port-file", scheduler->httpPortFile, "write the bound HTTP port here (for --http HOST:0)");
   s->add_flag("--insecure", scheduler->options.insecure,
               "serve beyond loopback over an unencrypted channel (the token and frames cross in clear)");
@@ -108,7 +111,10 @@ std::vector<Command> addFarmProcessCommands(CLI::App& app) {
   w->add_option("--name", worker->options.name, "name shown by `pathfarm workers` (default host:pid)");
   w->add_option("--tags", worker->options.tags, "tags this worker offers, e.g. gpu,big: shots requiring them")
       ->delimiter(',');
-  w->add_option("--cache", worker->options.cache, "folder caching input chunks");
+  w->add_option("--cache", worker->options.cache, "folder caching input chunks and uploaded scenes");
+  w->add_option("--cache-max-gb", worker->cacheMaxGb, "the cache is trimmed to this size, least recently used first")
+      ->check(CLI::Range(0.001, 1e6))
+      ->capture_default_str();
   w->add_option("--token-file", worker->tokenFile, "file holding the farm's access token (or PATHFARM_TOKEN[_FILE])");
 
   return {{s, [scheduler] { return runScheduler(*scheduler); }}, {w, [worker] { return runWorker(*worker); }}};

@@ -17,6 +17,8 @@ bool isPng(const std::string& bytes) { return bytes.rfind("\x89PNG", 0) == 0; }
 grpc::Status ClientServiceImpl::Submit(grpc::ServerContext* context, const SubmitRequest* request,
                                        SubmitReply* reply) {
   return guarded(c_, context, [&] {
+    if (const std::string problem = inputProblem(request->spec()); !problem.empty())
+      return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT, problem);
     const auto plan = planShotWithin(request->spec(), c_.limits);
     reply->set_shot_id(c_.state.submit(request->spec(), plan, wallClockSeconds(), request->submit_key()));
     c_.signal.notify();

@@ -125,6 +125,23 @@ ShotSummary FarmClient::requeueFrame(int64_t id, int64_t frame) {
   return reply.summary();
 }
 
+std::vector<ChunkRef> FarmClient::missingInputs(const std::vector<ChunkRef>& chunks) {
+  MissingInputsRequest request;
+  for (const ChunkRef& ref : chunks) *request.add_chunks() = ref;
+  MissingInputsReply reply;
+  check(stub_->MissingInputs(context(false).get(), request, &reply));
+  return {reply.chunks().begin(), reply.chunks().end()};
+}
+
+void FarmClient::putInput(const std::string& bytes, const ChunkRef& ref) {
+  const auto call = context(true);
+  PutInputReply reply;
+  auto writer = stub_->PutInput(call.get(), &reply);
+  sendChunk(*writer, ref, bytes);
+  writer->WritesDone();
+  check(writer->Finish());
+}
+
 std::vector<BlocklistEntry> FarmClient::blocklist(int64_t shotId) {
   BlocklistRequest request;
   request.set_shot_id(shotId);

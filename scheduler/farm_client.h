@@ -29,6 +29,10 @@ class FarmClient {
   // Queues the shot under `submitKey` (a random one when empty), retrying a call that
   // timed out or found the scheduler away with the same key, so it makes one shot.
   int64_t submit(const ShotSpec& spec, std::string submitKey = "");
+  // Of these chunks, the ones the scheduler's store lacks.
+  std::vector<ChunkRef> missingInputs(const std::vector<ChunkRef>& chunks);
+  // Stores one scene file's bytes (streamed in bounded parts, verified on receipt).
+  void putInput(const std::string& bytes, const ChunkRef& ref);
   std::vector<ShotSummary> shots();
   ShotReply shot(int64_t id);
   ShotReport report(int64_t id);

@@ -36,6 +36,8 @@ class ClientServiceImpl final : public ClientService::Service {
  public:
   explicit ClientServiceImpl(SchedulerContext context) : c_(context) {}
 
+  grpc::Status MissingInputs(grpc::ServerContext*, const MissingInputsRequest*, MissingInputsReply*) override;
+  grpc::Status PutInput(grpc::ServerContext*, grpc::ServerReader<ChunkPart>*, PutInputReply*) override;
   grpc::Status Submit(grpc::ServerContext*, const SubmitRequest*, SubmitReply*) override;
   grpc::Status ListShots(grpc::ServerContext*, const ListShotsRequest*, ListShotsReply*) override;
   grpc::Status GetShot(grpc::ServerContext*, const ShotRequest*, ShotReply*) override;
@@ -53,6 +55,8 @@ class ClientServiceImpl final : public ClientService::Service {
   grpc::Status ClearBlocklist(grpc::ServerContext*, const BlocklistRequest*, BlocklistReply*) override;
 
  private:
+  // Why the shot's uploaded scene files cannot be used, or "" (client_service_inputs.cpp).
+  std::string inputProblem(const ShotSpec& spec) const;
   template <class Change>
   grpc::Status controlShot(grpc::ServerContext* context, const ShotRequest* request, ControlReply* reply,
                            Change change);

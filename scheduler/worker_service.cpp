@@ -2,6 +2,7 @@
 #include <chrono>
 
 #include "proto/wire/chunk_transfer.h"
+#include "scheduler/received_chunk.h"
 #include "scheduler/service_guard.h"
 
 namespace pathfarm::farm {
@@ -76,11 +77,7 @@ grpc::Status WorkerServiceImpl::FailTask(grpc::ServerContext* context, const Fai
 grpc::Status WorkerServiceImpl::PutChunk(grpc::ServerContext* context, grpc::ServerReader<ChunkPart>* reader,
                                          PutChunkReply* reply) {
   return guarded(c_, context, [&] {
-    ChunkRef announced;
-    const std::string bytes = receiveChunk(*reader, announced, kMaxChunkBytes);
-    // The file is on disk (fsynced, renamed) before the row that names it commits.
-    *reply->mutable_ref() = c_.store.put(bytes, announced);
-    c_.state.recordChunk(reply->ref(), wallClockSeconds());
+    *reply->mutable_ref() = storeReceivedChunk(*reader, c_);
     return grpc::Status::OK;
   });
 }

@@ -12,6 +12,7 @@
 #include "renderer/scene/scene_loader.h"
 #include "scheduler/planner.h"
 #include "worker/metropolis_tasks.h"
+#include "worker/scene_files.h"
 
 namespace pathfarm::farm {
 namespace {
@@ -42,7 +43,7 @@ struct TaskRunner::ShotRenderer {
 
 TaskRunner::~TaskRunner() = default;
 
-std::shared_ptr<TaskRunner::ShotRenderer> TaskRunner::rendererFor(const Lease& lease) {
+std::shared_ptr<TaskRunner::ShotRenderer> TaskRunner::rendererFor(const Lease& lease, const ChunkFetcher& fetch) {
   const std::lock_guard lock(mutex_);
   // Most recently used first; a shot seen again moves to the front.
   const auto cached = std::find_if(renderers_.begin(), renderers_.end(),
@@ -52,7 +53,7 @@ std::shared_ptr<TaskRunner::ShotRenderer> TaskRunner::rendererFor(const Lease& l
     return renderers_.front().second;
   }
   auto shot = std::make_shared<ShotRenderer>();
-  shot->scene = loadScene(lease.spec().scene());
+  shot->scene = loadScene(localSceneFile(lease.spec(), scenesRoot_, fetch));
   shot->renderer = std::make_unique<FrameRenderer>(shot->scene, settingsOf(shot->scene, lease.spec(), threads_));
   if (isMetropolisPipeline(lease.spec().pipeline()))
     shot->metropolis = std::make_unique<MetropolisRenderer>(shot->scene, metropolisSettingsOf(lease.spec(), threads_));
@@ -65,11 +66,11 @@ TaskOutput TaskRunner::run(const Lease& lease, const ChunkFetcher& fetch, std::a
                            const std::atomic<bool>& abandon) {
   switch (lease.kind()) {
     case TASK_RENDER_TILE:
-      return renderTile(lease, progress, abandon);
+      return renderTile(lease, fetch, progress, abandon);
     case TASK_ASSEMBLE_FRAME:
       return {assembleFrame(lease, fetch, progress), {}, {}};
     case TASK_GRADIENT_RENDER:
-      return renderGradientFrame(lease, progress, abandon);
+      return renderGradientFrame(lease, fetch, progress, abandon);
     case TASK_NOOP:
       return {};
     case TASK_MLT_SEED_POOL:
@@ -81,9 +82,9 @@ TaskOutput TaskRunner::run(const Lease& lease, const ChunkFetcher& fetch, std::a
   }
 }
 
-TaskOutput TaskRunner::renderTile(const Lease& lease, std::atomic<double>& progress,
+TaskOutput TaskRunner::renderTile(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,
                                   const std::atomic<bool>& abandon) {
-  const auto shot = rendererFor(lease);
+  const auto shot = rendererFor(lease, fetch);
   const TaskParams& params = lease.params();
   RenderSettings settings = shot->renderer->settings();
   if (params.spp() > 0) settings.spp = params.spp();
@@ -107,9 +108,9 @@ TaskOutput TaskRunner::renderTile(const Lease& lease, std::atomic<double>& progr
   return output;
 }
 
-TaskOutput TaskRunner::renderGradientFrame(const Lease& lease, std::atomic<double>& progress,
-                                           const std::atomic<bool>& abandon) {
-  const auto shot = rendererFor(lease);
+TaskOutput TaskRunner::renderGradientFrame(const Lease& lease, const ChunkFetcher& fetch,
+                                           std::atomic<double>& progress, const std::atomic<bool>& abandon) {
+  const auto shot = rendererFor(lease, fetch);
   RenderSettings settings = shot->renderer->settings();
   settings.decomposition = nullptr;
   const GradientFrameRenderer renderer(shot->scene, settings, GradientSettings{.temporal = true});
@@ -163,7 +164,7 @@ std::vector<TaskInput> TaskRunner::inputsOf(const Lease& lease, const ChunkFetch
 
 TaskOutput TaskRunner::runMetropolis(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,
                                      const std::atomic<bool>& abandon) {
-  const auto shot = rendererFor(lease);
+  const auto shot = rendererFor(lease, fetch);
   if (!shot->metropolis)
     throw std::runtime_error("a Metropolis task in a shot of pipeline \"" + lease.spec().pipeline() + "\"");
   const MetropolisRenderer& renderer = *shot->metropolis;

@@ -6,6 +6,7 @@
 // Scenes and their built geometry are cached per shot, so the tiles of a shot pay for
 // loading and BVH building once per worker.
 #include <atomic>
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -35,7 +36,8 @@ class TaskRunner {
   // Input chunks' bytes by digest (from a cache or the scheduler); throws on failure.
   using ChunkFetcher = std::function<std::string(const ChunkRef&)>;
 
-  explicit TaskRunner(int threads) : threads_(threads) {}
+  // Uploaded scenes are rebuilt under `scenesRoot` (worker/scene_files.h).
+  TaskRunner(int threads, std::filesystem::path scenesRoot) : threads_(threads), scenesRoot_(std::move(scenesRoot)) {}
   ~TaskRunner();
 
   // `progress` receives 0..1; `abandon` turning true stops the task with TaskAbandoned.
@@ -45,10 +47,12 @@ class TaskRunner {
 
  private:
   struct ShotRenderer;
-  std::shared_ptr<ShotRenderer> rendererFor(const Lease& lease);
-  TaskOutput renderTile(const Lease& lease, std::atomic<double>& progress, const std::atomic<bool>& abandon);
+  std::shared_ptr<ShotRenderer> rendererFor(const Lease& lease, const ChunkFetcher& fetch);
+  TaskOutput renderTile(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,
+                        const std::atomic<bool>& abandon);
   std::string assembleFrame(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress);
-  TaskOutput renderGradientFrame(const Lease& lease, std::atomic<double>& progress, const std::atomic<bool>& abandon);
+  TaskOutput renderGradientFrame(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,
+                                 const std::atomic<bool>& abandon);
   TaskOutput filter(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress);
   TaskOutput runMetropolis(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,
                            const std::atomic<bool>& abandon);
@@ -56,6 +60,7 @@ class TaskRunner {
   static std::vector<TaskInput> inputsOf(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress);
 
   int threads_;
+  std::filesystem::path scenesRoot_;
   std::mutex mutex_;
   std::vector<std::pair<int64_t, std::shared_ptr<ShotRenderer>>> renderers_;  // by shot id, recent first
 };

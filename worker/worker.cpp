@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "proto/wire/chunk_store.h"
+#include "worker/cache_trim.h"
 #include "worker/scheduler_link.h"
 #include "worker/task_runner.h"
 
@@ -54,9 +55,9 @@ class Backoff {
 // One slot: leases and runs tasks one at a time.
 class Slot {
  public:
-  Slot(SchedulerLink& link, TaskRunner& runner, ChunkStore& cache, int64_t& workerId, const WorkerOptions& options,
-       double heartbeatSeconds)
-      : link_(link), runner_(runner), cache_(cache), workerId_(workerId), options_(options),
+  Slot(SchedulerLink& link, TaskRunner& runner, ChunkStore& cache, CacheBound& bound, int64_t& workerId,
+       const WorkerOptions& options, double heartbeatSeconds)
+      : link_(link), runner_(runner), cache_(cache), bound_(bound), workerId_(workerId), options_(options),
         heartbeat_(std::chrono::milliseconds(static_cast<int64_t>(heartbeatSeconds * 1000))) {}
 
   void run(const std::atomic<bool>& stop) {
@@ -97,6 +98,7 @@ class Slot {
       const grpc::Status status = link_.getChunk(ref.sha256(), bytes);
       if (status.ok()) {
         cache_.put(bytes, ref);
+        bound_.maybeTrim();
         return bytes;
       }
       if (abandon) throw TaskAbandoned();
@@ -182,6 +184,7 @@ class Slot {
   SchedulerLink& link_;
   TaskRunner& runner_;
   ChunkStore& cache_;
+  CacheBound& bound_;
   int64_t& workerId_;
   const WorkerOptions& options_;
   std::chrono::milliseconds heartbeat_;
@@ -217,11 +220,13 @@ void Worker::run(const std::atomic<bool>& stop) {
   spdlog::info("worker {} ({}) registered with {}: {} slots", workerId, options_.name, options_.scheduler,
                options_.slots);
   ChunkStore cache(options_.cache);
-  TaskRunner runner(options_.threads);
+  CacheBound bound(options_.cache, options_.cacheMaxBytes);
+  bound.maybeTrim();
+  TaskRunner runner(options_.threads, options_.cache / "scenes");
   std::vector<std::thread> slots;
   for (int i = 0; i < options_.slots; ++i) {
     slots.emplace_back([&] {
-      Slot(link, runner, cache, workerId, options_, registration.heartbeat_seconds()).run(stop);
+      Slot(link, runner, cache, bound, workerId, options_, registration.heartbeat_seconds()).run(stop);
     });
   }
   while (!stop) std::this_thread::sleep_for(std::chrono::milliseconds(20));

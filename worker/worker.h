@@ -5,6 +5,7 @@
 // worker redoes the task. A finished result it cannot deliver (scheduler down) is kept
 // and retried with backoff, so a scheduler restart costs no finished work.
 #include <atomic>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -17,7 +18,8 @@ struct WorkerOptions {
   int threads = 0;  // render threads per task; 0: every core
   std::string name;
   std::string token;
-  std::filesystem::path cache;  // input chunks; default: a folder under the temp dir
+  std::filesystem::path cache;  // input chunks and uploaded scenes; default: a folder under the temp dir
+  uint64_t cacheMaxBytes = 20'000'000'000;  // the cache is trimmed to this, oldest first
   std::vector<std::string> tags;  // the pools this worker serves (shots' required_tags)
 };
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "image/exr_io.h"
+#include "renderer/scene/scene_inputs.h"
 #include "renderer/scene/scene_parsers.h"
 
 namespace pathfarm {
@@ -54,6 +55,7 @@ EnvironmentLight parseMap(const JsonNode& node, const std::filesystem::path& fol
   const std::filesystem::path file = folder / fileNode.string();
   const float strength = node.has("strength") ? static_cast<float>(node["strength"].number(0, 1e9)) : 1.0f;
   const float rotation = node.has("rotation") ? static_cast<float>(node["rotation"].number(-36000, 36000)) : 0.0f;
+  noteSceneInput(file);
   try {
     const std::string extension = file.extension().string();
     MapImage image;

@@ -8,6 +8,7 @@
 #include <system_error>
 
 #include "renderer/scene/mesh_io_detail.h"
+#include "renderer/scene/scene_inputs.h"
 
 namespace pathfarm {
 
@@ -46,6 +47,7 @@ std::string readWholeFile(const fs::path& file) {
   }
   std::ifstream in(file, std::ios::binary);
   if (!in) fail(file, "cannot open the file for reading");
+  noteSceneInput(file);
   std::string data(static_cast<size_t>(size), '\0');
   in.read(data.data(), static_cast<std::streamsize>(size));
   if (in.gcount() != static_cast<std::streamsize>(size)) fail(file, "cannot read the file");

@@ -7,6 +7,7 @@
 
 #include "renderer/scene/gltf/gltf_scene.h"
 #include "renderer/scene/mesh_io.h"
+#include "renderer/scene/scene_inputs.h"
 #include "renderer/scene/scene_parsers.h"
 
 namespace pathfarm {
@@ -257,6 +258,7 @@ Scene loadScene(const std::filesystem::path& file) {
   if (isGltfFile(file)) return loadGltfScene(file);
   std::ifstream in(file, std::ios::binary);
   if (!in) throw SceneError(file.string() + ": cannot open the scene file");
+  noteSceneInput(file);
   std::ostringstream text;
   text << in.rdbuf();
   return parseScene(text.str(), file);

@@ -9,6 +9,8 @@
 #include <string>
 #include <utility>
 
+#include "renderer/scene/scene_inputs.h"
+
 namespace pathfarm {
 
 namespace {
@@ -94,6 +96,7 @@ ImageTexture::ImageTexture(int width, int height, std::vector<Rgb> texels)
 }
 
 ImageTexture ImageTexture::load(const std::filesystem::path& file, TextureEncoding encoding) {
+  noteSceneInput(file);
   const std::string name = file.string();
   constexpr int kChannels = 3;
   int w = 0, h = 0, channelsInFile = 0;

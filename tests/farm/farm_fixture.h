@@ -94,6 +94,7 @@ struct RenderSpec {
   int maxDepth = 4;
   int tile = 32;
   int maxAttempts = 3;
+  fs::path scene = cornellScene();
 
   int64_t frames() const { return frameEnd - frameStart + 1; }
   int64_t tilesPerFrame() const {
@@ -326,7 +327,7 @@ class FarmTest : public ::testing::Test {
     std::ostringstream json;
     json << "{\n"
          << "  \"name\": \"" << spec.name << "\",\n"
-         << "  \"scene\": \"" << cornellScene().string() << "\",\n"
+         << "  \"scene\": \"" << spec.scene.string() << "\",\n"
          << "  \"frames\": {\"start\": " << spec.frameStart << ", \"end\": " << spec.frameEnd << "},\n"
          << "  \"resolution\": [" << spec.width << ", " << spec.height << "],\n"
          << "  \"spp\": " << spec.spp << ",\n"
@@ -346,7 +347,7 @@ class FarmTest : public ::testing::Test {
   farm::ShotSpec shotSpec(const RenderSpec& spec) const {
     farm::ShotSpec s;
     s.set_name(spec.name);
-    s.set_scene(cornellScene().string());
+    s.set_scene(spec.scene.string());
     s.set_frame_start(spec.frameStart);
     s.set_frame_end(spec.frameEnd);
     s.set_width(spec.width);
@@ -388,7 +389,7 @@ class FarmTest : public ::testing::Test {
   fs::path renderLocally(const RenderSpec& spec, const std::string& folder = "local") {
     const fs::path out = dir_ / folder;
     const CommandResult rendered = runPathfarm(
-        {"render", cornellScene().string(), "--frames",
+        {"render", spec.scene.string(), "--frames",
          std::to_string(spec.frameStart) + ":" + std::to_string(spec.frameEnd), "--res",
          std::to_string(spec.width) + "x" + std::to_string(spec.height), "--spp", std::to_string(spec.spp),
          "--max-depth", std::to_string(spec.maxDepth), "--out", out.string()},

@@ -43,7 +43,7 @@ struct Assembly {
     lease.add_input_kinds(TASK_RENDER_TILE);
   }
   FrameImage run() {
-    TaskRunner runner(1);
+    TaskRunner runner(1, std::filesystem::temp_directory_path() / "pathfarm_assemble_scenes");  // no scene is read
     std::atomic<double> progress{0};
     std::atomic<bool> abandon{false};
     const TaskOutput output =

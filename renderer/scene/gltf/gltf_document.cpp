@@ -7,6 +7,8 @@
 #include <limits>
 #include <set>
 
+#include "renderer/scene/scene_inputs.h"
+
 namespace pathfarm {
 namespace {
 
@@ -59,6 +61,20 @@ double component(const unsigned char* p, int componentType, bool normalized) {
   }
 }
 
+// tinygltf's file reader, noting each file (the glTF, its buffers and images) as a scene input.
+bool readNotedFile(std::vector<unsigned char>* out, std::string* error, const std::string& path, void* user) {
+  if (!tinygltf::ReadWholeFile(out, error, path, user)) return false;
+  noteSceneInput(path);
+  return true;
+}
+
+tinygltf::TinyGLTF notingLoader() {
+  tinygltf::TinyGLTF loader;
+  loader.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath, &readNotedFile, &tinygltf::WriteWholeFile,
+                         nullptr});
+  return loader;
+}
+
 }  // namespace
 
 std::string gltfPointer(const char* collection, int index) {
@@ -67,7 +83,7 @@ std::string gltfPointer(const char* collection, int index) {
 
 GltfDocument::GltfDocument(const std::filesystem::path& file) : file_(file) {
   if (!std::filesystem::is_regular_file(file)) throw SceneError(file.string() + ": cannot open the glTF file");
-  tinygltf::TinyGLTF loader;
+  tinygltf::TinyGLTF loader = notingLoader();
   std::string error, warning;
   const bool loaded = file.extension() == ".glb"
                           ? loader.LoadBinaryFromFile(&model_, &error, &warning, file.string())
@@ -79,7 +95,7 @@ GltfDocument::GltfDocument(const unsigned char* bytes, size_t size, const std::f
                            const std::filesystem::path& baseFolder)
     : file_(label) {
   if (size > std::numeric_limits<unsigned int>::max()) throw SceneError(label.string() + ": file too large");
-  tinygltf::TinyGLTF loader;
+  tinygltf::TinyGLTF loader = notingLoader();
   std::string error, warning;
   const auto length = static_cast<unsigned int>(size);
   const bool loaded =

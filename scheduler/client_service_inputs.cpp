@@ -1,0 +1,41 @@
+// Scene files a client uploads before it submits (inputs without shared storage).
+#include "proto/wire/input_files.h"
+#include "scheduler/received_chunk.h"
+#include "scheduler/service_guard.h"
+
+namespace pathfarm::farm {
+
+grpc::Status ClientServiceImpl::MissingInputs(grpc::ServerContext* context, const MissingInputsRequest* request,
+                                              MissingInputsReply* reply) {
+  return guarded(c_, context, [&] {
+    for (const ChunkRef& ref : request->chunks()) {
+      if (!isSha256Hex(ref.sha256()))
+        return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT, "not a SHA-256 digest: " + ref.sha256());
+      if (!c_.state.hasChunk(ref.sha256()) || !c_.store.has(ref.sha256())) *reply->add_chunks() = ref;
+    }
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status ClientServiceImpl::PutInput(grpc::ServerContext* context, grpc::ServerReader<ChunkPart>* reader,
+                                         PutInputReply* reply) {
+  return guarded(c_, context, [&] {
+    *reply->mutable_ref() = storeReceivedChunk(*reader, c_);
+    return grpc::Status::OK;
+  });
+}
+
+std::string ClientServiceImpl::inputProblem(const ShotSpec& spec) const {
+  try {
+    checkInputFiles(spec);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  for (const InputFile& file : spec.inputs()) {
+    if (!c_.state.hasChunk(file.chunk().sha256()) || !c_.store.has(file.chunk().sha256()))
+      return "scene file \"" + file.path() + "\" (" + file.chunk().sha256() + ") was not uploaded";
+  }
+  return "";
+}
+
+}  // namespace pathfarm::farm
