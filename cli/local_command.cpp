@@ -3,6 +3,7 @@
 // into DIR and stops everything. A finished shot keeps its frames, its report and the
 // farm's logs; the intermediate chunks, the workers' caches and the database go, unless
 // --keep-farm asks to keep them (a shot that did not finish keeps them, to be looked into).
+// With --http the dashboard serves while the shot runs (docs/dashboard.md).
 #include <spdlog/spdlog.h>
 
 #include <memory>
@@ -23,6 +24,7 @@ struct LocalArguments {
   int workers = 2;
   int threads = 0;
   bool keepFarm = false;
+  std::string http;
 };
 
 uintmax_t folderBytes(const std::filesystem::path& folder) {
@@ -54,7 +56,8 @@ int runLocal(const LocalArguments& arguments) {
   }
   const std::filesystem::path out(arguments.out.empty() ? spec.output() : arguments.out);
   try {
-    farm::LocalFarm farm({out / "farm", arguments.workers, arguments.threads, farm::currentExecutable(), {}});
+    farm::LocalFarm farm(
+        {out / "farm", arguments.workers, arguments.threads, farm::currentExecutable(), {}, arguments.http});
     farm::FarmClient client = farm.client();
     const int64_t id = client.submit(spec);
     spdlog::info("shot {} submitted: {} frames {}..{} at {}x{}, {} spp, {}-pixel tiles", id, spec.name(),
@@ -95,6 +98,9 @@ std::vector<Command> addLocalCommand(CLI::App& app) {
   local->add_option("--workers", arguments->workers, "worker processes")->check(CLI::Range(1, 256))->capture_default_str();
   local->add_option("--threads", arguments->threads, "render threads per worker (0: the cores shared out)");
   local->add_option("--out", arguments->out, "output folder (default: the shot's output)");
+  local->add_option("--http", arguments->http,
+                    "HOST:PORT (loopback; port 0: any) serving the dashboard while the shot runs; its link, "
+                    "with the farm's token, is logged");
   local->add_flag("--keep-farm", arguments->keepFarm,
                   "keep the farm's database, chunks and worker caches after the shot is done (default: only its logs)");
   return {{local, [arguments] { return runLocal(*arguments); }}};

@@ -11,12 +11,15 @@ PACKAGES=(
   libsqlite3-dev libssl-dev libspdlog-dev libfmt-dev libgtest-dev libgmock-dev
   libcli11-dev nlohmann-json3-dev libtinyobjloader-dev libstb-dev libtinygltf-dev
   clang libclang-rt-14-dev libcpp-httplib-dev prometheus-cpp-dev
+  chromium nodejs
 )
 
 missing=()
 for package in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" || missing+=("$package")
 done
+# Debian's nodejs comes without npm; a Node.js installed another way may bring its own.
+command -v npm > /dev/null || missing+=(npm)
 if ((${#missing[@]})); then
   echo "setup: installing ${missing[*]}"
   SUDO=""
@@ -29,3 +32,7 @@ fi
 BUILD_DIR=${PATHFARM_BUILD_DIR:-build}
 cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release
 cmake --build "$BUILD_DIR" --parallel "$(nproc)"
+
+# The browser test's driver, playwright-core, as pinned in its package-lock.json; it runs
+# the system's Chromium and downloads no browser.
+(cd tests/browser && npm ci --no-audit --no-fund --loglevel=error)

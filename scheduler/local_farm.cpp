@@ -30,8 +30,15 @@ LocalFarm::LocalFarm(LocalFarmOptions options) : options_(std::move(options)), t
   scheduler.store = options_.folder / "chunks";
   scheduler.token = token_;
   scheduler.farm = options_.farm;
+  scheduler.http = options_.http;
   scheduler_ = std::make_unique<SchedulerServer>(scheduler);
   address_ = scheduler_->address();
+  if (!options_.http.empty()) {
+    // The token rides in the link's fragment, which a browser keeps to itself; the page
+    // takes it from there.
+    const std::string host = options_.http.substr(0, options_.http.rfind(':'));
+    spdlog::info("dashboard: http://{}:{}/#token={}", host, scheduler_->httpPort(), token_);
+  }
 
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const int threads = options_.threadsPerWorker > 0 ? options_.threadsPerWorker : std::max(1, cores / options_.workers);

@@ -20,6 +20,7 @@ struct LocalFarmOptions {
   int threadsPerWorker = 0;      // 0: the cores shared out among the workers
   std::string executable;        // the pathfarm binary the workers run
   FarmSettings farm;
+  std::string http;              // HOST:PORT for the dashboard and /metrics; empty: none
 };
 
 class LocalFarm {

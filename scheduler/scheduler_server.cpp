@@ -6,6 +6,7 @@
 #include <spdlog/spdlog.h>
 
 #include "proto/wire/connection.h"
+#include "scheduler/dashboard_api.h"
 #include "scheduler/exclusive_database.h"
 #include "scheduler/scheduler_services.h"
 
@@ -26,12 +27,20 @@ void checkExposure(const SchedulerOptions& o) {
                              "cross the network in clear); pass --insecure to serve there anyway");
 }
 
-// The HTTP side asks for no token: beyond loopback it needs the user's word.
+// The dashboard's API on the HTTP side asks for the same token as gRPC (/metrics asks
+// for none): beyond loopback it needs one, and, as plain HTTP sends it in clear, the
+// user's word.
 void checkHttpExposure(const SchedulerOptions& o) {
-  if (o.http.empty() || isLoopbackAddress(o.http) || o.insecure) return;
-  throw std::runtime_error("--http " + o.http +
-                           " reaches beyond this machine and /metrics asks for no token; pass --insecure to serve there "
-                           "anyway");
+  if (o.http.empty() || isLoopbackAddress(o.http)) return;
+  if (o.token.empty())
+    throw std::runtime_error("--http " + o.http +
+                             " reaches beyond this machine: give an access token (--token-file or "
+                             "PATHFARM_TOKEN[_FILE]) for the dashboard to ask for");
+  if (!o.insecure)
+    throw std::runtime_error("--http " + o.http +
+                             " reaches beyond this machine over plain HTTP (the token, the farm's data and /metrics, "
+                             "which asks for no token, cross the network in clear); pass --insecure to serve there "
+                             "anyway");
 }
 
 }  // namespace
@@ -43,13 +52,15 @@ struct SchedulerServer::Services {
   FarmSignal signal;
   WorkerServiceImpl workerService;
   ClientServiceImpl clientService;
+  ThumbnailCache thumbnails;
 
   explicit Services(const SchedulerOptions& o)
       : exclusive(o.database),
         state(o.database.string(), o.farm, wallClockSeconds()),
         store(o.store),
         workerService({state, store, signal, o.token, o.limits}),
-        clientService({state, store, signal, o.token, o.limits}) {}
+        clientService({state, store, signal, o.token, o.limits}),
+        thumbnails(store) {}
 };
 
 SchedulerServer::SchedulerServer(SchedulerOptions options) : options_(std::move(options)) {
@@ -77,11 +88,15 @@ SchedulerServer::SchedulerServer(SchedulerOptions options) : options_(std::move(
     }
   });
   if (!options_.http.empty()) {
-    http_ = std::make_unique<HttpServer>(options_.http, [this] {
-      FarmMetrics metrics = services_->state.metrics(wallClockSeconds());
-      metrics.chunkBytesIn = services_->store.bytesIn();
-      metrics.chunkBytesOut = services_->store.bytesOut();
-      return prometheusText(metrics);
+    http_ = std::make_unique<HttpServer>(options_.http, options_.token, [this](httplib::Server& server) {
+      serveMetrics(server, [this] {
+        FarmMetrics metrics = services_->state.metrics(wallClockSeconds());
+        metrics.chunkBytesIn = services_->store.bytesIn();
+        metrics.chunkBytesOut = services_->store.bytesOut();
+        return prometheusText(metrics);
+      });
+      Services& s = *services_;
+      serveDashboard(server, {s.state, s.store, s.signal, s.thumbnails});
     });
   }
   spdlog::info("scheduler listening on {} (database {}, store {}{})", address(), options_.database.string(),

@@ -24,7 +24,8 @@ struct SchedulerOptions {
   // Serve beyond loopback although the channel is not encrypted (the token and every
   // chunk cross the network in clear): refused without it.
   bool insecure = false;
-  // HOST:PORT serving /metrics over HTTP (port 0: any free port); empty: none.
+  // HOST:PORT serving the dashboard and /metrics over HTTP (port 0: any free port); empty:
+  // none. With a token, the dashboard's API asks for it (/metrics does not).
   std::string http;
   ShotLimits limits;  // what one submitted shot may ask for
   FarmSettings farm;
@@ -33,8 +34,8 @@ struct SchedulerOptions {
 class SchedulerServer {
  public:
   // Opens the database and store and starts serving; throws std::runtime_error when the
-  // address cannot be bound, another scheduler has the database, or the address reaches
-  // beyond loopback without a token, or without `insecure`.
+  // address cannot be bound, another scheduler has the database, or an address (gRPC or
+  // HTTP) reaches beyond loopback without a token, or without `insecure`.
   explicit SchedulerServer(SchedulerOptions options);
   ~SchedulerServer();
 
