@@ -210,7 +210,10 @@ void Worker::run(const std::atomic<bool>& stop) {
   for (;;) {
     const grpc::Status status = link.registerWorker(options_.name, options_.slots, options_.tags, registration);
     if (status.ok()) break;
-    if (status.error_code() == grpc::StatusCode::UNAUTHENTICATED)
+    // A refusal (bad token, bad tag) does not change by waiting.
+    const auto code = status.error_code();
+    if (code == grpc::StatusCode::UNAUTHENTICATED || code == grpc::StatusCode::INVALID_ARGUMENT ||
+        code == grpc::StatusCode::PERMISSION_DENIED)
       throw std::runtime_error("the scheduler refused this worker: " + status.error_message());
     if (stop) return;
     spdlog::warn("cannot reach the scheduler at {}: {}; retrying", options_.scheduler, status.error_message());

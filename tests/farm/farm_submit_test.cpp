@@ -57,6 +57,12 @@ TEST_F(FarmTest, AShotRequiringTagsRunsOnlyOnWorkersCarryingThem) {
   farm::ShotSpec bad = shotSpec(spec);
   bad.add_required_tags("no,commas");
   EXPECT_THROW(client().submit(bad), farm::FarmError);
+
+  // A worker offering such a tag is refused too, and says so and stops rather than retrying.
+  const std::optional<int> exited = startWorker("badly-tagged", {"--tags", "a b"}).wait(20s);
+  ASSERT_TRUE(exited.has_value()) << "the refused worker kept retrying";
+  EXPECT_NE(*exited, 0);
+  EXPECT_TRUE(contains(workerLog("badly-tagged"), "refused this worker")) << workerLog("badly-tagged");
 }
 
 }  // namespace

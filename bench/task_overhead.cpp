@@ -1,0 +1,129 @@
+// What a worker pays per task for a shot's scene: the first render tile of a shot loads
+// the scene (and, for an uploaded scene, rebuilds its files from the cache) and builds its
+// ray-tracing geometry; later tiles reuse them. For comparison, the same tiles each on a
+// fresh TaskRunner, which is what loading the scene per task would cost.
+//
+//   build/bin/task_overhead --scene FILE [--res 320x180] [--spp 1] [--tile 32] [--tiles 8] [--threads 0]
+//
+// Prints the first tile's time, the median of the later tiles, and the median per tile
+// with a fresh runner each time; --upload serves the scene as uploaded files.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <vector>
+
+#include "bench/bench_support.h"
+#include "bench/median.h"
+#include "proto/wire/sha256.h"
+#include "renderer/scene/scene_inputs.h"
+#include "renderer/scene/scene_loader.h"
+#include "worker/task_runner.h"
+
+namespace {
+
+using namespace pathfarm;
+using namespace pathfarm::farm;
+namespace fs = std::filesystem;
+
+// The scene's files as an upload would name them (relative to the scene's folder, which
+// must hold them all here), and a fetcher serving their bytes from memory.
+struct UploadedScene {
+  std::map<std::string, std::string> bytes;
+  TaskRunner::ChunkFetcher fetch() const {
+    return [this](const ChunkRef& ref) { return bytes.at(ref.sha256()); };
+  }
+};
+
+UploadedScene upload(ShotSpec& spec) {
+  std::vector<fs::path> files;
+  {
+    const SceneInputRecorder recorder;
+    loadScene(spec.scene());
+    files = recorder.files();
+  }
+  const fs::path root = fs::absolute(spec.scene()).parent_path();
+  UploadedScene uploaded;
+  for (const fs::path& file : files) {
+    std::ifstream in(file, std::ios::binary);
+    std::string content{std::istreambuf_iterator<char>(in), {}};
+    InputFile* input = spec.add_inputs();
+    input->set_path(file.lexically_relative(root).generic_string());
+    input->mutable_chunk()->set_sha256(sha256Hex(content));
+    input->mutable_chunk()->set_size(static_cast<int64_t>(content.size()));
+    uploaded.bytes[input->chunk().sha256()] = std::move(content);
+  }
+  spec.set_scene(fs::absolute(spec.scene()).lexically_relative(root).generic_string());
+  return uploaded;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"pathfarm per-task scene overhead"};
+  std::string scenePath, resolution = "320x180";
+  int spp = 1, tile = 32, tiles = 8, threads = 0;
+  bool uploaded = false;
+  app.add_option("--scene", scenePath)->required();
+  app.add_option("--res", resolution);
+  app.add_option("--spp", spp);
+  app.add_option("--tile", tile);
+  app.add_option("--tiles", tiles)->check(CLI::Range(2, 10000));
+  app.add_option("--threads", threads);
+  app.add_flag("--upload", uploaded, "serve the scene as uploaded files rebuilt in a cache folder");
+  CLI11_PARSE(app, argc, argv);
+  int width = 0, height = 0;
+  if (std::sscanf(resolution.c_str(), "%dx%d", &width, &height) != 2) return 2;
+
+  ShotSpec spec;
+  spec.set_scene(scenePath);
+  spec.set_width(width);
+  spec.set_height(height);
+  spec.set_spp(spp);
+  spec.set_max_depth(8);
+  spec.set_pipeline("pt");
+  const UploadedScene files = uploaded ? upload(spec) : UploadedScene{};
+  const fs::path cache = fs::temp_directory_path() / "pathfarm_task_overhead";
+
+  std::vector<Lease> leases;
+  for (int i = 0; i < tiles; ++i) {
+    Lease lease;
+    lease.set_shot_id(1);
+    lease.set_kind(TASK_RENDER_TILE);
+    *lease.mutable_spec() = spec;
+    const int columns = (width + tile - 1) / tile;
+    const int x0 = (i % columns) * tile, y0 = (i / columns % ((height + tile - 1) / tile)) * tile;
+    farm::PixelWindow* window = lease.mutable_params()->mutable_window();
+    window->set_x0(x0);
+    window->set_y0(y0);
+    window->set_x1(std::min(width, x0 + tile));
+    window->set_y1(std::min(height, y0 + tile));
+    lease.mutable_params()->set_role(ROLE_OUTPUT);
+    leases.push_back(lease);
+  }
+  const auto runTile = [&](TaskRunner& runner, const Lease& lease) {
+    std::atomic<double> progress{0};
+    std::atomic<bool> abandon{false};
+    return bench::seconds([&] { runner.run(lease, files.fetch(), progress, abandon); });
+  };
+
+  fs::remove_all(cache);
+  TaskRunner reused(threads, cache);
+  const double first = runTile(reused, leases[0]);
+  std::vector<double> later, fresh;
+  for (size_t i = 1; i < leases.size(); ++i) later.push_back(runTile(reused, leases[i]));
+  for (const Lease& lease : leases) {
+    fs::remove_all(cache);
+    TaskRunner runner(threads, cache);
+    fresh.push_back(runTile(runner, lease));
+  }
+  fs::remove_all(cache);
+  std::printf("scene %s%s, %d tiles of %dx%d px at %d spp\n", scenePath.c_str(), uploaded ? " (uploaded)" : "",
+              tiles, tile, tile, spp);
+  std::printf("  first tile of the shot:        %8.3f s\n", first);
+  std::printf("  later tiles (median of %zu):    %8.3f s\n", later.size(), bench::median(later));
+  std::printf("  a fresh runner per tile (median of %zu): %8.3f s  -> %.1fx the reused tile\n", fresh.size(),
+              bench::median(fresh), bench::median(fresh) / bench::median(later));
+  return 0;
+}
