@@ -16,9 +16,7 @@
 
 #include "bench/bench_support.h"
 #include "bench/median.h"
-#include "proto/wire/sha256.h"
-#include "renderer/scene/scene_inputs.h"
-#include "renderer/scene/scene_loader.h"
+#include "scheduler/scene_upload.h"
 #include "worker/task_runner.h"
 
 namespace {
@@ -27,8 +25,7 @@ using namespace pathfarm;
 using namespace pathfarm::farm;
 namespace fs = std::filesystem;
 
-// The scene's files as an upload would name them (relative to the scene's folder, which
-// must hold them all here), and a fetcher serving their bytes from memory.
+// The scene's files served from memory, as a worker's cache would serve uploaded files.
 struct UploadedScene {
   std::map<std::string, std::string> bytes;
   TaskRunner::ChunkFetcher fetch() const {
@@ -37,24 +34,12 @@ struct UploadedScene {
 };
 
 UploadedScene upload(ShotSpec& spec) {
-  std::vector<fs::path> files;
-  {
-    const SceneInputRecorder recorder;
-    loadScene(spec.scene());
-    files = recorder.files();
-  }
-  const fs::path root = fs::absolute(spec.scene()).parent_path();
+  const std::vector<fs::path> files = describeSceneInputs(spec);
   UploadedScene uploaded;
-  for (const fs::path& file : files) {
-    std::ifstream in(file, std::ios::binary);
-    std::string content{std::istreambuf_iterator<char>(in), {}};
-    InputFile* input = spec.add_inputs();
-    input->set_path(file.lexically_relative(root).generic_string());
-    input->mutable_chunk()->set_sha256(sha256Hex(content));
-    input->mutable_chunk()->set_size(static_cast<int64_t>(content.size()));
-    uploaded.bytes[input->chunk().sha256()] = std::move(content);
+  for (int i = 0; i < spec.inputs_size(); ++i) {
+    std::ifstream in(files[static_cast<size_t>(i)], std::ios::binary);
+    uploaded.bytes[spec.inputs(i).chunk().sha256()] = std::string{std::istreambuf_iterator<char>(in), {}};
   }
-  spec.set_scene(fs::absolute(spec.scene()).lexically_relative(root).generic_string());
   return uploaded;
 }
 

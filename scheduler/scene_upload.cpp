@@ -44,7 +44,7 @@ fs::path commonFolder(const std::vector<fs::path>& files) {
 
 }  // namespace
 
-UploadSummary uploadSceneInputs(FarmClient& client, ShotSpec& spec) {
+std::vector<fs::path> describeSceneInputs(ShotSpec& spec) {
   std::vector<fs::path> files;
   {
     const SceneInputRecorder recorder;
@@ -55,17 +55,13 @@ UploadSummary uploadSceneInputs(FarmClient& client, ShotSpec& spec) {
   if (files.empty()) throw SceneError(scene.string() + ": loading the scene read no file");
   const fs::path root = commonFolder(files);
 
-  UploadSummary summary;
   spec.clear_inputs();
-  std::vector<ChunkRef> chunks;
   for (const fs::path& file : files) {
     const std::string bytes = readWhole(file);
     InputFile* input = spec.add_inputs();
     input->set_path(file.lexically_relative(root).generic_string());
     input->mutable_chunk()->set_sha256(sha256Hex(bytes));
     input->mutable_chunk()->set_size(static_cast<int64_t>(bytes.size()));
-    chunks.push_back(input->chunk());
-    summary.bytes += bytes.size();
   }
   spec.set_scene(scene.lexically_relative(root).generic_string());
   try {
@@ -73,7 +69,17 @@ UploadSummary uploadSceneInputs(FarmClient& client, ShotSpec& spec) {
   } catch (const std::invalid_argument& e) {
     throw SceneError(scene.string() + ": " + e.what());
   }
+  return files;
+}
 
+UploadSummary uploadSceneInputs(FarmClient& client, ShotSpec& spec) {
+  const std::vector<fs::path> files = describeSceneInputs(spec);
+  UploadSummary summary;
+  std::vector<ChunkRef> chunks;
+  for (const InputFile& input : spec.inputs()) {
+    chunks.push_back(input.chunk());
+    summary.bytes += static_cast<uint64_t>(input.chunk().size());
+  }
   std::set<std::string> missing;
   for (const ChunkRef& ref : client.missingInputs(chunks)) missing.insert(ref.sha256());
   for (size_t i = 0; i < files.size(); ++i) {

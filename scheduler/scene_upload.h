@@ -6,6 +6,8 @@
 // scene's own references must be relative paths (an absolute one names a file on the
 // worker's disk, which only works with shared storage).
 #include <cstdint>
+#include <filesystem>
+#include <vector>
 
 #include "pathfarm/shot.pb.h"
 #include "scheduler/farm_client.h"
@@ -17,8 +19,13 @@ struct UploadSummary {
   uint64_t bytes = 0, bytesSent = 0;
 };
 
-// Rewrites `spec.scene` and fills `spec.inputs`. Throws SceneError when the scene cannot
-// be loaded or a file read, FarmError when the scheduler refuses a file.
+// Fills `spec.inputs` with the scene's files, named relative to their common folder, and
+// rewrites `spec.scene` the same way; sends nothing. Returns each input's file on this
+// machine, in the order of `spec.inputs`. Throws SceneError when the scene cannot be
+// loaded or a file read.
+std::vector<std::filesystem::path> describeSceneInputs(ShotSpec& spec);
+// describeSceneInputs, then sends the files the scheduler lacks. Throws FarmError when
+// the scheduler refuses a file.
 UploadSummary uploadSceneInputs(FarmClient& client, ShotSpec& spec);
 
 }  // namespace pathfarm::farm
