@@ -7,6 +7,7 @@
 
 #include "scheduler/dashboard_assets.h"
 #include "scheduler/dashboard_json.h"
+#include "scheduler/farm_names.h"
 #include "scheduler/shot_report.h"
 
 namespace pathfarm::farm {

@@ -1,10 +1,8 @@
 #include "scheduler/dashboard_json.h"
 
-#include <algorithm>
-#include <array>
 #include <cctype>
 
-#include "scheduler/schema.h"
+#include "scheduler/farm_names.h"
 
 namespace pathfarm::farm {
 namespace {
@@ -14,23 +12,6 @@ using nlohmann::json;
 // The last events of a shot its page shows, and the last ones naming a task in its log.
 constexpr size_t kShotEvents = 100;
 constexpr size_t kTaskLogLines = 8;
-
-// "TASK_RENDER_TILE" -> "render_tile".
-std::string lowerWithout(const std::string& name, const std::string& prefix) {
-  std::string text = name.rfind(prefix, 0) == 0 ? name.substr(prefix.size()) : name;
-  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
-  return text;
-}
-
-constexpr std::array<const char*, 5> kTaskStates = {"waiting", "ready", "leased", "done", "failed"};
-constexpr std::array<const char*, 5> kAttemptStates = {"running", "done", "failed", "expired", "revoked"};
-static_assert(static_cast<int>(TaskState::Failed) == 4 && static_cast<int>(AttemptState::Revoked) == 4,
-              "the names above follow scheduler/schema.h's enums in order");
-
-template <size_t N>
-std::string nameIn(const std::array<const char*, N>& names, int value) {
-  return value >= 0 && static_cast<size_t>(value) < N ? names[static_cast<size_t>(value)] : "unknown";
-}
 
 json eventJson(const ShotEvent& event) { return {{"time", event.time()}, {"message", event.message()}}; }
 
@@ -50,7 +31,7 @@ json attemptJson(const FarmState::AttemptDetail& a, double now) {
   return {{"id", a.id},
           {"worker_id", a.workerId},
           {"worker", a.workerName},
-          {"state", nameIn(kAttemptStates, a.state)},
+          {"state", attemptStateName(a.state)},
           {"leased_at", a.leasedAt},
           {"finished_at", a.finishedAt ? json(*a.finishedAt) : json(nullptr)},
           {"seconds", end - a.leasedAt},
@@ -77,7 +58,7 @@ json taskJson(const FarmState::TaskDetail& task, const std::vector<ShotEvent>& e
           {"frame", task.params.frame()},
           {"window", window},
           {"role", lowerWithout(TaskRole_Name(task.params.role()), "ROLE_")},
-          {"state", nameIn(kTaskStates, task.state)},
+          {"state", taskStateName(task.state)},
           {"failures", task.failures},
           {"lost", task.lost},
           {"max_attempts", task.maxAttempts},
@@ -174,12 +155,6 @@ json blocklistJson(const std::vector<BlocklistEntry>& entries) {
                     {"worker", e.worker_name()},
                     {"failures", e.failures()}});
   return list;
-}
-
-std::optional<int> taskStateByName(const std::string& name) {
-  for (size_t i = 0; i < kTaskStates.size(); ++i)
-    if (name == kTaskStates[i]) return static_cast<int>(i);
-  return std::nullopt;
 }
 
 }  // namespace pathfarm::farm

@@ -21,7 +21,4 @@ nlohmann::json workersJson(const std::vector<WorkerInfo>& workers, const std::ve
 
 nlohmann::json blocklistJson(const std::vector<BlocklistEntry>& entries);
 
-// "ready" -> TaskState::Ready, for filtering tasks by state; nullopt for an unknown name.
-std::optional<int> taskStateByName(const std::string& name);
-
 }  // namespace pathfarm::farm

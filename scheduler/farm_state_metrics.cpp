@@ -1,34 +1,14 @@
 // FarmState::metrics: the figures /metrics serves (scheduler/farm_metrics.h), read in one
 // transaction so that they agree with each other.
-#include <algorithm>
-#include <cctype>
-
 #include "scheduler/farm_metrics.h"
+#include "scheduler/farm_names.h"
 #include "scheduler/farm_state.h"
 #include "scheduler/farm_state_internal.h"
 
 namespace pathfarm::farm {
 namespace {
 
-// "TASK_RENDER_TILE" -> "render_tile", "SHOT_RUNNING" -> "running".
-std::string lowerSuffix(const std::string& name, const std::string& prefix) {
-  std::string text = name.rfind(prefix, 0) == 0 ? name.substr(prefix.size()) : name;
-  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
-  return text;
-}
-
-std::string kindName(int64_t kind) { return lowerSuffix(TaskKind_Name(static_cast<TaskKind>(kind)), "TASK_"); }
-
-std::string taskStateName(int64_t state) {
-  switch (static_cast<TaskState>(state)) {
-    case TaskState::Waiting: return "waiting";
-    case TaskState::Ready: return "ready";
-    case TaskState::Leased: return "leased";
-    case TaskState::Done: return "done";
-    case TaskState::Failed: return "failed";
-  }
-  return "unknown";
-}
+std::string kindName(int64_t kind) { return lowerWithout(TaskKind_Name(static_cast<TaskKind>(kind)), "TASK_"); }
 
 }  // namespace
 
@@ -39,7 +19,8 @@ FarmMetrics FarmState::metrics(double now) {
 FarmMetrics FarmState::metricsLocked(double now) {
   FarmMetrics m;
   Statement& tasks = db_.query("SELECT kind, state, COUNT(*) FROM tasks GROUP BY kind, state");
-  while (tasks.step()) m.tasks[{kindName(tasks.integer(0)), taskStateName(tasks.integer(1))}] = tasks.integer(2);
+  while (tasks.step())
+    m.tasks[{kindName(tasks.integer(0)), taskStateName(static_cast<int>(tasks.integer(1)))}] = tasks.integer(2);
 
   // Busy: holding a lease; idle: seen within two lease periods (as anyWorkerCanRun counts
   // the live ones); gone: neither.
@@ -82,7 +63,7 @@ FarmMetrics FarmState::metricsLocked(double now) {
       "SELECT s.id, s.name, s.state, (SELECT COUNT(*) FROM tasks t WHERE t.shot_id = s.id), s.tasks_left FROM shots s");
   while (shots.step()) {
     const auto state = static_cast<ShotState>(shots.integer(2));
-    ++m.shots[lowerSuffix(ShotState_Name(state), "SHOT_")];
+    ++m.shots[lowerWithout(ShotState_Name(state), "SHOT_")];
     if (state != SHOT_QUEUED && state != SHOT_RUNNING) continue;
     const auto total = static_cast<double>(shots.integer(3));
     m.progress.push_back({shots.integer(0), shots.text(1),
