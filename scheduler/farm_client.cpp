@@ -111,15 +111,17 @@ ShotSummary FarmClient::requeueTask(int64_t id, int64_t taskId) {
   RequeueRequest request;
   request.set_shot_id(id);
   request.set_task_id(taskId);
-  ControlReply reply;
-  check(stub_->Requeue(context(false).get(), request, &reply));
-  return reply.summary();
+  return requeue(request);
 }
 
 ShotSummary FarmClient::requeueFrame(int64_t id, int64_t frame) {
   RequeueRequest request;
   request.set_shot_id(id);
   request.set_frame(frame);
+  return requeue(request);
+}
+
+ShotSummary FarmClient::requeue(const RequeueRequest& request) {
   ControlReply reply;
   check(stub_->Requeue(context(false).get(), request, &reply));
   return reply.summary();

@@ -56,6 +56,7 @@ class FarmClient {
   // One unary call about a shot.
   template <class Reply, class Method>
   Reply aboutShot(Method method, int64_t id);
+  ShotSummary requeue(const RequeueRequest& request);
   std::unique_ptr<ClientService::Stub> stub_;
   std::string token_;
 };
