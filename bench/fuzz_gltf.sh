@@ -28,6 +28,7 @@ sources=(
   renderer/scene/gltf/gltf_materials.cpp renderer/scene/gltf/gltf_mesh.cpp renderer/scene/gltf/gltf_scene.cpp
   renderer/scene/gltf/gltf_lights.cpp
   renderer/scene/animation.cpp renderer/scene/texture.cpp renderer/scene/json_node.cpp renderer/scene/alpha_coverage.cpp
+  renderer/scene/scene_inputs.cpp
   renderer/math/quaternion.cpp renderer/math/transform.cpp
 )
 flags=(-std=c++20 -O1 -g -fno-omit-frame-pointer -fsanitize=fuzzer-no-link,address,undefined
