@@ -146,7 +146,12 @@ int run(const Options& options) {
   for (const auto& entry : std::filesystem::directory_iterator(out))
     if (entry.path().filename().string().rfind("reference-", 0) != 0) std::filesystem::remove_all(entry.path());
   const std::filesystem::path bin = std::filesystem::path(farm::currentExecutable()).parent_path();
-  farm::LocalFarm farm({out / "farm", options.workers, 1, (bin / "pathfarm").string(), {}});
+  farm::LocalFarmOptions farmOptions;
+  farmOptions.folder = out / "farm";
+  farmOptions.workers = options.workers;
+  farmOptions.threadsPerWorker = 1;
+  farmOptions.executable = (bin / "pathfarm").string();
+  farm::LocalFarm farm(farmOptions);
 
   // Plain pt on the evaluation frames only: its cost per frame does not depend on which.
   std::vector<Result> pt;

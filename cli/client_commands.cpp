@@ -8,6 +8,7 @@
 
 #include "cli/command.h"
 #include "cli/shot_progress.h"
+#include "cli/tls_options.h"
 #include "proto/wire/connection.h"
 #include "renderer/scene/json_node.h"
 #include "scheduler/farm_client.h"
@@ -32,19 +33,22 @@ struct ClientArguments {
   std::string out;
   bool json = false;
   bool sharedPaths = false;
+  farm::ClientTls tls;
 };
 
 void addConnectionOptions(CLI::App* command, ClientArguments& arguments) {
   command->add_option("--scheduler", arguments.scheduler, "scheduler address HOST:PORT")->capture_default_str();
   command->add_option("--token-file", arguments.tokenFile,
                       "file holding the farm's access token (or PATHFARM_TOKEN[_FILE])");
+  addClientTlsOptions(command, arguments.tls);
 }
 
 // Runs a client call, turning the farm's refusals into messages and exit statuses.
 template <class Body>
 int withClient(const ClientArguments& arguments, Body body) {
   try {
-    farm::FarmClient client(arguments.scheduler, farm::loadToken(arguments.tokenFile));
+    farm::FarmClient client(arguments.scheduler, farm::loadToken(arguments.tokenFile),
+                            farm::clientTlsFromEnvironment(arguments.tls));
     return body(client);
   } catch (const SceneError& e) {
     spdlog::error("{}", e.what());

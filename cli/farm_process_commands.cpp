@@ -7,6 +7,7 @@
 
 #include "cli/command.h"
 #include "cli/stop_signal.h"
+#include "cli/tls_options.h"
 #include "proto/wire/connection.h"
 #include "scheduler/scheduler_server.h"
 #include "worker/worker.h"
@@ -55,6 +56,7 @@ int runWorker(WorkerArguments& arguments) {
   const auto& stop = stopRequested();
   try {
     arguments.options.token = farm::loadToken(arguments.tokenFile);
+    arguments.options.tls = farm::clientTlsFromEnvironment(arguments.options.tls);
     arguments.options.cacheMaxBytes = static_cast<uint64_t>(arguments.cacheMaxGb * 1e9);
     farm::Worker(arguments.options).run(stop);
   } catch (const std::exception& e) {
@@ -100,7 +102,11 @@ std::vector<Command> addFarmProcessCommands(CLI::App& app) {
                 "token and --insecure; docs/dashboard.md)");
   s->add_option("--http-port-file", scheduler->httpPortFile, "write the bound HTTP port here (for --http HOST:0)");
   s->add_flag("--insecure", scheduler->options.insecure,
-              "serve beyond loopback over an unencrypted channel (the token and frames cross in clear)");
+              "serve beyond loopback without TLS (the token and frames cross in clear)");
+  s->add_option("--tls-cert", scheduler->options.tls.certFile, "PEM certificate: serve gRPC over TLS, HTTP as HTTPS");
+  s->add_option("--tls-key", scheduler->options.tls.keyFile, "PEM private key of --tls-cert");
+  s->add_option("--tls-client-ca", scheduler->options.tls.clientCaFile,
+                "PEM CA: every client and worker must show a certificate it signed");
 
   auto worker = std::make_shared<WorkerArguments>();
   CLI::App* w = app.add_subcommand("worker", "run a worker that leases and renders tasks");
@@ -116,6 +122,7 @@ std::vector<Command> addFarmProcessCommands(CLI::App& app) {
       ->check(CLI::Range(0.001, 1e6))
       ->capture_default_str();
   w->add_option("--token-file", worker->tokenFile, "file holding the farm's access token (or PATHFARM_TOKEN[_FILE])");
+  addClientTlsOptions(w, worker->options.tls);
 
   return {{s, [scheduler] { return runScheduler(*scheduler); }}, {w, [worker] { return runWorker(*worker); }}};
 }

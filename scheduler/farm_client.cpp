@@ -24,8 +24,8 @@ std::string frameFileName(int64_t frame) {
   return name;
 }
 
-FarmClient::FarmClient(const std::string& address, std::string token)
-    : stub_(ClientService::NewStub(makeChannel(address))), token_(std::move(token)) {}
+FarmClient::FarmClient(const std::string& address, std::string token, const ClientTls& tls)
+    : stub_(ClientService::NewStub(makeChannel(address, tls))), token_(std::move(token)) {}
 
 std::unique_ptr<grpc::ClientContext> FarmClient::context(bool stream) const {
   auto context = std::make_unique<grpc::ClientContext>();

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "pathfarm/client_service.grpc.pb.h"
+#include "proto/wire/tls.h"
 
 namespace pathfarm::farm {
 
@@ -24,7 +25,8 @@ class FarmError : public std::runtime_error {
 
 class FarmClient {
  public:
-  FarmClient(const std::string& address, std::string token);
+  // Over TLS when `tls` names the CA of the scheduler's certificate.
+  FarmClient(const std::string& address, std::string token, const ClientTls& tls = {});
 
   // Queues the shot under `submitKey` (a random one when empty), retrying a call that
   // timed out or found the scheduler away with the same key, so it makes one shot.

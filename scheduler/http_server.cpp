@@ -39,12 +39,28 @@ bool isOpen(const httplib::Request& request) {
 }  // namespace
 
 struct HttpServer::Impl {
-  httplib::Server server;
+  std::unique_ptr<httplib::Server> server;
   std::thread thread;
 };
 
-HttpServer::HttpServer(const std::string& listen, const std::string& token, const HttpRoutes& routes)
+namespace {
+
+std::unique_ptr<httplib::Server> makeServer(const ServerTls& tls) {
+  if (!tls.enabled()) return std::make_unique<httplib::Server>();
+  readPemFile(tls.certFile, "TLS certificate");  // a clear message before OpenSSL's silence
+  readPemFile(tls.keyFile, "TLS key");
+  auto server = std::make_unique<httplib::SSLServer>(tls.certFile.c_str(), tls.keyFile.c_str());
+  if (!server->is_valid())
+    throw std::runtime_error(tls.certFile + ", " + tls.keyFile + ": not a usable certificate and key for HTTPS");
+  return server;
+}
+
+}  // namespace
+
+HttpServer::HttpServer(const std::string& listen, const std::string& token, const ServerTls& tls,
+                       const HttpRoutes& routes)
     : impl_(std::make_unique<Impl>()) {
+  impl_->server = makeServer(tls);
   const size_t colon = listen.rfind(':');
   if (colon == std::string::npos) throw std::runtime_error("--http " + listen + ": expected HOST:PORT");
   std::string host = listen.substr(0, colon);
@@ -55,7 +71,7 @@ HttpServer::HttpServer(const std::string& listen, const std::string& token, cons
   } catch (const std::exception&) {
     throw std::runtime_error("--http " + listen + ": the port is not a number");
   }
-  httplib::Server& server = impl_->server;
+  httplib::Server& server = *impl_->server;
   server.set_pre_routing_handler([token](const httplib::Request& request, httplib::Response& response) {
     if (token.empty() || isOpen(request) || carriesToken(request, token))
       return httplib::Server::HandlerResponse::Unhandled;
@@ -76,15 +92,15 @@ HttpServer::HttpServer(const std::string& listen, const std::string& token, cons
   routes(server);
   port_ = port == 0 ? server.bind_to_any_port(host) : (server.bind_to_port(host, port) ? port : -1);
   if (port_ <= 0) throw std::runtime_error("cannot serve HTTP on " + listen);
-  impl_->thread = std::thread([this] { impl_->server.listen_after_bind(); });
-  const std::string url = "http://" + (host.find(':') == std::string::npos ? host : "[" + host + "]") + ":" +
+  impl_->thread = std::thread([this] { impl_->server->listen_after_bind(); });
+  const std::string url = (tls.enabled() ? "https://" : "http://") + (host.find(':') == std::string::npos ? host : "[" + host + "]") + ":" +
                           std::to_string(port_);
   spdlog::info("dashboard on {}/{} and metrics on {}/metrics", url,
                token.empty() ? "" : " (its API asks for the access token)", url);
 }
 
 HttpServer::~HttpServer() {
-  impl_->server.stop();
+  impl_->server->stop();
   if (impl_->thread.joinable()) impl_->thread.join();
 }
 

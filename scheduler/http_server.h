@@ -6,6 +6,8 @@
 #include <memory>
 #include <string>
 
+#include "proto/wire/tls.h"
+
 namespace httplib {
 class Server;
 }
@@ -22,7 +24,9 @@ class HttpServer {
   // it gets 401, but for the dashboard's page (its HTML, script and style, which hold no
   // farm data) and /metrics (counts for Prometheus, scraped without credentials as before
   // the dashboard). Throws std::runtime_error when the address cannot be bound.
-  HttpServer(const std::string& listen, const std::string& token, const HttpRoutes& routes);
+  // With a certificate in `tls`, it serves HTTPS (no client certificate is asked for: the
+  // token guards the API).
+  HttpServer(const std::string& listen, const std::string& token, const ServerTls& tls, const HttpRoutes& routes);
   ~HttpServer();
   HttpServer(const HttpServer&) = delete;
   HttpServer& operator=(const HttpServer&) = delete;

@@ -14,36 +14,27 @@ namespace pathfarm::farm {
 
 namespace {
 
-// The listening address against the farm's protection: beyond loopback a token is always
-// needed, and, since the channel is not encrypted, the user's word that this is wanted.
-void checkExposure(const SchedulerOptions& o) {
-  if (isLoopbackAddress(o.listen)) return;
+// One listening address against the farm's protection: beyond loopback a token is always
+// needed, and, without TLS, the user's word that the token and the farm's data may cross
+// the network in clear.
+void checkAddress(const std::string& option, const std::string& address, const SchedulerOptions& o) {
+  if (address.empty() || isLoopbackAddress(address)) return;
   if (o.token.empty())
-    throw std::runtime_error("--listen " + o.listen +
+    throw std::runtime_error(option + " " + address +
                              " reaches beyond this machine: give an access token (--token-file or PATHFARM_TOKEN[_FILE])");
-  if (!o.insecure)
-    throw std::runtime_error("--listen " + o.listen +
-                             " reaches beyond this machine over an unencrypted channel (the token and every frame "
-                             "cross the network in clear); pass --insecure to serve there anyway");
-}
-
-// The dashboard's API on the HTTP side asks for the same token as gRPC (/metrics asks
-// for none): beyond loopback it needs one, and, as plain HTTP sends it in clear, the
-// user's word.
-void checkHttpExposure(const SchedulerOptions& o) {
-  if (o.http.empty() || isLoopbackAddress(o.http)) return;
-  if (o.token.empty())
-    throw std::runtime_error("--http " + o.http +
-                             " reaches beyond this machine: give an access token (--token-file or "
-                             "PATHFARM_TOKEN[_FILE]) for the dashboard to ask for");
-  if (!o.insecure)
-    throw std::runtime_error("--http " + o.http +
-                             " reaches beyond this machine over plain HTTP (the token, the farm's data and /metrics, "
-                             "which asks for no token, cross the network in clear); pass --insecure to serve there "
-                             "anyway");
+  if (!o.tls.enabled() && !o.insecure)
+    throw std::runtime_error(option + " " + address +
+                             " reaches beyond this machine unencrypted (the token and every frame would cross the "
+                             "network in clear): give a certificate (--tls-cert, --tls-key), or pass --insecure to "
+                             "serve there anyway");
 }
 
 }  // namespace
+
+void checkExposure(const SchedulerOptions& o) {
+  checkAddress("--listen", o.listen, o);
+  checkAddress("--http", o.http, o);
+}
 
 struct SchedulerServer::Services {
   ExclusiveDatabase exclusive;  // first: before the database is opened
@@ -65,11 +56,10 @@ struct SchedulerServer::Services {
 
 SchedulerServer::SchedulerServer(SchedulerOptions options) : options_(std::move(options)) {
   checkExposure(options_);
-  checkHttpExposure(options_);
   services_ = std::make_unique<Services>(options_);
   grpc::ServerBuilder builder;
   configureServer(builder);
-  builder.AddListeningPort(options_.listen, grpc::InsecureServerCredentials(), &port_);
+  builder.AddListeningPort(options_.listen, serverCredentials(options_.tls), &port_);
   builder.RegisterService(&services_->workerService);
   builder.RegisterService(&services_->clientService);
   server_ = builder.BuildAndStart();
@@ -88,7 +78,7 @@ SchedulerServer::SchedulerServer(SchedulerOptions options) : options_(std::move(
     }
   });
   if (!options_.http.empty()) {
-    http_ = std::make_unique<HttpServer>(options_.http, options_.token, [this](httplib::Server& server) {
+    http_ = std::make_unique<HttpServer>(options_.http, options_.token, options_.tls, [this](httplib::Server& server) {
       serveMetrics(server, [this] {
         FarmMetrics metrics = services_->state.metrics(wallClockSeconds());
         metrics.chunkBytesIn = services_->store.bytesIn();
@@ -99,8 +89,9 @@ SchedulerServer::SchedulerServer(SchedulerOptions options) : options_(std::move(
       serveDashboard(server, {s.state, s.store, s.signal, s.thumbnails});
     });
   }
-  spdlog::info("scheduler listening on {} (database {}, store {}{})", address(), options_.database.string(),
-               options_.store.string(), options_.token.empty() ? ", no access token" : ", token required");
+  spdlog::info("scheduler listening on {} (database {}, store {}{}{})", address(), options_.database.string(),
+               options_.store.string(), options_.token.empty() ? ", no access token" : ", token required",
+               options_.tls.enabled() ? ", TLS" : "");
 }
 
 SchedulerServer::~SchedulerServer() { shutdown(); }

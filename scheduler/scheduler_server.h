@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "scheduler/farm_state.h"
+#include "proto/wire/tls.h"
 #include "scheduler/http_server.h"
 
 namespace grpc {
@@ -21,8 +22,11 @@ struct SchedulerOptions {
   std::filesystem::path database = "farm.db";
   std::filesystem::path store = "chunks";
   std::string token;  // empty: no access control
-  // Serve beyond loopback although the channel is not encrypted (the token and every
-  // chunk cross the network in clear): refused without it.
+  // gRPC over TLS with this certificate (and the HTTP side over HTTPS with it); client
+  // certificates are required when it names a client CA.
+  ServerTls tls;
+  // Serve beyond loopback without TLS (the token and every chunk cross the network in
+  // clear): refused without it.
   bool insecure = false;
   // HOST:PORT serving the dashboard and /metrics over HTTP (port 0: any free port); empty:
   // none. With a token, the dashboard's API asks for it (/metrics does not).
@@ -30,6 +34,10 @@ struct SchedulerOptions {
   ShotLimits limits;  // what one submitted shot may ask for
   FarmSettings farm;
 };
+
+// Beyond loopback the scheduler needs a token, and TLS or the user's word (`insecure`);
+// throws std::runtime_error saying which is missing, for gRPC and the HTTP side alike.
+void checkExposure(const SchedulerOptions& options);
 
 class SchedulerServer {
  public:

@@ -11,8 +11,8 @@ constexpr double kTransferSeconds = 300;  // a chunk of a large frame on a slow 
 
 }  // namespace
 
-SchedulerLink::SchedulerLink(const std::string& address, std::string token)
-    : stub_(WorkerService::NewStub(makeChannel(address))), token_(std::move(token)) {}
+SchedulerLink::SchedulerLink(const std::string& address, std::string token, const ClientTls& tls)
+    : stub_(WorkerService::NewStub(makeChannel(address, tls))), token_(std::move(token)) {}
 
 std::unique_ptr<grpc::ClientContext> SchedulerLink::context(double seconds) const {
   auto context = std::make_unique<grpc::ClientContext>();

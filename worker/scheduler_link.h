@@ -8,12 +8,13 @@
 #include <vector>
 
 #include "pathfarm/worker_service.grpc.pb.h"
+#include "proto/wire/tls.h"
 
 namespace pathfarm::farm {
 
 class SchedulerLink {
  public:
-  SchedulerLink(const std::string& address, std::string token);
+  SchedulerLink(const std::string& address, std::string token, const ClientTls& tls = {});
 
   grpc::Status registerWorker(const std::string& name, int slots, const std::vector<std::string>& tags,
                               RegisterReply& reply);

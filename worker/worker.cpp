@@ -204,7 +204,7 @@ Worker::Worker(WorkerOptions options) : options_(std::move(options)) {
 }
 
 void Worker::run(const std::atomic<bool>& stop) {
-  SchedulerLink link(options_.scheduler, options_.token);
+  SchedulerLink link(options_.scheduler, options_.token, options_.tls);
   RegisterReply registration;
   Backoff backoff;
   for (;;) {

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "proto/wire/tls.h"
+
 namespace pathfarm::farm {
 
 struct WorkerOptions {
@@ -21,6 +23,7 @@ struct WorkerOptions {
   std::filesystem::path cache;  // input chunks and uploaded scenes; default: a folder under the temp dir
   uint64_t cacheMaxBytes = 20'000'000'000;  // the cache is trimmed to this, oldest first
   std::vector<std::string> tags;  // the pools this worker serves (shots' required_tags)
+  ClientTls tls;  // a CA names: the scheduler is reached over TLS
 };
 
 class Worker {

@@ -6,6 +6,8 @@
 #include <optional>
 #include <string>
 
+#include "proto/wire/tls.h"
+
 namespace pathfarm::farm {
 
 // The largest gRPC message either side accepts; chunk parts are 1 MiB.
@@ -13,7 +15,8 @@ inline constexpr int kMaxMessageBytes = 8 << 20;
 // The largest chunk (a whole frame's EXR) accepted.
 inline constexpr size_t kMaxChunkBytes = size_t{2} << 30;
 
-std::shared_ptr<grpc::Channel> makeChannel(const std::string& address);
+// A channel to `address`, over TLS when `tls` names a CA (proto/wire/tls.h).
+std::shared_ptr<grpc::Channel> makeChannel(const std::string& address, const ClientTls& tls = {});
 // Whether `address` (HOST:PORT) reaches only this machine: localhost, 127.0.0.0/8 or [::1].
 bool isLoopbackAddress(const std::string& address);
 void configureServer(grpc::ServerBuilder& builder);

@@ -38,7 +38,7 @@ TEST_F(FarmTest, ListeningBeyondLoopbackNeedsATokenAndInsecure) {
   const CommandResult clear = run({"--listen", "[::]:0", "--token-file", tokenFile.string()});
   EXPECT_EQ(clear.status, 1) << clear.output;
   EXPECT_TRUE(contains(clear.output, "pass --insecure")) << clear.output;
-  // The dashboard's API asks for the same token, sent in clear.
+  // The dashboard's API asks for the same token, sent in clear without TLS.
   const CommandResult openHttp = run({"--listen", "127.0.0.1:0", "--http", "0.0.0.0:0"});
   EXPECT_EQ(openHttp.status, 1) << openHttp.output;
   EXPECT_TRUE(contains(openHttp.output, "--http 0.0.0.0:0 reaches beyond this machine: give an access token"))
@@ -46,7 +46,7 @@ TEST_F(FarmTest, ListeningBeyondLoopbackNeedsATokenAndInsecure) {
   const CommandResult clearHttp =
       run({"--listen", "127.0.0.1:0", "--http", "0.0.0.0:0", "--token-file", tokenFile.string()});
   EXPECT_EQ(clearHttp.status, 1) << clearHttp.output;
-  EXPECT_TRUE(contains(clearHttp.output, "over plain HTTP")) << clearHttp.output;
+  EXPECT_TRUE(contains(clearHttp.output, "--http 0.0.0.0:0 reaches beyond this machine unencrypted")) << clearHttp.output;
   EXPECT_TRUE(contains(clearHttp.output, "pass --insecure")) << clearHttp.output;
   EXPECT_FALSE(fs::exists(dir() / "exposed.db")) << "refused before the database was opened";
 }

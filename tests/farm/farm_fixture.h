@@ -297,7 +297,9 @@ class FarmTest : public ::testing::Test {
     return result;
   }
 
-  farm::FarmClient client(const std::string& token = "") const { return farm::FarmClient(address_, token); }
+  farm::FarmClient client(const std::string& token = "") const { return farm::FarmClient(address_, token, clientTls_); }
+  // client() and waitForShot() connect over TLS from now on.
+  void useTls(const farm::ClientTls& tls) { clientTls_ = tls; }
 
   // Polls the shot until it is done, failed or cancelled; throws on timeout. Calls that
   // fail (a scheduler restarting) are retried until the deadline.
@@ -442,6 +444,7 @@ class FarmTest : public ::testing::Test {
   std::optional<farm::ChildProcess> scheduler_;
   std::map<std::string, farm::ChildProcess> workers_;
   std::string address_;
+  farm::ClientTls clientTls_;
   int port_ = 0;
   int schedulerRuns_ = 0;
   int commands_ = 0;
