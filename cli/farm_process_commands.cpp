@@ -18,6 +18,7 @@ namespace {
 struct SchedulerArguments {
   farm::SchedulerOptions options;
   std::string tokenFile;
+  std::string workerTokenFile;
   std::string portFile;
   std::string httpPortFile;
 };
@@ -26,6 +27,9 @@ int runScheduler(SchedulerArguments& arguments) {
   const auto& stop = stopRequested();
   try {
     arguments.options.token = farm::loadToken(arguments.tokenFile);
+    if (!arguments.workerTokenFile.empty()) arguments.options.workerToken = farm::loadToken(arguments.workerTokenFile);
+    if (!arguments.options.workerToken.empty() && arguments.options.token.empty())
+      throw std::runtime_error("--worker-token-file needs a client token too (--token-file or PATHFARM_TOKEN[_FILE])");
     farm::SchedulerServer server(arguments.options);
     // Written after the port is bound, renamed into place so a reader never sees half.
     const auto writePort = [](const std::string& file, int port) {
@@ -77,6 +81,8 @@ std::vector<Command> addFarmProcessCommands(CLI::App& app) {
   s->add_option("--store", scheduler->options.store, "folder of content-addressed chunks")->capture_default_str();
   s->add_option("--token-file", scheduler->tokenFile,
                 "file holding the access token every call must carry (or PATHFARM_TOKEN[_FILE])");
+  s->add_option("--worker-token-file", scheduler->workerTokenFile,
+                "file holding the token workers carry instead: clients and workers then cannot act as each other");
   s->add_option("--lease-seconds", scheduler->options.farm.leaseSeconds, "lease lifetime without a heartbeat")
       ->check(CLI::Range(0.5, 3600.0))
       ->capture_default_str();

@@ -137,25 +137,18 @@ int64_t FarmState::insertTask(int64_t shotId, TaskKind kind, const TaskParams& p
 }
 
 int64_t FarmState::registerWorker(const std::string& name, int slots, double now,
-                                  const std::vector<std::string>& tags) {
+                                  const std::vector<std::string>& tags, const std::string& sessionHash) {
   return transact([&]() -> int64_t {
-    db_.query("INSERT INTO workers (name, slots, registered_at, last_seen, tags) VALUES (?1, ?2, ?3, ?3, ?4)")
+    db_.query("INSERT INTO workers (name, slots, registered_at, last_seen, tags, session_hash) "
+              "VALUES (?1, ?2, ?3, ?3, ?4, ?5)")
         .bind(1, name)
         .bind(2, int64_t{slots})
         .bind(3, now)
         .bind(4, tagList(tags.begin(), tags.end()))
+        .bind(5, sessionHash)
         .run();
     const int64_t id = db_.lastInsertId();
     return id;
-  });
-}
-
-bool FarmState::workerExists(int64_t workerId) {
-  return transact([&]() -> bool {
-    Statement& q = db_.query("SELECT 1 FROM workers WHERE id = ?1").bind(1, workerId);
-    const bool found = q.step();
-    q.reset();
-    return found;
   });
 }
 

@@ -58,8 +58,13 @@ class FarmState {
   // back from makes one shot, not two).
   int64_t submit(const ShotSpec& spec, const std::vector<PlannedTask>& plan, double now,
                  const std::string& submitKey = "");
-  int64_t registerWorker(const std::string& name, int slots, double now, const std::vector<std::string>& tags = {});
-  bool workerExists(int64_t workerId);
+  // `sessionHash`: the SHA-256 hex of the key the worker proves itself with from now on.
+  int64_t registerWorker(const std::string& name, int slots, double now, const std::vector<std::string>& tags = {},
+                         const std::string& sessionHash = "");
+  // Whether the worker registered with this session key's hash (farm_state_sessions.cpp).
+  bool sessionMatches(int64_t workerId, const std::string& sessionHash);
+  // The worker an attempt was leased to; nothing for an unknown attempt.
+  std::optional<int64_t> attemptWorker(int64_t attemptId);
 
   // The next task for this worker, or nothing: ready tasks of running or queued shots
   // the worker is not blocklisted for, by shot priority (high first), then shot age,

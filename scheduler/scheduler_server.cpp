@@ -49,7 +49,7 @@ struct SchedulerServer::Services {
       : exclusive(o.database),
         state(o.database.string(), o.farm, wallClockSeconds()),
         store(o.store),
-        workerService({state, store, signal, o.token, o.limits}),
+        workerService({state, store, signal, o.workerToken.empty() ? o.token : o.workerToken, o.limits}),
         clientService({state, store, signal, o.token, o.limits}),
         thumbnails(store) {}
 };

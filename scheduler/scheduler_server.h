@@ -21,7 +21,10 @@ struct SchedulerOptions {
   std::string listen = "127.0.0.1:7700";  // port 0: any free port (see port())
   std::filesystem::path database = "farm.db";
   std::filesystem::path store = "chunks";
-  std::string token;  // empty: no access control
+  std::string token;  // what clients (and, without a worker token, workers) show; empty: no access control
+  // What workers show instead, when given: a worker's credential then cannot submit, fetch
+  // or control shots, and a client's cannot lease, complete or fail tasks.
+  std::string workerToken;
   // gRPC over TLS with this certificate (and the HTTP side over HTTPS with it); client
   // certificates are required when it names a client CA.
   ServerTls tls;

@@ -5,6 +5,7 @@
 #include "proto/wire/chunk_store.h"
 #include "scheduler/farm_signal.h"
 #include "scheduler/farm_state.h"
+#include "scheduler/worker_sessions.h"
 
 namespace pathfarm::farm {
 
@@ -18,7 +19,7 @@ struct SchedulerContext {
 
 class WorkerServiceImpl final : public WorkerService::Service {
  public:
-  explicit WorkerServiceImpl(SchedulerContext context) : c_(context) {}
+  explicit WorkerServiceImpl(SchedulerContext context) : c_(context), sessions_(context.state) {}
 
   grpc::Status Register(grpc::ServerContext*, const RegisterRequest*, RegisterReply*) override;
   grpc::Status LeaseTask(grpc::ServerContext*, const LeaseRequest*, LeaseReply*) override;
@@ -29,7 +30,13 @@ class WorkerServiceImpl final : public WorkerService::Service {
   grpc::Status GetChunk(grpc::ServerContext*, const GetChunkRequest*, grpc::ServerWriter<ChunkPart>*) override;
 
  private:
+  // Runs `body` with the calling worker's id, or refuses a call without a valid session.
+  template <class Body>
+  grpc::Status asWorker(grpc::ServerContext* context, Body&& body);
+  // Refuses a report on an attempt leased to another worker.
+  grpc::Status checkAttemptOwner(int64_t attemptId, int64_t workerId);
   SchedulerContext c_;
+  WorkerSessions sessions_;
 };
 
 class ClientServiceImpl final : public ClientService::Service {

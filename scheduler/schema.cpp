@@ -109,6 +109,11 @@ const std::vector<const char*>& migrations() {
       R"sql(
       ALTER TABLE tasks ADD COLUMN created_by INTEGER REFERENCES tasks(id) ON DELETE CASCADE;
       )sql",
+      // 7: a worker's session key (SHA-256 hex of it): only that worker may report on its
+      // attempts. Empty for workers registered before.
+      R"sql(
+      ALTER TABLE workers ADD COLUMN session_hash TEXT NOT NULL DEFAULT '';
+      )sql",
   };
   return list;
 }

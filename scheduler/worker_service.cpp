@@ -7,6 +7,24 @@
 
 namespace pathfarm::farm {
 
+template <class Body>
+grpc::Status WorkerServiceImpl::asWorker(grpc::ServerContext* context, Body&& body) {
+  return guarded(c_, context, [&] {
+    const std::optional<int64_t> worker = sessions_.workerOf(*context);
+    if (!worker)
+      return grpc::Status(grpc::StatusCode::UNAUTHENTICATED, "no valid worker session: register again");
+    return body(*worker);
+  });
+}
+
+grpc::Status WorkerServiceImpl::checkAttemptOwner(int64_t attemptId, int64_t workerId) {
+  const std::optional<int64_t> owner = c_.state.attemptWorker(attemptId);
+  if (owner && *owner != workerId)
+    return {grpc::StatusCode::PERMISSION_DENIED,
+            "attempt " + std::to_string(attemptId) + " was leased to another worker"};
+  return grpc::Status::OK;  // an unknown attempt is refused as stale by FarmState
+}
+
 grpc::Status WorkerServiceImpl::Register(grpc::ServerContext* context, const RegisterRequest* request,
                                          RegisterReply* reply) {
   return guarded(c_, context, [&] {
@@ -15,8 +33,11 @@ grpc::Status WorkerServiceImpl::Register(grpc::ServerContext* context, const Reg
       if (!isValidTag(tag))
         return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
                             "tag \"" + tag + "\" is not letters, digits, '-', '_' or '.'");
+    const NewSession session = WorkerSessions::make();
     reply->set_worker_id(c_.state.registerWorker(request->name(), slots, wallClockSeconds(),
-                                                 {request->tags().begin(), request->tags().end()}));
+                                                 {request->tags().begin(), request->tags().end()}, session.hash));
+    reply->set_session_key(session.key);
+    sessions_.remember(reply->worker_id(), session.hash);
     // Three heartbeats fit in a lease: one lost message does not lose the lease.
     reply->set_heartbeat_seconds(c_.state.settings().leaseSeconds / 3);
     return grpc::Status::OK;
@@ -25,9 +46,9 @@ grpc::Status WorkerServiceImpl::Register(grpc::ServerContext* context, const Reg
 
 grpc::Status WorkerServiceImpl::LeaseTask(grpc::ServerContext* context, const LeaseRequest* request,
                                           LeaseReply* reply) {
-  return guarded(c_, context, [&] {
-    if (!c_.state.workerExists(request->worker_id()))
-      return grpc::Status(grpc::StatusCode::NOT_FOUND, "unknown worker: register again");
+  return asWorker(context, [&](int64_t worker) {
+    if (request->worker_id() != worker)
+      return grpc::Status(grpc::StatusCode::PERMISSION_DENIED, "a worker leases for itself only");
     // Long-poll: try, then sleep until the farm changes or the wait is over.
     const auto deadline = std::chrono::steady_clock::now() +
                           std::chrono::milliseconds(static_cast<int64_t>(std::clamp(request->wait_seconds(), 0.0, 60.0) * 1000));
@@ -50,7 +71,8 @@ grpc::Status WorkerServiceImpl::LeaseTask(grpc::ServerContext* context, const Le
 
 grpc::Status WorkerServiceImpl::Heartbeat(grpc::ServerContext* context, const HeartbeatRequest* request,
                                           HeartbeatReply* reply) {
-  return guarded(c_, context, [&] {
+  return asWorker(context, [&](int64_t worker) {
+    if (grpc::Status owner = checkAttemptOwner(request->attempt_id(), worker); !owner.ok()) return owner;
     *reply = c_.state.heartbeat(request->attempt_id(), request->progress(), wallClockSeconds());
     return grpc::Status::OK;
   });
@@ -58,7 +80,8 @@ grpc::Status WorkerServiceImpl::Heartbeat(grpc::ServerContext* context, const He
 
 grpc::Status WorkerServiceImpl::CompleteTask(grpc::ServerContext* context, const CompleteRequest* request,
                                              ReportReply* reply) {
-  return guarded(c_, context, [&] {
+  return asWorker(context, [&](int64_t worker) {
+    if (grpc::Status owner = checkAttemptOwner(request->attempt_id(), worker); !owner.ok()) return owner;
     *reply = c_.state.complete(*request, wallClockSeconds());
     if (reply->accepted()) c_.signal.notify();
     return grpc::Status::OK;
@@ -67,7 +90,8 @@ grpc::Status WorkerServiceImpl::CompleteTask(grpc::ServerContext* context, const
 
 grpc::Status WorkerServiceImpl::FailTask(grpc::ServerContext* context, const FailRequest* request,
                                          ReportReply* reply) {
-  return guarded(c_, context, [&] {
+  return asWorker(context, [&](int64_t worker) {
+    if (grpc::Status owner = checkAttemptOwner(request->attempt_id(), worker); !owner.ok()) return owner;
     *reply = c_.state.fail(request->attempt_id(), request->reason(), wallClockSeconds());
     if (reply->accepted()) c_.signal.notify();
     return grpc::Status::OK;
@@ -76,7 +100,7 @@ grpc::Status WorkerServiceImpl::FailTask(grpc::ServerContext* context, const Fai
 
 grpc::Status WorkerServiceImpl::PutChunk(grpc::ServerContext* context, grpc::ServerReader<ChunkPart>* reader,
                                          PutChunkReply* reply) {
-  return guarded(c_, context, [&] {
+  return asWorker(context, [&](int64_t) {
     *reply->mutable_ref() = storeReceivedChunk(*reader, c_);
     return grpc::Status::OK;
   });
@@ -84,7 +108,7 @@ grpc::Status WorkerServiceImpl::PutChunk(grpc::ServerContext* context, grpc::Ser
 
 grpc::Status WorkerServiceImpl::GetChunk(grpc::ServerContext* context, const GetChunkRequest* request,
                                          grpc::ServerWriter<ChunkPart>* writer) {
-  return guarded(c_, context, [&] {
+  return asWorker(context, [&](int64_t) {
     const auto bytes = c_.store.get(request->sha256());
     if (!bytes) return grpc::Status(grpc::StatusCode::NOT_FOUND, "no chunk " + request->sha256());
     ChunkRef ref;

@@ -19,6 +19,8 @@ std::unique_ptr<grpc::ClientContext> SchedulerLink::context(double seconds) cons
   context->set_deadline(std::chrono::system_clock::now() +
                         std::chrono::milliseconds(static_cast<int64_t>(seconds * 1000)));
   attachToken(*context, token_);
+  const std::lock_guard lock(sessionMutex_);
+  attachSession(*context, session_);
   return context;
 }
 
@@ -28,7 +30,12 @@ grpc::Status SchedulerLink::registerWorker(const std::string& name, int slots, c
   request.set_name(name);
   request.set_slots(slots);
   for (const std::string& tag : tags) request.add_tags(tag);
-  return stub_->Register(context(kCallSeconds).get(), request, &reply);
+  const grpc::Status status = stub_->Register(context(kCallSeconds).get(), request, &reply);
+  if (status.ok()) {
+    const std::lock_guard lock(sessionMutex_);
+    session_ = {reply.worker_id(), reply.session_key()};
+  }
+  return status;
 }
 
 grpc::Status SchedulerLink::lease(int64_t workerId, double waitSeconds, LeaseReply& reply) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "pathfarm/worker_service.grpc.pb.h"
+#include "proto/wire/connection.h"
 #include "proto/wire/tls.h"
 
 namespace pathfarm::farm {
@@ -16,6 +17,7 @@ class SchedulerLink {
  public:
   SchedulerLink(const std::string& address, std::string token, const ClientTls& tls = {});
 
+  // On success every later call carries the session the reply hands out.
   grpc::Status registerWorker(const std::string& name, int slots, const std::vector<std::string>& tags,
                               RegisterReply& reply);
   // A long-poll for a task; returns CANCELLED at once after stopLeasing().
@@ -33,6 +35,8 @@ class SchedulerLink {
   std::unique_ptr<grpc::ClientContext> context(double seconds) const;
   std::unique_ptr<WorkerService::Stub> stub_;
   std::string token_;
+  mutable std::mutex sessionMutex_;
+  WorkerSession session_;
   std::mutex mutex_;
   bool leasingStopped_ = false;
   std::set<grpc::ClientContext*> pendingLeases_;

@@ -65,8 +65,8 @@ class Slot {
     while (!stop) {
       LeaseReply reply;
       const grpc::Status status = link_.lease(workerId_, kLeaseWaitSeconds, reply);
-      if (status.error_code() == grpc::StatusCode::NOT_FOUND) {
-        if (!reregister()) backoff.sleep();  // a scheduler with a fresh database forgot us
+      if (status.error_code() == grpc::StatusCode::UNAUTHENTICATED) {
+        if (!reregister()) backoff.sleep();  // a scheduler with a fresh database forgot our session
         continue;
       }
       if (stop) break;

@@ -9,6 +9,7 @@ namespace pathfarm::farm {
 namespace {
 
 constexpr const char* kTokenHeader = "x-pathfarm-token";
+constexpr const char* kSessionHeader = "x-pathfarm-session";
 
 // Compares without an early exit, so timing does not reveal how much of a guess matched
 // (a token's length is no secret worth guarding).
@@ -63,6 +64,26 @@ std::string loadToken(const std::string& tokenFile) {
 
 void attachToken(grpc::ClientContext& context, const std::string& token) {
   if (!token.empty()) context.AddMetadata(kTokenHeader, token);
+}
+
+void attachSession(grpc::ClientContext& context, const WorkerSession& session) {
+  if (session.workerId > 0) context.AddMetadata(kSessionHeader, std::to_string(session.workerId) + ":" + session.key);
+}
+
+std::optional<WorkerSession> sessionOf(const grpc::ServerContext& context) {
+  const auto& metadata = context.client_metadata();
+  const auto it = metadata.find(kSessionHeader);
+  if (it == metadata.end()) return std::nullopt;
+  const std::string text(it->second.data(), it->second.size());
+  const size_t colon = text.find(':');
+  if (colon == std::string::npos || colon == 0 || colon > 18) return std::nullopt;
+  WorkerSession session;
+  for (size_t i = 0; i < colon; ++i) {
+    if (text[i] < '0' || text[i] > '9') return std::nullopt;
+    session.workerId = session.workerId * 10 + (text[i] - '0');
+  }
+  session.key = text.substr(colon + 1);
+  return session;
 }
 
 bool isAuthorized(const grpc::ServerContext& context, const std::string& token) {

@@ -27,6 +27,15 @@ void configureServer(grpc::ServerBuilder& builder);
 std::string loadToken(const std::string& tokenFile);
 
 void attachToken(grpc::ClientContext& context, const std::string& token);
+
+// A registered worker's name for itself on every call after Register.
+struct WorkerSession {
+  int64_t workerId = 0;
+  std::string key;
+};
+void attachSession(grpc::ClientContext& context, const WorkerSession& session);
+// The session a call carries, or nothing (absent or malformed).
+std::optional<WorkerSession> sessionOf(const grpc::ServerContext& context);
 // True when no token is configured or the call carries it.
 bool isAuthorized(const grpc::ServerContext& context, const std::string& token);
 

@@ -12,11 +12,14 @@
 namespace pathfarm::farmtest {
 namespace {
 
-// PutChunk with whatever reference the caller announces (SchedulerLink always tells the truth).
-grpc::Status putAnnouncing(const std::string& address, const farm::ChunkRef& announced, const std::string& bytes) {
+// PutChunk with whatever reference the caller announces (SchedulerLink always tells the
+// truth), in the given worker session.
+grpc::Status putAnnouncing(const std::string& address, const farm::WorkerSession& session,
+                           const farm::ChunkRef& announced, const std::string& bytes) {
   const auto stub = farm::WorkerService::NewStub(farm::makeChannel(address));
   grpc::ClientContext context;
   context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(10));
+  farm::attachSession(context, session);
   farm::PutChunkReply reply;
   auto writer = stub->PutChunk(&context, &reply);
   farm::ChunkPart part;
@@ -57,9 +60,13 @@ TEST_F(FarmTest, CorruptUploadsAndLateCompletionsAreRefused) {
   ASSERT_EQ(sent.size(), claimed.size());
   const std::string sentSha = farm::sha256Hex(sent), claimedSha = farm::sha256Hex(claimed);
 
-  const grpc::Status mismatch = putAnnouncing(address, refOf(claimedSha, sent.size()), sent);
+  farm::SchedulerLink link(address, "");
+  farm::RegisterReply registration;
+  ASSERT_TRUE(link.registerWorker("silent", 1, {}, registration).ok());
+  const farm::WorkerSession session{registration.worker_id(), registration.session_key()};
+  const grpc::Status mismatch = putAnnouncing(address, session, refOf(claimedSha, sent.size()), sent);
   EXPECT_EQ(mismatch.error_code(), grpc::StatusCode::DATA_LOSS) << mismatch.error_message();
-  const grpc::Status truncated = putAnnouncing(address, refOf(sentSha, sent.size() + 100), sent);
+  const grpc::Status truncated = putAnnouncing(address, session, refOf(sentSha, sent.size() + 100), sent);
   EXPECT_EQ(truncated.error_code(), grpc::StatusCode::DATA_LOSS) << truncated.error_message();
   for (const std::string& sha : {sentSha, claimedSha}) {
     EXPECT_FALSE(fs::exists(chunkFile(sha))) << "a refused chunk is in the store: " << sha;
@@ -67,8 +74,14 @@ TEST_F(FarmTest, CorruptUploadsAndLateCompletionsAreRefused) {
   }
   EXPECT_TRUE(leftovers(storeFolder()).empty()) << "partial files left in the store";
 
+  // Without a worker's session, or with a forged one, nothing is stored.
+  EXPECT_EQ(putAnnouncing(address, {}, refOf(sentSha, sent.size()), sent).error_code(),
+            grpc::StatusCode::UNAUTHENTICATED);
+  EXPECT_EQ(putAnnouncing(address, {session.workerId, "forged"}, refOf(sentSha, sent.size()), sent).error_code(),
+            grpc::StatusCode::UNAUTHENTICATED);
+  EXPECT_EQ(chunkRows(sentSha), 0);
+
   // The honest upload of the same bytes is stored where the checks above looked.
-  farm::SchedulerLink link(address, "");
   farm::ChunkRef stored;
   const grpc::Status honest = link.putChunk(sent, stored);
   ASSERT_TRUE(honest.ok()) << honest.error_message();
@@ -85,8 +98,6 @@ TEST_F(FarmTest, CorruptUploadsAndLateCompletionsAreRefused) {
   spec.tile = 32;
   const int64_t id = client().submit(shotSpec(spec));
 
-  farm::RegisterReply registration;
-  ASSERT_TRUE(link.registerWorker("silent", 1, {}, registration).ok());
   farm::LeaseReply leased;
   ASSERT_TRUE(link.lease(registration.worker_id(), 5, leased).ok());
   ASSERT_TRUE(leased.has_task());
@@ -94,6 +105,21 @@ TEST_F(FarmTest, CorruptUploadsAndLateCompletionsAreRefused) {
   const int64_t attempt = leased.lease().attempt_id(), task = leased.lease().task_id();
   const std::string attemptState = "SELECT state FROM attempts WHERE id = " + std::to_string(attempt);
   EXPECT_EQ(db.integer(attemptState), 0);
+
+  // Another registered worker may neither lease as the silent one nor report on its attempt.
+  farm::SchedulerLink intruder(address, "");
+  farm::RegisterReply intruderRegistration;
+  ASSERT_TRUE(intruder.registerWorker("intruder", 1, {}, intruderRegistration).ok());
+  farm::LeaseReply stolen;
+  EXPECT_EQ(intruder.lease(registration.worker_id(), 0, stolen).error_code(), grpc::StatusCode::PERMISSION_DENIED);
+  farm::HeartbeatReply intruderBeat;
+  EXPECT_EQ(intruder.heartbeat(attempt, 0.5, intruderBeat).error_code(), grpc::StatusCode::PERMISSION_DENIED);
+  farm::ReportReply intruderFailure;
+  EXPECT_EQ(intruder.fail(attempt, "blame the silent worker", intruderFailure).error_code(),
+            grpc::StatusCode::PERMISSION_DENIED);
+  EXPECT_EQ(db.integer(attemptState), 0) << "the intruder's failure report was taken";
+  EXPECT_EQ(db.integer("SELECT COUNT(*) FROM worker_failures"), 0);
+
   ASSERT_TRUE(waitUntil([&] { return db.integer(attemptState) == 3; }, 10s))
       << "the lease of attempt " << attempt << " did not expire";
 

@@ -90,5 +90,32 @@ TEST_F(FarmTest, TokenIsRequiredOfEveryClientAndWorker) {
   expectSameFrames(fetched, renderLocally(spec), spec);
 }
 
+TEST_F(FarmTest, WorkersAndClientsWithTokensOfTheirOwnCannotActAsEachOther) {
+  const fs::path clientToken = dir() / "client-token", workerToken = dir() / "worker-token";
+  writeFile(clientToken, "client-token-81d2\n");
+  writeFile(workerToken, "worker-token-3a7e\n");
+  SchedulerConfig config;
+  config.tokenFile = clientToken;
+  config.extraArguments = {"--worker-token-file", workerToken.string()};
+  const std::string scheduler = startScheduler(config);
+
+  // The client's credential does not make a worker, nor the worker's a client.
+  const std::optional<int> posing = startWorker("posing", {"--token-file", clientToken.string()}).wait(15s);
+  ASSERT_TRUE(posing.has_value()) << "a worker with the client token kept running";
+  EXPECT_NE(*posing, 0);
+  const CommandResult fetchAsWorker =
+      runPathfarm({"status", "--scheduler", scheduler, "--token-file", workerToken.string()});
+  EXPECT_EQ(fetchAsWorker.status, 1) << fetchAsWorker.output;
+  EXPECT_TRUE(contains(fetchAsWorker.output, "refused")) << fetchAsWorker.output;
+
+  // Each with its own, the shot renders.
+  startWorker("w1", {"--token-file", workerToken.string()});
+  RenderSpec spec;
+  const CommandResult submitted =
+      runPathfarm({"submit", writeShotFile(spec).string(), "--scheduler", scheduler, "--token-file", clientToken.string()});
+  ASSERT_EQ(submitted.status, 0) << submitted.output;
+  EXPECT_EQ(waitForShot(shotIdFrom(submitted), 60s, "client-token-81d2").state(), farm::SHOT_DONE);
+}
+
 }  // namespace
 }  // namespace pathfarm::farmtest
