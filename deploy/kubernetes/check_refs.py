@@ -3,8 +3,8 @@
 
   check_refs.py FOLDER RENDERED
 
-FOLDER holds the manifests and kustomization.yaml (and a token file for the
-secretGenerator); RENDERED is `kubectl kustomize FOLDER`'s output, or an empty file, in
+FOLDER holds the manifests and kustomization.yaml (and the files of the
+secretGenerator: make_secrets.sh); RENDERED is `kubectl kustomize FOLDER`'s output, or an empty file, in
 which case the kustomization's namespace and secretGenerator are applied here (names
 without kustomize's hash suffix). Prints one line per check group; exits 1 listing every
 problem found.
@@ -208,37 +208,69 @@ def main():
             return None, None
         return workload["volumes"][best[0]["name"]], path[len(best[1]) + 1:]
 
-    def check_token_file(workload):
-        path = workload["args"].get("token-file")
+    def secret_file(workload, option, required=True):
+        """The (secret, key) a file option names, reporting a path on no secret volume."""
+        path = workload["args"].get(option)
         who = f"{workload['kind']} {workload['name']}"
         if not isinstance(path, str):
-            problem(f"{who}: no --token-file")
-            return
+            if required:
+                problem(f"{who}: no --{option}")
+            return None
         volume, inside = volume_of(workload, path)
         if volume is None or "secret" not in volume:
-            problem(f"{who}: --token-file {path} is not on a secret volume")
-            return
+            problem(f"{who}: --{option} {path} is not on a secret volume")
+            return None
         items = {i["path"]: i["key"] for i in volume["secret"].get("items", [])}
         key = items.get(inside, inside if not items else None)
-        if key is None or volume["secret"]["secretName"] not in secrets or \
-                key not in secret_keys(volume["secret"]["secretName"]):
-            problem(f"{who}: --token-file {path} names no key of secret {volume['secret']['secretName']}")
+        name = volume["secret"]["secretName"]
+        if key is None or name not in secrets or key not in secret_keys(name):
+            problem(f"{who}: --{option} {path} names no key of secret {name}")
+            return None
+        return name, key
 
-    # The scheduler: ports, exposure, token, state on the claim.
+    def mounted_secret_keys(workload):
+        """Every (secret, key) the workload's secret volumes put in its containers."""
+        out = set()
+        for volume in workload["volumes"].values():
+            if "secret" not in volume or volume["secret"]["secretName"] not in secrets:
+                continue
+            name = volume["secret"]["secretName"]
+            items = volume["secret"].get("items")
+            keys = [i["key"] for i in items] if items else secret_keys(name)
+            out.update((name, k) for k in keys)
+        return out
+
+    # The scheduler: ports, exposure (token, and TLS or --insecure), credentials, state on
+    # the claim.
     s = workloads["scheduler"]
     ports = {p["name"]: p["containerPort"] for p in s["container"].get("ports", [])}
     listen_host, listen_port = host_port(s["args"]["listen"])
     if ports.get("grpc") != listen_port:
         problem(f"scheduler: --listen port {listen_port} is not its containerPort grpc ({ports.get('grpc')})")
+    if ("tls-cert" in s["args"]) != ("tls-key" in s["args"]):
+        problem("scheduler: --tls-cert and --tls-key go together (the scheduler would refuse to start)")
+    tls = "tls-cert" in s["args"] and "tls-key" in s["args"]
+    if "tls-client-ca" in s["args"] and not tls:
+        problem("scheduler: --tls-client-ca without --tls-cert and --tls-key (the scheduler would refuse to start)")
+    exposure_ok = tls or s["args"].get("insecure") is True
+    addresses = [("--listen", listen_host)]
     if "http" in s["args"]:
         http_host, http_port = host_port(s["args"]["http"])
         if ports.get("http") != http_port:
             problem(f"scheduler: --http port {http_port} is not its containerPort http ({ports.get('http')})")
-        if not is_loopback(http_host) and s["args"].get("insecure") is not True:
-            problem("scheduler: --http beyond loopback without --insecure (the scheduler would refuse to start)")
-    if not is_loopback(listen_host) and s["args"].get("insecure") is not True:
-        problem("scheduler: --listen beyond loopback without --insecure (the scheduler would refuse to start)")
-    check_token_file(s)
+        addresses.append(("--http", http_host))
+    for option, host in addresses:
+        if not is_loopback(host) and not exposure_ok:
+            problem(f"scheduler: {option} beyond loopback without TLS (--tls-cert, --tls-key) or --insecure "
+                    "(the scheduler would refuse to start)")
+    client_token = secret_file(s, "token-file")
+    worker_token = secret_file(s, "worker-token-file", required=False)
+    scheduler_key = None
+    if tls:
+        secret_file(s, "tls-cert")
+        scheduler_key = secret_file(s, "tls-key")
+    if "tls-client-ca" in s["args"]:
+        secret_file(s, "tls-client-ca")
     for option in ("db", "store"):
         volume, _ = volume_of(s, s["args"].get(option, ""))
         if volume is None or "persistentVolumeClaim" not in volume:
@@ -275,7 +307,25 @@ def main():
     if not matches:
         problem(f"worker: --scheduler {w_host}:{w_port} is not a Service port targeting the scheduler's gRPC port "
                 f"(those are {grpc_services})")
-    check_token_file(w)
+    shown = secret_file(w, "token-file")
+    expected = worker_token or client_token
+    if shown and expected and shown != expected:
+        which = "--worker-token-file" if worker_token else "--token-file"
+        problem(f"worker: --token-file is {shown[0]}/{shown[1]}, not the scheduler's {which} "
+                f"{expected[0]}/{expected[1]} (the scheduler would refuse the workers)")
+    if tls:
+        secret_file(w, "tls-ca")
+    elif "tls-ca" in w["args"]:
+        problem("worker: --tls-ca, but the scheduler serves no TLS (the workers could not connect)")
+    if "tls-client-ca" in s["args"]:
+        secret_file(w, "tls-cert")
+        secret_file(w, "tls-key")
+    exposed = mounted_secret_keys(w)
+    if scheduler_key and scheduler_key in exposed:
+        problem(f"worker: mounts the scheduler's private key {scheduler_key[0]}/{scheduler_key[1]}")
+    if worker_token and client_token and client_token in exposed:
+        problem(f"worker: mounts the clients' token {client_token[0]}/{client_token[1]}, "
+                "which workers with a token of their own do not need")
 
     # The NetworkPolicy: selects the scheduler, names its ports, lets the workers in.
     for name, policy in by_kind.get("NetworkPolicy", {}).items():
@@ -297,9 +347,12 @@ def main():
         problem(f"the scheduler and the workers run different images: {images}")
     if problems:
         finish()
-    print(f"check_refs: scheduler listens on its grpc port {listen_port} beyond loopback with --insecure and a token; "
-          f"Service {matches[0][0]}:{matches[0][1]} targets it; workers use --scheduler {w_host}:{w_port}; "
-          "NetworkPolicy selects the scheduler and lets the workers in; one image")
+    protection = "TLS" if tls else "--insecure"
+    tokens = "a client token and a worker token" if worker_token else "one token"
+    print(f"check_refs: scheduler listens on its grpc port {listen_port} beyond loopback with {protection} and "
+          f"{tokens}; Service {matches[0][0]}:{matches[0][1]} targets it; workers use --scheduler {w_host}:{w_port}"
+          f"{' trusting --tls-ca' if tls else ''} with the scheduler's worker credential and no key of the "
+          "scheduler's; NetworkPolicy selects the scheduler and lets the workers in; one image")
     finish()
 
 

@@ -16,7 +16,10 @@
 #
 # Not checked here (no systemd as PID 1): that systemd starts the units, the sandboxing
 # itself (ProtectSystem= and friends), the `pathfarm` user's permissions (step 3 runs as
-# the calling user), Restart=, StateDirectory=/CacheDirectory= creation.
+# the calling user), Restart=, StateDirectory=/CacheDirectory= creation. The TLS and
+# worker-token settings stay empty, as in pathfarm.env.example (the units then pass empty
+# --worker-token-file, --tls-cert, --tls-key and worker --token-file arguments); a farm
+# with them is what tests/farm/farm_tls_test.cpp and farm_token_test.cpp run.
 #
 # Usage: deploy/systemd/check.sh   (PATHFARM_BIN: the binary, default build/bin/pathfarm,
 # copied first; installs the `systemd` package with apt-get if systemd-analyze is missing)

@@ -126,8 +126,9 @@ fi
 
 cat <<NEXT
 install.sh: done${dry_run:+ (dry run: nothing changed)}. Next:
-  edit $config_dir/pathfarm.env (scheduler address, slots, threads, tags)
-  copy $config_dir/token to every worker host and to whoever submits (same path, root:pathfarm 0640)
+  edit $config_dir/pathfarm.env (scheduler address, slots, threads, tags; optional TLS and a workers' token)
+  copy $config_dir/token to whoever submits, and to every worker host unless workers get their
+    own token (PATHFARM_WORKER_TOKEN_FILE); same path, root:pathfarm 0640
   systemctl enable --now pathfarm-scheduler                     # on the scheduler's host
   systemctl enable --now pathfarm-worker@1 pathfarm-worker@2    # on each render host
   journalctl -u pathfarm-scheduler -u 'pathfarm-worker@*' -f
