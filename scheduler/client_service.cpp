@@ -2,6 +2,7 @@
 #include <thread>
 
 #include "proto/wire/chunk_transfer.h"
+#include "scheduler/service_chunks.h"
 #include "scheduler/service_guard.h"
 #include "scheduler/shot_report.h"
 
@@ -116,8 +117,11 @@ grpc::Status ClientServiceImpl::FetchOutputs(grpc::ServerContext* context, const
     c_.state.summary(request->shot_id(), wallClockSeconds());  // NOT_FOUND for an unknown shot
     for (const auto& [frame, ref] : c_.state.outputs(request->shot_id())) {
       const auto bytes = c_.store.get(ref.sha256());
-      if (!bytes) return grpc::Status(grpc::StatusCode::DATA_LOSS, "frame " + std::to_string(frame) +
-                                                                       ": chunk " + ref.sha256() + " is missing or damaged");
+      if (!bytes) {
+        const grpc::Status lost = lostChunk(c_, ref.sha256());
+        return grpc::Status(grpc::StatusCode::DATA_LOSS, "frame " + std::to_string(frame) + ": " +
+                                                             lost.error_message() + "; fetch again when the shot is done");
+      }
       // Adapts the output stream to sendChunk's Write(ChunkPart).
       struct FramePartWriter {
         grpc::ServerWriter<OutputPart>* writer;

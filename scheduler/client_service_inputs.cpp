@@ -1,6 +1,6 @@
 // Scene files a client uploads before it submits (inputs without shared storage).
 #include "proto/wire/input_files.h"
-#include "scheduler/received_chunk.h"
+#include "scheduler/service_chunks.h"
 #include "scheduler/service_guard.h"
 
 namespace pathfarm::farm {

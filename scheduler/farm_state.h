@@ -100,6 +100,10 @@ class FarmState {
   ShotSummary requeueTask(int64_t shotId, int64_t taskId, double now);
   // The same for every task of one frame: its tiles, filters and output.
   ShotSummary requeueFrame(int64_t shotId, int64_t frame, double now);
+  // A chunk the store has lost (missing or damaged on disk): every done task that made it,
+  // in a shot still queued, running, paused or done, runs again with what used it. Returns
+  // how many tasks were requeued (0: no task can make it again).
+  int requeueProducersOf(const std::string& sha256, double now);
   // Blocklisted workers of one shot, or of every shot with 0.
   std::vector<BlocklistEntry> blocklist(int64_t shotId);
   // Lifts the blocklist of `workerId` (0: every worker) for the shot.

@@ -1,4 +1,5 @@
 // Requeueing: a task or a frame runs again, with everything that used its output.
+#include <map>
 #include <stdexcept>
 
 #include "scheduler/farm_state_internal.h"
@@ -37,6 +38,22 @@ ShotSummary FarmState::requeueFrame(int64_t shotId, int64_t frame, double now) {
     if (seeds.empty())
       throw std::invalid_argument("shot " + std::to_string(shotId) + " has no task for frame " + std::to_string(frame));
     return requeueLocked(shotId, seeds, "frame " + std::to_string(frame), now);
+  });
+}
+
+int FarmState::requeueProducersOf(const std::string& sha256, double now) {
+  return transact([&]() -> int {
+    std::map<int64_t, std::vector<int64_t>> producersByShot;
+    Statement& q = db_.query("SELECT t.shot_id, t.id FROM tasks t JOIN shots s ON s.id = t.shot_id "
+                             "WHERE t.output_sha = ?1 AND t.state = ?2 AND s.state NOT IN (?3, ?4)");
+    q.bind(1, sha256).bind(2, asInt(TaskState::Done)).bind(3, int64_t{SHOT_FAILED}).bind(4, int64_t{SHOT_CANCELLED});
+    while (q.step()) producersByShot[q.integer(0)].push_back(q.integer(1));
+    int requeued = 0;
+    for (const auto& [shotId, producers] : producersByShot) {
+      requeueLocked(shotId, producers, "the output chunk " + sha256.substr(0, 12) + " was missing or damaged", now);
+      requeued += static_cast<int>(producers.size());
+    }
+    return requeued;
   });
 }
 

@@ -2,7 +2,7 @@
 #include <chrono>
 
 #include "proto/wire/chunk_transfer.h"
-#include "scheduler/received_chunk.h"
+#include "scheduler/service_chunks.h"
 #include "scheduler/service_guard.h"
 
 namespace pathfarm::farm {
@@ -110,7 +110,7 @@ grpc::Status WorkerServiceImpl::GetChunk(grpc::ServerContext* context, const Get
                                          grpc::ServerWriter<ChunkPart>* writer) {
   return asWorker(context, [&](int64_t) {
     const auto bytes = c_.store.get(request->sha256());
-    if (!bytes) return grpc::Status(grpc::StatusCode::NOT_FOUND, "no chunk " + request->sha256());
+    if (!bytes) return lostChunk(c_, request->sha256());
     ChunkRef ref;
     ref.set_sha256(request->sha256());
     ref.set_size(static_cast<int64_t>(bytes->size()));

@@ -1,0 +1,24 @@
+#include "scheduler/service_chunks.h"
+
+#include "proto/wire/chunk_transfer.h"
+#include "proto/wire/connection.h"
+
+namespace pathfarm::farm {
+
+ChunkRef storeReceivedChunk(grpc::ServerReader<ChunkPart>& reader, const SchedulerContext& c) {
+  ChunkRef announced;
+  const std::string bytes = receiveChunk(reader, announced, kMaxChunkBytes);
+  const ChunkRef stored = c.store.put(bytes, announced);
+  c.state.recordChunk(stored, wallClockSeconds());
+  return stored;
+}
+
+grpc::Status lostChunk(const SchedulerContext& c, const std::string& sha256) {
+  const int requeued = c.state.requeueProducersOf(sha256, wallClockSeconds());
+  if (requeued == 0) return {grpc::StatusCode::NOT_FOUND, "no chunk " + sha256};
+  c.signal.notify();
+  return {grpc::StatusCode::NOT_FOUND, "chunk " + sha256 + " was missing or damaged: the " + std::to_string(requeued) +
+                                           " task(s) that made it run again"};
+}
+
+}  // namespace pathfarm::farm
