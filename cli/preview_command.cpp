@@ -1,5 +1,5 @@
-// `pathfarm preview DIR|FILE.exr...`: tone-mapped sRGB PNG previews of EXR frames,
-// written next to them.
+// `pathfarm preview DIR|FILE.exr... [--layer L]`: tone-mapped sRGB PNG previews of EXR
+// frames (their beauty, or one layer such as `diffuse_indirect.color`), written next to them.
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -15,7 +15,27 @@ namespace {
 struct PreviewArguments {
   std::vector<std::string> inputs;
   float exposure = 1;
+  std::string layer;  // empty: the beauty R, G, B
 };
+
+// The frame with `layer`.R/G/B (X/Y/Z, or Y alone as grey) as its beauty, to preview one
+// buffer of one component.
+FrameImage layerAsBeauty(const FrameImage& frame, const std::string& layer) {
+  const auto pick = [&](std::initializer_list<const char*> names) -> const std::vector<float>* {
+    for (const char* name : names)
+      if (frame.hasChannel(layer + "." + name)) return &frame.channel(layer + "." + name);
+    return nullptr;
+  };
+  const std::vector<float>* r = pick({"R", "X"});
+  const std::vector<float>* g = pick({"G", "Y"});
+  const std::vector<float>* b = pick({"B", "Z"});
+  if (!g) throw std::runtime_error("no layer \"" + layer + "\" (channels " + layer + ".R/G/B, .X/Y/Z or .Y)");
+  FrameImage preview(frame.width(), frame.height());
+  preview.addChannel("R") = r ? *r : *g;
+  preview.addChannel("G") = *g;
+  preview.addChannel("B") = b ? *b : *g;
+  return preview;
+}
 
 int runPreview(const PreviewArguments& arguments) {
   std::vector<std::filesystem::path> files;
@@ -32,8 +52,9 @@ int runPreview(const PreviewArguments& arguments) {
   for (const auto& file : files) {
     try {
       auto png = file;
-      png.replace_extension(".png");
-      writePngPreview(png, readExr(file), arguments.exposure);
+      png.replace_extension(arguments.layer.empty() ? ".png" : "." + arguments.layer + ".png");
+      const FrameImage frame = readExr(file);
+      writePngPreview(png, arguments.layer.empty() ? frame : layerAsBeauty(frame, arguments.layer), arguments.exposure);
     } catch (const std::exception& e) {
       spdlog::error("{}", e.what());
       ++failures;
@@ -50,6 +71,8 @@ std::vector<Command> addPreviewCommand(CLI::App& app) {
   CLI::App* preview = app.add_subcommand("preview", "write sRGB PNG previews of EXR frames (next to them)");
   preview->add_option("inputs", arguments->inputs, "EXR files or folders of them")->required();
   preview->add_option("--exposure", arguments->exposure, "exposure multiplier")->check(CLI::Range(1e-6, 1e6));
+  preview->add_option("--layer", arguments->layer,
+                      "preview one buffer instead of the beauty, e.g. diffuse_indirect.color or reflection.normal");
   return {{preview, [arguments] { return runPreview(*arguments); }}};
 }
 

@@ -139,7 +139,8 @@ ShotReport buildReport(const ShotSummary& summary, const ShotSpec& spec, const s
     }
     if (task.kind == TASK_INTERPOLATE) {
       interpolationRerender += metric(task, "rerender_pixels");
-      for (const char* cause : {"holes", "silhouettes", "untracked", "illumination", "mismatch", "light_edges", "light_mismatch"})
+      for (const char* cause : {"holes", "silhouettes", "untracked", "illumination", "mismatch", "light_edges", "light_mismatch",
+                                 "moving_caustics"})
         (*report.mutable_interpolation_rerender_causes())[cause] += metric(task, std::string("rerender_") + cause);
       ++interpolated;
     }

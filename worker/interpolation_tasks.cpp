@@ -6,6 +6,7 @@
 #include "postproc/filters/decomposed_frame.h"
 #include "postproc/interpolation/feature_check.h"
 #include "postproc/interpolation/frame_interpolation.h"
+#include "postproc/interpolation/caustic_check.h"
 #include "postproc/interpolation/radiance_check.h"
 #include "worker/direct_emission.h"
 #include "worker/filter_inputs.h"
@@ -99,18 +100,20 @@ TaskOutput runInterpolateTask(const Lease& lease, const std::vector<TaskInput>& 
       "between keyframes " + std::to_string(before) + " and " + std::to_string(after);
   addDirectEmission(result.frame, directLight);
   // Where the frame's own features or their light disagree, the interpolation is wrong;
-  // where its directly seen light has an edge, the feature render's few samples are:
-  // re-render there too.
+  // where its directly seen light has an edge, the feature render's few samples are; a
+  // moving caustic no keyframe can carry: re-render there too.
   const std::vector<uint8_t> mismatch = featureMismatch(result.frame, features);
   const std::vector<uint8_t> edges = directLightEdges(directLight, features);
   const std::vector<uint8_t> lightMismatch = radianceMismatch(result.frame, features);
-  size_t mismatched = 0, edgePixels = 0, lightMismatched = 0;
+  const std::vector<uint8_t> caustics = movingCausticPixels(features);
+  size_t mismatched = 0, edgePixels = 0, lightMismatched = 0, causticPixels = 0;
   std::vector<float>& flagged = result.frame.channel("rerender.Y");
   for (size_t p = 0; p < mismatch.size(); ++p) {
     mismatched += mismatch[p];
     edgePixels += edges[p];
     lightMismatched += lightMismatch[p];
-    if (!mismatch[p] && !edges[p] && !lightMismatch[p]) continue;
+    causticPixels += caustics[p];
+    if (!mismatch[p] && !edges[p] && !lightMismatch[p] && !caustics[p]) continue;
     result.mask[p] = 1;
     flagged[p] = 1.0f;
   }
@@ -124,6 +127,7 @@ TaskOutput runInterpolateTask(const Lease& lease, const std::vector<TaskInput>& 
   output.metrics["rerender_mismatch"] = static_cast<double>(mismatched);
   output.metrics["rerender_light_edges"] = static_cast<double>(edgePixels);
   output.metrics["rerender_light_mismatch"] = static_cast<double>(lightMismatched);
+  output.metrics["rerender_moving_caustics"] = static_cast<double>(causticPixels);
   output.chunk = encodeExr(result.frame, ExrCompression::Fast);
   return output;
 }

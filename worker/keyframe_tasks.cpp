@@ -6,6 +6,7 @@
 #include "postproc/filters/component_denoiser.h"
 #include "postproc/filters/component_upsampler.h"
 #include "postproc/filters/decomposed_frame.h"
+#include "postproc/interpolation/caustic_check.h"
 #include "renderer/decomposition/effective_irradiance.h"
 #include "scheduler/planner.h"
 #include "worker/direct_emission.h"
@@ -63,16 +64,24 @@ TaskOutput runUpsampleTask(const Lease& lease, const std::vector<TaskInput>& inp
   const int64_t frame = lease.params().frame();
   const FrameImage& low = inputOf(inputs, TASK_DENOISE, frame).image;
   FrameImage high = inputOf(inputs, TASK_ASSEMBLE_FRAME, frame).image;
+  // A moving caustic spread by the half-resolution filtering is rendered again at full spp.
+  const std::vector<uint8_t> caustics = movingCausticPixels(high);
   const FrameImage emission = takeDirectEmission(high);
   UpsampleSettings settings;
   settings.guided.factor = kUpsampleFactor;
   high.paste(upsampleFrame(low, high, settings), 0, 0);
   addDirectEmission(high, emission);
-  const std::vector<float>& flagged = high.channel("rerender.Y");
+  std::vector<float>& flagged = high.channel("rerender.Y");
   std::vector<uint8_t> mask(flagged.size());
-  std::transform(flagged.begin(), flagged.end(), mask.begin(), [](float v) { return v > 0.5f ? 1 : 0; });
+  size_t causticPixels = 0;
+  for (size_t p = 0; p < mask.size(); ++p) {
+    causticPixels += caustics[p];
+    if (caustics[p]) flagged[p] = 1.0f;
+    mask[p] = flagged[p] > 0.5f ? 1 : 0;
+  }
   TaskOutput output;
   requestRerender(lease.spec(), frame, mask, output);
+  output.metrics["rerender_moving_caustics"] = static_cast<double>(causticPixels);
   output.chunk = encodeExr(high, ExrCompression::Fast);
   return output;
 }

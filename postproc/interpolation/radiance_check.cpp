@@ -5,6 +5,7 @@
 #include <string>
 
 #include "postproc/filters/decomposed_frame.h"
+#include "postproc/interpolation/window_sums.h"
 
 namespace pathfarm {
 namespace {
@@ -32,31 +33,6 @@ std::vector<double> luminance(const FrameImage& frame, const std::string& prefix
     for (double& v : out) v *= v;
   return out;
 }
-
-// Sums over the window of `radius` around every pixel, from a summed-area table.
-class WindowSums {
- public:
-  WindowSums(const std::vector<double>& values, int width, int height)
-      : width_(width), height_(height), table_(static_cast<size_t>(width + 1) * static_cast<size_t>(height + 1), 0.0) {
-    for (int y = 0; y < height; ++y)
-      for (int x = 0; x < width; ++x)
-        at(x + 1, y + 1) = values[static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)] +
-                           at(x, y + 1) + at(x + 1, y) - at(x, y);
-  }
-  double around(int x, int y, int radius) const {
-    const int x0 = std::max(0, x - radius), y0 = std::max(0, y - radius);
-    const int x1 = std::min(width_, x + radius + 1), y1 = std::min(height_, y + radius + 1);
-    return get(x1, y1) - get(x0, y1) - get(x1, y0) + get(x0, y0);
-  }
-
- private:
-  double& at(int x, int y) { return table_[static_cast<size_t>(y) * static_cast<size_t>(width_ + 1) + static_cast<size_t>(x)]; }
-  double get(int x, int y) const {
-    return table_[static_cast<size_t>(y) * static_cast<size_t>(width_ + 1) + static_cast<size_t>(x)];
-  }
-  int width_, height_;
-  std::vector<double> table_;
-};
 
 }  // namespace
 

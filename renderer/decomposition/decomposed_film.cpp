@@ -60,6 +60,7 @@ DecomposedFilm::DecomposedFilm(FrameImage& image, const Decomposition& decomposi
   addXy("motion", motion_);
   addXy("motion_back", motionBack_);
   silhouette_ = add("silhouette.Y");
+  movingCaustic_ = add("moving_caustic.Y");
 }
 
 DecomposedFilm::Pixel::Pixel(int components) : components_(static_cast<size_t>(components)) {}
@@ -98,6 +99,7 @@ void DecomposedFilm::Pixel::add(const SampleComponents& sample, const SampleExtr
       c.motionBack[1] += extras.motionBack->y;
     }
   }
+  movingCaustic_ += sample.movingCaustic.luminance();
   if (extras.hit) {
     ++hits_;
     depth_ += extras.depth;
@@ -173,6 +175,7 @@ void DecomposedFilm::write(size_t p, const Pixel& sums) const {
     motionBack_[i][p] = static_cast<float>(sums.motionBack_[i] / moving);
   }
   silhouette_[p] = sums.silhouette_ ? 1.0f : 0.0f;
+  movingCaustic_[p] = n > 0 ? static_cast<float>(sums.movingCaustic_ / n) : 0.0f;
 }
 
 }  // namespace pathfarm

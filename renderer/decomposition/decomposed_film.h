@@ -28,8 +28,9 @@ class DecomposedFilm {
   // rest of the decomposition (an animated camera is re-evaluated for each).
   static constexpr int kMotionSamples = 8;
 
-  // Adds the decomposition's channels (and the frame-wide depth, motion and silhouette)
-  // to `image`.
+  // Adds the decomposition's channels (and the frame-wide depth, motion, silhouette and
+  // moving caustic: `moving_caustic.Y`, the mean luminance of the samples' moving caustics,
+  // path_decomposer.h) to `image`.
   DecomposedFilm(FrameImage& image, const Decomposition& decomposition);
 
   // One pixel's running sums; lives on the stack of the thread rendering the pixel.
@@ -55,7 +56,7 @@ class DecomposedFilm {
     };
     std::vector<Component> components_;
     int samples_ = 0, hits_ = 0, moving_ = 0;
-    double depth_ = 0, motion_[2] = {}, motionBack_[2] = {};
+    double depth_ = 0, motion_[2] = {}, motionBack_[2] = {}, movingCaustic_ = 0;
     bool silhouette_ = false;
     int firstObject_ = -2;  // -2: no sample yet, -1: the background
     std::optional<Vec2f> firstMotion_;
@@ -69,7 +70,7 @@ class DecomposedFilm {
         *depth, *direct[3], *motion[2], *motionBack[2], *motionValid;
   };
   std::vector<ComponentChannels> components_;
-  float *depth_, *motion_[2], *motionBack_[2], *silhouette_;
+  float *depth_, *motion_[2], *motionBack_[2], *silhouette_, *movingCaustic_;
 };
 
 }  // namespace pathfarm

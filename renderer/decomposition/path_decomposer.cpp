@@ -25,6 +25,7 @@ bool hasDiffuseLobe(const LobeList& lobes) {
 void SampleComponents::reset(int components) {
   color.assign(static_cast<size_t>(components), Rgb());
   direct.assign(static_cast<size_t>(components), Rgb());
+  movingCaustic = Rgb();
   features.resize(static_cast<size_t>(components));
   hasFeatures.assign(static_cast<size_t>(components), 0);
 }
@@ -41,22 +42,29 @@ void PathDecomposer::begin() {
   out_.reset(decomposition_.size());
   sampledState_ = automaton_.next(automaton_.initial(), PathSymbol::E);
   current_ = 0;
-  buffers_[0][0] = {sampledState_, false, Rgb(1.0f)};
+  buffers_[0][0] = {sampledState_, false, Tail::None, Rgb(1.0f)};
   count_ = 1;
 }
 
-void PathDecomposer::addTo(int state, bool diffuse, Rgb value) {
+PathDecomposer::Tail PathDecomposer::tailAfter(const StateWeight& from, PathSymbol symbol, bool animatedVertex) {
+  if (symbol == PathSymbol::D || !from.diffuse) return Tail::None;
+  return animatedVertex || from.tail == Tail::Moving ? Tail::Moving : Tail::Still;
+}
+
+void PathDecomposer::addTo(int state, bool diffuse, Tail tail, Rgb value) {
   const auto component = static_cast<size_t>(automaton_.accepting(state));
   out_.color[component] += value;
   if (!diffuse) out_.direct[component] += value;
+  if (tail == Tail::Moving) out_.movingCaustic += value;
 }
 
 void PathDecomposer::addEmission(Rgb value) {
   const auto& states = buffers_[current_];
-  for (int i = 0; i < count_; ++i) addTo(states[i].state, states[i].diffuse, states[i].weight * value);
+  for (int i = 0; i < count_; ++i) addTo(states[i].state, states[i].diffuse, states[i].tail, states[i].weight * value);
 }
 
-void PathDecomposer::addLightSample(const LobeList& lobes, const LobeValues& f, Rgb lightOverPdf) {
+void PathDecomposer::addLightSample(const LobeList& lobes, const LobeValues& f, Rgb lightOverPdf,
+                                    bool animatedVertex) {
   for (int l = 0; l < lobes.count; ++l) {
     if (f.value[l].isBlack()) continue;
     const Rgb contribution = f.value[l] * lightOverPdf;
@@ -64,7 +72,8 @@ void PathDecomposer::addLightSample(const LobeList& lobes, const LobeValues& f, 
     const bool diffuse = symbol == PathSymbol::D;
     const auto& states = buffers_[current_];
     for (int i = 0; i < count_; ++i)
-      addTo(automaton_.next(states[i].state, symbol), states[i].diffuse || diffuse, states[i].weight * contribution);
+      addTo(automaton_.next(states[i].state, symbol), states[i].diffuse || diffuse,
+            tailAfter(states[i], symbol, animatedVertex), states[i].weight * contribution);
   }
 }
 
@@ -102,10 +111,11 @@ void PathDecomposer::scatter(const LobeList& lobes, const VertexFeatures& vertex
     for (int i = 0; i < count_; ++i) {
       const int state = automaton_.next(states[i].state, symbol);
       const bool diffuse = states[i].diffuse || symbol == PathSymbol::D;
+      const Tail tail = tailAfter(states[i], symbol, vertex.animated);
       const Rgb weight = states[i].weight * sample->lobeWeight[l];
       int j = 0;
-      while (j < nextCount && (next[j].state != state || next[j].diffuse != diffuse)) ++j;
-      if (j == nextCount) next[nextCount++] = {state, diffuse, Rgb()};
+      while (j < nextCount && (next[j].state != state || next[j].diffuse != diffuse || next[j].tail != tail)) ++j;
+      if (j == nextCount) next[nextCount++] = {state, diffuse, tail, Rgb()};
       next[j].weight += weight;
     }
   }

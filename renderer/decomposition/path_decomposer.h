@@ -7,7 +7,12 @@
 // the features of its first non-specular (D) vertex along the sampled path, and its
 // directly seen light: what reaches the camera along a path with no D vertex (an emitter
 // or the environment seen directly or through specular chains, Zimmer's E S* L paths),
-// which the filters must leave alone (worker/direct_emission.h).
+// which the filters must leave alone (worker/direct_emission.h). Beside the components it
+// keeps the sample's *moving caustic*: light that reached the path's last D vertex through a
+// specular chain (Heckbert's L S+ D, e.g. a glass ball focusing a lamp onto the floor) with
+// a vertex of that chain on an animated object. Such light moves with the object that
+// focuses it, not with the surface it falls on, so no keyframe's motion can carry it
+// (postproc/interpolation/caustic_check.h).
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -26,6 +31,7 @@ struct VertexFeatures {
   int object = -1;     // scene object index
   uint32_t objectId = 0;
   uint32_t primitive = 0;
+  bool animated = false;  // the object moves or deforms during the shot
 };
 
 // One camera sample's share of every component.
@@ -35,6 +41,7 @@ struct SampleComponents {
   };
   std::vector<Rgb> color;
   std::vector<Rgb> direct;  // the part of `color` whose path has no D vertex
+  Rgb movingCaustic;        // the part of the sum of `color` carried by moving caustics
   std::vector<Features> features;
   std::vector<uint8_t> hasFeatures;
 
@@ -50,8 +57,9 @@ class PathDecomposer {
   // Radiance `value` reaching the camera along the current path (an emitter hit, with
   // its MIS weight), without the path's throughput.
   void addEmission(Rgb value);
-  // Next-event estimation at the current vertex: f per lobe, times `lightOverPdf`.
-  void addLightSample(const LobeList& lobes, const LobeValues& f, Rgb lightOverPdf);
+  // Next-event estimation at the current vertex (on an animated object or not): f per
+  // lobe, times `lightOverPdf`.
+  void addLightSample(const LobeList& lobes, const LobeValues& f, Rgb lightOverPdf, bool animatedVertex);
   // The vertex's features for the components whose first D vertex this is, and the
   // path's continuation by `sample` (nullptr: the path ends here).
   void scatter(const LobeList& lobes, const VertexFeatures& vertex, const BsdfSample* sample);
@@ -60,23 +68,30 @@ class PathDecomposer {
 
  private:
   static constexpr int kMaxStates = 32;
-  // The throughput of the paths in one automaton state, apart for paths that have
-  // met a D vertex and paths that have not (the latter's light is directly seen).
+  // What follows the path's last D vertex: nothing yet, specular vertices on still objects
+  // only, or a specular vertex on an animated object (a moving caustic if light ends it).
+  enum class Tail : uint8_t { None, Still, Moving };
+  // The throughput of the paths in one automaton state, apart for paths that have met a D
+  // vertex and paths that have not (the latter's light is directly seen), and by tail.
   struct StateWeight {
     int state;
     bool diffuse;
+    Tail tail;
     Rgb weight;
   };
-  // `value` to the component that accepts `state`; also directly seen unless `diffuse`.
-  void addTo(int state, bool diffuse, Rgb value);
+  // The tail after a lobe of `symbol` at a vertex (animated or not) of a path in `from`.
+  static Tail tailAfter(const StateWeight& from, PathSymbol symbol, bool animatedVertex);
+  // `value` to the component that accepts `state`; also directly seen unless `diffuse`,
+  // and a moving caustic with a moving tail.
+  void addTo(int state, bool diffuse, Tail tail, Rgb value);
   void recordFeatures(const LobeList& lobes, const VertexFeatures& vertex, const BsdfSample* sample);
 
   const Decomposition& decomposition_;
   const LpeAutomaton& automaton_;
   SampleComponents& out_;
   // Two buffers of state weights, swapped at every bounce (no copying, no construction);
-  // each state may hold a diffuse and a directly seen entry.
-  std::array<StateWeight, 2 * kMaxStates> buffers_[2];
+  // each state may hold a directly seen entry and a diffuse one per tail.
+  std::array<StateWeight, 4 * kMaxStates> buffers_[2];
   int current_ = 0;
   int count_ = 0;
   int sampledState_;  // the automaton along the sampled lobes only, for features

@@ -51,6 +51,7 @@ Rgb PathTracer::radiance(Ray ray, float time, SampleStream& stream, RayCounts& c
     const Vec3f wo = shaded.wo;
     const Bsdf& bsdf = shaded.bsdf;
     const LobeList lobes = decomposer ? bsdf.lobes() : LobeList{};
+    const bool animated = decomposer && object.transform.isAnimated();
 
     if (bsdf.hasNonDeltaLobe() && !lights_.empty()) {
       if (const auto light = lights_.sample(geometry_, hit.position, time, u.light, u.lightPoint)) {
@@ -66,7 +67,8 @@ Rgb PathTracer::radiance(Ray ray, float time, SampleStream& stream, RayCounts& c
           if (visible) {
             const float weight = light->delta ? 1 : powerHeuristic(light->pdf, bsdf.pdf(wo, wi));
             result += throughput * f * light->radiance * (weight / light->pdf);
-            if (decomposer) decomposer->addLightSample(lobes, perLobe, light->radiance * (weight / light->pdf));
+            if (decomposer)
+              decomposer->addLightSample(lobes, perLobe, light->radiance * (weight / light->pdf), animated);
           }
         }
       }
@@ -75,7 +77,7 @@ Rgb PathTracer::radiance(Ray ray, float time, SampleStream& stream, RayCounts& c
     const auto scattered = bsdf.sample(wo, u.lobe, u.direction);
     if (decomposer) {
       const VertexFeatures vertex{hit.position, normal, hit.uv, pathLength,
-                                  hit.object, object.objectId, hit.primitive};
+                                  hit.object, object.objectId, hit.primitive, animated};
       decomposer->scatter(lobes, vertex, scattered ? &*scattered : nullptr);
     }
     if (!scattered || scattered->weight.isBlack()) break;

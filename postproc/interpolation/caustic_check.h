@@ -1,0 +1,32 @@
+#pragma once
+// Moving caustics are re-rendered, not reconstructed. Light that a moving mirror or glass
+// focuses onto a diffuse surface (the renderer's `moving_caustic.Y`,
+// renderer/decomposition/path_decomposer.h) moves with the object that focuses it, not with
+// the surface it falls on: the surface's motion does not carry it between keyframes, optical
+// flow on a keyframe's few noisy samples does not find it, and a quarter-sample keyframe
+// filtered at half resolution spreads it out, so the bright spot under a glass ball fades.
+// A pixel is flagged where, over the (2 radius + 1)^2 window around it,
+//   sum of moving_caustic.Y > share * sum of the beauty's luminance,
+// and at least `minPixels` pixels of the window saw some of it (one sample of a weak, wide
+// caustic is a firefly, not a spot worth re-rendering); the flags then grow by `margin`
+// pixels, since a render with few samples finds only part of a caustic's extent.
+#include <cstdint>
+#include <vector>
+
+#include "image/frame_image.h"
+
+namespace pathfarm {
+
+struct CausticCheckSettings {
+  int radius = 2;
+  float share = 0.1f;
+  int minPixels = 3;
+  int margin = 2;
+};
+
+// One byte per pixel, 1 where a moving caustic should be re-rendered. A frame without
+// `moving_caustic.Y` (rendered without a decomposition) has none. Throws
+// std::invalid_argument when the beauty R, G, B is missing.
+std::vector<uint8_t> movingCausticPixels(const FrameImage& frame, const CausticCheckSettings& settings = {});
+
+}  // namespace pathfarm

@@ -1,0 +1,79 @@
+#include "postproc/interpolation/caustic_check.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <functional>
+
+namespace pathfarm {
+namespace {
+
+constexpr int kSize = 40;
+
+// A frame lit evenly at 1, plus the moving caustic `caustic(x, y)` (part of the beauty).
+FrameImage frame(const std::function<float(int, int)>& caustic) {
+  FrameImage f(kSize, kSize);
+  std::vector<float> beauty(static_cast<size_t>(kSize * kSize)), focused(beauty.size());
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const auto p = static_cast<size_t>(y * kSize + x);
+      focused[p] = caustic(x, y);
+      beauty[p] = 1.0f + focused[p];
+    }
+  for (const char* c : {"R", "G", "B"}) f.addChannel(c) = beauty;
+  f.addChannel("moving_caustic.Y") = focused;
+  return f;
+}
+
+size_t count(const std::vector<uint8_t>& flags) { return static_cast<size_t>(std::count(flags.begin(), flags.end(), 1)); }
+
+TEST(CausticCheck, ASpotIsFlaggedWithItsMarginAndNothingElse) {
+  // A 4x4 spot three times as bright as the light around it.
+  const auto inSpot = [](int x, int y) { return x >= 10 && x < 14 && y >= 20 && y < 24; };
+  const std::vector<uint8_t> flags = movingCausticPixels(frame([&](int x, int y) { return inSpot(x, y) ? 3.0f : 0.0f; }));
+  const CausticCheckSettings defaults;
+  const int reach = defaults.radius + defaults.margin;  // a window touching the spot, then the margin
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const bool near = x >= 10 - reach && x < 14 + reach && y >= 20 - reach && y < 24 + reach;
+      const uint8_t flag = flags[static_cast<size_t>(y * kSize + x)];
+      if (inSpot(x, y)) EXPECT_EQ(flag, 1) << x << "," << y;
+      if (!near) EXPECT_EQ(flag, 0) << x << "," << y;
+    }
+}
+
+TEST(CausticCheck, AFireflyOrAFaintWideCausticIsNotASpot) {
+  // One bright sample alone: fewer pixels than minPixels saw any caustic in any window.
+  EXPECT_EQ(count(movingCausticPixels(frame([](int x, int y) { return x == 20 && y == 20 ? 50.0f : 0.0f; }))), 0u);
+  // Everywhere a caustic of 5 % of the light: below the share.
+  EXPECT_EQ(count(movingCausticPixels(frame([](int, int) { return 0.05f; }))), 0u);
+  // The same at 20 %: every pixel.
+  EXPECT_EQ(count(movingCausticPixels(frame([](int, int) { return 0.25f; }))), static_cast<size_t>(kSize * kSize));
+}
+
+TEST(CausticCheck, ASparseLowSampleCausticIsFoundWhole) {
+  // A render with few samples hits a caustic disc of radius 6 in a third of its pixels:
+  // the flags cover the whole disc.
+  std::srand(7);
+  std::vector<float> hits(static_cast<size_t>(kSize * kSize), 0.0f);
+  for (float& h : hits) h = std::rand() % 3 == 0 ? 6.0f : 0.0f;
+  const auto inDisc = [](int x, int y) { return (x - 20) * (x - 20) + (y - 20) * (y - 20) <= 36; };
+  const std::vector<uint8_t> flags = movingCausticPixels(
+      frame([&](int x, int y) { return inDisc(x, y) ? hits[static_cast<size_t>(y * kSize + x)] : 0.0f; }));
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x)
+      if (inDisc(x, y)) EXPECT_EQ(flags[static_cast<size_t>(y * kSize + x)], 1) << x << "," << y;
+}
+
+TEST(CausticCheck, AFrameWithoutTheBufferHasNoneAndOneWithoutABeautyIsRefused) {
+  FrameImage plain(8, 8);
+  for (const char* c : {"R", "G", "B"}) plain.addChannel(c);
+  EXPECT_EQ(count(movingCausticPixels(plain)), 0u);
+  FrameImage noBeauty(8, 8);
+  noBeauty.addChannel("moving_caustic.Y");
+  EXPECT_THROW(movingCausticPixels(noBeauty), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace pathfarm
