@@ -14,13 +14,14 @@ constexpr double kTransferSeconds = 300;  // a chunk of a large frame on a slow 
 SchedulerLink::SchedulerLink(const std::string& address, std::string token, const ClientTls& tls)
     : stub_(WorkerService::NewStub(makeChannel(address, tls))), token_(std::move(token)) {}
 
-std::unique_ptr<grpc::ClientContext> SchedulerLink::context(double seconds) const {
+std::unique_ptr<grpc::ClientContext> SchedulerLink::context(double seconds, WorkerSession* used) const {
   auto context = std::make_unique<grpc::ClientContext>();
   context->set_deadline(std::chrono::system_clock::now() +
                         std::chrono::milliseconds(static_cast<int64_t>(seconds * 1000)));
   attachToken(*context, token_);
   const std::lock_guard lock(sessionMutex_);
   attachSession(*context, session_);
+  if (used) *used = session_;
   return context;
 }
 
@@ -38,11 +39,22 @@ grpc::Status SchedulerLink::registerWorker(const std::string& name, int slots, c
   return status;
 }
 
-grpc::Status SchedulerLink::lease(int64_t workerId, double waitSeconds, LeaseReply& reply) {
+grpc::Status SchedulerLink::registerAgain(const WorkerSession& refused, const std::string& name, int slots,
+                                          const std::vector<std::string>& tags) {
+  const std::lock_guard lock(registerMutex_);
+  {
+    const std::lock_guard sessionLock(sessionMutex_);
+    if (session_.workerId != refused.workerId || session_.key != refused.key) return grpc::Status::OK;
+  }
+  RegisterReply reply;
+  return registerWorker(name, slots, tags, reply);
+}
+
+grpc::Status SchedulerLink::lease(double waitSeconds, LeaseReply& reply, WorkerSession& used) {
+  const auto call = context(kCallSeconds + waitSeconds, &used);
   LeaseRequest request;
-  request.set_worker_id(workerId);
+  request.set_worker_id(used.workerId);
   request.set_wait_seconds(waitSeconds);
-  const auto call = context(kCallSeconds + waitSeconds);
   {
     const std::lock_guard lock(mutex_);
     if (leasingStopped_) return {grpc::StatusCode::CANCELLED, "the worker is stopping"};

@@ -20,8 +20,14 @@ class SchedulerLink {
   // On success every later call carries the session the reply hands out.
   grpc::Status registerWorker(const std::string& name, int slots, const std::vector<std::string>& tags,
                               RegisterReply& reply);
-  // A long-poll for a task; returns CANCELLED at once after stopLeasing().
-  grpc::Status lease(int64_t workerId, double waitSeconds, LeaseReply& reply);
+  // After a call was refused for its session `refused` (a scheduler on a fresh database
+  // forgot it): registers again, unless another slot already did since. So one worker
+  // process holds one registration, and every slot the session that goes with it.
+  grpc::Status registerAgain(const WorkerSession& refused, const std::string& name, int slots,
+                             const std::vector<std::string>& tags);
+  // A long-poll for a task, for this worker's session (which it returns in `used`);
+  // returns CANCELLED at once after stopLeasing().
+  grpc::Status lease(double waitSeconds, LeaseReply& reply, WorkerSession& used);
   // Ends the long-polls under way and refuses new ones: a stopping worker need not wait
   // for them to time out.
   void stopLeasing();
@@ -32,11 +38,13 @@ class SchedulerLink {
   grpc::Status getChunk(const std::string& sha256, std::string& bytes);
 
  private:
-  std::unique_ptr<grpc::ClientContext> context(double seconds) const;
+  // A call's context with the token and the current session (copied to `used` if given).
+  std::unique_ptr<grpc::ClientContext> context(double seconds, WorkerSession* used = nullptr) const;
   std::unique_ptr<WorkerService::Stub> stub_;
   std::string token_;
   mutable std::mutex sessionMutex_;
   WorkerSession session_;
+  std::mutex registerMutex_;  // one re-registration at a time
   std::mutex mutex_;
   bool leasingStopped_ = false;
   std::set<grpc::ClientContext*> pendingLeases_;

@@ -55,18 +55,20 @@ class Backoff {
 // One slot: leases and runs tasks one at a time.
 class Slot {
  public:
-  Slot(SchedulerLink& link, TaskRunner& runner, ChunkStore& cache, CacheBound& bound, int64_t& workerId,
-       const WorkerOptions& options, double heartbeatSeconds)
-      : link_(link), runner_(runner), cache_(cache), bound_(bound), workerId_(workerId), options_(options),
+  Slot(SchedulerLink& link, TaskRunner& runner, ChunkStore& cache, CacheBound& bound, const WorkerOptions& options,
+       double heartbeatSeconds)
+      : link_(link), runner_(runner), cache_(cache), bound_(bound), options_(options),
         heartbeat_(std::chrono::milliseconds(static_cast<int64_t>(heartbeatSeconds * 1000))) {}
 
   void run(const std::atomic<bool>& stop) {
     Backoff backoff;
     while (!stop) {
       LeaseReply reply;
-      const grpc::Status status = link_.lease(workerId_, kLeaseWaitSeconds, reply);
+      WorkerSession session;
+      const grpc::Status status = link_.lease(kLeaseWaitSeconds, reply, session);
       if (status.error_code() == grpc::StatusCode::UNAUTHENTICATED) {
-        if (!reregister()) backoff.sleep();  // a scheduler with a fresh database forgot our session
+        // A scheduler with a fresh database forgot our session.
+        if (!link_.registerAgain(session, options_.name, options_.slots, options_.tags).ok()) backoff.sleep();
         continue;
       }
       if (stop) break;
@@ -81,13 +83,6 @@ class Slot {
   }
 
  private:
-  bool reregister() {
-    RegisterReply reply;
-    if (!link_.registerWorker(options_.name, options_.slots, options_.tags, reply).ok()) return false;
-    workerId_ = reply.worker_id();
-    return true;
-  }
-
   // An input chunk from the cache or the scheduler. An unreachable scheduler is waited
   // for (it is not the task's fault) until the lease is lost.
   std::string fetch(const ChunkRef& ref, const std::atomic<bool>& abandon) {
@@ -185,7 +180,6 @@ class Slot {
   TaskRunner& runner_;
   ChunkStore& cache_;
   CacheBound& bound_;
-  int64_t& workerId_;
   const WorkerOptions& options_;
   std::chrono::milliseconds heartbeat_;
 };
@@ -219,7 +213,7 @@ void Worker::run(const std::atomic<bool>& stop) {
     spdlog::warn("cannot reach the scheduler at {}: {}; retrying", options_.scheduler, status.error_message());
     backoff.sleep();
   }
-  int64_t workerId = registration.worker_id();
+  const int64_t workerId = registration.worker_id();
   spdlog::info("worker {} ({}) registered with {}: {} slots", workerId, options_.name, options_.scheduler,
                options_.slots);
   ChunkStore cache(options_.cache);
@@ -229,7 +223,7 @@ void Worker::run(const std::atomic<bool>& stop) {
   std::vector<std::thread> slots;
   for (int i = 0; i < options_.slots; ++i) {
     slots.emplace_back([&] {
-      Slot(link, runner, cache, bound, workerId, options_, registration.heartbeat_seconds()).run(stop);
+      Slot(link, runner, cache, bound, options_, registration.heartbeat_seconds()).run(stop);
     });
   }
   while (!stop) std::this_thread::sleep_for(std::chrono::milliseconds(20));

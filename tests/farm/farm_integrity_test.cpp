@@ -99,7 +99,9 @@ TEST_F(FarmTest, CorruptUploadsAndLateCompletionsAreRefused) {
   const int64_t id = client().submit(shotSpec(spec));
 
   farm::LeaseReply leased;
-  ASSERT_TRUE(link.lease(registration.worker_id(), 5, leased).ok());
+  farm::WorkerSession used;
+  ASSERT_TRUE(link.lease(5, leased, used).ok());
+  ASSERT_EQ(used.workerId, registration.worker_id());
   ASSERT_TRUE(leased.has_task());
   ASSERT_EQ(leased.lease().kind(), farm::TASK_RENDER_TILE);
   const int64_t attempt = leased.lease().attempt_id(), task = leased.lease().task_id();
@@ -110,8 +112,17 @@ TEST_F(FarmTest, CorruptUploadsAndLateCompletionsAreRefused) {
   farm::SchedulerLink intruder(address, "");
   farm::RegisterReply intruderRegistration;
   ASSERT_TRUE(intruder.registerWorker("intruder", 1, {}, intruderRegistration).ok());
-  farm::LeaseReply stolen;
-  EXPECT_EQ(intruder.lease(registration.worker_id(), 0, stolen).error_code(), grpc::StatusCode::PERMISSION_DENIED);
+  {
+    // A lease in its own session that names the silent worker.
+    const auto stub = farm::WorkerService::NewStub(farm::makeChannel(address));
+    grpc::ClientContext context;
+    context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(10));
+    farm::attachSession(context, {intruderRegistration.worker_id(), intruderRegistration.session_key()});
+    farm::LeaseRequest request;
+    request.set_worker_id(registration.worker_id());
+    farm::LeaseReply stolen;
+    EXPECT_EQ(stub->LeaseTask(&context, request, &stolen).error_code(), grpc::StatusCode::PERMISSION_DENIED);
+  }
   farm::HeartbeatReply intruderBeat;
   EXPECT_EQ(intruder.heartbeat(attempt, 0.5, intruderBeat).error_code(), grpc::StatusCode::PERMISSION_DENIED);
   farm::ReportReply intruderFailure;
