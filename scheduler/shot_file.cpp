@@ -42,6 +42,16 @@ void readFilteringKeys(const JsonNode& root, const Scene& scene, ShotSpec& spec)
   const KeyframeChoice choice = chooseKeyframeInterval(scene, spec, bound);
   spec.set_keyframe_interval(choice.interval);
   spec.set_keyframe_reason(choice.reason);
+  // dui with every frame a keyframe interpolates nothing and only upsamples quarter-sample
+  // renders, which loses what no half-resolution filter restores (texture edges, thin
+  // lines): on the moving-camera suite that cost 3x pt at equal error, d 0.9x
+  // (docs/performance.md). So such a shot renders every frame at full spp and denoises it.
+  if (choice.interval == 1 && spec.pipeline() == "dui") {
+    spec.set_pipeline("d");
+    spec.set_pipeline_reason("the shot asked for dui, but its probe chose k = 1, so nothing would be interpolated: every "
+                             "frame is rendered at the shot's spp and denoised instead of upsampled from a quarter of "
+                             "the samples");
+  }
 }
 
 void readGradientKeys(const JsonNode& root, ShotSpec& spec) {

@@ -100,6 +100,7 @@ ShotReport buildReport(const ShotSummary& summary, const ShotSpec& spec, const s
   report.set_name(spec.name());
   report.set_state(summary.state());
   report.set_pipeline(spec.pipeline());
+  report.set_pipeline_reason(spec.pipeline_reason());
   report.set_frames(spec.frame_end() - spec.frame_start() + 1);
   report.set_width(spec.width());
   report.set_height(spec.height());
@@ -246,7 +247,8 @@ std::string stageMeaning(const std::string& stage) {
 
 std::string reportMarkdown(const ShotReport& r) {
   std::string md = "# Shot " + std::to_string(r.shot_id()) + " \"" + r.name() + "\": speed against error\n\n";
-  md += "Pipeline `" + r.pipeline() + "`, " + std::to_string(r.frames()) + " frames at " + std::to_string(r.width()) +
+  md += "Pipeline `" + r.pipeline() + "`" + (r.pipeline_reason().empty() ? "" : " (" + r.pipeline_reason() + ")") +
+        ", " + std::to_string(r.frames()) + " frames at " + std::to_string(r.width()) +
         "x" + std::to_string(r.height()) + ", " + std::to_string(r.spp()) + " spp; state " + ShotState_Name(r.state()) +
         ", " + std::to_string(r.tasks_done()) + " of " + std::to_string(r.tasks_total()) + " tasks done.\n\n";
   if (!r.verdict().empty()) md += "**Verdict:** " + r.verdict() + "\n\n";

@@ -49,14 +49,15 @@ TEST(ShotFile, FillsDefaultsFromTheSceneAndMakesPathsAbsolute) {
   const ShotSpec spec = loadShotFile(file);
   std::filesystem::remove(file);
   EXPECT_EQ(spec.name(), "test_defaults");
-  EXPECT_EQ(spec.pipeline(), "dui");
   // The filtering pipelines split into what the scene can produce, and measure the middle pair.
   EXPECT_EQ(spec.decompose(), "diffuse_direct=ED,diffuse_indirect=ED.+,reflection=ERD.*,transmission=ETTD.*,residual");
   EXPECT_EQ(spec.evaluation_frames_size(), 2);
   EXPECT_EQ(spec.evaluation_frames(0), 4);
   EXPECT_EQ(spec.reference_spp(), 0);
-  // Three frames allow only k = 2, which the probe accepts or refuses with its prediction.
+  // Three frames allow only k = 2, which the probe accepts or refuses with its prediction
+  // (and with k = 1 the default dui runs as d).
   EXPECT_TRUE(spec.keyframe_interval() == 1 || spec.keyframe_interval() == 2);
+  EXPECT_EQ(spec.pipeline(), spec.keyframe_interval() == 2 ? "dui" : "d");
   EXPECT_NE(spec.keyframe_reason().find("k = 2: "), std::string::npos) << spec.keyframe_reason();
   EXPECT_EQ(spec.scene(), (file.parent_path() / "cornell/scene.json").string());
   EXPECT_EQ(spec.frame_start(), 3);
@@ -103,6 +104,24 @@ TEST(ShotFile, ReadsTheFilteringAndEvaluationKeys) {
   EXPECT_EQ(loadShotFile(pt).decompose(), "none");
   EXPECT_EQ(loadShotFile(pt).evaluation_frames_size(), 0);  // nothing to measure without a reference
   std::filesystem::remove(pt);
+}
+
+TEST(ShotFile, DuiWhoseProbeChoosesNoIntervalRunsAsDenoisingAlone) {
+  // A re-render bound of 0 refuses every interval the probe tries: k = 1.
+  const auto chosen = writeShot("dui-k1", R"({"scene": "cornell/scene.json", "frames": {"start": 0, "end": 4},
+    "resolution": [64, 64], "spp": 8, "rerender_bound": 0})");
+  const ShotSpec spec = loadShotFile(chosen);
+  std::filesystem::remove(chosen);
+  EXPECT_EQ(spec.keyframe_interval(), 1) << spec.keyframe_reason();
+  EXPECT_EQ(spec.pipeline(), "d");
+  EXPECT_NE(spec.pipeline_reason().find("asked for dui"), std::string::npos) << spec.pipeline_reason();
+  // k = 1 given in the shot file is the user's word: dui stays dui.
+  const auto given = writeShot("dui-given-k1", R"({"scene": "cornell/scene.json", "frames": {"start": 0, "end": 4},
+    "resolution": [64, 64], "spp": 8, "keyframe_interval": 1})");
+  const ShotSpec kept = loadShotFile(given);
+  std::filesystem::remove(given);
+  EXPECT_EQ(kept.pipeline(), "dui");
+  EXPECT_EQ(kept.pipeline_reason(), "");
 }
 
 TEST(ShotFile, AStaticSceneGetsTheLongestKeyframeIntervalTheProbeTries) {

@@ -102,6 +102,12 @@ TEST(ShotReport, CostsRatesAndErrorsFollowFromTheTasks) {
   EXPECT_EQ(report.verdict().rfind("dui paid off: 0.11 of plain pt's core-seconds for the same error", 0), 0u)
       << report.verdict();
   EXPECT_NE(md.find("**Verdict:** dui paid off"), std::string::npos);
+  // Why the farm ran another pipeline than the shot file named heads the report.
+  ShotReport switched = report;
+  switched.set_pipeline("d");
+  switched.set_pipeline_reason("the shot asked for dui");
+  EXPECT_NE(reportMarkdown(switched).find("Pipeline `d` (the shot asked for dui), "), std::string::npos);
+  EXPECT_EQ(md.find("Pipeline `dui` ("), std::string::npos);
 }
 
 TEST(ShotReport, TheVerdictSaysPlainlyWhenThePipelineLost) {
