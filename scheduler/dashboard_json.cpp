@@ -36,7 +36,8 @@ json attemptJson(const FarmState::AttemptDetail& a, double now) {
           {"finished_at", a.finishedAt ? json(*a.finishedAt) : json(nullptr)},
           {"seconds", end - a.leasedAt},
           {"progress", a.progress},
-          {"error", a.error}};
+          {"error", a.error},
+          {"log_tail", a.logTail}};
 }
 
 json taskJson(const FarmState::TaskDetail& task, const std::vector<ShotEvent>& events, double now) {

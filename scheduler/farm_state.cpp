@@ -294,12 +294,16 @@ HeartbeatReply FarmState::heartbeat(int64_t attemptId, double progress, double n
   });
 }
 
-void FarmState::endAttempt(const AttemptRow& attempt, int state, const std::string& error, double now) {
-  db_.query("UPDATE attempts SET state = ?1, finished_at = ?2, error = ?3 WHERE id = ?4")
+void FarmState::endAttempt(const AttemptRow& attempt, int state, const std::string& error, double now,
+                           const std::string& logTail) {
+  // A worker's log is kept to its last kMaxLogTailBytes, whatever the worker sends.
+  const std::string kept = logTail.size() > kMaxLogTailBytes ? logTail.substr(logTail.size() - kMaxLogTailBytes) : logTail;
+  db_.query("UPDATE attempts SET state = ?1, finished_at = ?2, error = ?3, log_tail = ?4 WHERE id = ?5")
       .bind(1, int64_t{state})
       .bind(2, now)
       .bind(3, error)
-      .bind(4, attempt.id)
+      .bind(4, kept)
+      .bind(5, attempt.id)
       .run();
 }
 
@@ -315,7 +319,7 @@ ReportReply FarmState::complete(const CompleteRequest& request, double now) {
       chunk.reset();
       if (!stored) return refused("the output chunk " + output.sha256() + " was not stored first");
     }
-    endAttempt(*attempt, static_cast<int>(AttemptState::Done), "", now);
+    endAttempt(*attempt, static_cast<int>(AttemptState::Done), "", now, request.log_tail());
     Statement& done =
         db_.query("UPDATE tasks SET state = ?1, attempt_id = NULL, output_sha = ?2, core_seconds = ?3 WHERE id = ?4");
     done.bind(1, asInt(TaskState::Done));
@@ -344,11 +348,11 @@ ReportReply FarmState::complete(const CompleteRequest& request, double now) {
   });
 }
 
-ReportReply FarmState::fail(int64_t attemptId, const std::string& reason, double now) {
+ReportReply FarmState::fail(int64_t attemptId, const std::string& reason, double now, const std::string& logTail) {
   return transact([&]() -> ReportReply {
     const auto attempt = currentAttempt(attemptId);
     if (!attempt) return refused(kStaleLease);
-    endAttempt(*attempt, static_cast<int>(AttemptState::Failed), reason, now);
+    endAttempt(*attempt, static_cast<int>(AttemptState::Failed), reason, now, logTail);
     retryOrFail(*attempt, reason, true, now);
     return accepted();
   });

@@ -73,7 +73,9 @@ class FarmState {
   HeartbeatReply heartbeat(int64_t attemptId, double progress, double now);
   // Accepts the output, the task's figures and its follow-up render tiles.
   ReportReply complete(const CompleteRequest& request, double now);
-  ReportReply fail(int64_t attemptId, const std::string& reason, double now);
+  // `logTail`: what the worker logged while it ran the attempt (kept to kMaxLogTailBytes).
+  ReportReply fail(int64_t attemptId, const std::string& reason, double now, const std::string& logTail = "");
+  static constexpr size_t kMaxLogTailBytes = 16384;
   // Expired leases and hung tasks go back to the queue (or fail their shot when out of
   // attempts). Returns how many leases ended.
   int expireLeases(double now);
@@ -130,6 +132,7 @@ class FarmState {
     std::optional<double> finishedAt;
     double progress = 0;
     std::string error;
+    std::string logTail;  // the worker's log lines of the attempt, as it sent them
   };
   struct TaskDetail {
     int64_t id = 0;
@@ -163,7 +166,8 @@ class FarmState {
   template <class Body>
   auto transact(Body body) -> decltype(body());
   std::optional<AttemptRow> currentAttempt(int64_t attemptId);
-  void endAttempt(const AttemptRow& attempt, int state, const std::string& error, double now);
+  void endAttempt(const AttemptRow& attempt, int state, const std::string& error, double now,
+                  const std::string& logTail = "");
   void retryOrFail(const AttemptRow& attempt, const std::string& reason, bool blameWorker, double now);
   void retryLost(const AttemptRow& attempt, const std::string& reason, double now);
   // The task failed for good, and its shot with `why`; `counter` (failures or lost) is

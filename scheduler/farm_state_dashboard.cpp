@@ -34,8 +34,8 @@ FarmState::TaskPage FarmState::taskDetails(int64_t shotId, std::optional<int> st
     }
     for (TaskDetail& task : page.tasks) {
       Statement& attempts = db_.query(
-          "SELECT a.id, a.worker_id, COALESCE(w.name, ''), a.state, a.leased_at, a.finished_at, a.progress, a.error "
-          "FROM attempts a LEFT JOIN workers w ON w.id = a.worker_id WHERE a.task_id = ?1 ORDER BY a.id");
+          "SELECT a.id, a.worker_id, COALESCE(w.name, ''), a.state, a.leased_at, a.finished_at, a.progress, a.error, "
+          "a.log_tail FROM attempts a LEFT JOIN workers w ON w.id = a.worker_id WHERE a.task_id = ?1 ORDER BY a.id");
       attempts.bind(1, task.id);
       while (attempts.step()) {
         AttemptDetail& attempt = task.attempts.emplace_back();
@@ -47,6 +47,7 @@ FarmState::TaskPage FarmState::taskDetails(int64_t shotId, std::optional<int> st
         if (!attempts.isNull(5)) attempt.finishedAt = attempts.real(5);
         attempt.progress = attempts.real(6);
         attempt.error = attempts.text(7);
+        attempt.logTail = attempts.text(8);
       }
     }
     return page;

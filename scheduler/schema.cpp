@@ -114,6 +114,11 @@ const std::vector<const char*>& migrations() {
       R"sql(
       ALTER TABLE workers ADD COLUMN session_hash TEXT NOT NULL DEFAULT '';
       )sql",
+      // 8: the tail of what the worker logged while it ran the attempt (the dashboard's
+      // per-task log). Empty for attempts reported before.
+      R"sql(
+      ALTER TABLE attempts ADD COLUMN log_tail TEXT NOT NULL DEFAULT '';
+      )sql",
   };
   return list;
 }

@@ -92,7 +92,7 @@ grpc::Status WorkerServiceImpl::FailTask(grpc::ServerContext* context, const Fai
                                          ReportReply* reply) {
   return asWorker(context, [&](int64_t worker) {
     if (grpc::Status owner = checkAttemptOwner(request->attempt_id(), worker); !owner.ok()) return owner;
-    *reply = c_.state.fail(request->attempt_id(), request->reason(), wallClockSeconds());
+    *reply = c_.state.fail(request->attempt_id(), request->reason(), wallClockSeconds(), request->log_tail());
     if (reply->accepted()) c_.signal.notify();
     return grpc::Status::OK;
   });

@@ -12,6 +12,7 @@
 #include "proto/wire/chunk_store.h"
 #include "worker/cache_trim.h"
 #include "worker/scheduler_link.h"
+#include "worker/task_log.h"
 #include "worker/task_runner.h"
 
 namespace pathfarm::farm {
@@ -83,15 +84,27 @@ class Slot {
   }
 
  private:
+  // What a task read: input chunks, their bytes, and how many came from the cache.
+  struct InputCount {
+    std::atomic<int> chunks{0}, cached{0};
+    std::atomic<int64_t> bytes{0};
+  };
+
   // An input chunk from the cache or the scheduler. An unreachable scheduler is waited
   // for (it is not the task's fault) until the lease is lost.
-  std::string fetch(const ChunkRef& ref, const std::atomic<bool>& abandon) {
-    if (auto bytes = cache_.get(ref.sha256())) return *bytes;
+  std::string fetch(const ChunkRef& ref, const std::atomic<bool>& abandon, InputCount& count) {
+    ++count.chunks;
+    if (auto bytes = cache_.get(ref.sha256())) {
+      ++count.cached;
+      count.bytes += static_cast<int64_t>(bytes->size());
+      return *bytes;
+    }
     Backoff backoff;
     for (;;) {
       std::string bytes;
       const grpc::Status status = link_.getChunk(ref.sha256(), bytes);
       if (status.ok()) {
+        count.bytes += static_cast<int64_t>(bytes.size());
         cache_.put(bytes, ref);
         bound_.maybeTrim();
         return bytes;
@@ -104,12 +117,18 @@ class Slot {
   }
 
   void execute(const Lease& lease, const std::atomic<bool>& stop) {
+    TaskLog log;  // what this slot and the task's thread say about the task, for the scheduler
+    const TaskLog::Capture onSlot(log);
     spdlog::info("task {} ({}) of shot {}: started", lease.task_id(), TaskKind_Name(lease.kind()), lease.shot_id());
     std::atomic<double> progress{0};
     std::atomic<bool> abandon{false};
+    InputCount inputs;
     const double cpuBefore = processCpuSeconds();
+    const auto started = Clock::now();
     auto result = std::async(std::launch::async, [&] {
-      return runner_.run(lease, [&](const ChunkRef& ref) { return fetch(ref, abandon); }, progress, abandon);
+      const TaskLog::Capture onRunner(log);
+      return runner_.run(
+          lease, [&](const ChunkRef& ref) { return fetch(ref, abandon, inputs); }, progress, abandon);
     });
     // Renew the lease while the task runs; a lost lease abandons the work.
     while (result.wait_for(heartbeat_) == std::future_status::timeout) {
@@ -125,14 +144,25 @@ class Slot {
       return;
     } catch (const std::exception& e) {
       spdlog::error("task {} failed: {}", lease.task_id(), e.what());
-      report([&](ReportReply& r) { return link_.fail(lease.attempt_id(), e.what(), r); }, stop);
+      report([&](ReportReply& r) { return link_.fail(lease.attempt_id(), e.what(), log.tail(), r); }, stop);
       return;
     }
-    deliver(lease, output, processCpuSeconds() - cpuBefore, stop);
+    spdlog::info("task {}: ran {:.2f} s; read {} input chunk(s), {:.2f} MB ({} from the cache){}", lease.task_id(),
+                 std::chrono::duration<double>(Clock::now() - started).count(), inputs.chunks.load(),
+                 1e-6 * static_cast<double>(inputs.bytes.load()), inputs.cached.load(), describe(output.metrics));
+    deliver(lease, output, processCpuSeconds() - cpuBefore, log, stop);
+  }
+
+  // The task's figures for its log line: "; name value, ...".
+  static std::string describe(const std::map<std::string, double>& metrics) {
+    std::string text;
+    for (const auto& [name, value] : metrics) text += (text.empty() ? "; " : ", ") + name + " " + fmt::format("{:g}", value);
+    return text;
   }
 
   // Uploads the output and completes the task, retrying while the scheduler is away.
-  void deliver(const Lease& lease, const TaskOutput& output, double coreSeconds, const std::atomic<bool>& stop) {
+  void deliver(const Lease& lease, const TaskOutput& output, double coreSeconds, const TaskLog& log,
+               const std::atomic<bool>& stop) {
     CompleteRequest request;
     request.set_attempt_id(lease.attempt_id());
     request.set_core_seconds(coreSeconds);
@@ -151,7 +181,10 @@ class Slot {
         }
         backoff.sleep();
       }
+      spdlog::info("task {}: output {} uploaded ({:.2f} MB)", lease.task_id(), stored.sha256().substr(0, 12),
+                   1e-6 * static_cast<double>(output.chunk.size()));
     }
+    request.set_log_tail(log.tail());
     if (report([&](ReportReply& r) { return link_.complete(request, r); }, stop))
       spdlog::info("task {}: done", lease.task_id());
   }
@@ -198,6 +231,7 @@ Worker::Worker(WorkerOptions options) : options_(std::move(options)) {
 }
 
 void Worker::run(const std::atomic<bool>& stop) {
+  installTaskLogSink();
   SchedulerLink link(options_.scheduler, options_.token, options_.tls);
   RegisterReply registration;
   Backoff backoff;

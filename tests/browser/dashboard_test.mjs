@@ -186,6 +186,13 @@ try {
   await page.locator('.report svg.plot').first().waitFor();
   await page.locator('table tbody tr td details').first().waitFor();
   await page.locator('table tbody tr td details summary').first().click();
+  // Under a done attempt, what its worker logged while running it.
+  const workerLog = page.locator('table tbody tr td details pre.worker-log').first();
+  await workerLog.waitFor();
+  const logText = await workerLog.innerText();
+  if (!/task \d+: ran [0-9.]+ s; read \d+ input chunk/.test(logText) || !logText.includes('uploaded'))
+    failures.push('the attempt\'s worker log is not shown: ' + logText);
+  log(`a task's worker log: ${logText.split('\n').length} lines`);
   await page.evaluate(() => window.scrollTo(0, 0));
   await page.waitForTimeout(1200);  // a poll or so, so that the screenshot shows a settled page
   await page.screenshot({ path: args.screenshot });

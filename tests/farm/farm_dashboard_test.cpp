@@ -104,6 +104,14 @@ TEST_F(DashboardTest, TheApiShowsAFinishedShot) {
     ASSERT_FALSE(task["attempts"].empty()) << task;
     EXPECT_EQ(task["attempts"].back()["state"], "done") << task;
     EXPECT_GE(task["seconds"].get<double>(), 0) << task;
+    // The worker's own log of the attempt: started, what it ran and read, what it uploaded.
+    const std::string log = task["attempts"].back()["log_tail"];
+    const std::string id = std::to_string(task["id"].get<int64_t>());
+    EXPECT_TRUE(contains(log, "task " + id + " (")) << log;
+    EXPECT_TRUE(contains(log, "task " + id + ": ran ")) << log;
+    EXPECT_TRUE(contains(log, "task " + id + ": output ")) << log;
+    if (task["kind"] == "render_tile") EXPECT_TRUE(contains(log, "samples ")) << log;
+    if (task["kind"] == "assemble_frame") EXPECT_TRUE(contains(log, "read 4 input chunk(s)")) << log;
   }
   EXPECT_EQ(tiles, spec.frames() * spec.tilesPerFrame());
   const json done = get(shotPath(id) + "/tasks?state=done&offset=2&limit=3");

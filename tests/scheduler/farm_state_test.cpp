@@ -117,6 +117,27 @@ TEST_F(FarmStateTest, ATaskThatLosesEveryWorkerFailsTheShotInTheEnd) {
   EXPECT_NE(summary.failure().find("the lease expired"), std::string::npos) << summary.failure();
 }
 
+TEST_F(FarmStateTest, AnAttemptKeepsTheTailOfItsWorkersLogAndNoMore) {
+  const int64_t shot = submitFrame(0, 2);
+  const int64_t worker = state_->registerWorker("w", 1, now_);
+  const Lease failed = leaseFor(worker);
+  // A worker sends more than the farm keeps: the end of it stays.
+  const std::string flood = std::string(FarmState::kMaxLogTailBytes, 'x') + "the last line\n";
+  ASSERT_TRUE(state_->fail(failed.attempt_id(), "out of memory", now_, flood).accepted());
+  const Lease done = leaseFor(worker);
+  CompleteRequest request;
+  request.set_attempt_id(done.attempt_id());
+  *request.mutable_output() = storedChunk("a tile");
+  request.set_log_tail("task started\ntask done\n");
+  ASSERT_TRUE(state_->complete(request, now_).accepted());
+  std::map<int64_t, std::string> tails;
+  for (const auto& task : state_->taskDetails(shot, std::nullopt, 0, 10).tasks)
+    for (const auto& attempt : task.attempts) tails[attempt.id] = attempt.logTail;
+  ASSERT_EQ(tails.at(failed.attempt_id()).size(), FarmState::kMaxLogTailBytes);
+  EXPECT_EQ(tails.at(failed.attempt_id()).substr(FarmState::kMaxLogTailBytes - 14), "the last line\n");
+  EXPECT_EQ(tails.at(done.attempt_id()), "task started\ntask done\n");
+}
+
 TEST_F(FarmStateTest, FailuresBackOffThenFailTheShotWithTheReason) {
   const int64_t shot = submitFrame(0, 2);
   const int64_t worker = state_->registerWorker("w", 1, now_);
@@ -382,7 +403,7 @@ TEST(Schema, MigratesOnceAndRefusesANewerDatabase) {
   {
     Database db(file.string());
     migrate(db);
-    EXPECT_EQ(schemaVersion(db), 7);
+    EXPECT_EQ(schemaVersion(db), 8);
     EXPECT_NO_THROW(db.execute("SELECT lost FROM tasks"));  // migration 3's column
     migrate(db);  // nothing to do the second time
     db.execute("PRAGMA user_version = 99");
