@@ -202,5 +202,23 @@ TEST(ShotFile, ResolvesTheDecompositionOnceForEveryWorker) {
   std::filesystem::remove(file);
 }
 
+// The shot files shipped beside the scenes (README's commands name them) load as they are.
+TEST(ShotFile, EveryShippedShotFileLoads) {
+  int shots = 0;
+  for (const auto& folder : std::filesystem::directory_iterator(test_support::sourceDir() / "scenes")) {
+    const auto file = folder.path() / "shot.json";
+    if (!std::filesystem::exists(file)) continue;
+    ++shots;
+    try {
+      const ShotSpec spec = loadShotFile(file);
+      EXPECT_GE(spec.keyframe_interval(), 1) << file;
+      EXPECT_GT(spec.reference_spp(), 0) << file << ": a shipped shot measures itself";
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << file << ": " << e.what();
+    }
+  }
+  EXPECT_GE(shots, 5);
+}
+
 }  // namespace
 }  // namespace pathfarm::farm
