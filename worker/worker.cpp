@@ -7,6 +7,7 @@
 #include <chrono>
 #include <future>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 #include "proto/wire/chunk_store.h"
@@ -24,6 +25,15 @@ using Clock = std::chrono::steady_clock;
 constexpr double kLeaseWaitSeconds = 2;
 // After a stop request, how long a finished result is still offered to an unreachable scheduler.
 constexpr auto kDeliveryGrace = std::chrono::seconds(60);
+// How often an output the scheduler could not take (DATA_LOSS: damaged on the way, or its
+// disk failing) is sent before the attempt fails with the scheduler's reason.
+constexpr int kUploadTries = 5;
+
+// The scheduler is out of reach: waiting is right, since it is nobody's fault.
+bool isUnreachable(const grpc::Status& status) {
+  return status.error_code() == grpc::StatusCode::UNAVAILABLE ||
+         status.error_code() == grpc::StatusCode::DEADLINE_EXCEEDED;
+}
 
 bool isTransient(const grpc::Status& status) {
   return status.error_code() == grpc::StatusCode::UNAVAILABLE ||
@@ -125,20 +135,13 @@ class Slot {
     InputCount inputs;
     const double cpuBefore = processCpuSeconds();
     const auto started = Clock::now();
-    auto result = std::async(std::launch::async, [&] {
-      const TaskLog::Capture onRunner(log);
-      return runner_.run(
-          lease, [&](const ChunkRef& ref) { return fetch(ref, abandon, inputs); }, progress, abandon);
-    });
-    // Renew the lease while the task runs; a lost lease abandons the work.
-    while (result.wait_for(heartbeat_) == std::future_status::timeout) {
-      HeartbeatReply beat;
-      const grpc::Status status = link_.heartbeat(lease.attempt_id(), progress, beat);
-      if (status.ok() && !beat.keep_going()) abandon = true;
-    }
     TaskOutput output;
     try {
-      output = result.get();
+      output = whileHeartbeating(lease, progress, abandon, [&] {
+        const TaskLog::Capture onRunner(log);
+        return runner_.run(
+            lease, [&](const ChunkRef& ref) { return fetch(ref, abandon, inputs); }, progress, abandon);
+      });
     } catch (const TaskAbandoned&) {
       spdlog::warn("task {}: lease lost, result dropped", lease.task_id());
       return;
@@ -160,7 +163,39 @@ class Slot {
     return text;
   }
 
-  // Uploads the output and completes the task, retrying while the scheduler is away.
+  // Runs `work` on a thread of its own and renews the lease while it runs; a lease the
+  // scheduler no longer keeps sets `abandon`. Returns what `work` returns (or throws).
+  template <class Work>
+  std::invoke_result_t<Work> whileHeartbeating(const Lease& lease, const std::atomic<double>& progress,
+                                               std::atomic<bool>& abandon, Work work) {
+    auto result = std::async(std::launch::async, std::move(work));
+    while (result.wait_for(heartbeat_) == std::future_status::timeout) {
+      HeartbeatReply beat;
+      const grpc::Status status = link_.heartbeat(lease.attempt_id(), progress, beat);
+      if (status.ok() && !beat.keep_going()) abandon = true;
+    }
+    return result.get();
+  }
+
+  // Sends the output: while the scheduler is out of reach, until the lease is lost (after
+  // a stop request, for kDeliveryGrace); a chunk it could not take, kUploadTries times;
+  // a refusal, once. Returns the last answer.
+  grpc::Status upload(const std::string& bytes, ChunkRef& stored, const std::atomic<bool>& abandon,
+                      const std::atomic<bool>& stop) {
+    Backoff backoff;
+    const auto since = Clock::now();
+    for (int tries = 1;; ++tries) {
+      const grpc::Status status = link_.putChunk(bytes, stored);
+      if (status.ok() || abandon) return status;
+      const bool waitForScheduler = isUnreachable(status) && !(stop && Clock::now() - since > kDeliveryGrace);
+      const bool sendAgain = status.error_code() == grpc::StatusCode::DATA_LOSS && tries < kUploadTries;
+      if (!waitForScheduler && !sendAgain) return status;
+      backoff.sleep();
+    }
+  }
+
+  // Uploads the output, renewing the lease meanwhile, and completes the task; an output
+  // that cannot be uploaded fails the attempt with the scheduler's reason.
   void deliver(const Lease& lease, const TaskOutput& output, double coreSeconds, const TaskLog& log,
                const std::atomic<bool>& stop) {
     CompleteRequest request;
@@ -170,16 +205,19 @@ class Slot {
     for (const auto& [name, value] : output.metrics) (*request.mutable_metrics())[name] = value;
     ChunkRef& stored = *request.mutable_output();
     if (lease.kind() != TASK_NOOP) {
-      Backoff backoff;
-      const auto giveUp = [&, since = Clock::now()] { return stop && Clock::now() - since > kDeliveryGrace; };
-      for (;;) {
-        const grpc::Status status = link_.putChunk(output.chunk, stored);
-        if (status.ok()) break;
-        if (!isTransient(status) || giveUp()) {
-          spdlog::error("task {}: cannot upload its output: {}", lease.task_id(), status.error_message());
-          return;
-        }
-        backoff.sleep();
+      const std::atomic<double> uploaded{1.0};
+      std::atomic<bool> abandon{false};
+      const grpc::Status status =
+          whileHeartbeating(lease, uploaded, abandon, [&] { return upload(output.chunk, stored, abandon, stop); });
+      if (abandon) {
+        spdlog::warn("task {}: lease lost during the upload, result dropped", lease.task_id());
+        return;
+      }
+      if (!status.ok()) {
+        const std::string reason = "cannot upload its output: " + status.error_message();
+        spdlog::error("task {}: {}", lease.task_id(), reason);
+        report([&](ReportReply& r) { return link_.fail(lease.attempt_id(), reason, log.tail(), r); }, stop);
+        return;
       }
       spdlog::info("task {}: output {} uploaded ({:.2f} MB)", lease.task_id(), stored.sha256().substr(0, 12),
                    1e-6 * static_cast<double>(output.chunk.size()));

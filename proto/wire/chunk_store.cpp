@@ -33,8 +33,8 @@ ChunkRef ChunkStore::put(const std::string& bytes, const ChunkRef& expected) {
   bytesIn_ += bytes.size();
   if (has(ref.sha256())) return ref;
   const auto target = pathOf(ref.sha256());
-  std::filesystem::create_directories(target.parent_path());
   try {
+    std::filesystem::create_directories(target.parent_path());
     // Two writers of one chunk write the same bytes, each through its own temporary.
     writeFileAtomically(target, bytes);
   } catch (const std::exception& e) {
