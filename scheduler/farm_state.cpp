@@ -148,6 +148,14 @@ int64_t FarmState::registerWorker(const std::string& name, int slots, double now
         .bind(5, sessionHash)
         .run();
     const int64_t id = db_.lastInsertId();
+    // A worker registering again under its name (its session lost, or restarted with the
+    // same --name) keeps its failures and blocklist: registering is no way out of them.
+    db_.query("INSERT OR IGNORE INTO worker_failures (shot_id, worker_id, failures, blocklisted) "
+              "SELECT shot_id, ?1, MAX(failures), MAX(blocklisted) FROM worker_failures WHERE worker_id IN "
+              "(SELECT id FROM workers WHERE name = ?2 AND id != ?1) GROUP BY shot_id")
+        .bind(1, id)
+        .bind(2, name)
+        .run();
     return id;
   });
 }

@@ -216,6 +216,12 @@ TEST_F(FarmStateTest, WorkerFailingTooOftenIsBlocklistedForThatShot) {
   EXPECT_EQ(state_->summary(shot, now_).state(), SHOT_RUNNING);
   const int64_t other = submitFrame();
   EXPECT_EQ(leaseFor(bad).shot_id(), other);  // blocklisted for one shot only
+  // Registering again under the same name is no way out of the blocklist.
+  const int64_t again = state_->registerWorker("bad", 1, now_);
+  ASSERT_NE(again, bad);
+  const auto lease = state_->lease(again, now_);
+  EXPECT_TRUE(!lease || lease->shot_id() != shot) << "the re-registered worker leased the shot it is blocklisted for";
+  EXPECT_EQ(state_->blocklist(shot).size(), 2u);  // the worker under both of its ids
 }
 
 TEST_F(FarmStateTest, ABlocklistIsListedAndClearedByHand) {
