@@ -104,8 +104,8 @@ std::vector<Command> addFarmProcessCommands(CLI::App& app) {
       ->capture_default_str();
   s->add_option("--port-file", scheduler->portFile, "write the bound port here (for --listen HOST:0)");
   s->add_option("--http", scheduler->options.http,
-                "HOST:PORT serving the dashboard at / and Prometheus metrics at /metrics (loopback unless a "
-                "token and --insecure; docs/dashboard.md)");
+                "HOST:PORT serving the dashboard at / and Prometheus metrics at /metrics (beyond loopback: a "
+                "token, and TLS or --insecure; docs/dashboard.md)");
   s->add_option("--http-port-file", scheduler->httpPortFile, "write the bound HTTP port here (for --http HOST:0)");
   s->add_flag("--insecure", scheduler->options.insecure,
               "serve beyond loopback without TLS (the token and frames cross in clear)");

@@ -38,6 +38,12 @@ TEST_F(FarmTest, MetricsCountWhatTheShotDid) {
   const int64_t id = shotIdFrom(submitted);
   startWorker("w1");
   ASSERT_EQ(waitForShot(id, 60s).state(), farm::SHOT_DONE);
+  // A second shot no worker may take (it requires a tag nobody offers) waits at 0 % done.
+  RenderSpec waiting = spec;
+  waiting.name = "waiting";
+  farm::ShotSpec untaken = shotSpec(waiting);
+  untaken.add_required_tags("nobody-has-this");
+  const int64_t waitingId = client().submit(untaken);
 
   const auto response = http.Get("/metrics");
   ASSERT_TRUE(response) << "no answer from /metrics";
@@ -55,6 +61,10 @@ TEST_F(FarmTest, MetricsCountWhatTheShotDid) {
   EXPECT_EQ(value(R"(pathfarm_tasks{kind="render_tile",state="done"})"), tiles);
   EXPECT_EQ(value(R"(pathfarm_tasks{kind="assemble_frame",state="done"})"), spec.frames());
   EXPECT_EQ(value(R"(pathfarm_shots{state="done"})"), 1);
+  EXPECT_EQ(value(R"(pathfarm_shots{state="queued"})"), 1);
+  EXPECT_EQ(value("pathfarm_shot_progress{shot=\"" + std::to_string(waitingId) + "\",name=\"waiting\"}"), 0);
+  EXPECT_EQ(samples.count("pathfarm_shot_progress{shot=\"" + std::to_string(id) + "\",name=\"" + spec.name + "\"}"),
+            0u) << "a done shot's progress is not a gauge any more";
   EXPECT_EQ(value(R"(pathfarm_workers{state="idle"})") + value(R"(pathfarm_workers{state="busy"})"), 1);
   EXPECT_EQ(value(R"(pathfarm_attempts_ended_total{cause="failed"})"), 0);
   EXPECT_EQ(value(R"(pathfarm_task_duration_seconds_count{kind="render_tile"})"), tiles);
