@@ -21,7 +21,7 @@ grpc::Status ClientServiceImpl::Submit(grpc::ServerContext* context, const Submi
     if (const std::string problem = inputProblem(request->spec()); !problem.empty())
       return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT, problem);
     const auto plan = planShotWithin(request->spec(), c_.limits);
-    reply->set_shot_id(c_.state.submit(request->spec(), plan, wallClockSeconds(), request->submit_key()));
+    reply->set_shot_id(c_.state.submit(request->spec(), plan, farmClockSeconds(), request->submit_key()));
     c_.signal.notify();
     return grpc::Status::OK;
   });
@@ -30,14 +30,14 @@ grpc::Status ClientServiceImpl::Submit(grpc::ServerContext* context, const Submi
 grpc::Status ClientServiceImpl::ListShots(grpc::ServerContext* context, const ListShotsRequest*,
                                           ListShotsReply* reply) {
   return guarded(c_, context, [&] {
-    for (ShotSummary& s : c_.state.shots(wallClockSeconds())) *reply->add_shots() = std::move(s);
+    for (ShotSummary& s : c_.state.shots(farmClockSeconds())) *reply->add_shots() = std::move(s);
     return grpc::Status::OK;
   });
 }
 
 grpc::Status ClientServiceImpl::GetShot(grpc::ServerContext* context, const ShotRequest* request, ShotReply* reply) {
   return guarded(c_, context, [&] {
-    *reply = c_.state.shot(request->shot_id(), wallClockSeconds());
+    *reply = c_.state.shot(request->shot_id(), farmClockSeconds());
     return grpc::Status::OK;
   });
 }
@@ -45,7 +45,7 @@ grpc::Status ClientServiceImpl::GetShot(grpc::ServerContext* context, const Shot
 grpc::Status ClientServiceImpl::GetReport(grpc::ServerContext* context, const ShotRequest* request,
                                           ShotReport* reply) {
   return guarded(c_, context, [&] {
-    const ShotSummary summary = c_.state.summary(request->shot_id(), wallClockSeconds());
+    const ShotSummary summary = c_.state.summary(request->shot_id(), farmClockSeconds());
     const auto [spec, tasks] = c_.state.taskRecords(request->shot_id());
     *reply = buildReport(summary, spec, tasks);
     for (const TaskRecord& task : tasks)
@@ -61,7 +61,7 @@ grpc::Status ClientServiceImpl::WatchShot(grpc::ServerContext* context, const Sh
     std::string last;
     uint64_t seen = c_.signal.generation();
     for (;;) {
-      const ShotSummary summary = c_.state.summary(request->shot_id(), wallClockSeconds());
+      const ShotSummary summary = c_.state.summary(request->shot_id(), farmClockSeconds());
       // Elapsed time changes every call: compare what matters, but still send a beat
       // now and then so the client's clock keeps moving.
       ShotSummary comparable = summary;
@@ -85,7 +85,7 @@ template <class Change>
 grpc::Status ClientServiceImpl::controlShot(grpc::ServerContext* context, const ShotRequest* request,
                                             ControlReply* reply, Change change) {
   return guarded(c_, context, [&] {
-    *reply->mutable_summary() = (c_.state.*change)(request->shot_id(), wallClockSeconds());
+    *reply->mutable_summary() = (c_.state.*change)(request->shot_id(), farmClockSeconds());
     c_.signal.notify();
     return grpc::Status::OK;
   });
@@ -114,7 +114,7 @@ grpc::Status ClientServiceImpl::RetryShot(grpc::ServerContext* context, const Sh
 grpc::Status ClientServiceImpl::FetchOutputs(grpc::ServerContext* context, const ShotRequest* request,
                                              grpc::ServerWriter<OutputPart>* writer) {
   return guarded(c_, context, [&] {
-    c_.state.summary(request->shot_id(), wallClockSeconds());  // NOT_FOUND for an unknown shot
+    c_.state.summary(request->shot_id(), farmClockSeconds());  // NOT_FOUND for an unknown shot
     for (const auto& [frame, ref] : c_.state.outputs(request->shot_id())) {
       const auto bytes = c_.store.get(ref.sha256());
       if (!bytes) {
@@ -142,7 +142,7 @@ grpc::Status ClientServiceImpl::FetchOutputs(grpc::ServerContext* context, const
 grpc::Status ClientServiceImpl::ListWorkers(grpc::ServerContext* context, const ListWorkersRequest*,
                                             ListWorkersReply* reply) {
   return guarded(c_, context, [&] {
-    for (WorkerInfo& w : c_.state.workers(wallClockSeconds())) *reply->add_workers() = std::move(w);
+    for (WorkerInfo& w : c_.state.workers(farmClockSeconds())) *reply->add_workers() = std::move(w);
     return grpc::Status::OK;
   });
 }
@@ -150,7 +150,7 @@ grpc::Status ClientServiceImpl::ListWorkers(grpc::ServerContext* context, const 
 grpc::Status ClientServiceImpl::SetPriority(grpc::ServerContext* context, const PriorityRequest* request,
                                             ControlReply* reply) {
   return guarded(c_, context, [&] {
-    *reply->mutable_summary() = c_.state.setPriority(request->shot_id(), request->priority(), wallClockSeconds());
+    *reply->mutable_summary() = c_.state.setPriority(request->shot_id(), request->priority(), farmClockSeconds());
     c_.signal.notify();
     return grpc::Status::OK;
   });
@@ -159,7 +159,7 @@ grpc::Status ClientServiceImpl::SetPriority(grpc::ServerContext* context, const 
 grpc::Status ClientServiceImpl::Requeue(grpc::ServerContext* context, const RequeueRequest* request,
                                         ControlReply* reply) {
   return guarded(c_, context, [&] {
-    const double now = wallClockSeconds();
+    const double now = farmClockSeconds();
     switch (request->what_case()) {
       case RequeueRequest::kTaskId:
         *reply->mutable_summary() = c_.state.requeueTask(request->shot_id(), request->task_id(), now);
@@ -186,7 +186,7 @@ grpc::Status ClientServiceImpl::ListBlocklist(grpc::ServerContext* context, cons
 grpc::Status ClientServiceImpl::ClearBlocklist(grpc::ServerContext* context, const BlocklistRequest* request,
                                                BlocklistReply* reply) {
   return guarded(c_, context, [&] {
-    c_.state.clearBlocklist(request->shot_id(), request->worker_id(), wallClockSeconds());
+    c_.state.clearBlocklist(request->shot_id(), request->worker_id(), farmClockSeconds());
     for (BlocklistEntry& e : c_.state.blocklist(request->shot_id())) *reply->add_entries() = std::move(e);
     c_.signal.notify();
     return grpc::Status::OK;

@@ -104,14 +104,14 @@ void serveAssets(httplib::Server& server) {
 
 void serveReads(httplib::Server& server, DashboardContext c) {
   server.Get("/api/shots", guarded([c](const Request&, Response& response) {
-               const double now = wallClockSeconds();
+               const double now = farmClockSeconds();
                json shots = json::array();
                for (const ShotSummary& s : c.state.shots(now)) shots.push_back(shotJson(s));
                sendJson(response, {{"shots", shots}, {"time", now}});
              }));
   server.Get(R"(/api/shots/([^/]+))", guarded([c](const Request& request, Response& response) {
                const int64_t id = shotIdOf(request);
-               const ShotReply shot = c.state.shot(id, wallClockSeconds());
+               const ShotReply shot = c.state.shot(id, farmClockSeconds());
                sendJson(response, shotPageJson(shot, c.state.outputs(id), c.state.blocklist(id)));
              }));
   server.Get(R"(/api/shots/([^/]+)/tasks)", guarded([c](const Request& request, Response& response) {
@@ -125,7 +125,7 @@ void serveReads(httplib::Server& server, DashboardContext c) {
                const int64_t limit = request.has_param("limit") ? idFrom(request.get_param_value("limit"), "limit")
                                                                 : kDefaultTaskPage;
                if (limit > kLargestTaskPage) throw BadRequest("limit is at most " + std::to_string(kLargestTaskPage));
-               const double now = wallClockSeconds();
+               const double now = farmClockSeconds();
                const ShotReply shot = c.state.shot(id, now);  // its events are the tasks' log
                const FarmState::TaskPage page = c.state.taskDetails(id, state, offset, limit);
                const std::vector<ShotEvent> events(shot.events().begin(), shot.events().end());
@@ -133,7 +133,7 @@ void serveReads(httplib::Server& server, DashboardContext c) {
              }));
   server.Get(R"(/api/shots/([^/]+)/report)", guarded([c](const Request& request, Response& response) {
                const int64_t id = shotIdOf(request);
-               const ShotSummary summary = c.state.summary(id, wallClockSeconds());
+               const ShotSummary summary = c.state.summary(id, farmClockSeconds());
                const auto [spec, tasks] = c.state.taskRecords(id);
                response.set_header("Cache-Control", "no-store");
                response.set_content(reportJson(buildReport(summary, spec, tasks)), kJson);
@@ -142,7 +142,7 @@ void serveReads(httplib::Server& server, DashboardContext c) {
              guarded([c](const Request& request, Response& response) {
                const int64_t id = shotIdOf(request);
                const int64_t frame = integerFrom(request.matches[2], "the frame");
-               c.state.summary(id, wallClockSeconds());  // 404 for an unknown shot
+               c.state.summary(id, farmClockSeconds());  // 404 for an unknown shot
                for (const auto& [outputFrame, chunk] : c.state.outputs(id)) {
                  if (outputFrame != frame) continue;
                  response.set_header("Cache-Control", "no-store");
@@ -153,7 +153,7 @@ void serveReads(httplib::Server& server, DashboardContext c) {
                                        " yet");
              }));
   server.Get("/api/workers", guarded([c](const Request&, Response& response) {
-               const double now = wallClockSeconds();
+               const double now = farmClockSeconds();
                sendJson(response, workersJson(c.state.workers(now), c.state.runningTasks(), c.state.blocklist(0),
                                               c.state.settings().leaseSeconds, now));
              }));
@@ -167,7 +167,7 @@ void serveActions(httplib::Server& server, DashboardContext c) {
                                                                         {"resume", &FarmState::resume},
                                                                         {"retry", &FarmState::retry}};
                 const Control control = controls.at(request.matches[2]);
-                return summaryReply((c.state.*control)(shotIdOf(request), wallClockSeconds()));
+                return summaryReply((c.state.*control)(shotIdOf(request), farmClockSeconds()));
               }));
   server.Post(R"(/api/shots/([^/]+)/priority)", action(c, [c](const Request& request, const json& body) {
                 const json priority = body.value("priority", json());
@@ -175,19 +175,19 @@ void serveActions(httplib::Server& server, DashboardContext c) {
                     priority.get<int64_t>() > INT32_MAX)
                   throw BadRequest("the body must be {\"priority\": N}, N a whole number");
                 return summaryReply(
-                    c.state.setPriority(shotIdOf(request), priority.get<int>(), wallClockSeconds()));
+                    c.state.setPriority(shotIdOf(request), priority.get<int>(), farmClockSeconds()));
               }));
   server.Post(R"(/api/shots/([^/]+)/tasks/([^/]+)/requeue)", action(c, [c](const Request& request, const json&) {
                 const int64_t task = idFrom(request.matches[2], "the task id");
-                return summaryReply(c.state.requeueTask(shotIdOf(request), task, wallClockSeconds()));
+                return summaryReply(c.state.requeueTask(shotIdOf(request), task, farmClockSeconds()));
               }));
   server.Post(R"(/api/shots/([^/]+)/frames/([^/]+)/requeue)", action(c, [c](const Request& request, const json&) {
                 const int64_t frame = integerFrom(request.matches[2], "the frame");
-                return summaryReply(c.state.requeueFrame(shotIdOf(request), frame, wallClockSeconds()));
+                return summaryReply(c.state.requeueFrame(shotIdOf(request), frame, farmClockSeconds()));
               }));
   server.Post(R"(/api/shots/([^/]+)/blocklist/([^/]+)/clear)", action(c, [c](const Request& request, const json&) {
                 const int64_t shot = shotIdOf(request);
-                c.state.clearBlocklist(shot, idFrom(request.matches[2], "the worker id"), wallClockSeconds());
+                c.state.clearBlocklist(shot, idFrom(request.matches[2], "the worker id"), farmClockSeconds());
                 return json{{"blocklist", blocklistJson(c.state.blocklist(shot))}};
               }));
 }

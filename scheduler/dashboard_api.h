@@ -4,6 +4,7 @@
 // the same functions; actions are POSTs that call what `pathfarm cancel` and its kin call.
 // docs/dashboard.md lists the endpoints.
 #include "proto/wire/chunk_store.h"
+#include "scheduler/farm_clock.h"
 #include "scheduler/farm_signal.h"
 #include "scheduler/farm_state.h"
 #include "scheduler/thumbnails.h"

@@ -34,9 +34,4 @@ class FarmSignal {
   uint64_t generation_ = 0;
 };
 
-// Wall-clock seconds since the epoch: what the farm's database stores.
-inline double wallClockSeconds() {
-  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
-}
-
 }  // namespace pathfarm::farm

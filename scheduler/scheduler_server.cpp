@@ -47,7 +47,7 @@ struct SchedulerServer::Services {
 
   explicit Services(const SchedulerOptions& o)
       : exclusive(o.database),
-        state(o.database.string(), o.farm, wallClockSeconds()),
+        state(o.database.string(), o.farm, farmClockSeconds()),
         store(o.store),
         workerService({state, store, signal, o.workerToken.empty() ? o.token : o.workerToken, o.limits}),
         clientService({state, store, signal, o.token, o.limits}),
@@ -70,7 +70,7 @@ SchedulerServer::SchedulerServer(SchedulerOptions options) : options_(std::move(
     const double period = std::clamp(options_.farm.leaseSeconds / 10, 0.05, 1.0);
     while (!stopping_) {
       try {
-        if (services_->state.expireLeases(wallClockSeconds()) > 0) services_->signal.notify();
+        if (services_->state.expireLeases(farmClockSeconds()) > 0) services_->signal.notify();
       } catch (const std::exception& e) {
         spdlog::error("lease checker: {}", e.what());
       }
@@ -80,7 +80,7 @@ SchedulerServer::SchedulerServer(SchedulerOptions options) : options_(std::move(
   if (!options_.http.empty()) {
     http_ = std::make_unique<HttpServer>(options_.http, options_.token, options_.tls, [this](httplib::Server& server) {
       serveMetrics(server, [this] {
-        FarmMetrics metrics = services_->state.metrics(wallClockSeconds());
+        FarmMetrics metrics = services_->state.metrics(farmClockSeconds());
         metrics.chunkBytesIn = services_->store.bytesIn();
         metrics.chunkBytesOut = services_->store.bytesOut();
         return prometheusText(metrics);

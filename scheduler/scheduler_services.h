@@ -3,6 +3,7 @@
 #include "pathfarm/client_service.grpc.pb.h"
 #include "pathfarm/worker_service.grpc.pb.h"
 #include "proto/wire/chunk_store.h"
+#include "scheduler/farm_clock.h"
 #include "scheduler/farm_signal.h"
 #include "scheduler/farm_state.h"
 #include "scheduler/worker_sessions.h"

@@ -9,12 +9,12 @@ ChunkRef storeReceivedChunk(grpc::ServerReader<ChunkPart>& reader, const Schedul
   ChunkRef announced;
   const std::string bytes = receiveChunk(reader, announced, kMaxChunkBytes);
   const ChunkRef stored = c.store.put(bytes, announced);
-  c.state.recordChunk(stored, wallClockSeconds());
+  c.state.recordChunk(stored, farmClockSeconds());
   return stored;
 }
 
 grpc::Status lostChunk(const SchedulerContext& c, const std::string& sha256) {
-  const int requeued = c.state.requeueProducersOf(sha256, wallClockSeconds());
+  const int requeued = c.state.requeueProducersOf(sha256, farmClockSeconds());
   if (requeued == 0) return {grpc::StatusCode::NOT_FOUND, "no chunk " + sha256};
   c.signal.notify();
   return {grpc::StatusCode::NOT_FOUND, "chunk " + sha256 + " was missing or damaged: the " + std::to_string(requeued) +

@@ -34,7 +34,7 @@ grpc::Status WorkerServiceImpl::Register(grpc::ServerContext* context, const Reg
         return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
                             "tag \"" + tag + "\" is not letters, digits, '-', '_' or '.'");
     const NewSession session = WorkerSessions::make();
-    reply->set_worker_id(c_.state.registerWorker(request->name(), slots, wallClockSeconds(),
+    reply->set_worker_id(c_.state.registerWorker(request->name(), slots, farmClockSeconds(),
                                                  {request->tags().begin(), request->tags().end()}, session.hash));
     reply->set_session_key(session.key);
     sessions_.remember(reply->worker_id(), session.hash);
@@ -54,7 +54,7 @@ grpc::Status WorkerServiceImpl::LeaseTask(grpc::ServerContext* context, const Le
                           std::chrono::milliseconds(static_cast<int64_t>(std::clamp(request->wait_seconds(), 0.0, 60.0) * 1000));
     uint64_t seen = c_.signal.generation();
     for (;;) {
-      if (auto lease = c_.state.lease(request->worker_id(), wallClockSeconds())) {
+      if (auto lease = c_.state.lease(request->worker_id(), farmClockSeconds())) {
         reply->set_has_task(true);
         *reply->mutable_lease() = std::move(*lease);
         return grpc::Status::OK;
@@ -73,7 +73,7 @@ grpc::Status WorkerServiceImpl::Heartbeat(grpc::ServerContext* context, const He
                                           HeartbeatReply* reply) {
   return asWorker(context, [&](int64_t worker) {
     if (grpc::Status owner = checkAttemptOwner(request->attempt_id(), worker); !owner.ok()) return owner;
-    *reply = c_.state.heartbeat(request->attempt_id(), request->progress(), wallClockSeconds());
+    *reply = c_.state.heartbeat(request->attempt_id(), request->progress(), farmClockSeconds());
     return grpc::Status::OK;
   });
 }
@@ -82,7 +82,7 @@ grpc::Status WorkerServiceImpl::CompleteTask(grpc::ServerContext* context, const
                                              ReportReply* reply) {
   return asWorker(context, [&](int64_t worker) {
     if (grpc::Status owner = checkAttemptOwner(request->attempt_id(), worker); !owner.ok()) return owner;
-    *reply = c_.state.complete(*request, wallClockSeconds());
+    *reply = c_.state.complete(*request, farmClockSeconds());
     if (reply->accepted()) c_.signal.notify();
     return grpc::Status::OK;
   });
@@ -92,7 +92,7 @@ grpc::Status WorkerServiceImpl::FailTask(grpc::ServerContext* context, const Fai
                                          ReportReply* reply) {
   return asWorker(context, [&](int64_t worker) {
     if (grpc::Status owner = checkAttemptOwner(request->attempt_id(), worker); !owner.ok()) return owner;
-    *reply = c_.state.fail(request->attempt_id(), request->reason(), wallClockSeconds(), request->log_tail());
+    *reply = c_.state.fail(request->attempt_id(), request->reason(), farmClockSeconds(), request->log_tail());
     if (reply->accepted()) c_.signal.notify();
     return grpc::Status::OK;
   });
