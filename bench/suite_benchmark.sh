@@ -52,7 +52,8 @@ errors = {e["stage"]: e for e in r["errors"]}
 final, base = errors.get("final", {}), errors.get("baseline", {})
 f = lambda v, p="%.4f": p % v if isinstance(v, (int, float)) and v >= 0 else "-"
 print("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
-    sys.argv[2], sys.argv[3], r.get("keyframe_interval", "-"), chosen.group(1) if chosen else "-", f(r["core_seconds_per_frame"], "%.2f"),
+    sys.argv[2], r["pipeline"] if r["pipeline"] == sys.argv[3] else "%s (for %s)" % (r["pipeline"], sys.argv[3]),
+    r.get("keyframe_interval", "-"), chosen.group(1) if chosen else "-", f(r["core_seconds_per_frame"], "%.2f"),
     f(r["baseline_core_seconds_per_frame"], "%.2f"), f(r["relative_cost"], "%.3f"), f(r.get("cost_at_equal_error", -1), "%.3f"),
     f(final.get("relmse")), f(base.get("relmse")), f(final.get("worst_tile_relmse")), f(base.get("worst_tile_relmse")),
     f(100 * final.get("worst_percent_share", -0.01), "%.0f%%"), f(100 * base.get("worst_percent_share", -0.01), "%.0f%%"),
