@@ -165,7 +165,7 @@ LayerResult filterLayer(const FrameImage& current, const std::vector<Neighbour>&
   NlMeansSettings settings{s.spatialRadius, s.patch, s.kc, s.kf, s.tau, s.alpha};
   if (input.frames.size() > 1) settings.radius = s.temporalRadius;
   NlMeansStats stats;
-  result.color = jointNlMeans(input, settings, &stats);
+  result.color = jointNlMeansOnContent(input, settings, &stats);
   result.invalid = std::move(stats.invalidCenter);
   result.frames = static_cast<int>(input.frames.size());
   return result;

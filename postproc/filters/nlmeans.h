@@ -102,6 +102,16 @@ struct NlMeansStats {
 // channel counts and for negative r or f.
 Planes jointNlMeans(const NlMeansInput& input, const NlMeansSettings& settings, NlMeansStats* stats = nullptr);
 
+// The same, filtering only the part of the frames that holds anything: the bounding box of
+// the pixels where some frame's color or variance is not 0 (or not finite), or frames[0]
+// is invalid, grown by 2 (radius + patch), so that every pixel whose value can be other
+// than 0 sees its whole neighbourhood; everything else is 0, as jointNlMeans makes it.
+// A component that lives on a few objects (a mirror's reflection, glass) is filtered at
+// the cost of their area. The result equals jointNlMeans's up to float rounding (its sums
+// start elsewhere) and is the same bits for the same input.
+Planes jointNlMeansOnContent(const NlMeansInput& input, const NlMeansSettings& settings,
+                             NlMeansStats* stats = nullptr);
+
 // The terms of the weights between every pixel p of frames[0] and q = p + (dx, dy) in
 // frames[frame], computed by the same code as jointNlMeans (for tests and diagnostics).
 // Where q is outside the image the distances are +infinity and the weight is 0.

@@ -1,0 +1,104 @@
+// jointNlMeansOnContent against jointNlMeans itself: the same image up to float rounding,
+// exact zeros away from what the frames hold, the same broken-pixel counts and errors.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "postproc/filters/nlmeans.h"
+
+namespace pathfarm {
+namespace {
+
+constexpr int kWidth = 96, kHeight = 72;
+
+// Two frames (the second a neighbour with a few invalid pixels), noisy color and variance
+// only inside [x0, x0 + 14) x [y0, y0 + 10), a normal-like feature everywhere.
+NlMeansInput sparseInput(int x0, int y0, std::mt19937& rng) {
+  std::uniform_real_distribution<float> value(0.0f, 2.0f), variance(0.01f, 0.2f), feature(-1.0f, 1.0f);
+  NlMeansInput input;
+  input.featureKinds = {FeatureKind::Continuous};
+  for (int f = 0; f < 2; ++f) {
+    NlMeansFrame& frame = input.frames.emplace_back();
+    frame.color = Planes(kWidth, kHeight, 3);
+    frame.variance = Planes(kWidth, kHeight, 3);
+    frame.features.push_back(Planes(kWidth, kHeight, 3));
+    for (auto& channel : frame.features[0].channels)
+      for (float& v : channel) v = feature(rng);
+    for (int y = y0 + f; y < y0 + 10 + f; ++y)
+      for (int x = x0; x < x0 + 14; ++x)
+        for (int c = 0; c < 3; ++c) {
+          const size_t p = static_cast<size_t>(y) * kWidth + x;
+          frame.color.channels[static_cast<size_t>(c)][p] = value(rng);
+          frame.variance.channels[static_cast<size_t>(c)][p] = variance(rng);
+        }
+    if (f == 1) {
+      frame.valid.assign(static_cast<size_t>(kWidth) * kHeight, 1.0f);
+      for (size_t p = 0; p < frame.valid.size(); p += 7) frame.valid[p] = 0.0f;
+    }
+  }
+  return input;
+}
+
+void expectSameImage(const Planes& cropped, const Planes& whole) {
+  ASSERT_EQ(cropped.width, whole.width);
+  ASSERT_EQ(cropped.height, whole.height);
+  ASSERT_EQ(cropped.channels.size(), whole.channels.size());
+  for (size_t c = 0; c < whole.channels.size(); ++c)
+    for (size_t p = 0; p < whole.pixelCount(); ++p) {
+      const float expected = whole.channels[c][p];
+      if (expected == 0.0f) {
+        ASSERT_EQ(cropped.channels[c][p], 0.0f) << "channel " << c << " pixel " << p;
+      } else {
+        ASSERT_NEAR(cropped.channels[c][p], expected, 1e-5f * std::abs(expected) + 1e-7f)
+            << "channel " << c << " pixel " << p;
+      }
+    }
+}
+
+TEST(NlMeansOnContent, FiltersLikeTheWholeFrameWhereverTheContentSits) {
+  std::mt19937 rng(11);
+  const NlMeansSettings settings{.radius = 5, .patch = 3};
+  // Inside the frame, and against two of its edges.
+  for (const auto& [x0, y0] : {std::pair{40, 30}, std::pair{0, 0}, std::pair{82, 61}}) {
+    const NlMeansInput input = sparseInput(x0, y0, rng);
+    const Planes whole = jointNlMeans(input, settings);
+    const Planes cropped = jointNlMeansOnContent(input, settings);
+    expectSameImage(cropped, whole);
+    double sum = 0;
+    for (float v : whole.channels[0]) sum += v;
+    EXPECT_GT(sum, 0.0) << "the content was filtered, not dropped";
+  }
+}
+
+TEST(NlMeansOnContent, BrokenPixelsAreContentAndCountedTheSame) {
+  std::mt19937 rng(5);
+  NlMeansInput input = sparseInput(30, 20, rng);
+  // A NaN far from the rest: it is filled from its neighbours (zeros) in both.
+  input.frames[0].color.channels[1][static_cast<size_t>(60) * kWidth + 85] = std::numeric_limits<float>::quiet_NaN();
+  const NlMeansSettings settings{.radius = 3, .patch = 2};
+  NlMeansStats wholeStats, croppedStats;
+  const Planes whole = jointNlMeans(input, settings, &wholeStats);
+  const Planes cropped = jointNlMeansOnContent(input, settings, &croppedStats);
+  expectSameImage(cropped, whole);
+  EXPECT_EQ(croppedStats.invalidCenters, wholeStats.invalidCenters);
+  EXPECT_EQ(croppedStats.unfilledCenters, wholeStats.unfilledCenters);
+  EXPECT_EQ(croppedStats.invalidCenter, wholeStats.invalidCenter);
+}
+
+TEST(NlMeansOnContent, NothingAnywhereIsZeroAndMismatchedInputIsRefusedAlike) {
+  NlMeansInput empty;
+  empty.frames.emplace_back();
+  empty.frames[0].color = Planes(kWidth, kHeight, 3);
+  empty.frames[0].variance = Planes(kWidth, kHeight, 3);
+  const Planes zero = jointNlMeansOnContent(empty, NlMeansSettings{});
+  for (const auto& channel : zero.channels)
+    for (float v : channel) ASSERT_EQ(v, 0.0f);
+  NlMeansInput mismatched = empty;
+  mismatched.frames[0].variance = Planes(kWidth - 1, kHeight, 3);
+  EXPECT_THROW(jointNlMeansOnContent(mismatched, NlMeansSettings{}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace pathfarm
