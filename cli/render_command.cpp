@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -119,16 +120,18 @@ void renderMetropolisWindows(const RenderOptions& options, const Scene& scene, c
   for (int64_t first = frames.first; first <= frames.second; first += windowLength) {
     const FrameWindow window{first, static_cast<int>(std::min(windowLength, frames.second - first + 1))};
     std::vector<FrameImage> images;
+    const auto started = std::chrono::steady_clock::now();
     {
       ProgressBar bar("frames " + std::to_string(window.first) + ".." + std::to_string(window.end() - 1));
       images = renderer.render(window, [&](size_t done, size_t total) { bar.update(done, total); });
     }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     const auto& attributes = images.front().attributes();
     std::string acceptance;
     for (const auto& [key, value] : attributes)
       if (key.starts_with("pathfarm.mlt.acceptance.")) acceptance += " " + key.substr(24) + " " + value;
-    spdlog::info("frames {}..{}: {} mutations in {} s, acceptance{}{}", window.first, window.end() - 1,
-                 attributes.at("pathfarm.mlt.mutations"), attributes.at("pathfarm.mlt.seconds"), acceptance,
+    spdlog::info("frames {}..{}: {} mutations in {:.2f} s, acceptance{}{}", window.first, window.end() - 1,
+                 attributes.at("pathfarm.mlt.mutations"), seconds, acceptance,
                  attributes.count("pathfarm.mlt.final_delta") ? ", final D " + attributes.at("pathfarm.mlt.final_delta")
                                                               : std::string());
     for (int f = 0; f < window.count; ++f) writeFrame(options, window.first + f, images[static_cast<size_t>(f)]);

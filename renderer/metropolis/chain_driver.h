@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <functional>
 #include <stdexcept>
@@ -61,7 +60,6 @@ class ChainDriver {
   // block's share of the radiance estimate.
   BlockResult runBlock(const SeedPool& pool, int block, const ChainProgress& progress = {}) const {
     checkPool(pool, block);
-    const auto start = std::chrono::steady_clock::now();
     const int first = block * settings_.chainsPerBlock;
     const int count = std::min(settings_.chainsPerBlock, settings_.chains - first);
     const FrameWindow window = time_.window();
@@ -81,7 +79,6 @@ class ChainDriver {
     result.frames = films.toImages(settings_.filmScale(window, pool.normalization));
     result.stats = emptyStats();
     for (const MutationStats& s : stats) result.stats.add(s);
-    result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;
   }
 

@@ -36,7 +36,6 @@ void MutationStats::add(const MutationStats& other) {
   }
   finalDeltaSum += other.finalDeltaSum;
   chains += other.chains;
-  seconds += other.seconds;
 }
 
 void MutationStats::writeAttributes(FrameImage& image) const {
@@ -51,23 +50,22 @@ void MutationStats::writeAttributes(FrameImage& image) const {
     a["pathfarm.mlt.temporal_acceptance"] = std::to_string(temporalAcceptance());
     a["pathfarm.mlt.final_delta"] = std::to_string(meanFinalDelta());
   }
-  a["pathfarm.mlt.seconds"] = std::to_string(seconds);
 }
 
 std::string MutationStats::serialize() const {
   std::ostringstream out;
-  out << "pathfarm-mutation-stats 1\n"
-      << "chains " << chains << " temporal " << temporalKind << " delta " << exactText(finalDeltaSum) << " seconds "
-      << exactText(seconds) << " kinds " << kinds.size() << '\n';
+  out << "pathfarm-mutation-stats 2\n"
+      << "chains " << chains << " temporal " << temporalKind << " delta " << exactText(finalDeltaSum) << " kinds "
+      << kinds.size() << '\n';
   for (size_t k = 0; k < kinds.size(); ++k) out << kinds[k] << ' ' << proposed[k] << ' ' << accepted[k] << '\n';
   return out.str();
 }
 
 MutationStats MutationStats::parse(const std::string& text) {
   std::istringstream in(text);
-  std::string header, delta, seconds;
+  std::string header, delta;
   std::getline(in, header);
-  if (header != "pathfarm-mutation-stats 1") throw std::invalid_argument("mutation statistics: missing the header line");
+  if (header != "pathfarm-mutation-stats 2") throw std::invalid_argument("mutation statistics: missing the header line");
   MutationStats stats;
   size_t count = 0;
   const auto expect = [&](const char* keyword) {
@@ -81,12 +79,9 @@ MutationStats MutationStats::parse(const std::string& text) {
   in >> stats.temporalKind;
   expect("delta");
   in >> delta;
-  expect("seconds");
-  in >> seconds;
   expect("kinds");
   if (!(in >> count) || count > 64) throw std::invalid_argument("mutation statistics: bad kind count");
   stats.finalDeltaSum = parseExactText(delta, "mutation statistics");
-  stats.seconds = parseExactText(seconds, "mutation statistics");
   stats.kinds.resize(count);
   stats.proposed.resize(count);
   stats.accepted.resize(count);

@@ -15,7 +15,8 @@ struct MutationStats {
   int temporalKind = -1;        // index of the temporal mutation among kinds; -1 if none
   double finalDeltaSum = 0;     // the chains' tuned reaches D, summed, and their count
   uint64_t chains = 0;
-  double seconds = 0;
+  // No wall time: these counts travel in chunks and frames, whose bits must not depend on
+  // the worker that made them.
 
   // Counts of zero for every kind of `kindNames`.
   static MutationStats forKinds(std::vector<std::string> kindNames, int temporal);
@@ -28,7 +29,7 @@ struct MutationStats {
 
   // Adds another chain's or block's counts (the same kinds).
   void add(const MutationStats& other);
-  // "pathfarm.mlt.*" attributes: mutations, acceptance per kind, temporal acceptance, D, seconds.
+  // "pathfarm.mlt.*" attributes: mutations, acceptance per kind, temporal acceptance, D.
   void writeAttributes(FrameImage& image) const;
   // Text with the exact counts and sums, for shipping a block's statistics between farm
   // tasks; parse throws std::invalid_argument naming what is wrong.
