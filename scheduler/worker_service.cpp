@@ -54,13 +54,16 @@ grpc::Status WorkerServiceImpl::LeaseTask(grpc::ServerContext* context, const Le
                           std::chrono::milliseconds(static_cast<int64_t>(std::clamp(request->wait_seconds(), 0.0, 60.0) * 1000));
     uint64_t seen = c_.signal.generation();
     for (;;) {
+      // A worker that hung up (stopping) must not be handed a task it will never see: that
+      // task would wait a whole lease period for the lease to expire.
+      if (context->IsCancelled()) return grpc::Status::OK;
       if (auto lease = c_.state.lease(request->worker_id(), farmClockSeconds())) {
         reply->set_has_task(true);
         *reply->mutable_lease() = std::move(*lease);
         return grpc::Status::OK;
       }
       const auto now = std::chrono::steady_clock::now();
-      if (now >= deadline || context->IsCancelled()) return grpc::Status::OK;
+      if (now >= deadline) return grpc::Status::OK;
       // Retry backoff ends silently, so never sleep long without looking again.
       const auto wait = std::min<std::chrono::milliseconds>(
           std::chrono::duration_cast<std::chrono::milliseconds>(deadline - now), std::chrono::milliseconds(250));

@@ -44,6 +44,9 @@ TEST_F(FarmTest, ALostOrDamagedChunkIsMadeAgainByTheTaskThatMadeIt) {
   for (const auto& event : shot.events()) events += event.message() + "\n";
   EXPECT_TRUE(contains(events, "was missing or damaged")) << events;
   EXPECT_EQ(db.integer("SELECT COUNT(*) FROM worker_failures"), 0) << "no worker was blamed for the store's loss";
+  // The stopped worker's last long-poll, cancelled as it stopped, was handed no task (one
+  // would have waited a whole lease period to expire).
+  EXPECT_EQ(db.integer("SELECT COUNT(*) FROM attempts WHERE state = 3"), 0);
 }
 
 }  // namespace
