@@ -37,6 +37,7 @@ json attemptJson(const FarmState::AttemptDetail& a, double now) {
           {"seconds", end - a.leasedAt},
           {"progress", a.progress},
           {"error", a.error},
+          {"failure_class", a.failureClass},
           {"log_tail", a.logTail}};
 }
 

@@ -71,8 +71,9 @@ std::string prometheusText(const FarmMetrics& m) {
   families.push_back(std::move(durations));
 
   MetricFamily ended = family("attempts_ended_total",
-                              "Attempts that did not finish, by cause: failed (reported by the worker), lost (the lease "
-                              "expired), revoked (hung, or its shot ended).",
+                              "Attempts that did not finish, by cause: failures the worker reported, by class "
+                              "(worker_fault, bad_input, transport), lost (the lease expired), revoked (hung, or "
+                              "its shot ended).",
                               MetricType::Counter);
   for (const auto& [cause, count] : m.attemptsEnded) ended.metric.push_back(counter({{"cause", cause}}, static_cast<double>(count)));
   families.push_back(std::move(ended));

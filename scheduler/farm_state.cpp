@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "scheduler/farm_names.h"
 #include "scheduler/farm_state_internal.h"
 #include "scheduler/schema.h"
 
@@ -303,15 +304,17 @@ HeartbeatReply FarmState::heartbeat(int64_t attemptId, double progress, double n
 }
 
 void FarmState::endAttempt(const AttemptRow& attempt, int state, const std::string& error, double now,
-                           const std::string& logTail) {
+                           const std::string& logTail, const std::string& failureClass) {
   // A worker's log is kept to its last kMaxLogTailBytes, whatever the worker sends.
   const std::string kept = logTail.size() > kMaxLogTailBytes ? logTail.substr(logTail.size() - kMaxLogTailBytes) : logTail;
-  db_.query("UPDATE attempts SET state = ?1, finished_at = ?2, error = ?3, log_tail = ?4 WHERE id = ?5")
+  db_.query("UPDATE attempts SET state = ?1, finished_at = ?2, error = ?3, log_tail = ?4, failure_class = ?5 "
+            "WHERE id = ?6")
       .bind(1, int64_t{state})
       .bind(2, now)
       .bind(3, error)
       .bind(4, kept)
-      .bind(5, attempt.id)
+      .bind(5, failureClass)
+      .bind(6, attempt.id)
       .run();
 }
 
@@ -356,14 +359,29 @@ ReportReply FarmState::complete(const CompleteRequest& request, double now) {
   });
 }
 
-ReportReply FarmState::fail(int64_t attemptId, const std::string& reason, double now, const std::string& logTail) {
+ReportReply FarmState::fail(int64_t attemptId, const std::string& reason, double now, const std::string& logTail,
+                            FailureClass kind) {
+  if (!FailureClass_IsValid(kind)) kind = FAILURE_WORKER_FAULT;  // a newer worker's class: the worker's doing
   return transact([&]() -> ReportReply {
     const auto attempt = currentAttempt(attemptId);
     if (!attempt) return refused(kStaleLease);
-    endAttempt(*attempt, static_cast<int>(AttemptState::Failed), reason, now, logTail);
-    retryOrFail(*attempt, reason, true, now);
+    endAttempt(*attempt, static_cast<int>(AttemptState::Failed), reason, now, logTail,
+               lowerWithout(FailureClass_Name(kind), "FAILURE_"));
+    if (kind == FAILURE_BAD_INPUT) {
+      failOnBadInput(*attempt, reason, now);
+    } else {
+      retryOrFail(*attempt, reason, kind == FAILURE_WORKER_FAULT, now);
+    }
     return accepted();
   });
+}
+
+void FarmState::failOnBadInput(const AttemptRow& attempt, const std::string& reason, double now) {
+  const std::string task = describeTask(attempt.taskId, attempt.kind, attempt.params);
+  addEvent(attempt.shotId, task + " cannot run on any worker (bad input, reported by worker " +
+                               std::to_string(attempt.workerId) + "): " + reason,
+           now);
+  failTask(attempt, "failures", attempt.failures + 1, task + " has a bad input: " + reason, now);
 }
 
 void FarmState::retryOrFail(const AttemptRow& attempt, const std::string& reason, bool blameWorker, double now) {

@@ -74,7 +74,11 @@ class FarmState {
   // Accepts the output, the task's figures and its follow-up render tiles.
   ReportReply complete(const CompleteRequest& request, double now);
   // `logTail`: what the worker logged while it ran the attempt (kept to kMaxLogTailBytes).
-  ReportReply fail(int64_t attemptId, const std::string& reason, double now, const std::string& logTail = "");
+  // A worker fault runs the task again and counts toward the worker's blocklist; a
+  // transport failure runs it again and blames no one; bad input fails the task and its
+  // shot at once, since no worker could run it.
+  ReportReply fail(int64_t attemptId, const std::string& reason, double now, const std::string& logTail = "",
+                   FailureClass kind = FAILURE_WORKER_FAULT);
   static constexpr size_t kMaxLogTailBytes = 16384;
   // Expired leases and hung tasks go back to the queue (or fail their shot when out of
   // attempts). Returns how many leases ended.
@@ -132,6 +136,7 @@ class FarmState {
     std::optional<double> finishedAt;
     double progress = 0;
     std::string error;
+    std::string failureClass;  // of a failed attempt: "worker_fault", "bad_input" or "transport"
     std::string logTail;  // the worker's log lines of the attempt, as it sent them
   };
   struct TaskDetail {
@@ -167,8 +172,9 @@ class FarmState {
   auto transact(Body body) -> decltype(body());
   std::optional<AttemptRow> currentAttempt(int64_t attemptId);
   void endAttempt(const AttemptRow& attempt, int state, const std::string& error, double now,
-                  const std::string& logTail = "");
+                  const std::string& logTail = "", const std::string& failureClass = "");
   void retryOrFail(const AttemptRow& attempt, const std::string& reason, bool blameWorker, double now);
+  void failOnBadInput(const AttemptRow& attempt, const std::string& reason, double now);
   void retryLost(const AttemptRow& attempt, const std::string& reason, double now);
   // The task failed for good, and its shot with `why`; `counter` (failures or lost) is
   // recorded as `count`.

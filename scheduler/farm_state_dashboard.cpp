@@ -35,7 +35,7 @@ FarmState::TaskPage FarmState::taskDetails(int64_t shotId, std::optional<int> st
     for (TaskDetail& task : page.tasks) {
       Statement& attempts = db_.query(
           "SELECT a.id, a.worker_id, COALESCE(w.name, ''), a.state, a.leased_at, a.finished_at, a.progress, a.error, "
-          "a.log_tail FROM attempts a LEFT JOIN workers w ON w.id = a.worker_id WHERE a.task_id = ?1 ORDER BY a.id");
+          "a.log_tail, a.failure_class FROM attempts a LEFT JOIN workers w ON w.id = a.worker_id WHERE a.task_id = ?1 ORDER BY a.id");
       attempts.bind(1, task.id);
       while (attempts.step()) {
         AttemptDetail& attempt = task.attempts.emplace_back();
@@ -48,6 +48,7 @@ FarmState::TaskPage FarmState::taskDetails(int64_t shotId, std::optional<int> st
         attempt.progress = attempts.real(6);
         attempt.error = attempts.text(7);
         attempt.logTail = attempts.text(8);
+        attempt.failureClass = attempts.text(9);
       }
     }
     return page;

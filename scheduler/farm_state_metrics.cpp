@@ -48,16 +48,16 @@ FarmMetrics FarmState::metricsLocked(double now) {
       d.cumulative.push_back(static_cast<uint64_t>(durations.integer(static_cast<int>(3 + b))));
   }
 
-  for (const char* cause : {"failed", "lost", "revoked"}) m.attemptsEnded[cause] = 0;
-  Statement& ended = db_.query("SELECT state, COUNT(*) FROM attempts WHERE state IN (?1, ?2, ?3) GROUP BY state");
+  // A failed attempt by the class its worker reported (attempts from before classes were
+  // kept count as worker faults).
+  for (const char* cause : {"worker_fault", "bad_input", "transport", "lost", "revoked"}) m.attemptsEnded[cause] = 0;
+  Statement& ended = db_.query(
+      "SELECT CASE state WHEN ?1 THEN CASE failure_class WHEN '' THEN 'worker_fault' ELSE failure_class END "
+      "WHEN ?2 THEN 'lost' ELSE 'revoked' END, COUNT(*) FROM attempts WHERE state IN (?1, ?2, ?3) GROUP BY 1");
   ended.bind(1, asInt(AttemptState::Failed))
       .bind(2, asInt(AttemptState::Expired))
       .bind(3, asInt(AttemptState::Revoked));
-  while (ended.step()) {
-    const auto state = static_cast<AttemptState>(ended.integer(0));
-    m.attemptsEnded[state == AttemptState::Failed ? "failed" : state == AttemptState::Expired ? "lost" : "revoked"] =
-        ended.integer(1);
-  }
+  while (ended.step()) m.attemptsEnded[ended.text(0)] = ended.integer(1);
 
   Statement& shots = db_.query(
       "SELECT s.id, s.name, s.state, (SELECT COUNT(*) FROM tasks t WHERE t.shot_id = s.id), s.tasks_left FROM shots s");

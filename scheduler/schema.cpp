@@ -119,6 +119,11 @@ const std::vector<const char*>& migrations() {
       R"sql(
       ALTER TABLE attempts ADD COLUMN log_tail TEXT NOT NULL DEFAULT '';
       )sql",
+      // 9: whose fault a failed attempt was, as the worker reported it: "worker_fault",
+      // "bad_input" or "transport". Empty for attempts that did not fail or ended before.
+      R"sql(
+      ALTER TABLE attempts ADD COLUMN failure_class TEXT NOT NULL DEFAULT '';
+      )sql",
   };
   return list;
 }

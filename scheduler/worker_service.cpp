@@ -95,7 +95,8 @@ grpc::Status WorkerServiceImpl::FailTask(grpc::ServerContext* context, const Fai
                                          ReportReply* reply) {
   return asWorker(context, [&](int64_t worker) {
     if (grpc::Status owner = checkAttemptOwner(request->attempt_id(), worker); !owner.ok()) return owner;
-    *reply = c_.state.fail(request->attempt_id(), request->reason(), farmClockSeconds(), request->log_tail());
+    *reply = c_.state.fail(request->attempt_id(), request->reason(), farmClockSeconds(), request->log_tail(),
+                           request->failure_class());
     if (reply->accepted()) c_.signal.notify();
     return grpc::Status::OK;
   });

@@ -9,6 +9,7 @@
 #include "postproc/filters/component_denoiser.h"
 #include "postproc/filters/decomposed_frame.h"
 #include "worker/direct_emission.h"
+#include "worker/failure_class.h"
 #include "worker/filter_inputs.h"
 
 namespace pathfarm::farm {
@@ -58,7 +59,7 @@ TaskOutput runCompositeTask(const Lease& lease, const std::vector<TaskInput>& in
     if (input.kind != TASK_RENDER_TILE) continue;
     const PixelWindow& w = input.params.window();
     if (input.image.width() != w.x1() - w.x0() || input.image.height() != w.y1() - w.y0())
-      throw std::runtime_error("a re-render tile of frame " + std::to_string(frame) + " does not have its window's size");
+      throw BadInput("a re-render tile of frame " + std::to_string(frame) + " does not have its window's size");
     sparse.paste(input.image, w.x0(), w.y0());
     PixelWindow flagged;  // the bounding box of the tile's rendered pixels
     flagged.set_x0(w.x1());

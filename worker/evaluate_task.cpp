@@ -11,6 +11,7 @@
 #include "image/png_preview.h"
 #include "postproc/metrics/contact_sheet.h"
 #include "postproc/metrics/image_metrics.h"
+#include "worker/failure_class.h"
 #include "worker/filter_inputs.h"
 
 namespace pathfarm::farm {
@@ -70,7 +71,7 @@ TaskOutput runEvaluateTask(const Lease& /*lease*/, const std::vector<TaskInput>&
   for (const TaskInput& input : inputs)
     if (input.kind == TASK_ASSEMBLE_FRAME && input.params.role() == ROLE_REFERENCE)
       references[input.params.frame()] = &input.image;
-  if (references.empty()) throw std::runtime_error("the evaluation has no reference frame");
+  if (references.empty()) throw BadInput("the evaluation has no reference frame");
 
   std::map<std::string, StageSums> sums;
   std::map<std::string, std::map<int64_t, const FrameImage*>> sequences;  // final, baseline

@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "worker/failure_class.h"
+
 namespace pathfarm::farm {
 
 const TaskInput& findInput(const std::vector<TaskInput>& inputs, const std::function<bool(const TaskInput&)>& matches,
                            const std::string& what) {
   const auto found = std::find_if(inputs.begin(), inputs.end(), matches);
-  if (found == inputs.end()) throw std::runtime_error("the task lacks an input: " + what);
+  if (found == inputs.end()) throw BadInput("the task lacks an input: " + what);
   return *found;
 }
 
@@ -49,7 +51,7 @@ MotionField readMotionField(const FrameImage& image, const std::string& name) {
 void requestRerender(const ShotSpec& spec, int64_t frame, const std::vector<uint8_t>& mask, TaskOutput& output) {
   const int width = spec.width(), height = spec.height(), tile = spec.tile();
   if (mask.size() != static_cast<size_t>(width) * static_cast<size_t>(height))
-    throw std::runtime_error("the re-render mask does not have the shot's resolution");
+    throw BadInput("the re-render mask does not have the shot's resolution");
   size_t flagged = 0;
   for (int y0 = 0; y0 < height; y0 += tile) {
     for (int x0 = 0; x0 < width; x0 += tile) {

@@ -3,6 +3,7 @@
 #include "image/exr_io.h"
 #include "postproc/poisson/screened_poisson.h"
 #include "postproc/poisson/window_blend.h"
+#include "worker/failure_class.h"
 #include "worker/filter_inputs.h"
 
 namespace pathfarm::farm {
@@ -51,7 +52,7 @@ TaskOutput runPoissonBlendTask(const Lease& lease, const std::vector<TaskInput>&
     for (size_t c = 0; c < 3; ++c) solved[c] = input.image.channel(solvedChannel(index, kColorChannels[c]));
     blend.add(solved, index, static_cast<size_t>(input.params.window_frames()));
   }
-  if (blend.weight == 0) throw std::runtime_error("no window covers frame " + std::to_string(frame));
+  if (blend.weight == 0) throw BadInput("no window covers frame " + std::to_string(frame));
   const GradientFrame::Color color =
       std::move(blend).finish(GradientFrame::fromImage(rendered, "the gradient render of frame " + std::to_string(frame))
                                   .directEmission);

@@ -4,11 +4,12 @@
 
 #include "image/exr_io.h"
 #include "postproc/filters/decomposed_frame.h"
+#include "postproc/interpolation/caustic_check.h"
 #include "postproc/interpolation/feature_check.h"
 #include "postproc/interpolation/frame_interpolation.h"
-#include "postproc/interpolation/caustic_check.h"
 #include "postproc/interpolation/radiance_check.h"
 #include "worker/direct_emission.h"
+#include "worker/failure_class.h"
 #include "worker/filter_inputs.h"
 
 namespace pathfarm::farm {
@@ -47,7 +48,7 @@ TaskOutput runFlowTask(const Lease& lease, const std::vector<TaskInput>& inputs)
   const FrameImage& k1 = filteredKeyframe(inputs, params.keyframe_after()).image;
   const ComponentMotions all = keyframeMotions(k0, k1);
   const auto primary = all.components.find(component);
-  if (primary == all.components.end()) throw std::runtime_error("the keyframes have no component " + component);
+  if (primary == all.components.end()) throw BadInput("the keyframes have no component " + component);
 
   ComponentMotions motions;
   motions.components[component] = primary->second;

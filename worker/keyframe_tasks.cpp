@@ -10,6 +10,7 @@
 #include "renderer/decomposition/effective_irradiance.h"
 #include "scheduler/planner.h"
 #include "worker/direct_emission.h"
+#include "worker/failure_class.h"
 #include "worker/filter_inputs.h"
 
 namespace pathfarm::farm {
@@ -24,7 +25,7 @@ TaskOutput runDenoiseTask(const Lease& lease, const std::vector<TaskInput>& inpu
   const bool upsample = stagesOf(lease.spec().pipeline()).upsample;
   const std::vector<int64_t> keyframes = keyframesOf(lease.spec());
   const auto at = std::find(keyframes.begin(), keyframes.end(), frame);
-  if (at == keyframes.end()) throw std::runtime_error("frame " + std::to_string(frame) + " is not a keyframe");
+  if (at == keyframes.end()) throw BadInput("frame " + std::to_string(frame) + " is not a keyframe");
 
   // The keyframe's motion vectors reach its neighbouring keyframes (planner.h).
   FrameImage current = inputOf(inputs, TASK_ASSEMBLE_FRAME, frame).image;

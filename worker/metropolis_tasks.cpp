@@ -1,6 +1,7 @@
 #include "worker/metropolis_tasks.h"
 
 #include "image/exr_io.h"
+#include "worker/failure_class.h"
 #include "worker/filter_inputs.h"
 
 namespace pathfarm::farm {
@@ -23,7 +24,7 @@ SeedPool poolOf(const std::vector<TaskInput>& inputs, FrameWindow window) {
       inputs, [&](const TaskInput& i) { return i.kind == TASK_MLT_SEED_POOL && i.params.window_first() == window.first; },
       "the seed pool of the window starting at frame " + std::to_string(window.first));
   const auto text = input.image.attributes().find(kSeedPoolAttribute);
-  if (text == input.image.attributes().end()) throw std::runtime_error("the seed-pool chunk carries no seed pool");
+  if (text == input.image.attributes().end()) throw BadInput("the seed-pool chunk carries no seed pool");
   return SeedPool::parse(text->second);
 }
 
@@ -35,7 +36,7 @@ void readBlocks(const TaskInput& input, FrameWindow window, std::vector<BlockRes
     result.block = block;
     const auto stats = input.image.attributes().find(blockAttribute(block));
     if (stats == input.image.attributes().end())
-      throw std::runtime_error("chain chunk lacks the statistics of block " + std::to_string(block));
+      throw BadInput("chain chunk lacks the statistics of block " + std::to_string(block));
     result.stats = MutationStats::parse(stats->second);
     for (int f = 0; f < window.count; ++f) {
       FrameImage frame(input.image.width(), input.image.height());
@@ -81,7 +82,7 @@ TaskOutput runChainsTask(const MetropolisRenderer& renderer, const Lease& lease,
   const FrameWindow window = windowOf(lease);
   const SeedPool pool = poolOf(inputs, window);
   const int first = lease.params().block_first(), count = lease.params().block_count();
-  if (count < 1) throw std::runtime_error("a chain task without blocks");
+  if (count < 1) throw BadInput("a chain task without blocks");
   FrameImage chunk(lease.spec().width(), lease.spec().height());
   MutationStats total;
   for (int block = first; block < first + count; ++block) {

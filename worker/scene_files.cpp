@@ -26,7 +26,14 @@ void writeFile(const fs::path& file, const std::string& bytes) {
 }  // namespace
 
 fs::path localSceneFile(const ShotSpec& spec, const fs::path& scenesRoot, const TaskRunner::ChunkFetcher& fetch) {
-  if (spec.inputs().empty()) return spec.scene();
+  if (spec.inputs().empty()) {
+    // A scene on shared storage this worker cannot see is the worker's problem (a missing
+    // mount), not the scene's: the task should run elsewhere rather than fail the shot.
+    if (!fs::exists(spec.scene()))
+      throw std::runtime_error("this worker cannot see the scene file " + spec.scene() +
+                               " (is the shared storage mounted here?)");
+    return spec.scene();
+  }
   checkInputFiles(spec);  // no path may leave the folder, whoever made the spec
   const fs::path folder = scenesRoot / inputFilesDigest(spec);
   if (fs::exists(folder / kCompleteMarker)) {

@@ -83,12 +83,7 @@ grpc::Status SchedulerLink::complete(const CompleteRequest& request, ReportReply
   return stub_->CompleteTask(context(kCallSeconds).get(), request, &reply);
 }
 
-grpc::Status SchedulerLink::fail(int64_t attemptId, const std::string& reason, const std::string& logTail,
-                                 ReportReply& reply) {
-  FailRequest request;
-  request.set_attempt_id(attemptId);
-  request.set_reason(reason);
-  request.set_log_tail(logTail);
+grpc::Status SchedulerLink::fail(const FailRequest& request, ReportReply& reply) {
   return stub_->FailTask(context(kCallSeconds).get(), request, &reply);
 }
 

@@ -33,7 +33,7 @@ class SchedulerLink {
   void stopLeasing();
   grpc::Status heartbeat(int64_t attemptId, double progress, HeartbeatReply& reply);
   grpc::Status complete(const CompleteRequest& request, ReportReply& reply);
-  grpc::Status fail(int64_t attemptId, const std::string& reason, const std::string& logTail, ReportReply& reply);
+  grpc::Status fail(const FailRequest& request, ReportReply& reply);
   grpc::Status putChunk(const std::string& bytes, ChunkRef& stored);
   grpc::Status getChunk(const std::string& sha256, std::string& bytes);
 

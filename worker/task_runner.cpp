@@ -11,6 +11,7 @@
 #include "renderer/integrators/gradient_frame_renderer.h"
 #include "renderer/scene/scene_loader.h"
 #include "scheduler/planner.h"
+#include "worker/failure_class.h"
 #include "worker/metropolis_tasks.h"
 #include "worker/scene_files.h"
 
@@ -147,7 +148,7 @@ TaskOutput TaskRunner::filter(const Lease& lease, const ChunkFetcher& fetch, std
 std::vector<TaskInput> TaskRunner::inputsOf(const Lease& lease, const ChunkFetcher& fetch,
                                             std::atomic<double>& progress) {
   if (lease.input_kinds_size() != lease.inputs_size() || lease.input_params_size() != lease.inputs_size())
-    throw std::runtime_error("the lease's inputs are incomplete (kinds or parameters missing)");
+    throw BadInput("the lease's inputs are incomplete (kinds or parameters missing)");
   std::vector<TaskInput> inputs;
   for (int i = 0; i < lease.inputs_size(); ++i) {
     const ChunkRef& ref = lease.inputs(i);
@@ -155,7 +156,7 @@ std::vector<TaskInput> TaskRunner::inputsOf(const Lease& lease, const ChunkFetch
     inputs.push_back({lease.input_kinds(i), lease.input_params(i),
                       image ? decodeExr(fetch(ref), "input chunk " + ref.sha256()) : FrameImage{}});
     if (const std::string bad = inputs.back().image.firstNonFinite(); !bad.empty())
-      throw std::runtime_error("input chunk " + ref.sha256() + " holds a non-finite value (" + bad + ")");
+      throw BadInput("input chunk " + ref.sha256() + " holds a non-finite value (" + bad + ")");
     // Fetching and decoding is the first half of a filter task's work, as far as anyone can tell.
     progress = 0.5 * static_cast<double>(i + 1) / static_cast<double>(lease.inputs_size());
   }
@@ -166,7 +167,7 @@ TaskOutput TaskRunner::runMetropolis(const Lease& lease, const ChunkFetcher& fet
                                      const std::atomic<bool>& abandon) {
   const auto shot = rendererFor(lease, fetch);
   if (!shot->metropolis)
-    throw std::runtime_error("a Metropolis task in a shot of pipeline \"" + lease.spec().pipeline() + "\"");
+    throw BadInput("a Metropolis task in a shot of pipeline \"" + lease.spec().pipeline() + "\"");
   const MetropolisRenderer& renderer = *shot->metropolis;
   TaskOutput output;
   if (lease.kind() == TASK_MLT_SEED_POOL) {
@@ -193,16 +194,16 @@ std::string TaskRunner::assembleFrame(const Lease& lease, const ChunkFetcher& fe
     const FrameImage tile = decodeExr(fetch(lease.inputs(i)), "tile chunk " + lease.inputs(i).sha256());
     const auto& window = lease.input_params(i).window();
     if (tile.width() != window.x1() - window.x0() || tile.height() != window.y1() - window.y0())
-      throw std::runtime_error("tile chunk " + lease.inputs(i).sha256() + " does not have its window's size");
+      throw BadInput("tile chunk " + lease.inputs(i).sha256() + " does not have its window's size");
     if (const std::string bad = tile.firstNonFinite(); !bad.empty())
-      throw std::runtime_error("tile chunk " + lease.inputs(i).sha256() + " holds a non-finite value (" + bad +
+      throw BadInput("tile chunk " + lease.inputs(i).sha256() + " holds a non-finite value (" + bad +
                                "): not pasted into the frame");
     frame.paste(tile, window.x0(), window.y0());
     // The frame carries the tiles' header; the count of dropped samples is their sum.
     for (const auto& [key, value] : tile.attributes()) frame.attributes()[key] = value;
     const auto count = tile.attributes().find("pathfarm.nonfinite_samples");
     if (count == tile.attributes().end())
-      throw std::runtime_error("tile chunk " + lease.inputs(i).sha256() + " was not made by a pathfarm renderer");
+      throw BadInput("tile chunk " + lease.inputs(i).sha256() + " was not made by a pathfarm renderer");
     nonFinite += std::stoull(count->second);
     progress = static_cast<double>(i + 1) / static_cast<double>(lease.inputs_size());
   }

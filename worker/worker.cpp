@@ -12,6 +12,7 @@
 
 #include "proto/wire/chunk_store.h"
 #include "worker/cache_trim.h"
+#include "worker/failure_class.h"
 #include "worker/scheduler_link.h"
 #include "worker/task_log.h"
 #include "worker/task_runner.h"
@@ -121,7 +122,7 @@ class Slot {
       }
       if (abandon) throw TaskAbandoned();
       if (!isTransient(status))
-        throw std::runtime_error("cannot fetch input chunk " + ref.sha256() + ": " + status.error_message());
+        throw TransferFailed("cannot fetch input chunk " + ref.sha256() + ": " + status.error_message());
       backoff.sleep();
     }
   }
@@ -146,8 +147,9 @@ class Slot {
       spdlog::warn("task {}: lease lost, result dropped", lease.task_id());
       return;
     } catch (const std::exception& e) {
-      spdlog::error("task {} failed: {}", lease.task_id(), e.what());
-      report([&](ReportReply& r) { return link_.fail(lease.attempt_id(), e.what(), log.tail(), r); }, stop);
+      const FailureClass kind = classifyFailure(e);
+      spdlog::error("task {} failed ({}): {}", lease.task_id(), FailureClass_Name(kind), e.what());
+      reportFailure(lease, kind, e.what(), log, stop);
       return;
     }
     spdlog::info("task {}: ran {:.2f} s; read {} input chunk(s), {:.2f} MB ({} from the cache){}", lease.task_id(),
@@ -216,7 +218,7 @@ class Slot {
       if (!status.ok()) {
         const std::string reason = "cannot upload its output: " + status.error_message();
         spdlog::error("task {}: {}", lease.task_id(), reason);
-        report([&](ReportReply& r) { return link_.fail(lease.attempt_id(), reason, log.tail(), r); }, stop);
+        reportFailure(lease, FAILURE_TRANSPORT, reason, log, stop);
         return;
       }
       spdlog::info("task {}: output {} uploaded ({:.2f} MB)", lease.task_id(), stored.sha256().substr(0, 12),
@@ -225,6 +227,16 @@ class Slot {
     request.set_log_tail(log.tail());
     if (report([&](ReportReply& r) { return link_.complete(request, r); }, stop))
       spdlog::info("task {}: done", lease.task_id());
+  }
+
+  void reportFailure(const Lease& lease, FailureClass kind, const std::string& reason, const TaskLog& log,
+                     const std::atomic<bool>& stop) {
+    FailRequest request;
+    request.set_attempt_id(lease.attempt_id());
+    request.set_reason(reason);
+    request.set_failure_class(kind);
+    request.set_log_tail(log.tail());
+    report([&](ReportReply& r) { return link_.fail(request, r); }, stop);
   }
 
   // Sends a completion or failure until the scheduler answers; true if it was accepted.

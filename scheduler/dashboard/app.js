@@ -375,7 +375,7 @@ function taskRow(task, shotId) {
         el('span', { className: 'dim' }, clock(a.leased_at) + ' '),
         'attempt ' + a.id + ' on ' + (a.worker || 'worker ' + a.worker_id) + ': ', badge(a.state),
         ' ' + duration(a.seconds) + (a.state === 'running' ? ', ' + Math.round(100 * a.progress) + '%' : ''),
-        a.error ? el('span', { className: 'bad' }, ' \u2014 ' + a.error) : null,
+        a.error ? el('span', { className: 'bad' }, ' \u2014 ' + (a.failure_class ? a.failure_class.replace('_', ' ') + ': ' : '') + a.error) : null,
         a.log_tail ? el('pre', { className: 'worker-log' }, a.log_tail) : null)),
       task.log.map((e) => el('li', {}, el('span', { className: 'dim' }, clock(e.time) + ' '), e.message))));
   details.addEventListener('toggle', () => {

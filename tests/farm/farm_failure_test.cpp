@@ -1,6 +1,6 @@
 // A shot whose task fails on every attempt: it ends SHOT_FAILED with the reason, the
 // workers that failed it keep running and keep working, and once the cause is mended
-// `pathfarm retry` finishes it.
+// `pathfarm retry` finishes it. A scene no worker can read fails its shot at once.
 #include "farm/farm_fixture.h"
 
 namespace pathfarm::farmtest {
@@ -79,6 +79,36 @@ TEST_F(FarmTest, ShotFailingEveryAttemptEndsFailedWithItsReasonAndWorkersSurvive
   const farm::ShotSummary mended = waitForShot(id, 30s);
   EXPECT_EQ(mended.state(), farm::SHOT_DONE) << describe(mended);
   EXPECT_EQ(mended.frames_done(), 1);
+}
+
+TEST_F(FarmTest, AMalformedSceneFailsItsShotAtOnceWithoutBlamingAWorker) {
+  SchedulerConfig config;
+  config.retryBackoffSeconds = 0.1;
+  startScheduler(config);
+  startWorker("worker-a");
+  startWorker("worker-b");
+
+  // Past the CLI's checks: the scene file exists but is not a scene.
+  const fs::path scene = dir() / "malformed_scene.json";
+  writeFile(scene, R"({"camera": {"position": [0, 1e400, 0]}})");
+  RenderSpec spec;
+  spec.name = "malformed-scene";
+  spec.width = 32;
+  spec.height = 32;
+  spec.tile = 32;
+  spec.maxAttempts = 3;
+  farm::ShotSpec shot = shotSpec(spec);
+  shot.set_scene(scene.string());
+  const int64_t id = client().submit(shot);
+
+  const farm::ShotSummary summary = waitForShot(id, 30s);
+  ASSERT_EQ(summary.state(), farm::SHOT_FAILED) << describe(summary);
+  EXPECT_TRUE(contains(summary.failure(), "bad input")) << summary.failure();
+  EXPECT_TRUE(contains(summary.failure(), "malformed_scene.json")) << summary.failure();
+  const FarmDatabase db = database();
+  EXPECT_EQ(db.integer("SELECT COUNT(*) FROM attempts"), 1) << "a scene no worker can read was tried again";
+  EXPECT_EQ(db.rows("SELECT failure_class FROM attempts")[0][0], "bad_input");
+  EXPECT_EQ(db.integer("SELECT COUNT(*) FROM worker_failures"), 0) << "a worker was blamed for the scene";
 }
 
 }  // namespace

@@ -126,7 +126,10 @@ TEST_F(FarmTest, CorruptUploadsAndLateCompletionsAreRefused) {
   farm::HeartbeatReply intruderBeat;
   EXPECT_EQ(intruder.heartbeat(attempt, 0.5, intruderBeat).error_code(), grpc::StatusCode::PERMISSION_DENIED);
   farm::ReportReply intruderFailure;
-  EXPECT_EQ(intruder.fail(attempt, "blame the silent worker", "", intruderFailure).error_code(),
+  farm::FailRequest blame;
+  blame.set_attempt_id(attempt);
+  blame.set_reason("blame the silent worker");
+  EXPECT_EQ(intruder.fail(blame, intruderFailure).error_code(),
             grpc::StatusCode::PERMISSION_DENIED);
   EXPECT_EQ(db.integer(attemptState), 0) << "the intruder's failure report was taken";
   EXPECT_EQ(db.integer("SELECT COUNT(*) FROM worker_failures"), 0);
@@ -151,7 +154,10 @@ TEST_F(FarmTest, CorruptUploadsAndLateCompletionsAreRefused) {
   ASSERT_TRUE(link.heartbeat(attempt, 0.9, beat).ok());
   EXPECT_FALSE(beat.keep_going());
   farm::ReportReply failure;
-  ASSERT_TRUE(link.fail(attempt, "too late", "", failure).ok());
+  farm::FailRequest late;
+  late.set_attempt_id(attempt);
+  late.set_reason("too late");
+  ASSERT_TRUE(link.fail(late, failure).ok());
   EXPECT_FALSE(failure.accepted());
   EXPECT_EQ(db.integer(attemptState), 3);
   EXPECT_EQ(db.integer("SELECT state FROM tasks WHERE id = " + std::to_string(task)), 1) << "task back to ready";

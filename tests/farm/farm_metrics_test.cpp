@@ -66,7 +66,7 @@ TEST_F(FarmTest, MetricsCountWhatTheShotDid) {
   EXPECT_EQ(samples.count("pathfarm_shot_progress{shot=\"" + std::to_string(id) + "\",name=\"" + spec.name + "\"}"),
             0u) << "a done shot's progress is not a gauge any more";
   EXPECT_EQ(value(R"(pathfarm_workers{state="idle"})") + value(R"(pathfarm_workers{state="busy"})"), 1);
-  EXPECT_EQ(value(R"(pathfarm_attempts_ended_total{cause="failed"})"), 0);
+  EXPECT_EQ(value(R"(pathfarm_attempts_ended_total{cause="worker_fault"})"), 0);
   EXPECT_EQ(value(R"(pathfarm_task_duration_seconds_count{kind="render_tile"})"), tiles);
   EXPECT_EQ(value(R"(pathfarm_task_duration_seconds_bucket{kind="render_tile",le="+Inf"})"), tiles);
   double previous = 0;

@@ -1,0 +1,69 @@
+// Whose fault a failure is decides what the farm does with it: a bad input fails the
+// task and its shot at once and blames nobody; a transfer failure runs the task again
+// without blaming the worker; a worker fault counts toward that worker's blocklist.
+#include "scheduler/farm_state_fixture.h"
+
+namespace pathfarm::farm {
+namespace {
+
+TEST_F(FarmStateTest, ABadInputFailsTheShotAtOnceAndBlamesNoWorker) {
+  const int64_t shot = submitFrame(0, 10);
+  const int64_t worker = state_->registerWorker("w", 1, now_);
+  const Lease lease = leaseFor(worker);
+  ASSERT_TRUE(state_->fail(lease.attempt_id(), "scene.json: \"radius\": not a finite number", now_, "", FAILURE_BAD_INPUT)
+                  .accepted());
+  const ShotSummary summary = state_->summary(shot, now_);
+  EXPECT_EQ(summary.state(), SHOT_FAILED) << "a bad input was retried although no worker can run it";
+  EXPECT_NE(summary.failure().find("bad input"), std::string::npos) << summary.failure();
+  EXPECT_NE(summary.failure().find("\"radius\""), std::string::npos) << summary.failure();
+  EXPECT_TRUE(state_->blocklist(shot).empty());
+  const FarmMetrics metrics = state_->metrics(now_);
+  EXPECT_EQ(metrics.attemptsEnded.at("bad_input"), 1);
+  EXPECT_EQ(metrics.attemptsEnded.at("worker_fault"), 0);
+}
+
+TEST_F(FarmStateTest, ATransferFailureRunsTheTaskAgainAndBlamesNoWorker) {
+  const int64_t shot = submitFrame(0, 3);
+  const int64_t only = state_->registerWorker("only", 1, now_);
+  const Lease first = leaseFor(only), second = leaseFor(only);
+  // As many as would blocklist the worker (blocklistAfter is 2) had they been its fault.
+  for (const Lease& lease : {first, second})
+    ASSERT_TRUE(state_->fail(lease.attempt_id(), "cannot upload its output: the store's disk is full", now_, "",
+                             FAILURE_TRANSPORT)
+                    .accepted());
+  EXPECT_TRUE(state_->blocklist(shot).empty());
+  now_ += settings_.retryBackoffSeconds;
+  EXPECT_EQ(leaseFor(only).task_id(), first.task_id()) << "the only worker may run the task again";
+  EXPECT_EQ(state_->summary(shot, now_).state(), SHOT_RUNNING);
+  EXPECT_EQ(state_->metrics(now_).attemptsEnded.at("transport"), 2);
+}
+
+TEST_F(FarmStateTest, TransferFailuresStillCountTowardTheTasksAttempts) {
+  const int64_t shot = submitFrame(0, 2);
+  const int64_t worker = state_->registerWorker("w", 1, now_);
+  const Lease first = leaseFor(worker);
+  ASSERT_TRUE(state_->fail(first.attempt_id(), "cannot fetch input chunk", now_, "", FAILURE_TRANSPORT).accepted());
+  leaseFor(worker);  // the other tile
+  now_ += settings_.retryBackoffSeconds;
+  const Lease retry = leaseFor(worker);
+  ASSERT_EQ(retry.task_id(), first.task_id());
+  ASSERT_TRUE(state_->fail(retry.attempt_id(), "cannot fetch input chunk", now_, "", FAILURE_TRANSPORT).accepted());
+  const ShotSummary summary = state_->summary(shot, now_);
+  EXPECT_EQ(summary.state(), SHOT_FAILED);
+  EXPECT_NE(summary.failure().find("failed 2 times"), std::string::npos) << summary.failure();
+}
+
+TEST_F(FarmStateTest, AnUnknownFailureClassIsTheWorkersFault) {
+  const int64_t shot = submitFrame(0, 10);
+  const int64_t worker = state_->registerWorker("w", 1, now_);
+  state_->registerWorker("other", 1, now_);
+  const Lease first = leaseFor(worker), second = leaseFor(worker);
+  for (const Lease& lease : {first, second})
+    ASSERT_TRUE(state_->fail(lease.attempt_id(), "a class from a newer worker", now_, "", static_cast<FailureClass>(7))
+                    .accepted());
+  EXPECT_EQ(state_->blocklist(shot).size(), 1u);
+  EXPECT_EQ(state_->metrics(now_).attemptsEnded.at("worker_fault"), 2);
+}
+
+}  // namespace
+}  // namespace pathfarm::farm
