@@ -279,6 +279,18 @@ std::optional<FarmState::AttemptRow> FarmState::currentAttempt(int64_t attemptId
   return row;
 }
 
+std::optional<FarmState::AttemptTask> FarmState::runningAttemptTask(int64_t attemptId) {
+  return transact([&]() -> std::optional<AttemptTask> {
+    const auto attempt = currentAttempt(attemptId);
+    if (!attempt) return std::nullopt;
+    AttemptTask task{attempt->kind, attempt->params, {}};
+    Statement& q = db_.query("SELECT spec FROM shots WHERE id = ?1").bind(1, attempt->shotId);
+    if (q.step()) task.spec.ParseFromString(q.blob(0));
+    q.reset();
+    return task;
+  });
+}
+
 HeartbeatReply FarmState::heartbeat(int64_t attemptId, double progress, double now) {
   return transact([&]() -> HeartbeatReply {
     HeartbeatReply reply;

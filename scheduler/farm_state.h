@@ -30,6 +30,9 @@ struct FarmSettings {
   // to the task's max_attempts; a task whose workers vanish this often may be what kills
   // them, and fails the shot.
   int maxLostWorkers = 10;
+  // A shot finished this long ago is deleted with its tasks, attempts and events, and so
+  // are chunks nothing kept refers to and stored as long ago; 0 keeps everything.
+  double retainSeconds = 0;
 };
 
 // A task as the shot's report sees it.
@@ -65,6 +68,14 @@ class FarmState {
   bool sessionMatches(int64_t workerId, const std::string& sessionHash);
   // The worker an attempt was leased to; nothing for an unknown attempt.
   std::optional<int64_t> attemptWorker(int64_t attemptId);
+  // The task of a running attempt and its shot's spec, to check an output against;
+  // nothing for an attempt that is not running.
+  struct AttemptTask {
+    TaskKind kind = TASK_KIND_UNSPECIFIED;
+    TaskParams params;
+    ShotSpec spec;
+  };
+  std::optional<AttemptTask> runningAttemptTask(int64_t attemptId);
 
   // The next task for this worker, or nothing: ready tasks of running or queued shots
   // the worker is not blocklisted for, by shot priority (high first), then shot age,
@@ -83,6 +94,15 @@ class FarmState {
   // Expired leases and hung tasks go back to the queue (or fail their shot when out of
   // attempts). Returns how many leases ended.
   int expireLeases(double now);
+  // Deletes shots finished more than settings().retainSeconds ago and the chunk rows that
+  // neither a kept task's output nor a kept shot's input names (and stored as long ago:
+  // a chunk uploaded for a shot about to be submitted stays). Returns the chunks whose
+  // files may go (farm_state_retention.cpp).
+  struct Collected {
+    std::vector<int64_t> shots;
+    std::vector<std::string> chunks;
+  };
+  Collected collectGarbage(double now);
 
   void recordChunk(const ChunkRef& chunk, double now);
   bool hasChunk(const std::string& sha256);

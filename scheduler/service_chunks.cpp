@@ -2,6 +2,7 @@
 
 #include "proto/wire/chunk_transfer.h"
 #include "proto/wire/connection.h"
+#include "scheduler/output_check.h"
 
 namespace pathfarm::farm {
 
@@ -19,6 +20,14 @@ grpc::Status lostChunk(const SchedulerContext& c, const std::string& sha256) {
   c.signal.notify();
   return {grpc::StatusCode::NOT_FOUND, "chunk " + sha256 + " was missing or damaged: the " + std::to_string(requeued) +
                                            " task(s) that made it run again"};
+}
+
+std::string refusalOfCompletion(const SchedulerContext& c, const CompleteRequest& request) {
+  const auto task = c.state.runningAttemptTask(request.attempt_id());
+  if (!task || task->kind == TASK_NOOP) return {};
+  const std::optional<std::string> bytes = c.store.get(request.output().sha256());
+  if (!bytes) return {};
+  return refusalOfOutput(*bytes, task->kind, task->params, task->spec);
 }
 
 }  // namespace pathfarm::farm

@@ -12,4 +12,9 @@ ChunkRef storeReceivedChunk(grpc::ServerReader<ChunkPart>& reader, const Schedul
 // requeueProducersOf), and the status says so.
 grpc::Status lostChunk(const SchedulerContext& c, const std::string& sha256);
 
+// Why the output a completion names is refused (scheduler/output_check.h); empty when it
+// is sound, and when the attempt is not running or its chunk not stored (FarmState then
+// refuses the completion itself).
+std::string refusalOfCompletion(const SchedulerContext& c, const CompleteRequest& request);
+
 }  // namespace pathfarm::farm

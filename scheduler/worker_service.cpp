@@ -85,6 +85,15 @@ grpc::Status WorkerServiceImpl::CompleteTask(grpc::ServerContext* context, const
                                              ReportReply* reply) {
   return asWorker(context, [&](int64_t worker) {
     if (grpc::Status owner = checkAttemptOwner(request->attempt_id(), worker); !owner.ok()) return owner;
+    if (const std::string refusal = refusalOfCompletion(c_, *request); !refusal.empty()) {
+      // The worker's doing: the task runs again, elsewhere if the worker keeps at it.
+      const std::string reason = "its output was refused: " + refusal;
+      c_.state.fail(request->attempt_id(), reason, farmClockSeconds(), request->log_tail(), FAILURE_WORKER_FAULT);
+      reply->set_accepted(false);
+      reply->set_reason(reason);
+      c_.signal.notify();
+      return grpc::Status::OK;
+    }
     *reply = c_.state.complete(*request, farmClockSeconds());
     if (reply->accepted()) c_.signal.notify();
     return grpc::Status::OK;

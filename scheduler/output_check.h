@@ -1,0 +1,16 @@
+#pragma once
+// What the scheduler checks of a task's output before accepting it: a worker, buggy or
+// hostile, must not put into a shot a chunk that would spoil whatever reads it. Every
+// image output must decode, hold only finite values and fit the shot's frame; a render
+// tile must have its window's size exactly.
+#include <string>
+
+#include "pathfarm/shot.pb.h"
+
+namespace pathfarm::farm {
+
+// Why the output `bytes` of a task of `kind` with `params` in the shot `spec` is refused;
+// empty when it is sound. Outputs that are not images (no-op, evaluation) are not read.
+std::string refusalOfOutput(const std::string& bytes, TaskKind kind, const TaskParams& params, const ShotSpec& spec);
+
+}  // namespace pathfarm::farm
