@@ -21,6 +21,7 @@ struct SchedulerArguments {
   std::string workerTokenFile;
   std::string portFile;
   std::string httpPortFile;
+  double retainDays = 0;
 };
 
 int runScheduler(SchedulerArguments& arguments) {
@@ -28,6 +29,7 @@ int runScheduler(SchedulerArguments& arguments) {
   try {
     arguments.options.token = farm::loadToken(arguments.tokenFile);
     if (!arguments.workerTokenFile.empty()) arguments.options.workerToken = farm::loadToken(arguments.workerTokenFile);
+    arguments.options.farm.retainSeconds = arguments.retainDays * 86400;
     if (!arguments.options.workerToken.empty() && arguments.options.token.empty())
       throw std::runtime_error("--worker-token-file needs a client token too (--token-file or PATHFARM_TOKEN[_FILE])");
     farm::SchedulerServer server(arguments.options);
@@ -101,6 +103,10 @@ std::vector<Command> addFarmProcessCommands(CLI::App& app) {
   s->add_option("--max-lost-workers", scheduler->options.farm.maxLostWorkers,
                 "a task whose lease expires this often (its workers vanish) fails the shot; not charged to max_attempts")
       ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  s->add_option("--retain-days", scheduler->retainDays,
+                "delete shots finished this many days ago, with their chunks and records (0: keep everything)")
+      ->check(CLI::Range(0.0, 36500.0))
       ->capture_default_str();
   s->add_option("--port-file", scheduler->portFile, "write the bound port here (for --listen HOST:0)");
   s->add_option("--http", scheduler->options.http,

@@ -65,12 +65,19 @@ SchedulerServer::SchedulerServer(SchedulerOptions options) : options_(std::move(
   server_ = builder.BuildAndStart();
   if (!server_ || port_ == 0) throw std::runtime_error("cannot listen on " + options_.listen);
 
-  // The one checker of timeouts: leases not renewed, tasks that stopped progressing.
+  // The one checker of timeouts (leases not renewed, tasks that stopped progressing) and
+  // of retention.
   checker_ = std::thread([this] {
     const double period = std::clamp(options_.farm.leaseSeconds / 10, 0.05, 1.0);
+    const double retentionPeriod = std::clamp(options_.farm.retainSeconds / 4, 0.1, 300.0);
+    double nextRetention = 0;
     while (!stopping_) {
       try {
         if (services_->state.expireLeases(farmClockSeconds()) > 0) services_->signal.notify();
+        if (options_.farm.retainSeconds > 0 && farmClockSeconds() >= nextRetention) {
+          collectGarbage();
+          nextRetention = farmClockSeconds() + retentionPeriod;
+        }
       } catch (const std::exception& e) {
         spdlog::error("lease checker: {}", e.what());
       }
@@ -95,6 +102,15 @@ SchedulerServer::SchedulerServer(SchedulerOptions options) : options_(std::move(
 }
 
 SchedulerServer::~SchedulerServer() { shutdown(); }
+
+void SchedulerServer::collectGarbage() {
+  const FarmState::Collected collected = services_->state.collectGarbage(farmClockSeconds());
+  // The rows are gone first: a crash here leaves files no row names, never a row without its file.
+  for (const std::string& sha : collected.chunks) services_->store.remove(sha);
+  if (!collected.shots.empty() || !collected.chunks.empty())
+    spdlog::info("retention: deleted {} finished shot(s) and {} chunk(s)", collected.shots.size(),
+                 collected.chunks.size());
+}
 
 std::string SchedulerServer::address() const {
   const auto colon = options_.listen.rfind(':');

@@ -58,6 +58,8 @@ class SchedulerServer {
 
  private:
   struct Services;
+  // Deletes what retention (FarmSettings::retainSeconds) lets go, files included.
+  void collectGarbage();
   SchedulerOptions options_;
   std::unique_ptr<Services> services_;
   std::unique_ptr<grpc::Server> server_;

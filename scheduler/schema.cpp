@@ -121,8 +121,10 @@ const std::vector<const char*>& migrations() {
       )sql",
       // 9: whose fault a failed attempt was, as the worker reported it: "worker_fault",
       // "bad_input" or "transport". Empty for attempts that did not fail or ended before.
+      // And the tasks that name a chunk, found without a scan (retention).
       R"sql(
       ALTER TABLE attempts ADD COLUMN failure_class TEXT NOT NULL DEFAULT '';
+      CREATE INDEX tasks_by_output ON tasks(output_sha) WHERE output_sha IS NOT NULL;
       )sql",
   };
   return list;

@@ -63,4 +63,10 @@ std::optional<std::string> ChunkStore::get(const std::string& sha256) const {
   return data;
 }
 
+void ChunkStore::remove(const std::string& sha256) {
+  if (!isSha256Hex(sha256)) return;
+  std::error_code ignored;
+  std::filesystem::remove(pathOf(sha256), ignored);
+}
+
 }  // namespace pathfarm::farm

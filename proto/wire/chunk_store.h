@@ -30,6 +30,8 @@ class ChunkStore {
   // The chunk's bytes, verified; nullopt when absent. A damaged file is removed and
   // reported as absent.
   std::optional<std::string> get(const std::string& sha256) const;
+  // Deletes the chunk's file; a chunk that is not there is no error.
+  void remove(const std::string& sha256);
   const std::filesystem::path& root() const { return root_; }
   // Bytes put into and read out of the store since it was opened (the farm's metrics).
   uint64_t bytesIn() const { return bytesIn_; }

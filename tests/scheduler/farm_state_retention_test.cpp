@@ -1,0 +1,76 @@
+// Retention: shots finished longer ago than FarmSettings::retainSeconds go with their
+// records, and so do the chunks nothing kept names; everything else stays.
+#include <algorithm>
+
+#include "scheduler/farm_state_fixture.h"
+
+namespace pathfarm::farm {
+namespace {
+
+// Whether `list` holds the digest FarmStateTest::storedChunk gives `name`.
+bool has(const std::vector<std::string>& list, const std::string& name) {
+  return std::find(list.begin(), list.end(), std::string(64 - name.size(), '0') + name) != list.end();
+}
+
+TEST_F(FarmStateTest, RetentionDeletesOldFinishedShotsAndTheChunksOnlyTheyNamed) {
+  settings_.retainSeconds = 100;
+  open();
+  const int64_t worker = state_->registerWorker("w", 1, now_);
+  storedChunk("orphan");  // uploaded, never named by a task
+
+  // An old shot, done: two tiles and its frame.
+  const int64_t old = submitFrame();
+  ASSERT_TRUE(complete(leaseFor(worker).attempt_id(), storedChunk("shared"), now_).accepted());
+  ASSERT_TRUE(complete(leaseFor(worker).attempt_id(), storedChunk("mine"), now_).accepted());
+  ASSERT_TRUE(complete(leaseFor(worker).attempt_id(), storedChunk("frame"), now_).accepted());
+  ASSERT_EQ(state_->summary(old, now_).state(), SHOT_DONE);
+
+  // A shot still running names one of the old shot's chunks (the same tile bytes), and an
+  // uploaded scene file as its input.
+  ShotSpec spec;
+  spec.set_name("running");
+  spec.set_pipeline("pt");
+  spec.set_width(64);
+  spec.set_height(32);
+  spec.set_spp(1);
+  spec.set_tile(32);
+  InputFile* scene = spec.add_inputs();
+  scene->set_path("scene.json");
+  *scene->mutable_chunk() = storedChunk("scene");
+  const int64_t running = state_->submit(spec, planShot(spec), now_);
+  ASSERT_TRUE(complete(leaseFor(worker).attempt_id(), storedChunk("shared"), now_).accepted());
+
+  now_ += 50;
+  EXPECT_TRUE(state_->collectGarbage(now_).shots.empty()) << "deleted before its time";
+  now_ += 60;
+  storedChunk("fresh");  // uploaded just now, for a shot to come
+  const FarmState::Collected collected = state_->collectGarbage(now_);
+  EXPECT_EQ(collected.shots, std::vector<int64_t>{old});
+  EXPECT_EQ(collected.chunks.size(), 3u);
+  for (const char* gone : {"mine", "frame", "orphan"}) EXPECT_TRUE(has(collected.chunks, gone)) << gone;
+  EXPECT_THROW(state_->summary(old, now_), std::out_of_range);
+  EXPECT_EQ(state_->summary(running, now_).state(), SHOT_RUNNING);
+  EXPECT_EQ(state_->taskDetails(running, std::nullopt, 0, 10).tasks.size(), 3u);
+  for (const char* kept : {"shared", "scene", "fresh"}) EXPECT_FALSE(has(collected.chunks, kept)) << kept;
+
+  // What was deleted is not deleted twice; the running shot finishes as before.
+  EXPECT_TRUE(state_->collectGarbage(now_).chunks.empty());
+  ASSERT_TRUE(complete(leaseFor(worker).attempt_id(), storedChunk("other"), now_).accepted());
+  ASSERT_TRUE(complete(leaseFor(worker).attempt_id(), storedChunk("frame2"), now_).accepted());
+  EXPECT_EQ(state_->summary(running, now_).state(), SHOT_DONE);
+}
+
+TEST_F(FarmStateTest, WithoutRetentionNothingIsDeleted) {
+  const int64_t worker = state_->registerWorker("w", 1, now_);
+  const int64_t shot = submitFrame();
+  for (const char* chunk : {"a", "b", "frame"})
+    ASSERT_TRUE(complete(leaseFor(worker).attempt_id(), storedChunk(chunk), now_).accepted());
+  storedChunk("orphan");
+  const FarmState::Collected collected = state_->collectGarbage(now_ + 1e9);
+  EXPECT_TRUE(collected.shots.empty());
+  EXPECT_TRUE(collected.chunks.empty());
+  EXPECT_EQ(state_->summary(shot, now_).state(), SHOT_DONE);
+}
+
+}  // namespace
+}  // namespace pathfarm::farm
