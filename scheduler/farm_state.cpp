@@ -26,14 +26,6 @@ ReportReply accepted() {
   return reply;
 }
 
-// Tags as stored: ",a,b," (every tag between commas, so a lookup is one search), "" for none.
-template <class Iterator>
-std::string tagList(Iterator first, Iterator last) {
-  std::string list;
-  for (; first != last; ++first) list += "," + *first;
-  return list.empty() ? list : list + ",";
-}
-
 bool carriesEveryTag(const std::string& offered, const std::string& required) {
   size_t start = 1;
   while (start < required.size()) {
@@ -68,73 +60,14 @@ FarmState::FarmState(const std::string& databaseFile, FarmSettings settings, dou
     : db_(databaseFile), settings_(settings) {
   migrate(db_);
   Transaction transaction(db_);
+  // A shot still building lost its submit with the scheduler before (farm_state_submit.cpp).
+  db_.execute("DELETE FROM shots WHERE building = 1");
   db_.query("UPDATE attempts SET expires_at = MAX(expires_at, ?1), progress_at = MAX(progress_at, ?2) WHERE state = ?3")
       .bind(1, now + settings_.leaseSeconds)
       .bind(2, now)
       .bind(3, int64_t{kRunning})
       .run();
   transaction.commit();
-}
-
-int64_t FarmState::submit(const ShotSpec& spec, const std::vector<PlannedTask>& plan, double now,
-                          const std::string& submitKey) {
-  return transact([&]() -> int64_t {
-    if (!submitKey.empty()) {
-      Statement& earlier = db_.query("SELECT id FROM shots WHERE submit_key = ?1").bind(1, submitKey);
-      if (earlier.step()) {
-        const int64_t id = earlier.integer(0);
-        earlier.reset();
-        return id;
-      }
-    }
-    Statement& insert = db_.query(
-        "INSERT INTO shots (name, spec, state, priority, tasks_left, submitted_at, submit_key, required_tags, "
-        "max_workers) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9)");
-    insert.bind(1, spec.name())
-        .bindBlob(2, spec.SerializeAsString())
-        .bind(3, int64_t{SHOT_QUEUED})
-        .bind(4, int64_t{spec.priority()})
-        .bind(5, static_cast<int64_t>(plan.size()))
-        .bind(6, now)
-        .bind(8, tagList(spec.required_tags().begin(), spec.required_tags().end()))
-        .bind(9, int64_t{std::max(0, spec.max_workers())});
-    if (submitKey.empty()) {
-      insert.bindNull(7);
-    } else {
-      insert.bind(7, submitKey);
-    }
-    insert.run();
-    const int64_t shotId = db_.lastInsertId();
-    const int64_t maxAttempts = spec.max_attempts() > 0 ? spec.max_attempts() : settings_.defaultMaxAttempts;
-    std::vector<int64_t> ids;
-    ids.reserve(plan.size());
-    for (const PlannedTask& task : plan) {
-      ids.push_back(insertTask(shotId, task.kind, task.params, task.dependencies.size(), maxAttempts, task.output));
-      for (size_t dependency : task.dependencies) {
-        db_.query("INSERT INTO task_deps (task_id, depends_on) VALUES (?1, ?2)")
-            .bind(1, ids.back())
-            .bind(2, ids.at(dependency))
-            .run();
-      }
-    }
-    addEvent(shotId, "submitted: " + std::to_string(plan.size()) + " tasks", now);
-    return shotId;
-  });
-}
-
-int64_t FarmState::insertTask(int64_t shotId, TaskKind kind, const TaskParams& params, size_t dependencies,
-                              int64_t maxAttempts, bool output) {
-  db_.query("INSERT INTO tasks (shot_id, kind, params, state, pending_deps, max_attempts, is_output) "
-            "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7)")
-      .bind(1, shotId)
-      .bind(2, int64_t{kind})
-      .bindBlob(3, params.SerializeAsString())
-      .bind(4, asInt(dependencies == 0 ? TaskState::Ready : TaskState::Waiting))
-      .bind(5, static_cast<int64_t>(dependencies))
-      .bind(6, maxAttempts)
-      .bind(7, int64_t{output})
-      .run();
-  return db_.lastInsertId();
 }
 
 int64_t FarmState::registerWorker(const std::string& name, int slots, double now,
@@ -167,7 +100,8 @@ std::optional<int64_t> FarmState::nextTask(int64_t workerId, double now) {
   // is already one of them); priority, then age.
   std::vector<int64_t> shots;
   Statement& shotQuery = db_.query(
-      "SELECT id, required_tags != '' OR max_workers > 0 FROM shots WHERE state IN (?1, ?2) AND id NOT IN "
+      "SELECT id, required_tags != '' OR max_workers > 0 FROM shots WHERE state IN (?1, ?2) AND building = 0 "
+      "AND id NOT IN "
       "(SELECT shot_id FROM worker_failures WHERE worker_id = ?3 AND blocklisted = 1) "
       "ORDER BY priority DESC, id ASC");
   shotQuery.bind(1, int64_t{SHOT_QUEUED}).bind(2, int64_t{SHOT_RUNNING}).bind(3, workerId);

@@ -59,8 +59,10 @@ class FarmState {
   // A shot and its tasks; with a `submitKey` that an earlier submit carried, nothing is
   // added and that submit's shot is returned (a client retrying a submit it did not hear
   // back from makes one shot, not two).
+  // Tasks go in kTasksPerTransaction at a time (farm_state_submit.cpp).
   int64_t submit(const ShotSpec& spec, const std::vector<PlannedTask>& plan, double now,
                  const std::string& submitKey = "");
+  static constexpr size_t kTasksPerTransaction = 2000;
   // `sessionHash`: the SHA-256 hex of the key the worker proves itself with from now on.
   int64_t registerWorker(const std::string& name, int slots, double now, const std::vector<std::string>& tags = {},
                          const std::string& sessionHash = "");

@@ -16,6 +16,14 @@ inline int64_t asInt(AttemptState s) { return static_cast<int64_t>(s); }
 
 inline bool isActive(ShotState state) { return state == SHOT_QUEUED || state == SHOT_RUNNING; }
 
+// Tags as stored: ",a,b," (every tag between commas, so a lookup is one search), "" for none.
+template <class Iterator>
+std::string tagList(Iterator first, Iterator last) {
+  std::string list;
+  for (; first != last; ++first) list += "," + *first;
+  return list.empty() ? list : list + ",";
+}
+
 template <class Body>
 auto FarmState::transact(Body body) -> decltype(body()) {
   const std::lock_guard lock(mutex_);

@@ -126,6 +126,13 @@ const std::vector<const char*>& migrations() {
       ALTER TABLE attempts ADD COLUMN failure_class TEXT NOT NULL DEFAULT '';
       CREATE INDEX tasks_by_output ON tasks(output_sha) WHERE output_sha IS NOT NULL;
       )sql",
+      // 10: a shot whose tasks are still being inserted, a batch per transaction (1): none
+      // of them is leased yet. And the re-render tiles a task made, found without a scan:
+      // deleting a shot's tasks checks each for tiles it made (ON DELETE CASCADE).
+      R"sql(
+      ALTER TABLE shots ADD COLUMN building INTEGER NOT NULL DEFAULT 0;
+      CREATE INDEX tasks_by_creator ON tasks(created_by) WHERE created_by IS NOT NULL;
+      )sql",
   };
   return list;
 }
