@@ -10,8 +10,13 @@
 #include <OpenEXR/ImfStdIO.h>
 #include <OpenEXR/ImfStringAttribute.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
+#include <string_view>
+#include <utility>
 
 namespace pathfarm {
 
@@ -40,8 +45,156 @@ std::string encodeExr(const FrameImage& frame, ExrCompression compression) {
   }
 }
 
+namespace {
+
+// A damaged chunk (or a hostile file) can claim a data window of billions of pixels in a
+// header of a few bytes; decoding it would allocate gigabytes before OpenEXR found the
+// pixels missing. So a frame whose float planes would need more bytes than its compression
+// can unpack from the bytes it came in is refused before anything is allocated. zlib packs
+// at most 1032:1, and no other lossless EXR compression packs tighter; PXR24 adds 4/3 and
+// half channels double as floats: 4096. DWA keeps one coefficient of a flat 8x8 block
+// before zlib: 64 times more.
+constexpr uint64_t kMaxExpansion = 4096;
+constexpr uint64_t kMaxDwaExpansion = 64 * kMaxExpansion;
+constexpr int kDwaaCompression = 8, kDwabCompression = 9;  // OpenEXR's file format numbers
+
+// What decodeExr needs to know of the first header before OpenEXR reads it.
+struct HeaderSummary {
+  bool hasDataWindow = false;
+  int64_t width = 0, height = 0;
+  size_t channels = 0;
+  int compression = 0;
+};
+
+int32_t readInt32(std::string_view bytes, size_t pos) {
+  if (bytes.size() < 4 || pos > bytes.size() - 4) throw std::runtime_error("truncated header");
+  uint32_t value = 0;
+  for (int i = 3; i >= 0; --i) value = value << 8 | static_cast<unsigned char>(bytes[pos + static_cast<size_t>(i)]);
+  return static_cast<int32_t>(value);
+}
+
+// A NUL-terminated name at `pos`, which moves past it. Attribute and type names are at
+// most 31 bytes, or 255 in files flagged for long names, channel names at most 255:
+// OpenEXR reads no further.
+std::string_view readName(std::string_view bytes, size_t& pos, size_t maxLength) {
+  const size_t end = bytes.find('\0', pos);
+  if (end == std::string_view::npos) throw std::runtime_error("truncated header");
+  const std::string_view name = bytes.substr(pos, end - pos);
+  if (name.size() > maxLength) throw std::runtime_error("a header name is longer than " + std::to_string(maxLength) + " bytes");
+  pos = end + 1;
+  return name;
+}
+
+// The bytes a value of each fixed-size attribute type of OpenEXR 3.1 takes.
+size_t fixedSizeOf(std::string_view type) {
+  static constexpr std::pair<std::string_view, size_t> kSizes[] = {
+      {"box2i", 16},   {"box2f", 16}, {"chromaticities", 32}, {"compression", 1}, {"deepImageState", 1},
+      {"double", 8},   {"envmap", 1}, {"float", 4},           {"int", 4},         {"keycode", 28},
+      {"lineOrder", 1}, {"m33f", 36}, {"m33d", 72},           {"m44f", 64},       {"m44d", 128},
+      {"rational", 8}, {"tiledesc", 9}, {"timecode", 8},      {"v2i", 8},         {"v2f", 8},
+      {"v2d", 16},     {"v3i", 12},   {"v3f", 12},            {"v3d", 24}};
+  for (const auto& [name, size] : kSizes)
+    if (name == type) return size;
+  return 0;
+}
+
+// OpenEXR reads a value of a known type by the type's own layout and the next attribute
+// from where that stopped, but allocates what the declared size (or a preview's width and
+// height, a string vector's lengths) asks before reading. A value must take exactly its
+// declared size, so that this walk and OpenEXR's agree on where every attribute is.
+// Returns the number of channels of a channel list.
+size_t checkAttributeValue(std::string_view name, std::string_view type, std::string_view value) {
+  const auto damaged = [&](const std::string& what) {
+    throw std::runtime_error("header attribute \"" + std::string(name) + "\" (" + std::string(type) + "): " + what);
+  };
+  size_t channels = 0;
+  if (const size_t fixed = fixedSizeOf(type)) {
+    if (value.size() != fixed)
+      damaged(std::to_string(value.size()) + " bytes where the type has " + std::to_string(fixed));
+  } else if (type == "chlist") {
+    // Each channel: its name, then 16 bytes (type, pLinear, reserved, sampling); an empty name ends the list.
+    size_t at = 0;
+    for (size_t end = value.find('\0'); end != at; end = value.find('\0', at)) {
+      if (end == std::string_view::npos || value.size() - (end + 1) < 16) damaged("the list runs past its declared size");
+      if (end - at > 255) damaged("a channel name is longer than 255 bytes");
+      at = end + 1 + 16;
+      ++channels;
+    }
+    if (at + 1 != value.size()) damaged("the list ends before its declared size");
+  } else if (type == "preview") {
+    if (value.size() < 8) damaged("no width and height");
+    const uint64_t width = static_cast<uint32_t>(readInt32(value, 0));
+    const uint64_t height = static_cast<uint32_t>(readInt32(value, 4));
+    if (width != 0 && (height > (value.size() - 8) / 4 / width || 4 * width * height != value.size() - 8))
+      damaged("a " + std::to_string(width) + " x " + std::to_string(height) + " preview in " +
+              std::to_string(value.size()) + " bytes");
+  } else if (type == "stringvector") {
+    for (size_t at = 0; at < value.size();) {
+      const int32_t length = readInt32(value, at);
+      at += 4;
+      if (length < 0 || static_cast<size_t>(length) > value.size() - at)
+        damaged("a string of " + std::to_string(length) + " bytes where " + std::to_string(value.size() - at) +
+                " remain");
+      at += static_cast<size_t>(length);
+    }
+  }
+  return channels;
+}
+
+// Walks the headers (OpenEXR's file layout: magic, version, then per part attributes as
+// name, type, size, value until an empty name) before OpenEXR does, which allocates the
+// size an attribute claims before reading it: up to 2 GB for a few damaged bytes.
+HeaderSummary readHeaders(std::string_view bytes) {
+  if (!bytes.starts_with("\x76\x2f\x31\x01")) throw std::runtime_error("not an OpenEXR file (bad magic number)");
+  const int32_t flags = readInt32(bytes, 4);
+  const bool multipart = (flags & 0x1000) != 0;
+  const size_t maxName = (flags & 0x400) != 0 ? 255 : 31;
+  HeaderSummary summary;
+  size_t pos = 8;
+  for (bool first = true;; first = false) {
+    bool empty = true;
+    for (std::string_view name = readName(bytes, pos, maxName); !name.empty(); name = readName(bytes, pos, maxName)) {
+      empty = false;
+      const std::string_view type = readName(bytes, pos, maxName);
+      const int32_t size = readInt32(bytes, pos);
+      pos += 4;
+      if (size < 0 || static_cast<size_t>(size) > bytes.size() - pos)
+        throw std::runtime_error("header attribute \"" + std::string(name) + "\" claims " + std::to_string(size) +
+                                 " bytes, but " + std::to_string(bytes.size() - pos) + " follow");
+      const std::string_view value = bytes.substr(pos, static_cast<size_t>(size));
+      const size_t channels = checkAttributeValue(name, type, value);
+      if (first && name == "dataWindow" && type == "box2i") {
+        summary.hasDataWindow = true;
+        summary.width = int64_t{readInt32(value, 8)} - readInt32(value, 0) + 1;
+        summary.height = int64_t{readInt32(value, 12)} - readInt32(value, 4) + 1;
+      }
+      if (first && name == "compression" && type == "compression") summary.compression = static_cast<unsigned char>(value[0]);
+      if (first && name == "channels" && type == "chlist") summary.channels = channels;
+      pos += static_cast<size_t>(size);
+    }
+    if (!multipart || empty) return summary;
+  }
+}
+
+void refuseImplausibleSize(const HeaderSummary& header, size_t bytes) {
+  if (!header.hasDataWindow) return;  // OpenEXR refuses a header without one
+  if (header.width < 1 || header.height < 1) throw std::length_error("empty data window");
+  const bool dwa = header.compression == kDwaaCompression || header.compression == kDwabCompression;
+  const uint64_t expansion = dwa ? kMaxDwaExpansion : kMaxExpansion;
+  const uint64_t limit = expansion * static_cast<uint64_t>(bytes);
+  const uint64_t perPixel = sizeof(float) * std::max<uint64_t>(header.channels, 1);
+  if (static_cast<uint64_t>(header.width) * static_cast<uint64_t>(header.height) > limit / perPixel)
+    throw std::length_error("a data window of " + std::to_string(header.width) + " x " + std::to_string(header.height) +
+                            " pixels and " + std::to_string(header.channels) + " channels cannot come from " +
+                            std::to_string(bytes) + " bytes (its compression packs at most " + std::to_string(expansion) +
+                            " times)");
+}
+
+}  // namespace
+
 FrameImage decodeExr(const std::string& bytes, const std::string& label) {
   try {
+    refuseImplausibleSize(readHeaders(bytes), bytes.size());
     Imf::StdISStream stream;
     stream.str(bytes);
     Imf::InputFile in(stream);

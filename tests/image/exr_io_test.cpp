@@ -1,6 +1,7 @@
 // Multi-layer EXR frames survive a write and a read unchanged; broken files are errors.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <fstream>
 #include <iterator>
 #include <limits>
@@ -82,6 +83,65 @@ TEST(ExrIo, BytesInMemoryMatchTheFile) {
     EXPECT_NE(std::string(e.what()).find("chunk 1f2e"), std::string::npos);
   }
   std::filesystem::remove(file);
+}
+
+// The bytes of `chunk` with the little-endian int32 at `offset` replaced.
+std::string withInt32(std::string chunk, size_t offset, int32_t value) {
+  for (int i = 0; i < 4; ++i) chunk[offset + static_cast<size_t>(i)] = static_cast<char>(static_cast<uint32_t>(value) >> (8 * i));
+  return chunk;
+}
+
+// What bench/fuzz.sh --target exr_chunk found: a chunk whose data window was widened to
+// 50331656 pixels made decodeExr allocate 1 GB and spend 3 s before OpenEXR found the
+// pixels missing.
+TEST(ExrIo, AChunkClaimingMorePixelsThanItsBytesCanHoldIsRefusedBeforeDecoding) {
+  FrameImage tile(8, 4);
+  for (const char* name : {"R", "G", "B"}) tile.addChannel(name);
+  const std::string chunk = encodeExr(tile, ExrCompression::Fast);
+  const size_t box = chunk.find(std::string("dataWindow\0box2i\0", 17));
+  ASSERT_NE(box, std::string::npos);
+  const size_t maxX = box + 17 + 4 + 8;  // after the name, type and size: xMin, yMin, xMax
+  try {
+    // 96 MB of planes from a few hundred bytes (the fuzzer's case asked for 1 GB).
+    decodeExr(withInt32(chunk, maxX, 1'999'999), "chunk 9a7b");
+    FAIL() << "a chunk claiming 2000000 x 4 pixels was decoded";
+  } catch (const ExrError& e) {
+    EXPECT_NE(std::string(e.what()).find("chunk 9a7b"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("data window of 2000000 x 4 pixels and 3 channels"), std::string::npos)
+        << e.what();
+  }
+}
+
+// Also found by the fuzzer: OpenEXR allocates what a header attribute claims before it
+// reads it, 1.6 GB for a damaged size; and it reads a channel list to its end whatever
+// size it declares, so the attributes after it were read from the wrong place.
+TEST(ExrIo, AHeaderAttributeLargerThanTheChunkIsRefused) {
+  const std::string chunk = encodeExr(sampleFrame(), ExrCompression::Fast);
+  // "pathfarm.frame" made of a type OpenEXR does not know, which it keeps as bytes.
+  const size_t frame = chunk.find(std::string("pathfarm.frame\0string\0", 22));
+  ASSERT_NE(frame, std::string::npos);
+  std::string unknown = chunk;
+  unknown.replace(frame + 15, 6, "opaque");
+  EXPECT_NO_THROW(decodeExr(unknown, "chunk"));
+  try {
+    decodeExr(withInt32(unknown, frame + 22, 0x635e7800), "chunk 9a7b");
+    FAIL() << "a header attribute claiming 1.6 GB was read";
+  } catch (const ExrError& e) {
+    EXPECT_NE(std::string(e.what()).find("\"pathfarm.frame\" claims 1667135488 bytes"), std::string::npos) << e.what();
+  }
+  const size_t channels = chunk.find(std::string("channels\0chlist\0", 16));
+  ASSERT_NE(channels, std::string::npos);
+  const size_t size = channels + 16;
+  const int32_t declared = static_cast<int32_t>(static_cast<unsigned char>(chunk[size])) |
+                           static_cast<unsigned char>(chunk[size + 1]) << 8;
+  try {
+    decodeExr(withInt32(chunk, size, declared - 1), "chunk");
+    FAIL() << "a channel list one byte longer than its declared size was read";
+  } catch (const ExrError& e) {
+    EXPECT_NE(std::string(e.what()).find("\"channels\" (chlist): the list runs past its declared size"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(ExrIo, PasteCopiesAPartIntoItsPlace) {
