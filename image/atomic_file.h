@@ -5,10 +5,31 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace pathfarm {
 
-// Throws std::runtime_error naming the file when it cannot be written.
+// A file written in pieces (a chunk as it arrives) that appears whole or not at all. A
+// writer destroyed before commit() removes its temporary. Throws std::runtime_error
+// naming the file when it cannot be written.
+class AtomicFileWriter {
+ public:
+  explicit AtomicFileWriter(std::filesystem::path file);
+  ~AtomicFileWriter();
+  AtomicFileWriter(const AtomicFileWriter&) = delete;
+  AtomicFileWriter& operator=(const AtomicFileWriter&) = delete;
+
+  void append(std::string_view bytes);
+  // Fsyncs the bytes and renames them into place.
+  void commit();
+
+ private:
+  [[noreturn]] void fail(const std::string& what);
+  std::filesystem::path file_;
+  std::string temporary_;
+  int fd_ = -1;
+};
+
 void writeFileAtomically(const std::filesystem::path& file, const std::string& bytes);
 
 }  // namespace pathfarm

@@ -116,13 +116,7 @@ grpc::Status ClientServiceImpl::FetchOutputs(grpc::ServerContext* context, const
   return guarded(c_, context, [&] {
     c_.state.summary(request->shot_id(), farmClockSeconds());  // NOT_FOUND for an unknown shot
     for (const auto& [frame, ref] : c_.state.outputs(request->shot_id())) {
-      const auto bytes = c_.store.get(ref.sha256());
-      if (!bytes) {
-        const grpc::Status lost = lostChunk(c_, ref.sha256());
-        return grpc::Status(grpc::StatusCode::DATA_LOSS, "frame " + std::to_string(frame) + ": " +
-                                                             lost.error_message() + "; fetch again when the shot is done");
-      }
-      // Adapts the output stream to sendChunk's Write(ChunkPart).
+      // Adapts the output stream to sendStoredChunk's Write(ChunkPart).
       struct FramePartWriter {
         grpc::ServerWriter<OutputPart>* writer;
         int64_t frame;
@@ -133,7 +127,13 @@ grpc::Status ClientServiceImpl::FetchOutputs(grpc::ServerContext* context, const
           return writer->Write(out);
         }
       } frameWriter{writer, frame};
-      if (!sendChunk(frameWriter, ref, *bytes)) return grpc::Status(grpc::StatusCode::CANCELLED, "the reader went away");
+      const StoredSend sent = sendStoredChunk(frameWriter, c_.store, ref.sha256());
+      if (sent == StoredSend::ReaderGone) return grpc::Status(grpc::StatusCode::CANCELLED, "the reader went away");
+      if (sent == StoredSend::Absent) {
+        const grpc::Status lost = lostChunk(c_, ref.sha256());
+        return grpc::Status(grpc::StatusCode::DATA_LOSS, "frame " + std::to_string(frame) + ": " +
+                                                             lost.error_message() + "; fetch again when the shot is done");
+      }
     }
     return grpc::Status::OK;
   });

@@ -7,9 +7,7 @@
 namespace pathfarm::farm {
 
 ChunkRef storeReceivedChunk(grpc::ServerReader<ChunkPart>& reader, const SchedulerContext& c) {
-  ChunkRef announced;
-  const std::string bytes = receiveChunk(reader, announced, kMaxChunkBytes);
-  const ChunkRef stored = c.store.put(bytes, announced);
+  const ChunkRef stored = receiveChunkIntoStore(reader, c.store, kMaxChunkBytes);
   c.state.recordChunk(stored, farmClockSeconds());
   return stored;
 }

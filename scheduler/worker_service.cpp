@@ -122,12 +122,14 @@ grpc::Status WorkerServiceImpl::PutChunk(grpc::ServerContext* context, grpc::Ser
 grpc::Status WorkerServiceImpl::GetChunk(grpc::ServerContext* context, const GetChunkRequest* request,
                                          grpc::ServerWriter<ChunkPart>* writer) {
   return asWorker(context, [&](int64_t) {
-    const auto bytes = c_.store.get(request->sha256());
-    if (!bytes) return lostChunk(c_, request->sha256());
-    ChunkRef ref;
-    ref.set_sha256(request->sha256());
-    ref.set_size(static_cast<int64_t>(bytes->size()));
-    if (!sendChunk(*writer, ref, *bytes)) return grpc::Status(grpc::StatusCode::CANCELLED, "the reader went away");
+    switch (sendStoredChunk(*writer, c_.store, request->sha256())) {
+      case StoredSend::Absent:
+        return lostChunk(c_, request->sha256());
+      case StoredSend::ReaderGone:
+        return grpc::Status(grpc::StatusCode::CANCELLED, "the reader went away");
+      case StoredSend::Sent:
+        break;
+    }
     return grpc::Status::OK;
   });
 }

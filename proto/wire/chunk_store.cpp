@@ -63,6 +63,88 @@ std::optional<std::string> ChunkStore::get(const std::string& sha256) const {
   return data;
 }
 
+ChunkStore::Incoming::Incoming(ChunkStore& store, const ChunkRef& announced, size_t maxBytes)
+    : store_(store), announced_(announced), digest_(std::make_unique<Sha256>()) {
+  if (announced.size() < 0 || static_cast<uint64_t>(announced.size()) > maxBytes)
+    throw ChunkError("chunk of " + std::to_string(announced.size()) + " bytes exceeds the limit of " +
+                     std::to_string(maxBytes));
+  if (!isSha256Hex(announced.sha256())) throw ChunkError("a chunk must announce its SHA-256 digest");
+  if (store.has(announced.sha256())) return;  // the bytes are checked all the same
+  const auto target = store.pathOf(announced.sha256());
+  try {
+    std::filesystem::create_directories(target.parent_path());
+    file_ = std::make_unique<AtomicFileWriter>(target);
+  } catch (const std::exception& e) {
+    throw ChunkError(std::string("cannot store chunk: ") + e.what());
+  }
+}
+
+ChunkStore::Incoming::~Incoming() = default;
+
+void ChunkStore::Incoming::append(std::string_view part) {
+  received_ += static_cast<int64_t>(part.size());
+  if (received_ > announced_.size())
+    throw ChunkError("chunk longer than its announced " + std::to_string(announced_.size()) + " bytes");
+  digest_->update(part);
+  if (!file_) return;
+  try {
+    file_->append(part);
+  } catch (const std::exception& e) {
+    file_.reset();
+    throw ChunkError(std::string("cannot store chunk: ") + e.what());
+  }
+}
+
+ChunkRef ChunkStore::Incoming::commit() {
+  if (received_ != announced_.size())
+    throw ChunkError("chunk truncated: " + std::to_string(received_) + " of " + std::to_string(announced_.size()) +
+                     " bytes");
+  const std::string digest = digest_->hex();
+  if (digest != announced_.sha256())
+    throw ChunkError("chunk digest mismatch: announced " + announced_.sha256() + ", received " + digest);
+  if (file_) {
+    try {
+      file_->commit();
+    } catch (const std::exception& e) {
+      throw ChunkError(std::string("cannot store chunk: ") + e.what());
+    }
+  }
+  store_.bytesIn_ += static_cast<uint64_t>(received_);
+  return announced_;
+}
+
+std::optional<int64_t> ChunkStore::verifiedSize(const std::string& sha256) const {
+  if (!isSha256Hex(sha256)) return std::nullopt;
+  Sha256 digest;
+  int64_t size = 0;
+  std::ifstream in(pathOf(sha256), std::ios::binary);
+  if (!in) return std::nullopt;
+  std::string buffer(1 << 20, '\0');
+  while (in) {
+    in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+    digest.update(std::string_view(buffer.data(), static_cast<size_t>(in.gcount())));
+    size += in.gcount();
+  }
+  if (digest.hex() == sha256) return size;
+  std::error_code ignored;
+  std::filesystem::remove(pathOf(sha256), ignored);
+  return std::nullopt;
+}
+
+bool ChunkStore::readParts(const std::string& sha256, size_t partBytes,
+                           const std::function<bool(std::string_view)>& part) const {
+  std::ifstream in(pathOf(sha256), std::ios::binary);
+  std::string buffer(partBytes, '\0');
+  while (in) {
+    in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+    const auto n = static_cast<size_t>(in.gcount());
+    if (n == 0) break;
+    bytesOut_ += n;
+    if (!part(std::string_view(buffer.data(), n))) return false;
+  }
+  return true;
+}
+
 void ChunkStore::remove(const std::string& sha256) {
   if (!isSha256Hex(sha256)) return;
   std::error_code ignored;

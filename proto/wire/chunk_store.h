@@ -6,13 +6,22 @@
 #include <atomic>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "pathfarm/chunk.pb.h"
 
+namespace pathfarm {
+class AtomicFileWriter;
+}
+
 namespace pathfarm::farm {
+
+class Sha256;
 
 // A chunk whose bytes do not match its digest or size, or that cannot be stored.
 class ChunkError : public std::runtime_error {
@@ -32,6 +41,34 @@ class ChunkStore {
   std::optional<std::string> get(const std::string& sha256) const;
   // Deletes the chunk's file; a chunk that is not there is no error.
   void remove(const std::string& sha256);
+
+  // A chunk arriving in parts, written to disk as it comes (never held whole): stored
+  // under its digest only when the whole matches the announced digest and size.
+  class Incoming {
+   public:
+    // Throws ChunkError for an announced size beyond `maxBytes` or a digest that is no
+    // SHA-256.
+    Incoming(ChunkStore& store, const ChunkRef& announced, size_t maxBytes);
+    ~Incoming();
+    // Throws ChunkError once the bytes outgrow the announced size, or cannot be written.
+    void append(std::string_view part);
+    // Throws ChunkError for a short chunk or a digest mismatch; nothing is stored then.
+    ChunkRef commit();
+
+   private:
+    ChunkStore& store_;
+    ChunkRef announced_;
+    int64_t received_ = 0;
+    std::unique_ptr<Sha256> digest_;
+    std::unique_ptr<AtomicFileWriter> file_;  // none when the store already has the chunk
+  };
+
+  // The size of a stored chunk whose digest checks out, reading the file in parts; a
+  // damaged file is removed. Nothing for an absent or damaged chunk.
+  std::optional<int64_t> verifiedSize(const std::string& sha256) const;
+  // Hands a stored chunk's bytes to `part` in pieces of at most `partBytes`, until it
+  // returns false (then false). Verify the chunk first (verifiedSize).
+  bool readParts(const std::string& sha256, size_t partBytes, const std::function<bool(std::string_view)>& part) const;
   const std::filesystem::path& root() const { return root_; }
   // Bytes put into and read out of the store since it was opened (the farm's metrics).
   uint64_t bytesIn() const { return bytesIn_; }

@@ -2,7 +2,9 @@
 // Moving a chunk over a gRPC stream in bounded parts: the first part carries the
 // reference (digest and size), the receiver checks both before it believes the bytes.
 #include <algorithm>
+#include <optional>
 #include <string>
+#include <string_view>
 
 #include "pathfarm/chunk.pb.h"
 #include "proto/wire/chunk_store.h"
@@ -26,6 +28,43 @@ bool sendChunk(Writer& writer, const ChunkRef& ref, const std::string& bytes) {
     offset += n;
   } while (offset < bytes.size());
   return true;
+}
+
+// Sends a stored chunk in parts after checking its digest, never holding it whole.
+// Absent: the store has no intact copy (a damaged file is removed).
+enum class StoredSend { Sent, Absent, ReaderGone };
+template <class Writer>
+StoredSend sendStoredChunk(Writer& writer, const ChunkStore& store, const std::string& sha256) {
+  const std::optional<int64_t> size = store.verifiedSize(sha256);
+  if (!size) return StoredSend::Absent;
+  ChunkRef ref;
+  ref.set_sha256(sha256);
+  ref.set_size(*size);
+  bool first = true;
+  const auto write = [&](std::string_view data) {
+    ChunkPart part;
+    if (first) *part.mutable_ref() = ref;
+    first = false;
+    part.set_data(data.data(), data.size());
+    return writer.Write(part);
+  };
+  if (!store.readParts(sha256, kChunkPartBytes, write)) return StoredSend::ReaderGone;
+  if (first && !write({})) return StoredSend::ReaderGone;  // an empty chunk is one empty part
+  return StoredSend::Sent;
+}
+
+// Writes a chunk streamed in parts into the store as it arrives (never holding it whole)
+// and returns its reference. Throws ChunkError when the bytes do not match the announced
+// reference, exceed `maxBytes` or cannot be stored.
+template <class Reader>
+ChunkRef receiveChunkIntoStore(Reader& reader, ChunkStore& store, size_t maxBytes) {
+  ChunkPart part;
+  if (!reader.Read(&part)) throw ChunkError("empty chunk stream");
+  ChunkStore::Incoming incoming(store, part.ref(), maxBytes);
+  do {
+    incoming.append(part.data());
+  } while (reader.Read(&part));
+  return incoming.commit();
 }
 
 // Collects one chunk's parts and checks them against the announced reference.

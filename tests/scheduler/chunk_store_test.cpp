@@ -17,6 +17,17 @@ std::filesystem::path freshFolder(const std::string& name) {
 TEST(Sha256, MatchesKnownDigests) {
   EXPECT_EQ(sha256Hex(""), "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
   EXPECT_EQ(sha256Hex("abc"), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+  Sha256 pieces;
+  for (const char* piece : {"a", "", "bc"}) pieces.update(piece);
+  EXPECT_EQ(pieces.hex(), sha256Hex("abc"));
+}
+
+// Files under `folder` whose name ends in .partial: temporaries left behind.
+size_t partialFiles(const std::filesystem::path& folder) {
+  size_t count = 0;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(folder))
+    count += entry.path().extension() == ".partial" ? 1 : 0;
+  return count;
 }
 
 TEST(ChunkStore, StoresByContentAndVerifiesOnRead) {
@@ -86,6 +97,66 @@ TEST(ChunkTransfer, LargeChunksTravelInBoundedVerifiedParts) {
   EXPECT_THROW(receiveChunk(shortened, received, size_t{64 << 20}), ChunkError);
   stream.next = 0;
   EXPECT_THROW(receiveChunk(stream, received, 1000), ChunkError);
+}
+
+TEST(ChunkTransfer, AStreamGoesToDiskAndBackInPartsAndOnlyWholeMatchingChunksAreStored) {
+  const auto folder = freshFolder("streamed");
+  ChunkStore store(folder);
+  std::string bytes(2 * kChunkPartBytes + 5, '\0');
+  for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<char>(i * 31 % 253);
+  ChunkRef ref;
+  ref.set_sha256(sha256Hex(bytes));
+  ref.set_size(static_cast<int64_t>(bytes.size()));
+  PartStream incoming;
+  ASSERT_TRUE(sendChunk(incoming, ref, bytes));
+
+  // Damaged on the way or cut short: nothing stored, no temporary left.
+  PartStream flipped = incoming;
+  flipped.parts[1].mutable_data()->at(0) ^= 1;
+  EXPECT_THROW(receiveChunkIntoStore(flipped, store, size_t{64 << 20}), ChunkError);
+  PartStream shortened = incoming;
+  shortened.parts.pop_back();
+  EXPECT_THROW(receiveChunkIntoStore(shortened, store, size_t{64 << 20}), ChunkError);
+  EXPECT_THROW(receiveChunkIntoStore(incoming, store, 1000), ChunkError);
+  incoming.next = 0;
+  EXPECT_FALSE(store.has(ref.sha256()));
+  EXPECT_EQ(partialFiles(folder), 0u);
+
+  EXPECT_EQ(receiveChunkIntoStore(incoming, store, size_t{64 << 20}).sha256(), ref.sha256());
+  EXPECT_EQ(store.get(ref.sha256()).value(), bytes);
+  incoming.next = 0;
+  EXPECT_EQ(receiveChunkIntoStore(incoming, store, size_t{64 << 20}).size(), ref.size()) << "stored twice";
+
+  // Out again in bounded parts, the same bytes.
+  PartStream outgoing;
+  ASSERT_EQ(sendStoredChunk(outgoing, store, ref.sha256()), StoredSend::Sent);
+  EXPECT_EQ(outgoing.parts.size(), 3u);
+  for (const ChunkPart& part : outgoing.parts) EXPECT_LE(part.data().size(), kChunkPartBytes);
+  ChunkRef received;
+  EXPECT_EQ(receiveChunk(outgoing, received, size_t{64 << 20}), bytes);
+
+  // A file damaged on disk is not sent, and is removed.
+  const std::string damaged(bytes.size(), 'x');
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(folder))
+    if (entry.is_regular_file()) std::ofstream(entry.path(), std::ios::binary) << damaged;
+  PartStream none;
+  EXPECT_EQ(sendStoredChunk(none, store, ref.sha256()), StoredSend::Absent);
+  EXPECT_TRUE(none.parts.empty());
+  EXPECT_FALSE(store.has(ref.sha256()));
+  std::filesystem::remove_all(folder);
+}
+
+TEST(ChunkTransfer, AnEmptyChunkIsOneEmptyPart) {
+  const auto folder = freshFolder("empty");
+  ChunkStore store(folder);
+  const ChunkRef ref = store.put("");
+  PartStream outgoing;
+  ASSERT_EQ(sendStoredChunk(outgoing, store, ref.sha256()), StoredSend::Sent);
+  ASSERT_EQ(outgoing.parts.size(), 1u);
+  EXPECT_EQ(outgoing.parts[0].ref().sha256(), ref.sha256());
+  outgoing.next = 0;
+  EXPECT_EQ(receiveChunkIntoStore(outgoing, store, 10).size(), 0);
+  std::filesystem::remove_all(folder);
 }
 
 }  // namespace

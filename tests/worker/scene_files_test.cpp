@@ -11,6 +11,7 @@
 #include "proto/wire/input_files.h"
 #include "proto/wire/sha256.h"
 #include "worker/cache_trim.h"
+#include "worker/failure_class.h"
 
 namespace pathfarm::farm {
 namespace {
@@ -64,10 +65,23 @@ TEST_F(SceneFilesTest, UploadedFilesAreRebuiltOnceWhereTheSceneExpectsThem) {
 }
 
 TEST_F(SceneFilesTest, ASharedPathIsUsedAsItIs) {
+  const fs::path shared = fs::path(PATHFARM_SOURCE_DIR) / "scenes" / "cornell" / "scene.json";
   ShotSpec spec;
-  spec.set_scene("/studio/shots/scene.json");
-  EXPECT_EQ(localSceneFile(spec, root_, fetcher()), "/studio/shots/scene.json");
+  spec.set_scene(shared.string());
+  EXPECT_EQ(localSceneFile(spec, root_, fetcher()), shared);
   EXPECT_FALSE(fs::exists(root_));
+}
+
+TEST_F(SceneFilesTest, ASharedPathThisWorkerCannotSeeIsTheWorkersFaultNotTheScenes) {
+  ShotSpec spec;
+  spec.set_scene("/studio/shots/scene.json");  // storage not mounted here
+  try {
+    localSceneFile(spec, root_, fetcher());
+    ADD_FAILURE() << "a missing shared scene was handed to the renderer";
+  } catch (const std::exception& e) {
+    EXPECT_EQ(classifyFailure(e), FAILURE_WORKER_FAULT) << e.what();
+    EXPECT_NE(std::string(e.what()).find("/studio/shots/scene.json"), std::string::npos) << e.what();
+  }
 }
 
 TEST_F(SceneFilesTest, AFileLeavingTheFolderIsRefusedBeforeAnythingIsWritten) {
