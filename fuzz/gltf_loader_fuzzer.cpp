@@ -1,20 +1,12 @@
 // libFuzzer target for the glTF importer: any bytes, as a .gltf or .glb, must load into
 // a scene or be refused with a SceneError; never crash, hang, read out of bounds or
-// allocate without limit. Built and run by bench/fuzz_gltf.sh (clang, ASan, UBSan).
-#include <spdlog/spdlog.h>
-
-#include <cstddef>
-#include <cstdint>
-
+// allocate without limit. Built and run by bench/fuzz.sh (clang, ASan, UBSan).
+#include "fuzz/fuzz_support.h"
 #include "renderer/scene/gltf/gltf_document.h"
 #include "renderer/scene/gltf/gltf_scene.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  static const bool quiet = [] {
-    spdlog::set_level(spdlog::level::off);
-    return true;
-  }();
-  (void)quiet;
+  pathfarm::fuzz::silenceLogs();
   try {
     // External URIs resolve in a folder that does not exist: the input is the whole file.
     const pathfarm::GltfDocument document(data, size, "fuzz-input", "/nonexistent-pathfarm-fuzz");
@@ -22,8 +14,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     options.requireCamera = false;
     const pathfarm::Scene scene = pathfarm::importGltfScene(document, options);
     (void)scene;
-  } catch (const pathfarm::SceneError&) {
-    // A refused file is a correct outcome.
+  } catch (const pathfarm::SceneError& e) {
+    pathfarm::fuzz::noteRefusal(e);
   }
   return 0;
 }

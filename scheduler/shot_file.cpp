@@ -96,12 +96,16 @@ void readEvaluationKeys(const JsonNode& root, ShotSpec& spec) {
 }  // namespace
 
 ShotSpec loadShotFile(const std::filesystem::path& file) {
-  const std::string label = file.string();
   std::ifstream in(file);
-  if (!in) throw SceneError(label + ": cannot open the shot file");
+  if (!in) throw SceneError(file.string() + ": cannot open the shot file");
   std::ostringstream text;
   text << in.rdbuf();
-  const nlohmann::json document = parseJsonDocument(text.str(), label);
+  return parseShotFile(text.str(), file);
+}
+
+ShotSpec parseShotFile(std::string_view text, const std::filesystem::path& file) {
+  const std::string label = file.string();
+  const nlohmann::json document = parseJsonDocument(text, label);
   const JsonNode root(document, "", label);
   root.expectKeys({"name", "scene", "frames", "resolution", "spp", "max_depth", "pipeline", "tile", "output",
                    "priority", "max_attempts", "noop_tasks", "decompose", "keyframe_interval", "rerender_bound",

@@ -3,6 +3,7 @@
 // every default filled in from the scene and every path made absolute. The scene is
 // loaded too, so a bad shot or scene is reported before anything is queued.
 #include <filesystem>
+#include <string_view>
 
 #include "pathfarm/shot.pb.h"
 
@@ -10,5 +11,8 @@ namespace pathfarm::farm {
 
 // Throws SceneError (renderer/scene/json_node.h) naming the file and key on bad input.
 ShotSpec loadShotFile(const std::filesystem::path& file);
+// The same on the file's text already in memory: `file` names it in messages, and the
+// scene and output paths resolve against its folder.
+ShotSpec parseShotFile(std::string_view text, const std::filesystem::path& file);
 
 }  // namespace pathfarm::farm

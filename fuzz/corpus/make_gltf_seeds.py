@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the glTF fuzzer's seed corpus (fuzz/corpus/gltf/): small valid files that
+"""Writes the glTF fuzzer's seed corpus (fuzz/corpus/gltf_loader/): small valid files that
 reach every part of the importer — a textured .glb, an animated hierarchy with every
 sampler kind, and a .gltf with its buffer in a data URI."""
 import base64
@@ -50,7 +50,7 @@ def data_uri_gltf():
 
 
 def main():
-    out = HERE / "gltf"
+    out = HERE / "gltf_loader"
     out.mkdir(exist_ok=True)
     for name, data in (("textured.glb", textured_glb()), ("animated.glb", animated_glb()),
                        ("data_uri.gltf", data_uri_gltf())):

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "renderer/scene/mesh.h"
 
@@ -20,5 +21,8 @@ class MeshError : public std::runtime_error {
 TriangleMesh loadMesh(const std::filesystem::path& file);
 TriangleMesh loadObj(const std::filesystem::path& file);
 TriangleMesh loadPly(const std::filesystem::path& file);
+// The same readers on a file's bytes already in memory; `file` only names it in messages.
+TriangleMesh parseObj(std::string_view data, const std::filesystem::path& file);
+TriangleMesh parsePly(std::string_view data, const std::filesystem::path& file);
 
 }  // namespace pathfarm

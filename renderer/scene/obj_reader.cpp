@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <unordered_map>
 
 #include "renderer/scene/mesh_io.h"
@@ -61,8 +62,10 @@ void refuseUnreadableNumbers(const fs::path& file, const std::string& text) {
 
 }  // namespace
 
-TriangleMesh loadObj(const fs::path& file) {
-  const std::string text = readWholeFile(file);
+TriangleMesh loadObj(const fs::path& file) { return parseObj(readWholeFile(file), file); }
+
+TriangleMesh parseObj(std::string_view data, const fs::path& file) {
+  const std::string text(data);
   refuseUnreadableNumbers(file, text);
 
   // Parsed from memory with an empty material library: materials are not ours to load

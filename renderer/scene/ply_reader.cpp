@@ -516,10 +516,11 @@ void readPlyBody(const fs::path& file, const PlyHeader& header, const PlyLayout&
 
 }  // namespace
 
-TriangleMesh loadPly(const fs::path& file) {
-  const std::string data = readWholeFile(file);
+TriangleMesh loadPly(const fs::path& file) { return parsePly(readWholeFile(file), file); }
+
+TriangleMesh parsePly(std::string_view data, const fs::path& file) {
   const PlyHeader header = parsePlyHeader(file, data);
-  const std::string_view body = std::string_view(data).substr(header.bodyOffset);
+  const std::string_view body = data.substr(header.bodyOffset);
   checkPlyCountsFit(file, header, body.size());
   const PlyLayout layout = planPly(file, header);
 
