@@ -1,6 +1,7 @@
 // Wavefront OBJ reader, on top of tinyobjloader.
 #include <tiny_obj_loader.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstddef>
@@ -43,21 +44,45 @@ std::string firstLine(const std::string& text) {
   return line.empty() ? std::string("unknown error") : line;
 }
 
+// Calls visit(start, end, lineNumber) for each line [start, end) of `text` as
+// tinyobjloader splits them: at "\n", "\r" or "\r\n".
+template <class Visit>
+void forEachLine(std::string_view text, Visit visit) {
+  size_t lineNumber = 1;
+  for (size_t start = 0; start < text.size(); ++lineNumber) {
+    const size_t end = std::min(text.find_first_of("\r\n", start), text.size());
+    visit(start, end, lineNumber);
+    start = end + (text.compare(end, 2, "\r\n") == 0 ? 2 : 1);
+  }
+}
+
 // tinyobjloader reads a number it cannot parse ("nan", "1e999", "x") as 0 without a word,
 // which would move a vertex silently: every number of a v, vn and vt line must be finite.
 void refuseUnreadableNumbers(const fs::path& file, const std::string& text) {
-  std::istringstream lines(text);
-  std::string line, keyword, word;
-  for (size_t lineNumber = 1; std::getline(lines, line); ++lineNumber) {
+  forEachLine(text, [&](size_t start, size_t end, size_t lineNumber) {
+    const std::string line = text.substr(start, end - start);
     std::istringstream words(line.substr(0, line.find('#')));
-    if (!(words >> keyword) || (keyword != "v" && keyword != "vn" && keyword != "vt")) continue;
+    std::string keyword, word;
+    if (!(words >> keyword) || (keyword != "v" && keyword != "vn" && keyword != "vt")) return;
     while (words >> word) {
       double value = 0;
       const auto [rest, error] = std::from_chars(word.data(), word.data() + word.size(), value);
       if (error != std::errc() || rest != word.data() + word.size() || !std::isfinite(value))
         fail(file, "line " + std::to_string(lineNumber) + ": \"" + word + "\" is not a finite number");
     }
-  }
+  });
+}
+
+// tinyobjloader's own `vw` lines (skin weights, which pathfarm does not use) convert a joint
+// id to int unchecked: "vw 0 1e35 1" is undefined behaviour (found by bench/fuzz.sh
+// --target mesh_readers). They are turned into comments before it reads them.
+void dropSkinWeights(std::string& text) {
+  forEachLine(text, [&](size_t start, size_t end, size_t) {
+    const size_t keyword = std::min(text.find_first_not_of(" \t", start), end);
+    if (end - keyword >= 3 && text.compare(keyword, 2, "vw") == 0 &&
+        (text[keyword + 2] == ' ' || text[keyword + 2] == '\t'))
+      text[keyword] = '#';
+  });
 }
 
 }  // namespace
@@ -65,8 +90,9 @@ void refuseUnreadableNumbers(const fs::path& file, const std::string& text) {
 TriangleMesh loadObj(const fs::path& file) { return parseObj(readWholeFile(file), file); }
 
 TriangleMesh parseObj(std::string_view data, const fs::path& file) {
-  const std::string text(data);
+  std::string text(data);
   refuseUnreadableNumbers(file, text);
+  dropSkinWeights(text);
 
   // Parsed from memory with an empty material library: materials are not ours to load
   // here, and this keeps `mtllib` lines from opening other files.

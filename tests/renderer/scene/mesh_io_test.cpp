@@ -528,6 +528,26 @@ TEST_F(MeshIoTest, ObjIgnoresMaterialLibraries) {
   EXPECT_EQ(m.triangleCount(), 1u);
 }
 
+// bench/fuzz.sh --target mesh_readers found "vw 0 1e35 1": tinyobjloader's skin-weight
+// lines (its own extension) convert a joint id to int unchecked, which is undefined
+// behaviour that only the sanitizers see. pathfarm has no use for skin weights and no
+// longer lets tinyobjloader read them: whatever they hold, even a negative joint id that
+// it refused the whole file for, the geometry loads.
+TEST_F(MeshIoTest, ObjSkinWeightsAreNotRead) {
+  const std::string text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvw 0 1e35 1\n  vw\t1 -1 0.5\nf 1 2 3\n";
+  const TriangleMesh m = loadObj(write("weights.obj", text));
+  expectWellFormed(m);
+  EXPECT_EQ(m.triangleCount(), 1u);
+}
+
+// Lines end at "\n", "\r" or "\r\n", as tinyobjloader reads them; a file with old Mac line
+// ends was refused, and a number it would read as 0 could hide behind a lone "\r".
+TEST_F(MeshIoTest, ObjLinesEndWhereTinyobjloaderEndsThem) {
+  const TriangleMesh m = loadObj(write("cr.obj", "v 0 0 0\rv 1 0 0\r\nv 0 1 0\rf 1 2 3\r"));
+  EXPECT_EQ(m.triangleCount(), 1u);
+  expectMeshError(write("cr_nan.obj", "v 0 0 0\nv 1 0 0\rv nan 1 0\nf 1 2 3\n"), "line 3: \"nan\"");
+}
+
 // ---------------------------------------------------------------------------------------
 // Fuzz-style robustness: damaged files either load into a well-formed mesh or throw
 // MeshError, never anything else.
