@@ -20,7 +20,7 @@ std::string refusalOfOutput(const std::string& bytes, TaskKind kind, const TaskP
     return e.what();
   }
   const std::string size = sizeText(image.width(), image.height());
-  if (kind == TASK_RENDER_TILE) {
+  if (kind == TASK_RENDER_TILE || (kind == TASK_ASSEMBLE_FRAME && params.has_window())) {
     const auto& window = params.window();
     const int width = window.x1() - window.x0(), height = window.y1() - window.y0();
     if (image.width() != width || image.height() != height)

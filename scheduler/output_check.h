@@ -2,7 +2,7 @@
 // What the scheduler checks of a task's output before accepting it: a worker, buggy or
 // hostile, must not put into a shot a chunk that would spoil whatever reads it. Every
 // image output must decode, hold only finite values and fit the shot's frame; a render
-// tile must have its window's size exactly.
+// tile or a region of a frame must have its window's size exactly.
 #include <string>
 
 #include "pathfarm/shot.pb.h"

@@ -25,29 +25,52 @@ void checkRenderSpec(const ShotSpec& spec) {
       throw PlanError("evaluation_frames: frame " + std::to_string(frame) + " is not in the shot");
 }
 
+void setWindow(TaskParams& params, int x0, int y0, int x1, int y1) {
+  PixelWindow* window = params.mutable_window();
+  window->set_x0(x0);
+  window->set_y0(y0);
+  window->set_x1(x1);
+  window->set_y1(y1);
+}
+
 // Appends the tiles of one frame's render and the task assembling them; returns the
-// assemble task's index. `adjust` may add to every tile's parameters.
+// assemble task's index. `adjust` may add to every tile's parameters. A frame of more
+// than kMaxAssemblyInputs tiles is assembled in two steps: blocks of tiles into regions
+// (assemble tasks with a window), the regions into the frame; so no lease names more
+// inputs than a gRPC message holds.
 size_t planFrameRender(const ShotSpec& spec, int64_t frame, TaskRole role, int spp, bool beautyOnly,
                        std::vector<PlannedTask>& plan, const std::function<void(TaskParams&)>& adjust = {}) {
   const int tile = spec.tile();
+  const int64_t across = (spec.width() + tile - 1) / tile, down = (spec.height() + tile - 1) / tile;
+  // Tiles per region: whole rows of tiles when a row fits, else part of a row.
+  const int64_t regionAcross = std::min(across, kMaxAssemblyInputs);
+  const int64_t regionDown = across * down <= kMaxAssemblyInputs ? down : std::max<int64_t>(1, kMaxAssemblyInputs / regionAcross);
+  const bool inRegions = across * down > kMaxAssemblyInputs;
   PlannedTask assemble{TASK_ASSEMBLE_FRAME, {}, {}, role == ROLE_OUTPUT};
   assemble.params.set_frame(frame);
   assemble.params.set_role(role);
-  for (int y = 0; y < spec.height(); y += tile) {
-    for (int x = 0; x < spec.width(); x += tile) {
-      PlannedTask render{TASK_RENDER_TILE, {}, {}};
-      render.params.set_frame(frame);
-      render.params.set_role(role);
-      render.params.set_spp(spp);
-      render.params.set_beauty_only(beautyOnly);
-      if (adjust) adjust(render.params);
-      PixelWindow* window = render.params.mutable_window();
-      window->set_x0(x);
-      window->set_y0(y);
-      window->set_x1(std::min(x + tile, spec.width()));
-      window->set_y1(std::min(y + tile, spec.height()));
+  for (int64_t ry = 0; ry < down; ry += regionDown) {
+    for (int64_t rx = 0; rx < across; rx += regionAcross) {
+      PlannedTask region{TASK_ASSEMBLE_FRAME, assemble.params, {}};
+      const auto x0 = static_cast<int>(rx * tile), y0 = static_cast<int>(ry * tile);
+      setWindow(region.params, x0, y0, std::min(spec.width(), static_cast<int>((rx + regionAcross) * tile)),
+                std::min(spec.height(), static_cast<int>((ry + regionDown) * tile)));
+      for (int y = y0; y < region.params.window().y1(); y += tile) {
+        for (int x = x0; x < region.params.window().x1(); x += tile) {
+          PlannedTask render{TASK_RENDER_TILE, {}, {}};
+          render.params.set_frame(frame);
+          render.params.set_role(role);
+          render.params.set_spp(spp);
+          render.params.set_beauty_only(beautyOnly);
+          if (adjust) adjust(render.params);
+          setWindow(render.params, x, y, std::min(x + tile, spec.width()), std::min(y + tile, spec.height()));
+          (inRegions ? region : assemble).dependencies.push_back(plan.size());
+          plan.push_back(std::move(render));
+        }
+      }
+      if (!inRegions) continue;
       assemble.dependencies.push_back(plan.size());
-      plan.push_back(std::move(render));
+      plan.push_back(std::move(region));
     }
   }
   plan.push_back(std::move(assemble));

@@ -23,6 +23,10 @@
 
 namespace pathfarm::farm {
 
+// The most inputs an assemble task reads: a lease naming them stays far below gRPC's
+// message limit (about 100 bytes each against 8 MiB).
+inline constexpr int64_t kMaxAssemblyInputs = 4096;
+
 struct PlannedTask {
   TaskKind kind;
   TaskParams params;

@@ -188,17 +188,23 @@ TaskOutput TaskRunner::runMetropolis(const Lease& lease, const ChunkFetcher& fet
 
 std::string TaskRunner::assembleFrame(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress) {
   const ShotSpec& spec = lease.spec();
-  FrameImage frame(spec.width(), spec.height());
+  // A region of a large frame (planner.cpp) is assembled where its window says.
+  PixelWindow whole;
+  whole.set_x1(spec.width());
+  whole.set_y1(spec.height());
+  const PixelWindow& area = lease.params().has_window() ? lease.params().window() : whole;
+  FrameImage frame(area.x1() - area.x0(), area.y1() - area.y0());
   uint64_t nonFinite = 0;
   for (int i = 0; i < lease.inputs_size(); ++i) {
     const FrameImage tile = decodeExr(fetch(lease.inputs(i)), "tile chunk " + lease.inputs(i).sha256());
     const auto& window = lease.input_params(i).window();
-    if (tile.width() != window.x1() - window.x0() || tile.height() != window.y1() - window.y0())
-      throw BadInput("tile chunk " + lease.inputs(i).sha256() + " does not have its window's size");
+    if (tile.width() != window.x1() - window.x0() || tile.height() != window.y1() - window.y0() ||
+        window.x0() < area.x0() || window.y0() < area.y0() || window.x1() > area.x1() || window.y1() > area.y1())
+      throw BadInput("tile chunk " + lease.inputs(i).sha256() + " does not have its window's size or place");
     if (const std::string bad = tile.firstNonFinite(); !bad.empty())
       throw BadInput("tile chunk " + lease.inputs(i).sha256() + " holds a non-finite value (" + bad +
                                "): not pasted into the frame");
-    frame.paste(tile, window.x0(), window.y0());
+    frame.paste(tile, window.x0() - area.x0(), window.y0() - area.y0());
     // The frame carries the tiles' header; the count of dropped samples is their sum.
     for (const auto& [key, value] : tile.attributes()) frame.attributes()[key] = value;
     const auto count = tile.attributes().find("pathfarm.nonfinite_samples");
@@ -208,8 +214,10 @@ std::string TaskRunner::assembleFrame(const Lease& lease, const ChunkFetcher& fe
     progress = static_cast<double>(i + 1) / static_cast<double>(lease.inputs_size());
   }
   frame.attributes()["pathfarm.nonfinite_samples"] = std::to_string(nonFinite);
-  // A shot's frame is kept; a keyframe or a measurement's frame is read by the next task.
-  const bool kept = lease.params().role() == ROLE_OUTPUT || lease.params().role() == ROLE_UNSPECIFIED;
+  // A shot's frame is kept; a keyframe, a measurement's frame or a region is read by the
+  // next task.
+  const bool kept = !lease.params().has_window() &&
+                    (lease.params().role() == ROLE_OUTPUT || lease.params().role() == ROLE_UNSPECIFIED);
   return encodeExr(frame, kept ? ExrCompression::Small : ExrCompression::Fast);
 }
 

@@ -76,6 +76,29 @@ TEST(AssembleFrame, ATileHoldingANanIsRefusedNotPasted) {
   }
 }
 
+TEST(AssembleFrame, ARegionIsAssembledAtItsWindowAndRegionsMakeTheFrame) {
+  // The frame's right half as a region of its own (a large frame's first step).
+  Assembly region;
+  region.lease.mutable_params()->mutable_window()->set_x0(2);
+  region.lease.mutable_params()->mutable_window()->set_x1(4);
+  region.lease.mutable_params()->mutable_window()->set_y1(2);
+  region.add(2, tile(2, 2, 2.0f));
+  const FrameImage right = region.run();
+  ASSERT_EQ(right.width(), 2);
+  EXPECT_EQ(right.channel("R"), (std::vector<float>{2, 2, 2, 2}));
+  // A tile outside the region is refused.
+  Assembly outside = region;
+  outside.add(0, tile(2, 2, 1.0f));
+  EXPECT_THROW(outside.run(), std::runtime_error);
+
+  // The frame from its regions, as from tiles.
+  Assembly frame;
+  frame.add(0, tile(2, 2, 1.0f));
+  FrameImage rightRegion = right;
+  frame.add(2, rightRegion);
+  EXPECT_EQ(frame.run().channel("R"), (std::vector<float>{1, 1, 2, 2, 1, 1, 2, 2}));
+}
+
 TEST(AssembleFrame, ATileOfTheWrongSizeIsRefused) {
   Assembly assembly;
   assembly.add(0, tile(2, 1, 1.0f));

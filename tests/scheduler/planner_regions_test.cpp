@@ -1,0 +1,72 @@
+// A frame of more tiles than one assemble task may read is assembled in two steps:
+// blocks of tiles into regions, regions into the frame. Every tile lands in exactly one
+// region, the regions tile the frame, and no assemble task reads more than
+// kMaxAssemblyInputs inputs.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "scheduler/planner.h"
+
+namespace pathfarm::farm {
+namespace {
+
+ShotSpec bigFrame(int width, int height, int tile) {
+  ShotSpec spec;
+  spec.set_pipeline("pt");
+  spec.set_width(width);
+  spec.set_height(height);
+  spec.set_spp(1);
+  spec.set_tile(tile);
+  return spec;
+}
+
+// Checks the plan of one frame: returns the number of regions.
+size_t checkRegions(const ShotSpec& spec) {
+  const std::vector<PlannedTask> plan = planShot(spec);
+  const PlannedTask& frame = plan.back();
+  EXPECT_EQ(frame.kind, TASK_ASSEMBLE_FRAME);
+  EXPECT_FALSE(frame.params.has_window());
+  EXPECT_TRUE(frame.output);
+  std::vector<int> regionOf(static_cast<size_t>(spec.width()) * static_cast<size_t>(spec.height()), 0);
+  size_t regions = 0, tiles = 0;
+  for (const size_t index : frame.dependencies) {
+    const PlannedTask& region = plan[index];
+    EXPECT_EQ(region.kind, TASK_ASSEMBLE_FRAME);
+    EXPECT_FALSE(region.output);
+    EXPECT_LE(static_cast<int64_t>(region.dependencies.size()), kMaxAssemblyInputs);
+    const PixelWindow& area = region.params.window();
+    ++regions;
+    for (const size_t t : region.dependencies) {
+      const PixelWindow& w = plan[t].params.window();
+      EXPECT_EQ(plan[t].kind, TASK_RENDER_TILE);
+      EXPECT_TRUE(w.x0() >= area.x0() && w.y0() >= area.y0() && w.x1() <= area.x1() && w.y1() <= area.y1());
+      for (int y = w.y0(); y < w.y1(); ++y)
+        for (int x = w.x0(); x < w.x1(); ++x) ++regionOf[static_cast<size_t>(y) * spec.width() + x];
+      ++tiles;
+    }
+  }
+  EXPECT_LE(static_cast<int64_t>(frame.dependencies.size()), kMaxAssemblyInputs);
+  EXPECT_EQ(plan.size(), tiles + regions + 1);
+  for (const int covered : regionOf) EXPECT_EQ(covered, 1);
+  return regions;
+}
+
+TEST(PlannerRegions, AFrameOfMoreTilesThanAnAssemblyReadsIsAssembledInRegions) {
+  // 65 x 65 = 4225 tiles: 63 rows of tiles in one region, 2 in the other.
+  EXPECT_EQ(checkRegions(bigFrame(520, 520, 8)), 2u);
+  // 256 x 256 tiles: 16 regions of 16 rows.
+  EXPECT_EQ(checkRegions(bigFrame(2048, 2048, 8)), 16u);
+  // Ragged edges: the last tiles and regions are cut at the frame's border.
+  EXPECT_EQ(checkRegions(bigFrame(1001, 777, 9)), 3u);
+}
+
+TEST(PlannerRegions, AFrameThatFitsOneAssemblyHasNoRegions) {
+  const std::vector<PlannedTask> plan = planShot(bigFrame(512, 512, 8));  // 4096 tiles
+  ASSERT_EQ(plan.size(), 4097u);
+  EXPECT_EQ(plan.back().dependencies.size(), 4096u);
+  for (size_t i = 0; i + 1 < plan.size(); ++i) EXPECT_EQ(plan[i].kind, TASK_RENDER_TILE);
+}
+
+}  // namespace
+}  // namespace pathfarm::farm
