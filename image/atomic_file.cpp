@@ -43,18 +43,18 @@ void AtomicFileWriter::append(std::string_view bytes) {
   }
 }
 
-void AtomicFileWriter::commit() {
+void AtomicFileWriter::commit(Sync sync) {
   if (fd_ < 0) throw std::logic_error(file_.string() + ": committed after it was committed or failed");
-  if (::fsync(fd_) != 0 || ::rename(temporary_.c_str(), file_.c_str()) != 0)
+  if ((sync == Sync::Yes && ::fsync(fd_) != 0) || ::rename(temporary_.c_str(), file_.c_str()) != 0)
     fail("cannot move the finished file into place");
   ::close(fd_);
   fd_ = -1;
 }
 
-void writeFileAtomically(const std::filesystem::path& file, const std::string& bytes) {
+void writeFileAtomically(const std::filesystem::path& file, const std::string& bytes, AtomicFileWriter::Sync sync) {
   AtomicFileWriter writer(file);
   writer.append(bytes);
-  writer.commit();
+  writer.commit(sync);
 }
 
 }  // namespace pathfarm

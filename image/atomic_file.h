@@ -20,8 +20,10 @@ class AtomicFileWriter {
   AtomicFileWriter& operator=(const AtomicFileWriter&) = delete;
 
   void append(std::string_view bytes);
-  // Fsyncs the bytes and renames them into place.
-  void commit();
+  // Fsyncs the bytes (unless told not to: a cache that verifies what it reads may lose a
+  // file to an OS crash) and renames them into place.
+  enum class Sync { Yes, No };
+  void commit(Sync sync = Sync::Yes);
 
  private:
   [[noreturn]] void fail(const std::string& what);
@@ -30,6 +32,7 @@ class AtomicFileWriter {
   int fd_ = -1;
 };
 
-void writeFileAtomically(const std::filesystem::path& file, const std::string& bytes);
+void writeFileAtomically(const std::filesystem::path& file, const std::string& bytes,
+                         AtomicFileWriter::Sync sync = AtomicFileWriter::Sync::Yes);
 
 }  // namespace pathfarm

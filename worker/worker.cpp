@@ -300,7 +300,7 @@ void Worker::run(const std::atomic<bool>& stop) {
   const int64_t workerId = registration.worker_id();
   spdlog::info("worker {} ({}) registered with {}: {} slots", workerId, options_.name, options_.scheduler,
                options_.slots);
-  ChunkStore cache(options_.cache);
+  ChunkStore cache(options_.cache, ChunkStore::Kind::Cache);
   CacheBound bound(options_.cache, options_.cacheMaxBytes);
   bound.maybeTrim();
   TaskRunner runner(options_.threads, options_.cache / "scenes");

@@ -13,7 +13,8 @@ bool isSha256Hex(const std::string& text) {
          text.find_first_not_of("0123456789abcdef") == std::string::npos;
 }
 
-ChunkStore::ChunkStore(std::filesystem::path root) : root_(std::move(root)) {
+ChunkStore::ChunkStore(std::filesystem::path root, Kind kind)
+    : root_(std::move(root)), sync_(kind == Kind::Cache ? AtomicFileWriter::Sync::No : AtomicFileWriter::Sync::Yes) {
   std::filesystem::create_directories(root_ / "objects");
 }
 
@@ -36,7 +37,7 @@ ChunkRef ChunkStore::put(const std::string& bytes, const ChunkRef& expected) {
   try {
     std::filesystem::create_directories(target.parent_path());
     // Two writers of one chunk write the same bytes, each through its own temporary.
-    writeFileAtomically(target, bytes);
+    writeFileAtomically(target, bytes, sync_);
   } catch (const std::exception& e) {
     throw ChunkError(std::string("cannot store chunk: ") + e.what());
   }
@@ -104,7 +105,7 @@ ChunkRef ChunkStore::Incoming::commit() {
     throw ChunkError("chunk digest mismatch: announced " + announced_.sha256() + ", received " + digest);
   if (file_) {
     try {
-      file_->commit();
+      file_->commit(store_.sync_);
     } catch (const std::exception& e) {
       throw ChunkError(std::string("cannot store chunk: ") + e.what());
     }

@@ -13,11 +13,8 @@
 #include <string>
 #include <string_view>
 
+#include "image/atomic_file.h"
 #include "pathfarm/chunk.pb.h"
-
-namespace pathfarm {
-class AtomicFileWriter;
-}
 
 namespace pathfarm::farm {
 
@@ -31,7 +28,10 @@ class ChunkError : public std::runtime_error {
 
 class ChunkStore {
  public:
-  explicit ChunkStore(std::filesystem::path root);
+  // A cache (a worker's) skips the fsync of each chunk: it verifies what it reads, so a
+  // chunk an OS crash damaged is fetched again; the scheduler's store syncs every chunk.
+  enum class Kind { Store, Cache };
+  explicit ChunkStore(std::filesystem::path root, Kind kind = Kind::Store);
 
   // Stores the bytes; if `expected` names a digest or size, the bytes must match it.
   ChunkRef put(const std::string& bytes, const ChunkRef& expected = {});
@@ -77,6 +77,7 @@ class ChunkStore {
  private:
   std::filesystem::path pathOf(const std::string& sha256) const;
   std::filesystem::path root_;
+  AtomicFileWriter::Sync sync_;
   std::atomic<uint64_t> bytesIn_{0};
   mutable std::atomic<uint64_t> bytesOut_{0};
 };
