@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <functional>
+#include <limits>
 #include <map>
 #include <string>
 
@@ -340,6 +342,18 @@ bool isValidTag(const std::string& tag) {
   });
 }
 
+int64_t plannedTasksAtLeast(const ShotSpec& spec) {
+  if (spec.pipeline() == "noop") return std::max<int64_t>(spec.noop_tasks(), 0);
+  const double frames = std::max<double>(static_cast<double>(spec.frame_end()) - static_cast<double>(spec.frame_start()) + 1, 0);
+  double perFrame = 1;  // every pipeline's output task
+  if ((spec.pipeline() == "pt" || isFilteringPipeline(spec.pipeline())) && spec.tile() > 0) {
+    const auto tilesAlong = [&](int pixels) { return std::ceil(std::max(pixels, 0) / static_cast<double>(spec.tile())); };
+    perFrame = tilesAlong(spec.width()) * tilesAlong(spec.height()) + 1;
+  }
+  const double tasks = frames * perFrame;
+  return tasks >= 9e18 ? std::numeric_limits<int64_t>::max() : static_cast<int64_t>(tasks);
+}
+
 std::vector<PlannedTask> planShotWithin(const ShotSpec& spec, const ShotLimits& limits) {
   for (const std::string& tag : spec.required_tags())
     if (!isValidTag(tag)) throw PlanError("required_tags: \"" + tag + "\" is not a tag (letters, digits, '-', '_', '.')");
@@ -352,6 +366,11 @@ std::vector<PlannedTask> planShotWithin(const ShotSpec& spec, const ShotLimits& 
     throw PlanError("resolution x frames: " + std::to_string(static_cast<int64_t>(pixelFrames)) +
                     " pixel-frames is more than this scheduler takes in one shot (" +
                     std::to_string(static_cast<int64_t>(limits.maxPixelFrames)) + "); split the shot");
+  // Within those a shot of 8-pixel tiles can still plan 1.6e10 tasks: counted first, it is
+  // refused before it takes minutes and gigabytes to plan.
+  if (const int64_t tasks = plannedTasksAtLeast(spec); tasks > limits.maxTasks)
+    throw PlanError("the shot plans at least " + std::to_string(tasks) + " tasks, more than this scheduler takes (" +
+                    std::to_string(limits.maxTasks) + ", --max-tasks-per-shot); use larger tiles or split the shot");
   std::vector<PlannedTask> plan = planShot(spec);
   if (static_cast<int64_t>(plan.size()) > limits.maxTasks)
     throw PlanError("the shot plans " + std::to_string(plan.size()) + " tasks, more than this scheduler takes (" +

@@ -66,8 +66,12 @@ struct ShotLimits {
   double maxPixelFrames = 1e12;  // width x height x frames
   int64_t maxTasks = 1'000'000;
 };
-// The plan of a spec within `limits`: the frames and pixels are checked before planning,
-// the task count after; throws PlanError naming the limit and how to raise it.
+// A lower bound of planShot(spec).size(), counted without planning: pt and the filtering
+// pipelines render every frame in tiles and assemble it.
+int64_t plannedTasksAtLeast(const ShotSpec& spec);
+// The plan of a spec within `limits`: the frames, pixels and plannedTasksAtLeast are
+// checked before planning, the task count after; throws PlanError naming the limit and how
+// to raise it.
 std::vector<PlannedTask> planShotWithin(const ShotSpec& spec, const ShotLimits& limits);
 
 }  // namespace pathfarm::farm

@@ -179,10 +179,16 @@ ShotSpec parseShotFile(std::string_view text, const std::filesystem::path& file)
   if (spec.pipeline() == "tgpt") readGradientKeys(root, spec);
   if (isMetropolisPipeline(spec.pipeline())) readMetropolisKeys(root, scene, spec);
   readEvaluationKeys(root, spec);
-  try {
-    planShot(spec);  // a shot the farm cannot plan is refused here, naming the reason
-  } catch (const PlanError& e) {
-    root.fail(e.what());
+  // A shot the farm cannot plan is refused here, naming the reason. One too large for a
+  // scheduler's default limits (a mistyped frame range or tile size could plan 10^13 tasks,
+  // minutes and gigabytes of them) is not planned here: the scheduler it goes to refuses it
+  // before planning, or plans it within its own limits.
+  if (plannedTasksAtLeast(spec) <= ShotLimits{}.maxTasks) {
+    try {
+      planShot(spec);
+    } catch (const PlanError& e) {
+      root.fail(e.what());
+    }
   }
   return spec;
 }

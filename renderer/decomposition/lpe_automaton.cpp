@@ -88,7 +88,10 @@ class Parser {
     const size_t at = pos_;
     const char c = text_[pos_++];
     if (c == '(') {
+      // The parser recurses per '(': a deep nest would overflow the stack.
+      if (++depth_ > kMaxNesting) fail(at, "parentheses nested more than " + std::to_string(kMaxNesting) + " deep");
       const Fragment f = alternation();
+      --depth_;
       if (pos_ >= text_.size() || text_[pos_] != ')') fail(pos_, "expected ')' to close the '(' at position " + std::to_string(at));
       ++pos_;
       return f;
@@ -109,9 +112,11 @@ class Parser {
     return {start, end};
   }
 
+  static constexpr int kMaxNesting = 64;
   const std::string& text_;
   Nfa& nfa_;
   size_t pos_ = 0;
+  int depth_ = 0;
 };
 
 std::vector<int> closure(const Nfa& nfa, std::vector<int> set) {
@@ -129,31 +134,53 @@ std::vector<int> closure(const Nfa& nfa, std::vector<int> set) {
   return set;
 }
 
-// For each node, a bit per expression it can still reach the accepting node of.
+// For each node, a bit per expression it can still reach the accepting node of: the
+// accepting nodes' bits spread backwards along every edge, a node again only when its
+// bits grew (at most 64 times each).
 std::vector<uint64_t> coReachable(const Nfa& nfa) {
+  std::vector<std::vector<int>> predecessors(nfa.nodes.size());
+  for (size_t n = 0; n < nfa.nodes.size(); ++n) {
+    for (int m : nfa.nodes[n].epsilon) predecessors[static_cast<size_t>(m)].push_back(static_cast<int>(n));
+    for (const auto& [symbols, m] : nfa.nodes[n].edges) predecessors[static_cast<size_t>(m)].push_back(static_cast<int>(n));
+  }
   std::vector<uint64_t> reach(nfa.nodes.size(), 0);
-  for (size_t n = 0; n < nfa.nodes.size(); ++n)
-    if (nfa.nodes[n].accepts >= 0) reach[n] = uint64_t{1} << nfa.nodes[n].accepts;
-  for (bool changed = true; changed;) {  // a fixed point: the graphs are tiny
-    changed = false;
-    for (size_t n = 0; n < nfa.nodes.size(); ++n) {
-      uint64_t bits = reach[n];
-      for (int m : nfa.nodes[n].epsilon) bits |= reach[static_cast<size_t>(m)];
-      for (const auto& [symbols, m] : nfa.nodes[n].edges) bits |= reach[static_cast<size_t>(m)];
-      if (bits != reach[n]) {
-        reach[n] = bits;
-        changed = true;
-      }
+  std::vector<int> grown;
+  for (size_t n = 0; n < nfa.nodes.size(); ++n) {
+    if (nfa.nodes[n].accepts < 0) continue;
+    reach[n] = uint64_t{1} << nfa.nodes[n].accepts;
+    grown.push_back(static_cast<int>(n));
+  }
+  while (!grown.empty()) {
+    const uint64_t bits = reach[static_cast<size_t>(grown.back())];
+    const auto& from = predecessors[static_cast<size_t>(grown.back())];
+    grown.pop_back();
+    for (int p : from) {
+      if ((reach[static_cast<size_t>(p)] | bits) == reach[static_cast<size_t>(p)]) continue;
+      reach[static_cast<size_t>(p)] |= bits;
+      grown.push_back(p);
     }
   }
   return reach;
 }
+
+// Bounds on what the construction below is given, so that no decomposition takes more
+// than milliseconds to compile: an automaton's states (a subset construction can need 2^n
+// of them: "E.*D" followed by n dots remembers which of the last n vertices were diffuse;
+// 24 characters of it took 28 s, found by bench/fuzz.sh --target shot_json; real
+// decompositions need tens), and the expressions' length, which sizes every state's set.
+constexpr size_t kMaxStates = 1024;
+constexpr size_t kMaxLength = 4096;
 
 }  // namespace
 
 LpeAutomaton::LpeAutomaton(const std::vector<std::string>& expressions)
     : expressionCount_(static_cast<int>(expressions.size())) {
   if (expressions.size() > 63) throw LpeError("at most 63 light-path expressions can be combined");
+  size_t length = 0;
+  for (const std::string& expression : expressions) length += expression.size();
+  if (length > kMaxLength)
+    throw LpeError("the light-path expressions are " + std::to_string(length) + " characters long; at most " +
+                   std::to_string(kMaxLength));
   Nfa nfa;
   const int root = nfa.add();
   for (size_t k = 0; k < expressions.size(); ++k) {
@@ -173,6 +200,9 @@ LpeAutomaton::LpeAutomaton(const std::vector<std::string>& expressions)
   };
   stateOf(closure(nfa, {root}));
   for (size_t s = 0; s < sets.size(); ++s) {
+    if (sets.size() > kMaxStates)
+      throw LpeError("the light-path expressions need an automaton of more than " + std::to_string(kMaxStates) +
+                     " states; use fewer '.' after a '*'");
     for (int symbol = 0; symbol < kPathSymbols; ++symbol) {
       std::vector<int> target;
       for (int n : sets[s]) {

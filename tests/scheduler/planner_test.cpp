@@ -75,12 +75,42 @@ TEST(Planner, AShotBeyondTheSchedulersLimitsIsRefusedBeforeItIsPlanned) {
   spec.set_width(8192);
   spec.set_height(4096);
   spec.set_tile(8);  // half a million tiles a frame
-  EXPECT_NE(refusal(spec).find("plans 1048834 tasks, more than this scheduler takes (1000000"), std::string::npos)
+  EXPECT_NE(refusal(spec).find("plans at least 1048578 tasks, more than this scheduler takes (1000000"),
+            std::string::npos)
       << refusal(spec);
   ShotLimits generous;
   generous.maxTasks = 2'000'000;
   // 2 frames of 1024 x 512 tiles, each assembled from 128 regions of 4 rows of tiles.
   EXPECT_EQ(planShotWithin(spec, generous).size(), 2u * (1024 * 512 + 128 + 1));
+}
+
+// Found with the shot_json fuzz target: within the frame and pixel-frame limits, 8-pixel
+// tiles planned 1.6e10 tasks (minutes and gigabytes) before the task limit was checked. The
+// tiles are counted first.
+TEST(Planner, AShotOfTooManyTilesIsRefusedBeforeAnyIsPlanned) {
+  ShotLimits limits;
+  limits.maxTasks = 1000;
+  ShotSpec spec = renderSpec();
+  spec.set_frame_end(spec.frame_start() + 15);
+  spec.set_width(1024);
+  spec.set_height(1024);
+  spec.set_tile(8);  // 16 frames of 16384 tiles and an assembly
+  EXPECT_EQ(plannedTasksAtLeast(spec), 16 * (16384 + 1));
+  try {
+    planShotWithin(spec, limits);
+    FAIL() << "a shot of 262160 tasks was planned within a limit of 1000";
+  } catch (const PlanError& e) {
+    ASSERT_NE(std::string(e.what()).find("plans at least 262160 tasks, more than this scheduler takes (1000"),
+              std::string::npos)
+        << e.what();
+  }
+  spec.set_frame_end(spec.frame_start() + 999'999);
+  spec.set_width(1000);
+  spec.set_height(1000);  // 10^12 pixel-frames, the default limit: 1.6e10 tiles
+  EXPECT_EQ(plannedTasksAtLeast(spec), int64_t{1'000'000} * (125 * 125 + 1));
+  EXPECT_THROW(planShotWithin(spec, ShotLimits{}), PlanError);
+  spec.set_pipeline("tmlt");  // no tiles: a window's tasks and a merge per frame
+  EXPECT_EQ(plannedTasksAtLeast(spec), 1'000'000);
 }
 
 TEST(Planner, RefusesWhatItCannotRun) {

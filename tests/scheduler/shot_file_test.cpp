@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "renderer/scene/json_node.h"
+#include "scheduler/planner.h"
 #include "scheduler/shot_file.h"
 #include "test_support.h"
 
@@ -83,6 +84,20 @@ TEST(ShotFile, BadShotsAreRefusedWithFileAndKey) {
   EXPECT_NE(errorOf(R"({"scene": "cornell/scene.json", "spp": 1e400})").find("invalid JSON"), std::string::npos);
   EXPECT_NE(errorOf(R"({"scene": "cornell/scene.json", "decompose": "x=E(D"})").find("decompose: light-path expression"),
             std::string::npos);
+}
+
+// Found with the shot_json fuzz target: 100 bytes of shot file made the reader plan 10^13
+// tasks (it hung, then ran out of memory). A shot too large for a default scheduler is
+// read without being planned; the scheduler refuses it or plans it within its limits.
+TEST(ShotFile, AShotTooLargeToPlanIsReadWithoutPlanningIt) {
+  const auto file = writeShot("huge", R"({"scene": "cornell/scene.json", "pipeline": "pt", "tile": 8,
+    "frames": {"start": 0, "end": 10000000}, "resolution": [16384, 16384]})");
+  const ShotSpec spec = loadShotFile(file);
+  std::filesystem::remove(file);
+  EXPECT_EQ(spec.frame_end(), 10'000'000);
+  EXPECT_EQ(spec.tile(), 8);
+  EXPECT_GT(plannedTasksAtLeast(spec), ShotLimits{}.maxTasks);
+  EXPECT_THROW(planShotWithin(spec, ShotLimits{}), PlanError);
 }
 
 TEST(ShotFile, ReadsTheFilteringAndEvaluationKeys) {

@@ -90,5 +90,26 @@ TEST(LpeAutomaton, MalformedExpressionsNameThePosition) {
   }
 }
 
+// Found by bench/fuzz.sh --target shot_json: a "decompose" of "E.*D" followed by n dots
+// needs an automaton of 2^n states (24 characters took 28 s). What no decomposition needs
+// is refused, naming why: more than 1024 states, 4096 characters, parentheses 64 deep.
+TEST(LpeAutomaton, ExpressionsTooCostlyToCompileAreRefused) {
+  EXPECT_EQ(LpeAutomaton({"E.*D" + std::string(8, '.')}).stateCount(), 515);
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"E.*D" + std::string(12, '.')}, "an automaton of more than 1024 states"},
+      {{"ED", "E" + std::string(4095, 'D')}, "4098 characters long; at most 4096"},
+      {{"E" + std::string(65, '(') + "D" + std::string(65, ')')}, "at position 65: parentheses nested more than 64 deep"},
+  };
+  for (const auto& [expressions, expected] : cases) {
+    try {
+      LpeAutomaton{expressions};
+      ADD_FAILURE() << "accepted \"" << expressions.back().substr(0, 40) << "...\"";
+    } catch (const LpeError& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_NO_THROW(LpeAutomaton({"E" + std::string(64, '(') + "D" + std::string(64, ')')}));
+}
+
 }  // namespace
 }  // namespace pathfarm
