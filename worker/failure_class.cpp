@@ -1,8 +1,8 @@
 #include "worker/failure_class.h"
 
 #include "image/exr_io.h"
-#include "renderer/scene/json_node.h"
 #include "renderer/scene/mesh_io.h"
+#include "renderer/scene/scene_error.h"
 #include "renderer/scene/texture.h"
 
 namespace pathfarm::farm {

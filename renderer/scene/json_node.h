@@ -10,14 +10,9 @@
 #include <nlohmann/json.hpp>
 
 #include "renderer/math/vecmath.h"
+#include "renderer/scene/scene_error.h"
 
 namespace pathfarm {
-
-// A scene that cannot be loaded; the message names the file and the key path.
-class SceneError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 // A JSON document parsed from `text`; anything nlohmann refuses (a syntax error, a number
 // beyond double's range) is a SceneError "label: invalid JSON: ...".

@@ -4,8 +4,8 @@
 #include <filesystem>
 #include <string_view>
 
-#include "renderer/scene/json_node.h"
 #include "renderer/scene/scene.h"
+#include "renderer/scene/scene_error.h"
 
 namespace pathfarm {
 

@@ -9,8 +9,8 @@
 
 #include "image/exr_io.h"
 #include "renderer/decomposition/lpe_automaton.h"
-#include "renderer/scene/json_node.h"
 #include "renderer/scene/mesh_io.h"
+#include "renderer/scene/scene_error.h"
 #include "renderer/scene/texture.h"
 
 namespace pathfarm::farm {
