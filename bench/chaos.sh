@@ -6,6 +6,8 @@
 #
 #   bench/chaos.sh [--build DIR] [--pipelines "dui tgpt tmlt"] [--frames 0:5] [--res 96x64]
 #                  [--spp 16] [--workers 3] [--kill-every 2] [--scheduler-kills 2] [--limit 600]
+#                  [--soak-minutes 0]
+# With --soak-minutes M the pipelines run again, round after round, until M minutes passed.
 #
 # CI runs a small one (ctest chaos.small); a long soak is e.g.
 #   bench/chaos.sh --frames 0:23 --res 192x192 --spp 64 --workers 6 --scheduler-kills 6
@@ -13,6 +15,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=build pipelines="dui tgpt tmlt" frames=0:5 res=96x64 spp=16 workers=3 every=2 schedulerKills=2 limit=600
+soakMinutes=0
 while (($#)); do
   case "$1" in
     --build) build=$2 ;;
@@ -24,6 +27,7 @@ while (($#)); do
     --kill-every) every=$2 ;;
     --scheduler-kills) schedulerKills=$2 ;;
     --limit) limit=$2 ;;
+    --soak-minutes) soakMinutes=$2 ;;
     *) echo "chaos: unknown option $1" >&2; exit 2 ;;
   esac
   shift 2
@@ -49,7 +53,9 @@ start_scheduler() {  # $1: the address to listen on (127.0.0.1:0 the first time)
   echo "chaos: the scheduler wrote no port; its log:" >&2; tail -20 "$work/scheduler.log" >&2; exit 1
 }
 start_worker() {  # $1: slot index
-  "$pathfarm" worker --scheduler "127.0.0.1:$(cat "$work/port")" --threads 1 --name "chaos-$1" \
+  # The scheduler keeps its port across restarts: read from $port, not from the port file,
+  # which a restart removes (the background command could read it at that moment).
+  "$pathfarm" worker --scheduler "127.0.0.1:$port" --threads 1 --name "chaos-$1" \
     --cache "$work/cache-$1" >> "$work/worker-$1.log" 2>&1 &
   worker_pids[$1]=$!
 }
@@ -61,15 +67,16 @@ state_of() {  # the state word of shot $1 (empty while the scheduler is away)
 
 echo "| pipeline | frames | workers | worker kills | scheduler kills | seconds | frames identical |"
 echo "| --- | ---: | ---: | ---: | ---: | ---: | --- |"
-status=0
-for pipeline in $pipelines; do
+run_pipeline() {  # $1: the pipeline; sets status=1 unless every frame is identical
+  local pipeline=$1
   shot="$work/$pipeline.json"
   cat > "$shot" <<JSON
 {"name": "chaos-$pipeline", "scene": "$PWD/scenes/cornell/scene.json",
  "frames": {"start": ${frames%:*}, "end": ${frames#*:}}, "resolution": [${res%x*}, ${res#*x}],
  "spp": $spp, "tile": 32, "pipeline": "$pipeline", "max_attempts": 3, "output": "$work/undisturbed-$pipeline"}
 JSON
-  "$pathfarm" local "$shot" --workers 2 > "$work/local-$pipeline.log" 2>&1 ||
+  # Rendered once; later rounds compare against the same frames.
+  [ -d "$work/undisturbed-$pipeline" ] || "$pathfarm" local "$shot" --workers 2 > "$work/local-$pipeline.log" 2>&1 ||
     { echo "chaos: the undisturbed run failed:" >&2; tail -20 "$work/local-$pipeline.log" >&2; exit 1; }
 
   rm -rf "$work/farm.db"* "$work/store" "$work"/cache-*
@@ -109,9 +116,19 @@ JSON
     status=1
     "$pathfarm" status "$id" --scheduler "127.0.0.1:$port" 2> /dev/null | tail -5 >&2 || true
   fi
-  echo "| $pipeline | $frames | $workers | $kills | $restarts | $seconds | $identical |"
+  label=$pipeline
+  ((soakMinutes > 0)) && label="$pipeline, round $round"
+  echo "| $label | $frames | $workers | $kills | $restarts | $seconds | $identical |"
   for pid in $scheduler_pid "${worker_pids[@]}"; do kill -9 "$pid" 2> /dev/null || true; done
   wait 2> /dev/null || true
   scheduler_pid="" worker_pids=()
+}
+
+status=0 round=1
+while :; do
+  for pipeline in $pipelines; do run_pipeline "$pipeline"; done
+  ((soakMinutes > 0 && SECONDS < soakMinutes * 60)) || break
+  round=$((round + 1))
 done
+echo "chaos: $round round(s) in $((SECONDS / 60)) min $((SECONDS % 60)) s"
 exit $status
