@@ -82,11 +82,12 @@ sources_of() {
   esac
 }
 exr_libs="$(pkg-config --libs OpenEXR)"
+stb_libs="$(pkg-config --libs stb)"
 libs_of() {
   case "$1" in
-    gltf_loader) echo "$(pkg-config --libs stb) -lspdlog -lfmt -lpthread" ;;
-    scene_json) echo "$(pkg-config --libs stb) $exr_libs -lspdlog -lfmt -lpthread" ;;
-    shot_json) echo "$(pkg-config --libs stb) $exr_libs -lprotobuf -lspdlog -lfmt -lpthread" ;;
+    gltf_loader) echo "$stb_libs -lspdlog -lfmt -lpthread" ;;
+    scene_json) echo "$stb_libs $exr_libs -lspdlog -lfmt -lpthread" ;;
+    shot_json) echo "$stb_libs $exr_libs -lprotobuf -lspdlog -lfmt -lpthread" ;;
     mesh_readers) echo "-lspdlog -lfmt -lpthread" ;;
     exr_chunk) echo "$exr_libs -lspdlog -lfmt -lpthread" ;;
   esac
@@ -141,7 +142,9 @@ flock 9
     declare -A linked=()
     for source in $(sources_of "$name"); do
       [[ $source == /* ]] || source=$root/$source
-      object=objects/$(echo "${source#"$root"/}" | sed 's|^/||; s|/|_|g').o
+      relative=${source#"$root"/}
+      relative=${relative#/}
+      object=objects/${relative//\//_}.o
       [[ -n ${linked[$object]:-} ]] && continue
       linked[$object]=1
       if [[ -z ${seen[$object]:-} ]]; then
