@@ -313,7 +313,9 @@ ReportReply FarmState::fail(int64_t attemptId, const std::string& reason, double
     if (!attempt) return refused(kStaleLease);
     endAttempt(*attempt, static_cast<int>(AttemptState::Failed), reason, now, logTail,
                lowerWithout(FailureClass_Name(kind), "FAILURE_"));
-    if (kind == FAILURE_BAD_INPUT) {
+    // Bad input fails the shot once a second worker says so too: one worker (broken, or
+    // hostile) cannot fail a shot by itself. Until then the task runs again, no one blamed.
+    if (kind == FAILURE_BAD_INPUT && anotherWorkerFoundBadInput(*attempt)) {
       failOnBadInput(*attempt, reason, now);
     } else {
       retryOrFail(*attempt, reason, kind == FAILURE_WORKER_FAULT, now);
@@ -322,9 +324,18 @@ ReportReply FarmState::fail(int64_t attemptId, const std::string& reason, double
   });
 }
 
+bool FarmState::anotherWorkerFoundBadInput(const AttemptRow& attempt) {
+  Statement& q = db_.query(
+      "SELECT 1 FROM attempts WHERE task_id = ?1 AND id != ?2 AND worker_id != ?3 AND failure_class = 'bad_input'");
+  q.bind(1, attempt.taskId).bind(2, attempt.id).bind(3, attempt.workerId);
+  const bool found = q.step();
+  q.reset();
+  return found;
+}
+
 void FarmState::failOnBadInput(const AttemptRow& attempt, const std::string& reason, double now) {
   const std::string task = describeTask(attempt.taskId, attempt.kind, attempt.params);
-  addEvent(attempt.shotId, task + " cannot run on any worker (bad input, reported by worker " +
+  addEvent(attempt.shotId, task + " cannot run on any worker (bad input, reported by two workers, the last " +
                                std::to_string(attempt.workerId) + "): " + reason,
            now);
   failTask(attempt, "failures", attempt.failures + 1, task + " has a bad input: " + reason, now);

@@ -88,8 +88,8 @@ class FarmState {
   ReportReply complete(const CompleteRequest& request, double now);
   // `logTail`: what the worker logged while it ran the attempt (kept to kMaxLogTailBytes).
   // A worker fault runs the task again and counts toward the worker's blocklist; a
-  // transport failure runs it again and blames no one; bad input fails the task and its
-  // shot at once, since no worker could run it.
+  // transport failure runs it again and blames no one; bad input, once a second worker
+  // reports it too, fails the task and its shot, since no worker could run it.
   ReportReply fail(int64_t attemptId, const std::string& reason, double now, const std::string& logTail = "",
                    FailureClass kind = FAILURE_WORKER_FAULT);
   static constexpr size_t kMaxLogTailBytes = 16384;
@@ -196,6 +196,7 @@ class FarmState {
   void endAttempt(const AttemptRow& attempt, int state, const std::string& error, double now,
                   const std::string& logTail = "", const std::string& failureClass = "");
   void retryOrFail(const AttemptRow& attempt, const std::string& reason, bool blameWorker, double now);
+  bool anotherWorkerFoundBadInput(const AttemptRow& attempt);
   void failOnBadInput(const AttemptRow& attempt, const std::string& reason, double now);
   void retryLost(const AttemptRow& attempt, const std::string& reason, double now);
   // The task failed for good, and its shot with `why`; `counter` (failures or lost) is

@@ -1,6 +1,7 @@
 // A shot whose task fails on every attempt: it ends SHOT_FAILED with the reason, the
 // workers that failed it keep running and keep working, and once the cause is mended
-// `pathfarm retry` finishes it. A scene no worker can read fails its shot at once.
+// `pathfarm retry` finishes it. A scene no worker can read fails its shot as soon as two
+// workers have said so.
 #include "farm/farm_fixture.h"
 
 namespace pathfarm::farmtest {
@@ -81,7 +82,7 @@ TEST_F(FarmTest, ShotFailingEveryAttemptEndsFailedWithItsReasonAndWorkersSurvive
   EXPECT_EQ(mended.frames_done(), 1);
 }
 
-TEST_F(FarmTest, AMalformedSceneFailsItsShotAtOnceWithoutBlamingAWorker) {
+TEST_F(FarmTest, AMalformedSceneFailsItsShotWithoutBlamingAWorker) {
   SchedulerConfig config;
   config.retryBackoffSeconds = 0.1;
   startScheduler(config);
@@ -101,13 +102,17 @@ TEST_F(FarmTest, AMalformedSceneFailsItsShotAtOnceWithoutBlamingAWorker) {
   shot.set_scene(scene.string());
   const int64_t id = client().submit(shot);
 
+  // Failed once a second worker found the scene bad too (or, should one worker lease it
+  // every time, after its 3 attempts).
   const farm::ShotSummary summary = waitForShot(id, 30s);
   ASSERT_EQ(summary.state(), farm::SHOT_FAILED) << describe(summary);
-  EXPECT_TRUE(contains(summary.failure(), "bad input")) << summary.failure();
   EXPECT_TRUE(contains(summary.failure(), "malformed_scene.json")) << summary.failure();
   const FarmDatabase db = database();
-  EXPECT_EQ(db.integer("SELECT COUNT(*) FROM attempts"), 1) << "a scene no worker can read was tried again";
-  EXPECT_EQ(db.rows("SELECT failure_class FROM attempts")[0][0], "bad_input");
+  const int64_t attempts = db.integer("SELECT COUNT(*) FROM attempts");
+  EXPECT_TRUE(attempts == 2 || attempts == 3) << attempts;
+  EXPECT_EQ(db.integer("SELECT COUNT(*) FROM attempts WHERE failure_class = 'bad_input'"), attempts);
+  if (db.integer("SELECT COUNT(DISTINCT worker_id) FROM attempts") == 2)
+    EXPECT_TRUE(contains(summary.failure(), "bad input")) << summary.failure();
   EXPECT_EQ(db.integer("SELECT COUNT(*) FROM worker_failures"), 0) << "a worker was blamed for the scene";
 }
 

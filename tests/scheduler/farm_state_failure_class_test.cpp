@@ -1,25 +1,43 @@
-// Whose fault a failure is decides what the farm does with it: a bad input fails the
-// task and its shot at once and blames nobody; a transfer failure runs the task again
-// without blaming the worker; a worker fault counts toward that worker's blocklist.
+// Whose fault a failure is decides what the farm does with it: a bad input, once two
+// workers report it, fails the task and its shot and blames nobody; a transfer failure
+// runs the task again without blaming the worker; a worker fault counts toward that
+// worker's blocklist.
 #include "scheduler/farm_state_fixture.h"
 
 namespace pathfarm::farm {
 namespace {
 
-TEST_F(FarmStateTest, ABadInputFailsTheShotAtOnceAndBlamesNoWorker) {
+TEST_F(FarmStateTest, ABadInputTwoWorkersReportFailsTheShotAndBlamesNoWorker) {
   const int64_t shot = submitFrame(0, 10);
-  const int64_t worker = state_->registerWorker("w", 1, now_);
-  const Lease lease = leaseFor(worker);
-  ASSERT_TRUE(state_->fail(lease.attempt_id(), "scene.json: \"radius\": not a finite number", now_, "", FAILURE_BAD_INPUT)
-                  .accepted());
+  const int64_t first = state_->registerWorker("first", 1, now_), second = state_->registerWorker("second", 1, now_);
+  const std::string reason = "scene.json: \"radius\": not a finite number";
+  const Lease lease = leaseFor(first);
+  ASSERT_TRUE(state_->fail(lease.attempt_id(), reason, now_, "", FAILURE_BAD_INPUT).accepted());
+  EXPECT_EQ(state_->summary(shot, now_).state(), SHOT_RUNNING) << "one worker's word failed the shot";
+  now_ += settings_.retryBackoffSeconds;
+  const Lease again = leaseFor(second);
+  ASSERT_EQ(again.task_id(), lease.task_id());
+  ASSERT_TRUE(state_->fail(again.attempt_id(), reason, now_, "", FAILURE_BAD_INPUT).accepted());
   const ShotSummary summary = state_->summary(shot, now_);
   EXPECT_EQ(summary.state(), SHOT_FAILED) << "a bad input was retried although no worker can run it";
   EXPECT_NE(summary.failure().find("bad input"), std::string::npos) << summary.failure();
   EXPECT_NE(summary.failure().find("\"radius\""), std::string::npos) << summary.failure();
   EXPECT_TRUE(state_->blocklist(shot).empty());
   const FarmMetrics metrics = state_->metrics(now_);
-  EXPECT_EQ(metrics.attemptsEnded.at("bad_input"), 1);
+  EXPECT_EQ(metrics.attemptsEnded.at("bad_input"), 2);
   EXPECT_EQ(metrics.attemptsEnded.at("worker_fault"), 0);
+}
+
+TEST_F(FarmStateTest, OneWorkerAloneCannotFailAShotAsBadInput) {
+  const int64_t shot = submitFrame(0, 10);
+  const int64_t liar = state_->registerWorker("liar", 1, now_);
+  for (int report = 0; report < 3; ++report) {
+    const Lease lease = leaseFor(liar);
+    ASSERT_TRUE(state_->fail(lease.attempt_id(), "bad input, it says", now_, "", FAILURE_BAD_INPUT).accepted());
+    now_ += 100;  // past any backoff
+  }
+  EXPECT_EQ(state_->summary(shot, now_).state(), SHOT_RUNNING);
+  EXPECT_TRUE(state_->blocklist(shot).empty());
 }
 
 TEST_F(FarmStateTest, ATransferFailureRunsTheTaskAgainAndBlamesNoWorker) {
