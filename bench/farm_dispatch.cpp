@@ -66,7 +66,13 @@ int main(int argc, char** argv) {
     std::vector<std::thread> pool;
     for (int w = 0; w < workers; ++w) {
       pool.emplace_back([&, w] {
-        Worker({scheduler.address(), 1, 1, "bench-" + std::to_string(w), options.token, folder / "cache"}).run(stop);
+        WorkerOptions worker;
+        worker.scheduler = scheduler.address();
+        worker.threads = 1;
+        worker.name = "bench-" + std::to_string(w);
+        worker.token = options.token;
+        worker.cache = folder / "cache";
+        Worker(std::move(worker)).run(stop);
       });
     }
     FarmClient client(scheduler.address(), options.token);

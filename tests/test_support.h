@@ -33,6 +33,17 @@ inline Scene sceneFromJson(const std::string& json,
   return parseScene(json, folder / "scene.json");
 }
 
+// The message of the SceneError that load() throws, or "(no error)".
+template <class Load>
+std::string sceneErrorOf(Load load) {
+  try {
+    load();
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
 // The mean of one beauty channel over all pixels and its standard error, from the
 // per-pixel variances of the mean that the renderer writes.
 struct MeanEstimate {
@@ -50,6 +61,15 @@ inline MeanEstimate meanOverPixels(const FrameImage& image, const std::string& c
   }
   const double n = static_cast<double>(values.size());
   return {sum / n, std::sqrt(varianceSum) / n};
+}
+
+// meanOverPixels of a 16 x 16 path-traced frame of `scene`.
+inline MeanEstimate renderedMean(const Scene& scene, int spp, int maxDepth, const std::string& channel = "G") {
+  RenderSettings settings;
+  settings.width = settings.height = 16;
+  settings.spp = spp;
+  settings.maxDepth = maxDepth;
+  return meanOverPixels(FrameRenderer(scene, settings).render(0), channel);
 }
 
 // A deterministic value in [0, 1) per (seed, c, x, y): test images without a generator.

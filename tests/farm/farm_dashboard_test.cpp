@@ -110,8 +110,12 @@ TEST_F(DashboardTest, TheApiShowsAFinishedShot) {
     EXPECT_TRUE(contains(log, "task " + id + " (")) << log;
     EXPECT_TRUE(contains(log, "task " + id + ": ran ")) << log;
     EXPECT_TRUE(contains(log, "task " + id + ": output ")) << log;
-    if (task["kind"] == "render_tile") EXPECT_TRUE(contains(log, "samples ")) << log;
-    if (task["kind"] == "assemble_frame") EXPECT_TRUE(contains(log, "read 4 input chunk(s)")) << log;
+    if (task["kind"] == "render_tile") {
+      EXPECT_TRUE(contains(log, "samples ")) << log;
+    }
+    if (task["kind"] == "assemble_frame") {
+      EXPECT_TRUE(contains(log, "read 4 input chunk(s)")) << log;
+    }
   }
   EXPECT_EQ(tiles, spec.frames() * spec.tilesPerFrame());
   const json done = get(shotPath(id) + "/tasks?state=done&offset=2&limit=3");

@@ -111,8 +111,9 @@ TEST_F(FarmTest, AMalformedSceneFailsItsShotWithoutBlamingAWorker) {
   const int64_t attempts = db.integer("SELECT COUNT(*) FROM attempts");
   EXPECT_TRUE(attempts == 2 || attempts == 3) << attempts;
   EXPECT_EQ(db.integer("SELECT COUNT(*) FROM attempts WHERE failure_class = 'bad_input'"), attempts);
-  if (db.integer("SELECT COUNT(DISTINCT worker_id) FROM attempts") == 2)
+  if (db.integer("SELECT COUNT(DISTINCT worker_id) FROM attempts") == 2) {
     EXPECT_TRUE(contains(summary.failure(), "bad input")) << summary.failure();
+  }
   EXPECT_EQ(db.integer("SELECT COUNT(*) FROM worker_failures"), 0) << "a worker was blamed for the scene";
 }
 

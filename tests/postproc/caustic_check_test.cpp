@@ -38,8 +38,12 @@ TEST(CausticCheck, ASpotIsFlaggedWithItsMarginAndNothingElse) {
     for (int x = 0; x < kSize; ++x) {
       const bool near = x >= 10 - reach && x < 14 + reach && y >= 20 - reach && y < 24 + reach;
       const uint8_t flag = flags[static_cast<size_t>(y * kSize + x)];
-      if (inSpot(x, y)) EXPECT_EQ(flag, 1) << x << "," << y;
-      if (!near) EXPECT_EQ(flag, 0) << x << "," << y;
+      if (inSpot(x, y)) {
+        EXPECT_EQ(flag, 1) << x << "," << y;
+      }
+      if (!near) {
+        EXPECT_EQ(flag, 0) << x << "," << y;
+      }
     }
 }
 
@@ -63,7 +67,9 @@ TEST(CausticCheck, ASparseLowSampleCausticIsFoundWhole) {
       frame([&](int x, int y) { return inDisc(x, y) ? hits[static_cast<size_t>(y * kSize + x)] : 0.0f; }));
   for (int y = 0; y < kSize; ++y)
     for (int x = 0; x < kSize; ++x)
-      if (inDisc(x, y)) EXPECT_EQ(flags[static_cast<size_t>(y * kSize + x)], 1) << x << "," << y;
+      if (inDisc(x, y)) {
+        EXPECT_EQ(flags[static_cast<size_t>(y * kSize + x)], 1) << x << "," << y;
+      }
 }
 
 TEST(CausticCheck, AFrameWithoutTheBufferHasNoneAndOneWithoutABeautyIsRefused) {

@@ -16,8 +16,8 @@ namespace pathfarm {
 namespace {
 
 constexpr int kFactor = 2, kLowWidth = 8, kLowHeight = 6;
-constexpr int kWidth = kLowWidth * kFactor, kHeight = kLowHeight * kFactor;
-constexpr const char* kRgb[] = {"R", "G", "B"};
+constexpr int kFullWidth = kLowWidth * kFactor, kFullHeight = kLowHeight * kFactor;
+constexpr const char* kUpsampledChannels[] = {"R", "G", "B"};
 constexpr const char* kXyz[] = {"X", "Y", "Z"};
 const std::string kDecomposition = "diffuse=ED,residual";
 const std::string kComponents[] = {"diffuse", "residual"};
@@ -27,7 +27,7 @@ using test_support::hashed;
 size_t index(int x, int y, int width) { return static_cast<size_t>(y) * width + x; }
 
 // Component k's full-resolution surface: left of x = 8 one normal, right of it another.
-bool rightSide(int x) { return x >= kWidth / 2; }
+bool rightSide(int x) { return x >= kFullWidth / 2; }
 
 // A textured reflectance; diffuse's pixel (3, 4) is black (below the guard).
 float reflectanceOf(int k, int c, int x, int y) {
@@ -36,19 +36,19 @@ float reflectanceOf(int k, int c, int x, int y) {
 }
 
 FrameImage makeHighFeatures() {
-  FrameImage high(kWidth, kHeight);
+  FrameImage high(kFullWidth, kFullHeight);
   high.attributes()["pathfarm.decomposition"] = kDecomposition;
   for (int k = 0; k < 2; ++k) {
     const std::string& name = kComponents[k];
     for (int c = 0; c < 3; ++c) {
-      std::vector<float>& reflectance = high.addChannel(name + ".reflectance." + kRgb[c]);
+      std::vector<float>& reflectance = high.addChannel(name + ".reflectance." + kUpsampledChannels[c]);
       std::vector<float>& normal = high.addChannel(name + ".normal." + kXyz[c]);
-      high.addChannel(name + ".emission." + kRgb[c]);
-      for (int y = 0; y < kHeight; ++y)
-        for (int x = 0; x < kWidth; ++x) {
-          reflectance[index(x, y, kWidth)] = reflectanceOf(k, c, x, y);
+      high.addChannel(name + ".emission." + kUpsampledChannels[c]);
+      for (int y = 0; y < kFullHeight; ++y)
+        for (int x = 0; x < kFullWidth; ++x) {
+          reflectance[index(x, y, kFullWidth)] = reflectanceOf(k, c, x, y);
           const float left[3] = {0.0f, 0.0f, 1.0f}, right[3] = {0.6f, 0.0f, 0.8f};
-          normal[index(x, y, kWidth)] = rightSide(x) ? right[c] : left[c];
+          normal[index(x, y, kFullWidth)] = rightSide(x) ? right[c] : left[c];
         }
     }
   }
@@ -62,7 +62,7 @@ FrameImage makeLow(const std::function<float(int, int, int, int)>& irradiance) {
   low.attributes()["pathfarm.spp"] = "16";
   for (int k = 0; k < 2; ++k)
     for (int c = 0; c < 3; ++c) {
-      std::vector<float>& plane = low.addChannel(kComponents[k] + ".irradiance." + kRgb[c]);
+      std::vector<float>& plane = low.addChannel(kComponents[k] + ".irradiance." + kUpsampledChannels[c]);
       for (int y = 0; y < kLowHeight; ++y)
         for (int x = 0; x < kLowWidth; ++x) plane[index(x, y, kLowWidth)] = irradiance(k, c, x, y);
     }
@@ -83,32 +83,32 @@ TEST(ComponentUpsampler, ModulatesTheUpsampledIrradianceAndSumsTheComponents) {
   const FrameImage high = makeHighFeatures();
   const FrameImage out = upsampleFrame(low, high, settingsOf(1e-3f));
 
-  ASSERT_EQ(out.width(), kWidth);
-  ASSERT_EQ(out.height(), kHeight);
+  ASSERT_EQ(out.width(), kFullWidth);
+  ASSERT_EQ(out.height(), kFullHeight);
   EXPECT_EQ(out.attributes().at("pathfarm.rerender_pixels"), "0");
   EXPECT_EQ(out.attributes().at("pathfarm.spp"), "16");  // the low frame's attributes
   EXPECT_EQ(out.attributes().at("pathfarm.decomposition"), kDecomposition);
   EXPECT_NE(out.attributes().at("pathfarm.upsample").find("factor=2"), std::string::npos);
   for (const float flag : out.channel("rerender.Y")) EXPECT_EQ(flag, 0.0f);
   for (int c = 0; c < 3; ++c)
-    for (int y = 0; y < kHeight; ++y)
-      for (int x = 0; x < kWidth; ++x) {
-        const size_t i = index(x, y, kWidth);
+    for (int y = 0; y < kFullHeight; ++y)
+      for (int x = 0; x < kFullWidth; ++x) {
+        const size_t i = index(x, y, kFullWidth);
         float sum = 0;
         for (int k = 0; k < 2; ++k) {
           const std::string& name = kComponents[k];
-          const float up = out.channel(name + ".irradiance." + kRgb[c])[i];
+          const float up = out.channel(name + ".irradiance." + kUpsampledChannels[c])[i];
           EXPECT_NEAR(up, irradiance[k][c], 1e-6f);
           const float reflectance = reflectanceOf(k, c, x, y);
-          const float color = out.channel(name + ".color." + kRgb[c])[i];
+          const float color = out.channel(name + ".color." + kUpsampledChannels[c])[i];
           EXPECT_FLOAT_EQ(color, modulateIrradiance(up, reflectance));
           EXPECT_NEAR(color, reflectance < kReflectanceGuard ? irradiance[k][c] : irradiance[k][c] * reflectance, 1e-6f);
           sum += color;
         }
-        EXPECT_FLOAT_EQ(out.channel(kRgb[c])[i], sum);
+        EXPECT_FLOAT_EQ(out.channel(kUpsampledChannels[c])[i], sum);
       }
   // Black diffuse reflectance: the irradiance is the color itself.
-  EXPECT_NEAR(out.channel("diffuse.color.G")[index(3, 4, kWidth)], 0.5f, 1e-6f);
+  EXPECT_NEAR(out.channel("diffuse.color.G")[index(3, 4, kFullWidth)], 0.5f, 1e-6f);
 }
 
 TEST(ComponentUpsampler, KeepsAnIlluminationEdgeTheNormalsShare) {
@@ -121,10 +121,10 @@ TEST(ComponentUpsampler, KeepsAnIlluminationEdgeTheNormalsShare) {
   const FrameImage out = upsampleFrame(low, makeHighFeatures(), settingsOf(1e-7f));
   EXPECT_EQ(out.attributes().at("pathfarm.rerender_pixels"), "0");
   for (int c = 0; c < 3; ++c)
-    for (int y = 0; y < kHeight; ++y)
-      for (int x = 0; x < kWidth; ++x) {
+    for (int y = 0; y < kFullHeight; ++y)
+      for (int x = 0; x < kFullWidth; ++x) {
         const float expected = rightSide(x) ? 2.0f + 0.5f * c : 0.3f;
-        ASSERT_NEAR(out.channel(std::string("diffuse.irradiance.") + kRgb[c])[index(x, y, kWidth)], expected, 1e-4f)
+        ASSERT_NEAR(out.channel(std::string("diffuse.irradiance.") + kUpsampledChannels[c])[index(x, y, kFullWidth)], expected, 1e-4f)
             << "(" << x << ", " << y << ")";
       }
 }
@@ -135,14 +135,14 @@ TEST(ComponentUpsampler, FlagsAndCountsNegativeResultsFrameWide) {
   const FrameImage out = upsampleFrame(low, makeHighFeatures(), settingsOf(1e-3f));
   const std::vector<float>& rerender = out.channel("rerender.Y");
   size_t flagged = 0;
-  for (int y = 0; y < kHeight; ++y)
-    for (int x = 0; x < kWidth; ++x) {
-      const size_t i = index(x, y, kWidth);
+  for (int y = 0; y < kFullHeight; ++y)
+    for (int x = 0; x < kFullWidth; ++x) {
+      const size_t i = index(x, y, kFullWidth);
       flagged += rerender[i] != 0 ? 1 : 0;
       if (x == 0) {
         EXPECT_EQ(rerender[i], 1.0f);
       }
-      if (x == kWidth - 1) {
+      if (x == kFullWidth - 1) {
         EXPECT_EQ(rerender[i], 0.0f);
       }
       if (rerender[i] != 0) {
@@ -160,33 +160,33 @@ TEST(ComponentUpsampler, BeatsNearestUpsamplingInTheEvaluationProtocol) {
   FrameImage target = makeHighFeatures();
   for (int k = 0; k < 2; ++k)
     for (int c = 0; c < 3; ++c) {
-      const std::string suffix = std::string(".") + kRgb[c];
+      const std::string suffix = std::string(".") + kUpsampledChannels[c];
       std::vector<float>& color = target.addChannel(kComponents[k] + ".color" + suffix);
       std::vector<float>& irradiance = target.addChannel(kComponents[k] + ".irradiance" + suffix);
       const std::vector<float>& reflectance = target.channel(kComponents[k] + ".reflectance" + suffix);
-      for (int y = 0; y < kHeight; ++y)
-        for (int x = 0; x < kWidth; ++x) {
-          const size_t i = index(x, y, kWidth);
+      for (int y = 0; y < kFullHeight; ++y)
+        for (int x = 0; x < kFullWidth; ++x) {
+          const size_t i = index(x, y, kFullWidth);
           const float light = (k == 0 ? 1.0f : 0.2f) * (1.0f + 0.03f * x + 0.02f * y + 0.1f * c);
           color[i] = light * std::max(reflectance[i], kReflectanceGuard);
           irradiance[i] = effectiveIrradiance(color[i], reflectance[i]);
         }
     }
   for (int c = 0; c < 3; ++c) {
-    std::vector<float>& beauty = target.addChannel(kRgb[c]);
+    std::vector<float>& beauty = target.addChannel(kUpsampledChannels[c]);
     for (size_t i = 0; i < beauty.size(); ++i)
-      beauty[i] = target.channel(std::string("diffuse.color.") + kRgb[c])[i] +
-                  target.channel(std::string("residual.color.") + kRgb[c])[i];
+      beauty[i] = target.channel(std::string("diffuse.color.") + kUpsampledChannels[c])[i] +
+                  target.channel(std::string("residual.color.") + kUpsampledChannels[c])[i];
   }
   const FrameImage low = boxDownsample(target, kFactor);
   const FrameImage out = upsampleFrame(low, target, settingsOf(1e-3f));
   double guidedError = 0, nearestError = 0;
   for (int c = 0; c < 3; ++c)
-    for (int y = 0; y < kHeight; ++y)
-      for (int x = 0; x < kWidth; ++x) {
-        const float truth = target.channel(kRgb[c])[index(x, y, kWidth)];
-        guidedError += std::abs(out.channel(kRgb[c])[index(x, y, kWidth)] - truth);
-        nearestError += std::abs(low.channel(kRgb[c])[index(x / kFactor, y / kFactor, kLowWidth)] - truth);
+    for (int y = 0; y < kFullHeight; ++y)
+      for (int x = 0; x < kFullWidth; ++x) {
+        const float truth = target.channel(kUpsampledChannels[c])[index(x, y, kFullWidth)];
+        guidedError += std::abs(out.channel(kUpsampledChannels[c])[index(x, y, kFullWidth)] - truth);
+        nearestError += std::abs(low.channel(kUpsampledChannels[c])[index(x / kFactor, y / kFactor, kLowWidth)] - truth);
       }
   EXPECT_LT(guidedError, 0.2 * nearestError);
 }
@@ -211,7 +211,7 @@ TEST(ComponentUpsampler, NamesWhatIsMissingOrDoesNotFit) {
     if (name != "residual.irradiance.G") noIrradiance.addChannel(name) = low.channel(name);
   expectError(noIrradiance, high, "\"residual.irradiance.G\"");
 
-  FrameImage noNormal(kWidth, kHeight);
+  FrameImage noNormal(kFullWidth, kFullHeight);
   noNormal.attributes() = high.attributes();
   for (const std::string& name : high.channelNames())
     if (name != "diffuse.normal.Y") noNormal.addChannel(name) = high.channel(name);
@@ -225,7 +225,7 @@ TEST(ComponentUpsampler, NamesWhatIsMissingOrDoesNotFit) {
   otherDecomposition.attributes()["pathfarm.decomposition"] = "glass=ETTD.*,residual";
   expectError(low, otherDecomposition, "glass=ETTD.*,residual");
 
-  FrameImage wrongSize(kWidth + 2, kHeight);
+  FrameImage wrongSize(kFullWidth + 2, kFullHeight);
   wrongSize.paste(high, 0, 0);
   expectError(low, wrongSize, "needs 16x12 features, not 18x12");
   UpsampleSettings factor3 = settingsOf(1e-3f);
@@ -249,10 +249,10 @@ TEST(ComponentUpsampler, UpsamplesEveryComponentTheAttributeNames) {
     for (const std::string name : {"a", "b", "residual"}) {
       ++k;
       for (int c = 0; c < 3; ++c) {
-        low.addChannel(name + ".irradiance." + kRgb[c]).assign(4, static_cast<float>(k));
-        high.addChannel(name + ".reflectance." + kRgb[c]).assign(16, 0.5f);
+        low.addChannel(name + ".irradiance." + kUpsampledChannels[c]).assign(4, static_cast<float>(k));
+        high.addChannel(name + ".reflectance." + kUpsampledChannels[c]).assign(16, 0.5f);
         high.addChannel(name + ".normal." + kXyz[c]).assign(16, c == 2 ? 1.0f : 0.0f);
-        high.addChannel(name + ".emission." + kRgb[c]);
+        high.addChannel(name + ".emission." + kUpsampledChannels[c]);
       }
     }
     UpsampleSettings settings = settingsOf(1e-3f);

@@ -11,7 +11,7 @@
 namespace pathfarm {
 namespace {
 
-constexpr int kWidth = 96, kHeight = 72;
+constexpr int kContentWidth = 96, kContentHeight = 72;
 
 // Two frames (the second a neighbour with a few invalid pixels), noisy color and variance
 // only inside [x0, x0 + 14) x [y0, y0 + 10), a normal-like feature everywhere.
@@ -21,20 +21,20 @@ NlMeansInput sparseInput(int x0, int y0, std::mt19937& rng) {
   input.featureKinds = {FeatureKind::Continuous};
   for (int f = 0; f < 2; ++f) {
     NlMeansFrame& frame = input.frames.emplace_back();
-    frame.color = Planes(kWidth, kHeight, 3);
-    frame.variance = Planes(kWidth, kHeight, 3);
-    frame.features.push_back(Planes(kWidth, kHeight, 3));
+    frame.color = Planes(kContentWidth, kContentHeight, 3);
+    frame.variance = Planes(kContentWidth, kContentHeight, 3);
+    frame.features.push_back(Planes(kContentWidth, kContentHeight, 3));
     for (auto& channel : frame.features[0].channels)
       for (float& v : channel) v = feature(rng);
     for (int y = y0 + f; y < y0 + 10 + f; ++y)
       for (int x = x0; x < x0 + 14; ++x)
         for (int c = 0; c < 3; ++c) {
-          const size_t p = static_cast<size_t>(y) * kWidth + x;
+          const size_t p = static_cast<size_t>(y) * kContentWidth + x;
           frame.color.channels[static_cast<size_t>(c)][p] = value(rng);
           frame.variance.channels[static_cast<size_t>(c)][p] = variance(rng);
         }
     if (f == 1) {
-      frame.valid.assign(static_cast<size_t>(kWidth) * kHeight, 1.0f);
+      frame.valid.assign(static_cast<size_t>(kContentWidth) * kContentHeight, 1.0f);
       for (size_t p = 0; p < frame.valid.size(); p += 7) frame.valid[p] = 0.0f;
     }
   }
@@ -76,7 +76,7 @@ TEST(NlMeansOnContent, BrokenPixelsAreContentAndCountedTheSame) {
   std::mt19937 rng(5);
   NlMeansInput input = sparseInput(30, 20, rng);
   // A NaN far from the rest: it is filled from its neighbours (zeros) in both.
-  input.frames[0].color.channels[1][static_cast<size_t>(60) * kWidth + 85] = std::numeric_limits<float>::quiet_NaN();
+  input.frames[0].color.channels[1][static_cast<size_t>(60) * kContentWidth + 85] = std::numeric_limits<float>::quiet_NaN();
   const NlMeansSettings settings{.radius = 3, .patch = 2};
   NlMeansStats wholeStats, croppedStats;
   const Planes whole = jointNlMeans(input, settings, &wholeStats);
@@ -90,13 +90,13 @@ TEST(NlMeansOnContent, BrokenPixelsAreContentAndCountedTheSame) {
 TEST(NlMeansOnContent, NothingAnywhereIsZeroAndMismatchedInputIsRefusedAlike) {
   NlMeansInput empty;
   empty.frames.emplace_back();
-  empty.frames[0].color = Planes(kWidth, kHeight, 3);
-  empty.frames[0].variance = Planes(kWidth, kHeight, 3);
+  empty.frames[0].color = Planes(kContentWidth, kContentHeight, 3);
+  empty.frames[0].variance = Planes(kContentWidth, kContentHeight, 3);
   const Planes zero = jointNlMeansOnContent(empty, NlMeansSettings{});
   for (const auto& channel : zero.channels)
     for (float v : channel) ASSERT_EQ(v, 0.0f);
   NlMeansInput mismatched = empty;
-  mismatched.frames[0].variance = Planes(kWidth - 1, kHeight, 3);
+  mismatched.frames[0].variance = Planes(kContentWidth - 1, kContentHeight, 3);
   EXPECT_THROW(jointNlMeansOnContent(mismatched, NlMeansSettings{}), std::invalid_argument);
 }
 

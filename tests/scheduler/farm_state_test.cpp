@@ -87,7 +87,9 @@ TEST_F(FarmStateTest, ALostWorkerIsNotChargedToTheTasksAttempts) {
   int64_t task = 0;
   for (int loss = 1; loss < settings_.maxLostWorkers; ++loss) {
     const Lease lease = leaseFor(worker);
-    if (task) EXPECT_EQ(lease.task_id(), task);
+    if (task) {
+      EXPECT_EQ(lease.task_id(), task);
+    }
     task = lease.task_id();
     now_ += settings_.leaseSeconds + 1;  // the worker vanished: no heartbeat
     ASSERT_EQ(state_->expireLeases(now_), 1);

@@ -55,7 +55,7 @@ TEST(DirectEmission, ComesBackWhereAskedOnAFrameWithColorsOnly) {
   // An interpolated frame has the beauty and the components' colors, no irradiance.
   FrameImage f(3, 1);
   f.attributes() = source.attributes();
-  for (const std::string& name : {"R", "G", "B", "diffuse.color.R", "diffuse.color.G", "diffuse.color.B",
+  for (const char* name : {"R", "G", "B", "diffuse.color.R", "diffuse.color.G", "diffuse.color.B",
                                   "mirror.color.R", "mirror.color.G", "mirror.color.B", "residual.color.R",
                                   "residual.color.G", "residual.color.B"})
     f.addChannel(name) = {0.0f, 0.0f, 0.0f};

@@ -8,8 +8,6 @@
 namespace pathfarm {
 namespace {
 
-using test_support::MeanEstimate;
-using test_support::meanOverPixels;
 using test_support::sceneFromJson;
 
 // A unit sphere filling the whole view, inside a constant environment of radiance 1.
@@ -22,20 +20,11 @@ std::string furnaceScene(const std::string& material) {
   })";
 }
 
-MeanEstimate renderMean(const Scene& scene, int spp, int maxDepth, const char* channel = "G") {
-  RenderSettings settings;
-  settings.width = settings.height = 16;
-  settings.spp = spp;
-  settings.maxDepth = maxDepth;
-  const FrameRenderer renderer(scene, settings);
-  return meanOverPixels(renderer.render(0), channel);
-}
-
 TEST(WhiteFurnace, DiffuseSphereRendersItsAlbedo) {
   for (const float albedo : {0.2f, 0.5f, 0.9f}) {
     const Scene scene = sceneFromJson(furnaceScene(R"({"type": "diffuse", "reflectance": )" +
                                                    std::to_string(albedo) + "}"));
-    const auto estimate = renderMean(scene, 64, 8);
+    const auto estimate = test_support::renderedMean(scene, 64, 8);
     EXPECT_NEAR(estimate.mean, albedo, 3 * estimate.standardError) << "albedo " << albedo;
     EXPECT_GT(estimate.standardError, 0);
   }
@@ -44,13 +33,13 @@ TEST(WhiteFurnace, DiffuseSphereRendersItsAlbedo) {
 TEST(WhiteFurnace, SmoothGlassSphereIsInvisible) {
   // Fresnel reflection plus refraction lose nothing: every path ends in the environment.
   const Scene scene = sceneFromJson(furnaceScene(R"({"type": "dielectric", "ior": 1.5})"));
-  const auto estimate = renderMean(scene, 64, 64);
+  const auto estimate = test_support::renderedMean(scene, 64, 64);
   EXPECT_NEAR(estimate.mean, 1.0, std::max(3 * estimate.standardError, 1e-4));
 }
 
 TEST(WhiteFurnace, PerfectMirrorReflectsEverything) {
   const Scene scene = sceneFromJson(furnaceScene(R"({"type": "conductor", "specular_color": 1})"));
-  const auto estimate = renderMean(scene, 4, 8);
+  const auto estimate = test_support::renderedMean(scene, 4, 8);
   EXPECT_NEAR(estimate.mean, 1.0, 1e-5);
 }
 
@@ -63,7 +52,7 @@ TEST(WhiteFurnace, RoughMaterialsNeverCreateEnergy) {
         R"({"type": "plastic", "reflectance": 1, "ior": 1.5})",
         R"({"type": "rough_plastic", "reflectance": 1, "ior": 1.5, "alpha": 0.2})"}) {
     const Scene scene = sceneFromJson(furnaceScene(material));
-    const auto estimate = renderMean(scene, 64, 32);
+    const auto estimate = test_support::renderedMean(scene, 64, 32);
     EXPECT_LE(estimate.mean, 1.0 + 3 * estimate.standardError) << material;
     EXPECT_GT(estimate.mean, 0.8) << material;
   }
@@ -109,7 +98,7 @@ TEST(ClosedRoom, RadianceIsEmissionOverOneMinusAlbedo) {
       "camera": {"position": [0, 0, 0.5], "look_at": [0.3, 0.2, -1], "fov": 90},
       "materials": {"wall": {"type": "diffuse", "reflectance": )" + std::to_string(albedo) + R"(}},
       "shapes": [)" + walls + "]}");
-    const auto estimate = renderMean(scene, 64, 1000);
+    const auto estimate = test_support::renderedMean(scene, 64, 1000);
     const double expected = 1.0 / (1.0 - albedo);
     EXPECT_NEAR(estimate.mean, expected, 3 * estimate.standardError) << "albedo " << albedo;
   }

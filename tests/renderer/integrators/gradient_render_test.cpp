@@ -67,7 +67,7 @@ TEST(GradientRender, ConstantRadianceSceneHasZeroDifferences) {
 // seeds must lie within 5 standard errors of the answer, measured from the seeds' spread:
 // the differences' noise at the silhouette moves light between the regions, so the
 // primal's own variance would understate the reconstruction's.
-void expectSkyFurnace(test_support::SkySource sky) {
+void expectGradientSkyFurnace(test_support::SkySource sky) {
   const int size = 24, seeds = 8;
   for (const bool temporal : {false, true}) {
     GradientSettings gradient;
@@ -105,9 +105,9 @@ void expectSkyFurnace(test_support::SkySource sky) {
 }
 
 TEST(GradientRender, SkyFurnaceReconstructsAlbedoOnTheSphereAndOneOnTheSky) {
-  expectSkyFurnace(test_support::SkySource::Radiance);
+  expectGradientSkyFurnace(test_support::SkySource::Radiance);
 }
-TEST(GradientRender, SkyFurnaceUnderAConstantMap) { expectSkyFurnace(test_support::SkySource::ConstantMap); }
+TEST(GradientRender, SkyFurnaceUnderAConstantMap) { expectGradientSkyFurnace(test_support::SkySource::ConstantMap); }
 
 // The demo Cornell box for statistics: looked at from lower down, so that the lamp is out
 // of sight (the differences leave directly seen emitters out, the path tracer's image

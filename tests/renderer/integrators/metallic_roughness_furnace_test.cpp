@@ -11,7 +11,6 @@
 namespace pathfarm {
 namespace {
 
-using test_support::MeanEstimate;
 
 // A unit sphere filling the view (as in furnace_test.cpp), with a white base colour.
 Scene furnace(const std::string& parameters) {
@@ -23,23 +22,15 @@ Scene furnace(const std::string& parameters) {
   })");
 }
 
-MeanEstimate renderMean(const Scene& scene, int spp, int maxDepth) {
-  RenderSettings settings;
-  settings.width = settings.height = 16;
-  settings.spp = spp;
-  settings.maxDepth = maxDepth;
-  return test_support::meanOverPixels(FrameRenderer(scene, settings).render(0), "G");
-}
-
 TEST(MetallicRoughnessFurnace, WhiteMirrorReflectsEverything) {
   // Schlick with F0 = 1 is one at every angle: no noise, no loss.
-  const auto estimate = renderMean(furnace(R"("metallic": 1, "roughness": 0)"), 4, 8);
+  const auto estimate = test_support::renderedMean(furnace(R"("metallic": 1, "roughness": 0)"), 4, 8);
   EXPECT_NEAR(estimate.mean, 1.0, 1e-5);
 }
 
 TEST(MetallicRoughnessFurnace, SmoothWhiteTransmissionLosesNothing) {
   // Reflection F and straight transmission (1 - F) rho sum to one at each wall.
-  const auto estimate = renderMean(furnace(R"("metallic": 0, "roughness": 0, "transmission": 1)"), 16, 64);
+  const auto estimate = test_support::renderedMean(furnace(R"("metallic": 0, "roughness": 0, "transmission": 1)"), 16, 64);
   EXPECT_NEAR(estimate.mean, 1.0, 1e-4);
 }
 
@@ -59,7 +50,7 @@ TEST(MetallicRoughnessFurnace, RoughVariantsNeverCreateEnergy) {
                         Case{R"("metallic": 0.5, "roughness": 0.7, "transmission": 0.5)", 0.5},
                         Case{R"("metallic": 0, "roughness": 1, "transmission": 1, "ior": 1.33)", 0.05},
                         Case{R"("metallic": 0, "roughness": 0.05, "transmission": 0.5)", 0.95}}) {
-    const auto estimate = renderMean(furnace(c.parameters), 64, 32);
+    const auto estimate = test_support::renderedMean(furnace(c.parameters), 64, 32);
     EXPECT_LE(estimate.mean, 1.0 + 3 * estimate.standardError) << c.parameters;
     EXPECT_GT(estimate.mean, c.atLeast) << c.parameters;
     EXPECT_GT(estimate.standardError, 0) << c.parameters;

@@ -19,10 +19,10 @@
 namespace pathfarm {
 namespace {
 
-constexpr double kAlbedo = 0.5;
-constexpr double kPiD = test_support::kLitFloorPi;
+constexpr double kFloorAlbedo = 0.5;
+constexpr double kFloorPi = test_support::kLitFloorPi;
 // The camera 2 above the floor with a 40 degree field of view sees |x|, |z| <= 2 tan 20.
-const double kHalfWidth = 2 * std::tan(20 * kPiD / 180);
+const double kHalfWidth = 2 * std::tan(20 * kFloorPi / 180);
 
 Scene floorLitBy(const std::string& light) {
   return test_support::sceneFromJson(R"({
@@ -38,7 +38,7 @@ double meanOverSquare(const std::function<double(double, double)>& radiance) {
 }
 
 double pointRadiance(double x, double z, double lx, double h, double lz, double intensity, double falloff = 1) {
-  return test_support::pointLitRadiance(kAlbedo, x, z, lx, h, lz, intensity, falloff);
+  return test_support::pointLitRadiance(kFloorAlbedo, x, z, lx, h, lz, intensity, falloff);
 }
 
 const std::string kPoint = R"({"type": "point", "position": [0.3, 1, 0.2], "intensity": 2})";
@@ -53,7 +53,7 @@ const std::string kSpot =
     R"({"type": "spot", "position": [0, 1, 0], "direction": [0, -1, 0], "intensity": 3,
         "inner_cone": 15, "outer_cone": 30})";
 double spotReference() {
-  const double cosInner = std::cos(15 * kPiD / 180), cosOuter = std::cos(30 * kPiD / 180);
+  const double cosInner = std::cos(15 * kFloorPi / 180), cosOuter = std::cos(30 * kFloorPi / 180);
   return meanOverSquare([&](double x, double z) {
     const double cosAngle = 1 / std::sqrt(x * x + z * z + 1);
     const double t = std::clamp((cosAngle - cosOuter) / (cosInner - cosOuter), 0.0, 1.0);
@@ -63,7 +63,7 @@ double spotReference() {
 
 // Irradiance 2 from a direction 30 degrees off the vertical: albedo / pi * 2 * cos 30.
 const std::string kDirectional = R"({"type": "directional", "direction": [0.5, -0.8660254, 0], "intensity": 2})";
-double directionalReference() { return kAlbedo / kPiD * 2 * std::cos(30 * kPiD / 180); }
+double directionalReference() { return kFloorAlbedo / kFloorPi * 2 * std::cos(30 * kFloorPi / 180); }
 
 struct Case {
   const char* name;
@@ -76,7 +76,7 @@ std::vector<Case> cases() {
           {"directional", kDirectional, directionalReference()}};
 }
 
-RenderSettings settings(int spp) {
+RenderSettings floorSettings(int spp) {
   RenderSettings s;
   s.width = s.height = 16;
   s.spp = spp;
@@ -105,7 +105,7 @@ test_support::MeanEstimate meanOverSeeds(Scene scene, const std::function<FrameI
 }
 
 TEST(PunctualRender, PathTracerBdptAndGradientMatchTheClosedForm) {
-  const RenderSettings s = settings(8);
+  const RenderSettings s = floorSettings(8);
   const std::vector<std::pair<const char*, std::function<FrameImage(const Scene&)>>> integrators = {
       {"pt", [&](const Scene& scene) { return FrameRenderer(scene, s).render(0); }},
       {"bdpt", [&](const Scene& scene) { return BdptFrameRenderer(scene, s).render(0); }},
@@ -124,7 +124,7 @@ TEST(PunctualRender, PathTracerBdptAndGradientMatchTheClosedForm) {
 // pixel shows it: light tracing (bdpt's t = 1) must not splat a dot where it projects.
 // The brightest floor radiance is albedo / pi * 2 = 0.32, right below the light.
 TEST(PunctualRender, APointLightInViewIsNotSeen) {
-  const FrameImage image = BdptFrameRenderer(floorLitBy(kPoint), settings(16)).render(0);
+  const FrameImage image = BdptFrameRenderer(floorLitBy(kPoint), floorSettings(16)).render(0);
   for (const float v : image.channel("G")) EXPECT_LT(v, 0.6f);
 }
 
@@ -144,9 +144,9 @@ TEST(PunctualRender, MetropolisMethodsMatchTheClosedForm) {
 TEST(PunctualRender, ThreadsAndTileSizesGiveIdenticalBits) {
   const Scene scene = floorLitBy(kSpot);
   const auto pt = test_support::renderedTwoWays(
-      settings(2), [&](const RenderSettings& s) { return FrameRenderer(scene, s).render(0); });
+      floorSettings(2), [&](const RenderSettings& s) { return FrameRenderer(scene, s).render(0); });
   const auto bdpt = test_support::renderedTwoWays(
-      settings(2), [&](const RenderSettings& s) { return BdptFrameRenderer(scene, s).render(0); });
+      floorSettings(2), [&](const RenderSettings& s) { return BdptFrameRenderer(scene, s).render(0); });
   for (const auto* pair : {&pt, &bdpt})
     for (const std::string& name : pair->first.channelNames())
       EXPECT_EQ(pair->first.channel(name), pair->second.channel(name)) << name;

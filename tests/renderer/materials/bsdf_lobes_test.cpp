@@ -27,22 +27,8 @@ bool sameBits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 bool sameBits(Rgb a, Rgb b) { return sameBits(a.r, b.r) && sameBits(a.g, b.g) && sameBits(a.b, b.b); }
 bool sameBits(Vec3f a, Vec3f b) { return sameBits(a.x, b.x) && sameBits(a.y, b.y) && sameBits(a.z, b.z); }
 
-bool nearlyEqual(float a, float b, float relTol) {
-  return std::abs(a - b) <= relTol * std::max(std::abs(a), std::abs(b)) + 1e-6f;
-}
-
 // Uniform over the whole sphere, grazing directions included.
 Vec3f anyDirection(Uniform& rng) { return sampleUniformSphere(rng.next2()); }
-
-// Uniform over the hemisphere (or sphere), away from the horizon.
-Vec3f randomDirection(Uniform& rng, bool sphere) {
-  while (true) {
-    const float z = sphere ? 1 - 2 * rng.next() : rng.next();
-    if (std::abs(z) < 0.02f) continue;
-    const float r = std::sqrt(1 - z * z), phi = 2 * kPi * rng.next();
-    return {r * std::cos(phi), r * std::sin(phi), z};
-  }
-}
 
 // Every configuration of bsdf_test.cpp (the colored non-delta ones and the white ones of
 // the energy test, with the smooth metal and glass), plus glossy lobes sharp enough to count

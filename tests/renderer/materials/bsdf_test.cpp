@@ -13,21 +13,6 @@
 namespace pathfarm::bsdftest {
 namespace {
 
-bool nearlyEqual(float a, float b, float relTol) {
-  return std::abs(a - b) <= relTol * std::max(std::abs(a), std::abs(b)) + 1e-6f;
-}
-
-// A direction uniform over the hemisphere (or sphere), away from the horizon where every
-// quantity degenerates.
-Vec3f randomDirection(Uniform& rng, bool sphere) {
-  while (true) {
-    const float z = sphere ? 1 - 2 * rng.next() : rng.next();
-    if (std::abs(z) < 0.02f) continue;
-    const float r = std::sqrt(1 - z * z), phi = 2 * kPi * rng.next();
-    return {r * std::cos(phi), r * std::sin(phi), z};
-  }
-}
-
 // The relative index across the interface for a refracted pair seen from wo.
 float refractionEta(const Material& m, Vec3f wo) { return wo.z > 0 ? m.ior : 1 / m.ior; }
 
@@ -39,10 +24,6 @@ Rgb fluxWeight(const Material& m, Vec3f wo, const BsdfSample& s) {
   const float eta = refractionEta(m, wo);
   return s.weight * (eta * eta);
 }
-
-struct Estimate {
-  Rgb mean, stdError;
-};
 
 // Directional albedo E[weight] from n samples, with its standard error per channel.
 Estimate directionalAlbedo(const Material& m, Rgb albedo, Vec3f wo, int n, uint32_t seed) {

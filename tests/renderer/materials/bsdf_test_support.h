@@ -3,6 +3,8 @@
 // sphere, and the material configurations the statistical tests run on.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <random>
 #include <string>
@@ -76,6 +78,27 @@ double integrateSphere(const F& f, double tolerancePerCell = 1e-6) {
   }
   return sum;
 }
+
+// |a - b| within relTol of the larger magnitude (and 1e-6 absolute, for zeros).
+inline bool nearlyEqual(float a, float b, float relTol) {
+  return std::abs(a - b) <= relTol * std::max(std::abs(a), std::abs(b)) + 1e-6f;
+}
+
+// A direction uniform over the hemisphere (or sphere), away from the horizon where every
+// quantity degenerates.
+inline Vec3f randomDirection(Uniform& rng, bool sphere) {
+  while (true) {
+    const float z = sphere ? 1 - 2 * rng.next() : rng.next();
+    if (std::abs(z) < 0.02f) continue;
+    const float r = std::sqrt(1 - z * z), phi = 2 * kPi * rng.next();
+    return {r * std::cos(phi), r * std::sin(phi), z};
+  }
+}
+
+// A Monte Carlo estimate per channel with its standard error.
+struct Estimate {
+  Rgb mean, stdError;
+};
 
 inline Vec3f directionFromCos(float cosTheta, float phi = 0.3f) {
   const float s = std::sqrt(std::max(0.0f, 1 - cosTheta * cosTheta));

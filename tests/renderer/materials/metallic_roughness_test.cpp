@@ -147,10 +147,6 @@ TEST(SpecularAlbedoBound, AverageIsTheCosineWeightedMeanOfTheBound) {
   }
 }
 
-struct Estimate {
-  Rgb mean, stdError;
-};
-
 // Directional albedo as the mean sample weight (no 1/eta^2: the sheet has one medium).
 Estimate albedo(const Material& m, Rgb base, Vec3f wo, int n = 100000) {
   const Bsdf bsdf(m, base, kRoughnessThreshold);

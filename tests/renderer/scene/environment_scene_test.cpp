@@ -25,13 +25,8 @@ Scene withEnvironment(const std::string& environment) {
                                      folder());
 }
 
-std::string errorOf(const std::string& environment) {
-  try {
-    withEnvironment(environment);
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "(no error)";
+std::string environmentErrorOf(const std::string& environment) {
+  return test_support::sceneErrorOf([&] { withEnvironment(environment); });
 }
 
 // Upper hemisphere 1, lower 4: a mirrored map would read 4 looking up.
@@ -75,24 +70,24 @@ TEST(EnvironmentScene, MapFromExrWithRotation) {
 
 TEST(EnvironmentScene, ErrorsNameTheFileAndKey) {
   writeHemisphereSky();
-  EXPECT_NE(errorOf(R"({"radiance": 1, "map": "hemisphere.hdr"})").find("environment: give either radiance or map"),
+  EXPECT_NE(environmentErrorOf(R"({"radiance": 1, "map": "hemisphere.hdr"})").find("environment: give either radiance or map"),
             std::string::npos);
-  EXPECT_NE(errorOf(R"({"strength": 2})").find("environment: expected radiance or map"), std::string::npos);
-  EXPECT_NE(errorOf(R"({"radiance": 1, "rotation": 10})").find("apply to a map only"), std::string::npos);
-  EXPECT_NE(errorOf(R"({"map": "hemisphere.hdr", "strength": -1})").find("environment.strength"), std::string::npos);
-  EXPECT_NE(errorOf(R"({"map": "hemisphere.hdr", "gain": 2})").find("gain"), std::string::npos);
+  EXPECT_NE(environmentErrorOf(R"({"strength": 2})").find("environment: expected radiance or map"), std::string::npos);
+  EXPECT_NE(environmentErrorOf(R"({"radiance": 1, "rotation": 10})").find("apply to a map only"), std::string::npos);
+  EXPECT_NE(environmentErrorOf(R"({"map": "hemisphere.hdr", "strength": -1})").find("environment.strength"), std::string::npos);
+  EXPECT_NE(environmentErrorOf(R"({"map": "hemisphere.hdr", "gain": 2})").find("gain"), std::string::npos);
 
-  const std::string missing = errorOf(R"({"map": "nowhere.hdr"})");
+  const std::string missing = environmentErrorOf(R"({"map": "nowhere.hdr"})");
   EXPECT_NE(missing.find("scene.json: environment.map: "), std::string::npos) << missing;
   EXPECT_NE(missing.find("nowhere.hdr"), std::string::npos) << missing;
 
   std::ofstream(folder() / "broken.exr") << "not an exr";
-  const std::string broken = errorOf(R"({"map": "broken.exr"})");
+  const std::string broken = environmentErrorOf(R"({"map": "broken.exr"})");
   EXPECT_NE(broken.find("environment.map: "), std::string::npos) << broken;
   EXPECT_NE(broken.find("broken.exr"), std::string::npos) << broken;
 
   std::ofstream(folder() / "sky.png") << "\x89PNG";
-  const std::string png = errorOf(R"({"map": "sky.png"})");
+  const std::string png = environmentErrorOf(R"({"map": "sky.png"})");
   EXPECT_NE(png.find("sky.png: not a Radiance .hdr or OpenEXR .exr image"), std::string::npos) << png;
 }
 

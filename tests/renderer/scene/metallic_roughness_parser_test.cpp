@@ -28,13 +28,8 @@ std::string sceneWith(const std::string& material) {
 
 const Material& onlyMaterial(const Scene& scene) { return scene.materials.at(0); }
 
-std::string errorOf(const std::string& material, const fs::path& folder = fs::temp_directory_path()) {
-  try {
-    test_support::sceneFromJson(sceneWith(material), folder);
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "(no error)";
+std::string materialErrorOf(const std::string& material, const fs::path& folder = fs::temp_directory_path()) {
+  return test_support::sceneErrorOf([&] { test_support::sceneFromJson(sceneWith(material), folder); });
 }
 
 TEST(MetallicRoughnessParser, ReadsEveryKey) {
@@ -115,7 +110,7 @@ TEST_F(MetallicRoughnessTextures, BadValuesAreRejectedByName) {
       {R"({"type": "metallic_roughness", "base_color": {"file": "t.png"}})", "materials.m.base_color.file: unknown key"},
   };
   for (const auto& [material, expected] : cases) {
-    const std::string message = errorOf(material, dir_);
+    const std::string message = materialErrorOf(material, dir_);
     EXPECT_NE(message.find(expected), std::string::npos) << "expected \"" << expected << "\" in \"" << message << "\"";
   }
 }

@@ -25,13 +25,8 @@ const char* kValid = R"({
   ]
 })";
 
-std::string errorOf(const std::string& json) {
-  try {
-    test_support::sceneFromJson(json, "/scenes");
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "(no error)";
+std::string loaderErrorOf(const std::string& json) {
+  return test_support::sceneErrorOf([&] { test_support::sceneFromJson(json, "/scenes"); });
 }
 
 // `replace` swaps the first occurrence of `from` in the valid scene for `to`.
@@ -98,7 +93,7 @@ TEST(SceneLoader, EachBadInputNamesFileAndKey) {
       {mutated(R"("spp": 4)", R"("spp": 1e400)"), "/scenes/scene.json: invalid JSON"},  // beyond double
   };
   for (const auto& [json, expected] : cases) {
-    const std::string message = errorOf(json);
+    const std::string message = loaderErrorOf(json);
     EXPECT_NE(message.find(expected), std::string::npos) << "expected \"" << expected << "\" in \"" << message << "\"";
   }
 }

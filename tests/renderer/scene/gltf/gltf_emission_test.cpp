@@ -18,7 +18,7 @@ namespace {
 
 using gltftest::GltfBuilder;
 
-std::filesystem::path folder() { return std::filesystem::temp_directory_path() / "pathfarm_gltf_emission"; }
+std::filesystem::path emissionFolder() { return std::filesystem::temp_directory_path() / "pathfarm_gltf_emission"; }
 
 constexpr double kStrength = 5;
 
@@ -32,8 +32,8 @@ double panelGreen(double u) { return kStrength - panelRed(u); }
 // z = 1, u running along +x; with a floor (the unit square scaled 100) at z = 0.
 GltfBuilder panelScene(bool withFloor) {
   const unsigned char texels[] = {255, 0, 0, 0, 255, 0};
-  std::filesystem::create_directories(folder());
-  EXPECT_NE(stbi_write_png((folder() / "two_texels.png").c_str(), 2, 1, 3, texels, 6), 0);
+  std::filesystem::create_directories(emissionFolder());
+  EXPECT_NE(stbi_write_png((emissionFolder() / "two_texels.png").c_str(), 2, 1, 3, texels, 6), 0);
   GltfBuilder b;
   b.doc()["images"] = {{{"uri", "two_texels.png"}}};
   b.doc()["samplers"] = {{{"wrapS", 33071}, {"wrapT", 33071}}};
@@ -58,12 +58,12 @@ GltfBuilder panelScene(bool withFloor) {
 
 TEST(GltfEmission, TheCameraSeesTheTextureOnThePanel) {
   GltfBuilder b = panelScene(false);
-  b.write(folder(), "seen");
+  b.write(emissionFolder(), "seen");
   // From 2 below the panel's centre, looking up at its emitting side; the view spans
   // 1 x 1 of it (a half-angle of atan 1/4).
   const Scene scene = parseScene(R"({"include": "seen.gltf",
     "camera": {"position": [1.5, 0, -1], "look_at": [1.5, 0, 1], "up": [0, 1, 0], "fov": 28.0724869},
-    "render": {"resolution": [16, 16], "spp": 4}})", folder() / "seen.json");
+    "render": {"resolution": [16, 16], "spp": 4}})", emissionFolder() / "seen.json");
   const FrameImage image = FrameRenderer(scene, RenderSettings::defaultsOf(scene)).render(0);
   // Looking up +z with +y up, +x is to the image's left. Pixel column px sees panel
   // x = 1.5 + 0.5 - (px + 0.5) / 16, so u = x - 1; pixel centres carry bilinear values
@@ -96,10 +96,10 @@ double floorRadiance(double x, double y, double (*panel)(double)) {
 TEST(GltfEmission, TheTexturedPanelLightsTheFloorAsItsIntegralSays) {
   GltfBuilder b = panelScene(true);
   b.doc()["scenes"][0]["nodes"].push_back(b.camera({0, 0, 2}, 2 * std::atan(0.5)));
-  b.write(folder(), "lit");
+  b.write(emissionFolder(), "lit");
   const Scene scene = parseScene(R"({"include": "lit.gltf",
     "render": {"resolution": [16, 16], "spp": 32, "max_depth": 1},
-    "materials": {"floor": {"type": "diffuse", "reflectance": 0.5}}})", folder() / "lit.json");
+    "materials": {"floor": {"type": "diffuse", "reflectance": 0.5}}})", emissionFolder() / "lit.json");
   const FrameImage image = FrameRenderer(scene, RenderSettings::defaultsOf(scene)).render(0);
   for (const auto& [channel, panel] : {std::pair{"R", &panelRed}, std::pair{"G", &panelGreen}}) {
     const auto estimate = test_support::meanOverPixels(image, channel);

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "renderer/scene/scene_loader.h"
+#include "test_support.h"
 #include "tests/renderer/scene/gltf/gltf_builder.h"
 
 namespace pathfarm {
@@ -14,7 +15,7 @@ namespace {
 
 using gltftest::GltfBuilder;
 
-std::filesystem::path folder() { return std::filesystem::temp_directory_path() / "pathfarm_gltf_errors"; }
+std::filesystem::path errorsFolder() { return std::filesystem::temp_directory_path() / "pathfarm_gltf_errors"; }
 
 // A valid scene to break: a square (accessors 0-3: position, normal, uv, indices) and
 // a camera.
@@ -26,15 +27,10 @@ GltfBuilder validScene() {
 
 // Loads the file and returns the error message ("" when it loaded).
 std::string loadError(const std::filesystem::path& file) {
-  try {
-    loadScene(file);
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "";
+  return test_support::sceneErrorOf([&] { loadScene(file); });
 }
 
-std::string loadError(GltfBuilder& b, const std::string& name) { return loadError(b.write(folder(), name)); }
+std::string loadError(GltfBuilder& b, const std::string& name) { return loadError(b.write(errorsFolder(), name)); }
 
 void expectError(const std::string& message, const std::string& file, const std::string& pointer,
                  const std::string& words) {
@@ -45,20 +41,20 @@ void expectError(const std::string& message, const std::string& file, const std:
 
 TEST(GltfErrors, TheValidSceneLoads) {
   GltfBuilder b = validScene();
-  EXPECT_EQ(loadError(b, "valid"), "");
+  EXPECT_EQ(loadError(b, "valid"), "(no error)");
 }
 
 TEST(GltfErrors, MalformedJson) {
-  std::filesystem::create_directories(folder());
-  std::ofstream(folder() / "broken.gltf") << "{\"asset\": {\"version\": \"2.0\"}, \"nodes\": [";
-  expectError(loadError(folder() / "broken.gltf"), "broken.gltf", "", "not a loadable glTF");
+  std::filesystem::create_directories(errorsFolder());
+  std::ofstream(errorsFolder() / "broken.gltf") << "{\"asset\": {\"version\": \"2.0\"}, \"nodes\": [";
+  expectError(loadError(errorsFolder() / "broken.gltf"), "broken.gltf", "", "not a loadable glTF");
 }
 
 TEST(GltfErrors, MissingFileAndMissingBuffer) {
-  expectError(loadError(folder() / "absent.glb"), "absent.glb", "", "cannot open");
+  expectError(loadError(errorsFolder() / "absent.glb"), "absent.glb", "", "cannot open");
   GltfBuilder b = validScene();
-  const auto file = b.write(folder(), "nobin");
-  std::filesystem::remove(folder() / "nobin.bin");
+  const auto file = b.write(errorsFolder(), "nobin");
+  std::filesystem::remove(errorsFolder() / "nobin.bin");
   expectError(loadError(file), "nobin.gltf", "", "not a loadable glTF");
 }
 
@@ -161,7 +157,7 @@ TEST(GltfErrors, OutOfRangeMaterialFactor) {
 
 TEST(GltfErrors, IncludeOfAMissingFileNamesTheJsonKey) {
   try {
-    parseScene(R"({"include": "nowhere.glb", "environment": {"radiance": 1}})", folder() / "shot.json");
+    parseScene(R"({"include": "nowhere.glb", "environment": {"radiance": 1}})", errorsFolder() / "shot.json");
     FAIL() << "expected a SceneError";
   } catch (const SceneError& e) {
     expectError(e.what(), "shot.json", "include", "nowhere.glb");

@@ -18,7 +18,7 @@ namespace {
 using gltftest::GltfBuilder;
 using test_support::expectNear;
 
-std::filesystem::path folder() { return std::filesystem::temp_directory_path() / "pathfarm_gltf_normal_map"; }
+std::filesystem::path normalMapFolder() { return std::filesystem::temp_directory_path() / "pathfarm_gltf_normal_map"; }
 
 // One texel (204, 128, 230): tangent-space (2 * 204/255 - 1, 2 * 128/255 - 1,
 // 2 * 230/255 - 1) = (0.6, 0.0039, 0.8039) before scaling.
@@ -31,9 +31,9 @@ Vec3f expectedNormal(Vec3f tangent, Vec3f bitangent, Vec3f normal, float scale) 
 
 // Each test writes its own image: ctest runs the tests as parallel processes.
 GltfBuilder normalMappedSquare(float scale, const std::string& name) {
-  std::filesystem::create_directories(folder());
+  std::filesystem::create_directories(normalMapFolder());
   const std::string image = name + "_bump.png";
-  EXPECT_NE(stbi_write_png((folder() / image).c_str(), 1, 1, 3, kTexel, 3), 0);
+  EXPECT_NE(stbi_write_png((normalMapFolder() / image).c_str(), 1, 1, 3, kTexel, 3), 0);
   GltfBuilder b;
   b.doc()["images"] = {{{"uri", image}}};
   b.doc()["textures"] = {{{"source", 0}}};
@@ -55,7 +55,7 @@ TEST(GltfNormalMap, UvFrameBendsTheNormalTowardsTangentAndBitangent) {
   GltfBuilder b = normalMappedSquare(0.5f, "uv_frame");
   // The square's u grows along +x and its image-up (v in pathfarm) along +y.
   b.scene({b.node({{"mesh", b.square(0)}}), b.camera({0, 0, 5})});
-  const Scene scene = loadScene(b.write(folder(), "uv_frame"));
+  const Scene scene = loadScene(b.write(normalMapFolder(), "uv_frame"));
   expectNear(shadingNormalAtCentre(scene), expectedNormal({1, 0, 0}, {0, 1, 0}, {0, 0, 1}, 0.5f), 1e-4f);
 }
 
@@ -71,7 +71,7 @@ TEST(GltfNormalMap, MeshTangentsAndAQuarterTurnMoveTheBendWithTheSurface) {
                           b.indices(std::vector<uint16_t>{0, 1, 2, 0, 2, 3}), 0);
   const float s = std::sqrt(0.5f);
   b.scene({b.node({{"mesh", mesh}, {"rotation", {0, 0, s, s}}}), b.camera({0, 0, 5})});
-  const Scene scene = loadScene(b.write(folder(), "tangents"));
+  const Scene scene = loadScene(b.write(normalMapFolder(), "tangents"));
   expectNear(shadingNormalAtCentre(scene), expectedNormal({-1, 0, 0}, {0, 1, 0}, {0, 0, 1}, 1.0f), 1e-4f);
 }
 
@@ -84,7 +84,7 @@ TEST(GltfNormalMap, AMirroredAnimatedSquareKeepsTheBendOnTheMirroredSide) {
   const int output = b.floats({0, 0, 0, 0, 0, -1}, "VEC3");
   b.doc()["animations"] = {{{"samplers", {{{"input", input}, {"output", output}}}},
                             {"channels", {{{"sampler", 0}, {"target", {{"node", node}, {"path", "translation"}}}}}}}};
-  const Scene scene = loadScene(b.write(folder(), "mirrored"));
+  const Scene scene = loadScene(b.write(normalMapFolder(), "mirrored"));
   ASSERT_TRUE(scene.objects[0].transform.isAnimated());
   expectNear(shadingNormalAtCentre(scene), expectedNormal({-1, 0, 0}, {0, 1, 0}, {0, 0, 1}, 1.0f), 1e-4f);
 }
@@ -97,7 +97,7 @@ TEST(GltfNormalMap, ADegenerateTangentIsRefused) {
   b.scene({b.node({{"mesh", b.mesh({{"POSITION", position}, {"NORMAL", normal}, {"TANGENT", tangent}})}}),
            b.camera({0, 0, 5})});
   try {
-    loadScene(b.write(folder(), "zero_tangent"));
+    loadScene(b.write(normalMapFolder(), "zero_tangent"));
     FAIL() << "expected a SceneError";
   } catch (const SceneError& e) {
     EXPECT_NE(std::string(e.what()).find("/attributes/TANGENT"), std::string::npos) << e.what();

@@ -16,7 +16,7 @@ namespace {
 
 using gltftest::GltfBuilder;
 
-std::filesystem::path folder() { return std::filesystem::temp_directory_path() / "pathfarm_gltf_render"; }
+std::filesystem::path renderFolder() { return std::filesystem::temp_directory_path() / "pathfarm_gltf_render"; }
 
 // The sRGB decoding of an 8-bit value, by the IEC 61966-2-1 formula.
 double srgbDecoded(int v) {
@@ -52,13 +52,13 @@ TEST(GltfRender, PlateLampAndSkyLandWhereTheCameraSeesThem) {
   const int plate = b.node({{"mesh", b.square(0)}, {"translation", {-1, 0, 0}}, {"scale", {0.9, 0.9, 1}}});
   const int lamp = b.node({{"mesh", b.square(1)}, {"translation", {1, 0, 0}}, {"scale", {0.9, 0.9, 1}}});
   b.scene({plate, lamp, b.camera({0, 0, 4}, 2 * std::atan(0.5))});
-  b.write(folder(), "plate");
+  b.write(renderFolder(), "plate");
   // Lambertian plate of albedo 0.5 and a black lamp body, under a sky of radiance 1.
   const Scene scene = parseScene(R"({
     "include": "plate.gltf",
     "materials": {"plate": {"type": "diffuse", "reflectance": 0.5}, "lamp": {"type": "diffuse", "reflectance": 0}},
     "environment": {"radiance": 1}
-  })", folder() / "shot.json");
+  })", renderFolder() / "shot.json");
   RenderSettings settings = RenderSettings::defaultsOf(scene);
   settings.width = settings.height = 40;
   settings.spp = 16;
@@ -72,15 +72,15 @@ TEST(GltfRender, PlateLampAndSkyLandWhereTheCameraSeesThem) {
 TEST(GltfRender, BaseColourTexturesAreSrgbAndMetallicRoughnessTexturesLinear) {
   // A 2 x 1 image: texel 0 = (255, 128, 0), texel 1 = (64, 64, 64).
   const unsigned char pixels[] = {255, 128, 0, 64, 64, 64};
-  std::filesystem::create_directories(folder());
-  ASSERT_NE(stbi_write_png((folder() / "texels.png").c_str(), 2, 1, 3, pixels, 6), 0);
+  std::filesystem::create_directories(renderFolder());
+  ASSERT_NE(stbi_write_png((renderFolder() / "texels.png").c_str(), 2, 1, 3, pixels, 6), 0);
   GltfBuilder b;
   b.doc()["images"] = {{{"uri", "texels.png"}}};
   b.doc()["textures"] = {{{"source", 0}}};
   b.doc()["materials"] = {{{"pbrMetallicRoughness",
                             {{"baseColorTexture", {{"index", 0}}}, {"metallicRoughnessTexture", {{"index", 0}}}}}}};
   b.scene({b.node({{"mesh", b.square(0)}}), b.camera({0, 0, 3})});
-  const Scene scene = loadScene(b.write(folder(), "textured"));
+  const Scene scene = loadScene(b.write(renderFolder(), "textured"));
   const Material& m = scene.materials[static_cast<size_t>(scene.objects[0].material)];
   ASSERT_GE(m.reflectanceTexture, 0);
   ASSERT_GE(m.metallicRoughnessTexture, 0);
@@ -96,15 +96,15 @@ TEST(GltfRender, BaseColourTexturesAreSrgbAndMetallicRoughnessTexturesLinear) {
 TEST(GltfRender, SamplerWrapModesReachTheTexture) {
   // The 2 x 1 image: texel 0 = (255, 128, 0), texel 1 = (64, 64, 64).
   const unsigned char pixels[] = {255, 128, 0, 64, 64, 64};
-  std::filesystem::create_directories(folder());
-  ASSERT_NE(stbi_write_png((folder() / "wrap.png").c_str(), 2, 1, 3, pixels, 6), 0);
+  std::filesystem::create_directories(renderFolder());
+  ASSERT_NE(stbi_write_png((renderFolder() / "wrap.png").c_str(), 2, 1, 3, pixels, 6), 0);
   GltfBuilder b;
   b.doc()["images"] = {{{"uri", "wrap.png"}}};
   b.doc()["samplers"] = {{{"wrapS", 33071}, {"wrapT", 33648}}};  // CLAMP_TO_EDGE, MIRRORED_REPEAT
   b.doc()["textures"] = {{{"source", 0}, {"sampler", 0}}};
   b.doc()["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}};
   b.scene({b.node({{"mesh", b.square(0)}}), b.camera({0, 0, 3})});
-  const Scene scene = loadScene(b.write(folder(), "wrapped"));
+  const Scene scene = loadScene(b.write(renderFolder(), "wrapped"));
   const ImageTexture& texture =
       scene.textures[static_cast<size_t>(scene.materials[static_cast<size_t>(scene.objects[0].material)].reflectanceTexture)];
   // u = 1.25 clamps to the right edge, texel 1; repeating it would read texel 0.
@@ -113,8 +113,8 @@ TEST(GltfRender, SamplerWrapModesReachTheTexture) {
 
 TEST(GltfRender, TextureTransformMovesTheUvsAsTheExtensionSays) {
   const unsigned char pixels[] = {255, 255, 255};
-  std::filesystem::create_directories(folder());
-  ASSERT_NE(stbi_write_png((folder() / "white.png").c_str(), 1, 1, 3, pixels, 3), 0);
+  std::filesystem::create_directories(renderFolder());
+  ASSERT_NE(stbi_write_png((renderFolder() / "white.png").c_str(), 1, 1, 3, pixels, 3), 0);
   GltfBuilder b;
   b.doc()["images"] = {{{"uri", "white.png"}}};
   b.doc()["textures"] = {{{"source", 0}}};
@@ -127,7 +127,7 @@ TEST(GltfRender, TextureTransformMovesTheUvsAsTheExtensionSays) {
            {"extensions",
             {{"KHR_texture_transform", {{"offset", {0.5, 0.25}}, {"rotation", M_PI / 2}, {"scale", {2, 2}}}}}}}}}}}};
   b.scene({b.node({{"mesh", b.square(0)}}), b.camera({0, 0, 3})});
-  const Scene scene = loadScene(b.write(folder(), "transformed"));
+  const Scene scene = loadScene(b.write(renderFolder(), "transformed"));
   const TriangleMesh& mesh = *scene.objects[0].mesh;
   // Vertex 1 has glTF uv (1, 1): transformed (2.5, -1.75), then v flipped: (2.5, 2.75).
   EXPECT_NEAR(mesh.uvs[1].x, 2.5f, 1e-5f);
@@ -148,18 +148,18 @@ FrameImage renderCutOut(const std::string& name, const nlohmann::json& material,
   if (rgbaTexture) {
     // Left texel opaque, right texel fully transparent.
     const unsigned char pixels[] = {0, 0, 0, 255, 0, 0, 0, 0};
-    std::filesystem::create_directories(folder());
-    EXPECT_NE(stbi_write_png((folder() / "alpha.png").c_str(), 2, 1, 4, pixels, 8), 0);
+    std::filesystem::create_directories(renderFolder());
+    EXPECT_NE(stbi_write_png((renderFolder() / "alpha.png").c_str(), 2, 1, 4, pixels, 8), 0);
     b.doc()["images"] = {{{"uri", "alpha.png"}}};
     b.doc()["textures"] = {{{"source", 0}}};
     m["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 0}};
   }
   b.doc()["materials"] = {m};
   b.scene({b.node({{"mesh", b.square(0)}}), b.camera({0, 0, 4}, 2 * std::atan(0.5))});
-  b.write(folder(), name);
+  b.write(renderFolder(), name);
   const Scene scene = parseScene(R"({"include": ")" + name + R"(.gltf",
     "materials": {"lamp": {"type": "diffuse", "reflectance": 0}}, "environment": {"radiance": 1}})",
-                                 folder() / "shot.json");
+                                 renderFolder() / "shot.json");
   RenderSettings settings = RenderSettings::defaultsOf(scene);
   settings.width = settings.height = 40;
   settings.spp = 16;

@@ -20,7 +20,7 @@ namespace {
 
 using gltftest::GltfBuilder;
 
-std::filesystem::path folder() { return std::filesystem::temp_directory_path() / "pathfarm_gltf_transmission"; }
+std::filesystem::path transmissionFolder() { return std::filesystem::temp_directory_path() / "pathfarm_gltf_transmission"; }
 
 // The 2 x 1 texture's red texels (1, 0; linear data) at u = 1/4 and 3/4, blended linearly
 // between them and clamped beyond (CLAMP_TO_EDGE).
@@ -30,8 +30,8 @@ double transmissionAt(double u) { return std::clamp(1.5 - 2 * u, 0.0, 1.0); }
 // radiance 1 at z = -1 facing the sheet; the camera at z = 2 seeing exactly the sheet.
 std::filesystem::path writeScene() {
   const unsigned char texels[] = {255, 0, 0, 0, 0, 0};
-  std::filesystem::create_directories(folder());
-  EXPECT_NE(stbi_write_png((folder() / "half_clear.png").c_str(), 2, 1, 3, texels, 6), 0);
+  std::filesystem::create_directories(transmissionFolder());
+  EXPECT_NE(stbi_write_png((transmissionFolder() / "half_clear.png").c_str(), 2, 1, 3, texels, 6), 0);
   GltfBuilder b;
   b.doc()["images"] = {{{"uri", "half_clear.png"}}};
   b.doc()["samplers"] = {{{"wrapS", 33071}, {"wrapT", 33071}}};
@@ -46,10 +46,10 @@ std::filesystem::path writeScene() {
   const int sheet = b.node({{"mesh", b.square(0)}});
   const int lamp = b.node({{"mesh", b.square(1)}, {"translation", {0, 0, -1}}, {"scale", {3, 3, 1}}});
   b.scene({sheet, lamp, b.camera({0, 0, 2}, 2 * std::atan(0.5))});
-  b.write(folder(), "sheet");
-  std::ofstream(folder() / "sheet.json")
+  b.write(transmissionFolder(), "sheet");
+  std::ofstream(transmissionFolder() / "sheet.json")
       << R"({"include": "sheet.gltf", "render": {"resolution": [16, 16], "spp": 256, "max_depth": 3}})";
-  return folder() / "sheet.json";
+  return transmissionFolder() / "sheet.json";
 }
 
 TEST(GltfTransmissionTexture, TheTextureScalesTheTransmissionFactor) {
@@ -76,7 +76,9 @@ TEST(GltfTransmissionTexture, TheLampShowsThroughWhereTheTextureIsClear) {
       const size_t p = static_cast<size_t>(py) * 16 + static_cast<size_t>(px);
       const double expected = (1 - fresnel) * transmissionAt(u);
       EXPECT_NEAR(red[p], expected, 4 * std::sqrt(variance[p]) + 0.07) << "pixel " << px << ", " << py;
-      if (u > 0.78) EXPECT_EQ(red[p], 0) << "pixel " << px << ", " << py;
+      if (u > 0.78) {
+        EXPECT_EQ(red[p], 0) << "pixel " << px << ", " << py;
+      }
     }
   }
 }
