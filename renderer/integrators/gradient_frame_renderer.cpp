@@ -154,29 +154,33 @@ FrameImage GradientFrameRenderer::render(int64_t frame, const ProgressCallback& 
       const float time = stream.next1D();
       const Vec2f lens = stream.next2D();
       const double seconds = scene_.timeAt(frame, time);
-      const auto rayThrough = [&](int px, int py, double at) {
-        return camera.generateRay({static_cast<float>(px) + jitter.x, static_cast<float>(py) + jitter.y}, lens, at);
+      // The base ray and its offsets share their time, so the camera's motion is evaluated
+      // once for the five.
+      const auto rayThrough = [&](int px, int py, const Transform& cameraToWorld) {
+        return camera.generateRay({static_cast<float>(px) + jitter.x, static_cast<float>(py) + jitter.y}, lens,
+                                  cameraToWorld);
       };
-      const auto offsetRays = [&](int cx, int cy, double at) {
+      const auto offsetRays = [&](int cx, int cy, const Transform& cameraToWorld) {
         std::array<std::optional<Ray>, 4> rays;
         for (size_t k = 0; k < 4; ++k) {
           const int nx = cx + kShiftDirections[k][0], ny = cy + kShiftDirections[k][1];
-          if (nx >= 0 && ny >= 0 && nx < width && ny < height) rays[k] = rayThrough(nx, ny, at);
+          if (nx >= 0 && ny >= 0 && nx < width && ny < height) rays[k] = rayThrough(nx, ny, cameraToWorld);
         }
         return rays;
       };
       // The temporal offset replays the path's random numbers from here on.
       SampleStream replay = stream;
+      const Transform cameraNow = camera.cameraToWorld(seconds);
       const GradientSample g =
-          tracer.trace(rayThrough(x, y, seconds), offsetRays(x, y, seconds), time, stream, local.rays);
+          tracer.trace(rayThrough(x, y, cameraNow), offsetRays(x, y, cameraNow), time, stream, local.rays);
       ++local.samples;
       std::optional<GradientSample> later;
       if (nextTracer && correspondence[p] >= 0) {
         // The temporal offset: the same random numbers one frame later, through the
         // corresponding pixel, with its own spatial offsets for the mixed differences.
         const int tx = correspondence[p] % width, ty = correspondence[p] / width;
-        const double nextSeconds = scene_.timeAt(frame + 1, time);
-        later = nextTracer->trace(rayThrough(tx, ty, nextSeconds), offsetRays(tx, ty, nextSeconds), time, replay,
+        const Transform cameraLater = camera.cameraToWorld(scene_.timeAt(frame + 1, time));
+        later = nextTracer->trace(rayThrough(tx, ty, cameraLater), offsetRays(tx, ty, cameraLater), time, replay,
                                   local.rays);
       }
       if (!isFinite(g) || (later && !isFinite(*later))) {

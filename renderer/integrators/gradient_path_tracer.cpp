@@ -65,8 +65,14 @@ GradientSample GradientPathTracer::trace(const Ray& cameraRay, const std::array<
   };
 
   GradientSample out;
+  Ray ray = cameraRay;
+  SurfaceHit hit;
+  bool found = intersect(ray, hit);
+  // A camera ray that escapes sees the sky directly, which takes no part in the
+  // differences: the offsets would add nothing, so their rays are not traced (4 of the 5
+  // rays of such a sample).
   std::array<OffsetPath, 4> offsets;
-  for (size_t k = 0; k < 4; ++k) {
+  for (size_t k = 0; k < 4 && found; ++k) {
     if (!offsetRays[k]) continue;
     OffsetPath& o = offsets[k];
     o.mode = OffsetPath::Mode::Replay;
@@ -74,13 +80,13 @@ GradientSample GradientPathTracer::trace(const Ray& cameraRay, const std::array<
     o.incoming = o.ray.direction;
     o.found = intersect(o.ray, o.hit);
   }
-  Ray ray = cameraRay;
-  SurfaceHit hit;
-  bool found = intersect(ray, hit);
   Rgb throughput(1.0f);
   float previousPdf = 0;
   bool previousDelta = true;
   Vec3f previousPosition;
+  // The base's vertex, shaded once: the previous bounce shaded it to see whether it is
+  // connectable.
+  std::optional<ShadedVertex> vertexAhead;
 
   for (int depth = 0;; ++depth) {
     const Rgb emitted = arrivingEmission(found, hit, ray.direction);
@@ -109,16 +115,21 @@ GradientSample GradientPathTracer::trace(const Ray& cameraRay, const std::array<
     if (!found || depth >= settings_.maxDepth) break;
 
     const BounceSamples u(stream);
-    const ShadedVertex vertex(scene, hit, ray.direction);
+    if (!vertexAhead) vertexAhead.emplace(scene, hit, ray.direction);
+    const ShadedVertex vertex = *vertexAhead;
+    vertexAhead.reset();
     const bool connectable = isConnectable(vertex.bsdf);
     // The offsets' own vertices: replayed ones at their own hit, reconnected ones at the
-    // base's vertex, reached from their own direction.
-    std::array<std::optional<ShadedVertex>, 4> offsetVertex;
+    // base's vertex, reached from their own direction at the first shared vertex and from
+    // the base's after it, where they are the base's vertex itself.
+    std::array<std::optional<ShadedVertex>, 4> ownVertex;
+    std::array<const ShadedVertex*, 4> offsetVertex{};
     for (size_t k = 0; k < 4; ++k) {
       OffsetPath& o = offsets[k];
       if (o.mode == OffsetPath::Mode::Replay && !o.found) o.mode = OffsetPath::Mode::Dead;  // escaped earlier
-      if (o.mode == OffsetPath::Mode::Replay) offsetVertex[k].emplace(scene, o.hit, o.incoming);
-      if (o.mode == OffsetPath::Mode::Reconnected) offsetVertex[k].emplace(scene, hit, o.incoming);
+      if (o.mode == OffsetPath::Mode::Replay) offsetVertex[k] = &ownVertex[k].emplace(scene, o.hit, o.incoming);
+      if (o.mode == OffsetPath::Mode::Reconnected)
+        offsetVertex[k] = o.firstShared ? &ownVertex[k].emplace(scene, hit, o.incoming) : &vertex;
     }
 
     // Next-event estimation towards the light point the base's random numbers choose.
@@ -145,6 +156,7 @@ GradientSample GradientPathTracer::trace(const Ray& cameraRay, const std::array<
             continue;
           }
           const ShadedVertex& y = *offsetVertex[k];
+          const bool sharesVertex = &y == &vertex;  // then its light sample, f and pdf are the base's
           // Light points depend on the random numbers alone: the offset aims at the same
           // point, so the step's Jacobian is the ratio of the solid-angle densities.
           const auto offsetLight = o.mode == OffsetPath::Mode::Replay
@@ -154,8 +166,8 @@ GradientSample GradientPathTracer::trace(const Ray& cameraRay, const std::array<
             addWeighted(out, k, misWeight(light->pdf, light->pdf, bsdfPdf, 0, 0), base, Rgb());
             continue;
           }
-          const Vec3f offsetWi = y.frame.toLocal(offsetLight->direction);
-          const Rgb offsetF = y.bsdf.eval(y.wo, offsetWi);
+          const Vec3f offsetWi = sharesVertex ? wi : y.frame.toLocal(offsetLight->direction);
+          const Rgb offsetF = sharesVertex ? f : y.bsdf.eval(y.wo, offsetWi);
           const float jacobian = light->pdf / offsetLight->pdf;
           bool offsetVisible = visible;
           if (o.mode == OffsetPath::Mode::Replay && !offsetF.isBlack()) {
@@ -170,7 +182,7 @@ GradientSample GradientPathTracer::trace(const Ray& cameraRay, const std::array<
           addWeighted(
               out, k,
               misWeight(light->pdf, light->pdf, bsdfPdf, scale * offsetLight->pdf,
-                        light->delta ? 0 : scale * y.bsdf.pdf(y.wo, offsetWi)),
+                        light->delta ? 0 : scale * (sharesVertex ? bsdfPdf : y.bsdf.pdf(y.wo, offsetWi))),
               base, offset);
         }
       }
@@ -189,7 +201,8 @@ GradientSample GradientPathTracer::trace(const Ray& cameraRay, const std::array<
     const Ray next{offsetRayOrigin(vertex.hit, direction), direction};
     SurfaceHit nextHit;
     const bool nextFound = intersect(next, nextHit);
-    const bool nextConnectable = !nextFound || isConnectable(ShadedVertex(scene, nextHit, direction).bsdf);
+    if (nextFound) vertexAhead.emplace(scene, nextHit, direction);
+    const bool nextConnectable = !nextFound || isConnectable(vertexAhead->bsdf);
 
     for (size_t k = 0; k < 4; ++k) {
       OffsetPath& o = offsets[k];

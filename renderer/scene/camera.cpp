@@ -18,6 +18,10 @@ Transform Camera::cameraToWorld(double seconds) const {
 }
 
 Ray Camera::generateRay(Vec2f film, Vec2f lens, double seconds) const {
+  return generateRay(film, lens, cameraToWorld(seconds));
+}
+
+Ray Camera::generateRay(Vec2f film, Vec2f lens, const Transform& toWorld) const {
   const float sx = (2.0f * film.x / static_cast<float>(width_) - 1.0f) * tanHalfFov_ * aspect_;
   const float sy = (1.0f - 2.0f * film.y / static_cast<float>(height_)) * tanHalfFov_;
   Vec3f origin{0, 0, 0};
@@ -29,7 +33,6 @@ Ray Camera::generateRay(Vec2f film, Vec2f lens, double seconds) const {
     origin = {disk.x * desc_.apertureRadius, disk.y * desc_.apertureRadius, 0};
     direction = focus - origin;
   }
-  const Transform toWorld = cameraToWorld(seconds);
   return {toWorld.point(origin), normalize(toWorld.vector(direction))};
 }
 

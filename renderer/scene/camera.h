@@ -29,6 +29,8 @@ class Camera {
   // `film` is a continuous pixel position (x right, y down, pixel (i,j) covers
   // [i,i+1)x[j,j+1)); `lens` a point in the unit square; `seconds` the ray's time.
   Ray generateRay(Vec2f film, Vec2f lens, double seconds) const;
+  // The same, with cameraToWorld(seconds) given: rays sharing a time share its cost.
+  Ray generateRay(Vec2f film, Vec2f lens, const Transform& toWorld) const;
   Transform cameraToWorld(double seconds) const;
   bool isAnimated() const { return animated_; }
   // Where a world point is imaged at `seconds` (the pinhole projection, the centre of a
