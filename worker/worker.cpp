@@ -5,7 +5,6 @@
 #include <unistd.h>
 
 #include <chrono>
-#include <future>
 #include <thread>
 #include <type_traits>
 #include <vector>
@@ -13,6 +12,7 @@
 #include "proto/wire/chunk_store.h"
 #include "worker/cache_trim.h"
 #include "worker/failure_class.h"
+#include "worker/lease_heartbeat.h"
 #include "worker/scheduler_link.h"
 #include "worker/task_log.h"
 #include "worker/task_runner.h"
@@ -70,7 +70,7 @@ class Slot {
   Slot(SchedulerLink& link, TaskRunner& runner, ChunkStore& cache, CacheBound& bound, const WorkerOptions& options,
        double heartbeatSeconds)
       : link_(link), runner_(runner), cache_(cache), bound_(bound), options_(options),
-        heartbeat_(std::chrono::milliseconds(static_cast<int64_t>(heartbeatSeconds * 1000))) {}
+        heartbeat_(link, std::chrono::milliseconds(static_cast<int64_t>(heartbeatSeconds * 1000))) {}
 
   void run(const std::atomic<bool>& stop) {
     Backoff backoff;
@@ -165,18 +165,13 @@ class Slot {
     return text;
   }
 
-  // Runs `work` on a thread of its own and renews the lease while it runs; a lease the
-  // scheduler no longer keeps sets `abandon`. Returns what `work` returns (or throws).
+  // Runs `work` and renews the lease while it runs; a lease the scheduler no longer keeps
+  // sets `abandon`. Returns what `work` returns (or throws).
   template <class Work>
   std::invoke_result_t<Work> whileHeartbeating(const Lease& lease, const std::atomic<double>& progress,
                                                std::atomic<bool>& abandon, Work work) {
-    auto result = std::async(std::launch::async, std::move(work));
-    while (result.wait_for(heartbeat_) == std::future_status::timeout) {
-      HeartbeatReply beat;
-      const grpc::Status status = link_.heartbeat(lease.attempt_id(), progress, beat);
-      if (status.ok() && !beat.keep_going()) abandon = true;
-    }
-    return result.get();
+    const LeaseHeartbeat::Renewal renewal = heartbeat_.renew(lease.attempt_id(), progress, abandon);
+    return work();
   }
 
   // Sends the output: while the scheduler is out of reach, until the lease is lost (after
@@ -264,7 +259,7 @@ class Slot {
   ChunkStore& cache_;
   CacheBound& bound_;
   const WorkerOptions& options_;
-  std::chrono::milliseconds heartbeat_;
+  LeaseHeartbeat heartbeat_;
 };
 
 std::string defaultName() {

@@ -23,7 +23,7 @@ TEST_F(FarmTest, KilledWorkersLeaseExpiresAndAnotherWorkerRedoesItsTile) {
   ASSERT_EQ(spec.tasks(), 3);
 
   SchedulerConfig config;
-  config.leaseSeconds = 1.5;  // heartbeats every 0.5 s
+  config.leaseSeconds = 0.6;  // heartbeats every 0.2 s; a tile takes about 1 s
   startScheduler(config);
   const int64_t id = client().submit(shotSpec(spec));
   farm::ChildProcess& victim = startWorker("victim");
@@ -63,6 +63,12 @@ TEST_F(FarmTest, KilledWorkersLeaseExpiresAndAnotherWorkerRedoesItsTile) {
   EXPECT_GT(std::stoll(redone[0][0]), std::stoll(attempt));
   EXPECT_EQ(db.integer("SELECT state FROM tasks WHERE id = " + task), 3);
   EXPECT_EQ(summary.attempts(), db.integer("SELECT COUNT(*) FROM attempts"));
+  // Only the victim's lease ran out: the survivor's heartbeats kept each of its own,
+  // though its tiles outlasted a lease.
+  EXPECT_EQ(db.integer("SELECT COUNT(*) FROM attempts WHERE state = 3"), 1);
+  EXPECT_GT(db.integer("SELECT COUNT(*) FROM attempts a JOIN workers w ON w.id = a.worker_id "
+                       "WHERE w.name = 'survivor' AND a.state = 1 AND a.finished_at - a.leased_at > 0.6"),
+            0);
 
   const fs::path fetched = fetchFrames(id, "fetched");
   expectSameFrames(fetched, renderLocally(spec), spec);
