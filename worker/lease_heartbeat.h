@@ -1,8 +1,8 @@
 #pragma once
 // Renews a slot's lease while its task runs and its output uploads, from one thread the
-// slot keeps for its whole life. A thread per task (what std::async gave) cost more than a
-// small task itself: starting and ending threads, and TBB's cleanup of every thread that
-// had rendered, were two thirds of a worker's time on a frame of 8-pixel tiles.
+// slot keeps for its whole life. Two threads per task (std::async for the work and for the
+// upload) cost more than a small task itself: without them, a frame of 8-pixel tiles takes
+// 40 % less CPU on a local farm (docs/performance.md, "Farm efficiency").
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
