@@ -21,6 +21,7 @@ while (($#)); do
 done
 case $build in /*) ;; *) build=$PWD/$build ;; esac
 pathfarm="$build/bin/pathfarm" probe="$build/bin/farm_heartbeat_probe"
+cmake --build "$build" --target pathfarm farm_heartbeat_probe > /dev/null || { echo "farm_load: cannot build in $build" >&2; exit 2; }
 for program in "$pathfarm" "$probe"; do [ -x "$program" ] || { echo "farm_load: no $program (build first)" >&2; exit 2; }; done
 work=$(mktemp -d "${TMPDIR:-/tmp}/pathfarm-load-XXXXXX")
 pids=()

@@ -18,7 +18,7 @@ while (($#)); do
     *) echo "gltf_scale.sh: unknown option $1" >&2; exit 2 ;;
   esac
 done
-[ -x "$build/bin/scene_scale" ] || { echo "gltf_scale.sh: build $build/bin/scene_scale first" >&2; exit 2; }
+cmake --build "$build" --target scene_scale > /dev/null || { echo "gltf_scale.sh: cannot build scene_scale in $build" >&2; exit 2; }
 python3 bench/gltf_scale/make_scale_scenes.py "$work"
 ls -l "$work"/*.glb
 for scene in terrain rocks_1 rocks_10 rocks_100 rocks_100_copies; do

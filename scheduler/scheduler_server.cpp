@@ -81,7 +81,8 @@ SchedulerServer::SchedulerServer(SchedulerOptions options) : options_(std::move(
       } catch (const std::exception& e) {
         spdlog::error("lease checker: {}", e.what());
       }
-      std::this_thread::sleep_for(std::chrono::duration<double>(period));
+      std::unique_lock lock(checkerMutex_);
+      checkerWake_.wait_for(lock, std::chrono::duration<double>(period), [this] { return stopping_.load(); });
     }
   });
   if (!options_.http.empty()) {
@@ -129,6 +130,10 @@ void SchedulerServer::shutdown() {
   services_->signal.notify();
   // Open long-polls and watches get a moment to return, then are cut.
   server_->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(1));
+  {
+    const std::lock_guard lock(checkerMutex_);
+    checkerWake_.notify_all();
+  }
   if (checker_.joinable()) checker_.join();
 }
 

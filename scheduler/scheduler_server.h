@@ -2,8 +2,10 @@
 // The scheduler process: FarmState on SQLite, the chunk store, both gRPC services, and
 // the one checker that ends expired leases and hung tasks.
 #include <atomic>
+#include <condition_variable>
 #include <filesystem>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <thread>
 
@@ -66,6 +68,9 @@ class SchedulerServer {
   std::unique_ptr<HttpServer> http_;
   int port_ = 0;
   std::atomic<bool> stopping_{false};
+  // Wakes the checker from its pause when shutdown() sets stopping_.
+  std::mutex checkerMutex_;
+  std::condition_variable checkerWake_;
   std::thread checker_;
 };
 

@@ -1,0 +1,34 @@
+// Build step: writes specular_albedo.h's table as C++ source (the file named by the one
+// argument), with hexadecimal float literals so that every node reads back exactly.
+#include <cstdio>
+#include <vector>
+
+#include "renderer/materials/specular_albedo_tabulation.h"
+
+namespace {
+
+void writeArray(std::FILE* out, const char* name, const std::vector<float>& values) {
+  std::fprintf(out, "inline constexpr float %s[%zu] = {\n", name, values.size());
+  for (size_t i = 0; i < values.size(); ++i)
+    std::fprintf(out, "%af%s", double(values[i]), (i + 1) % 8 == 0 ? ",\n" : ", ");
+  std::fprintf(out, "};\n");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: %s OUTPUT.inc\n", argv[0]);
+    return 2;
+  }
+  const auto table = pathfarm::specular_albedo::tabulate();
+  std::FILE* out = std::fopen(argv[1], "w");
+  if (!out) {
+    std::perror(argv[1]);
+    return 1;
+  }
+  std::fprintf(out, "// Written by tabulate_specular_albedo at build time; do not edit.\n");
+  writeArray(out, "kTabulatedAlbedo", table.albedo);
+  writeArray(out, "kTabulatedAverage", table.average);
+  return std::fclose(out) == 0 ? 0 : 1;
+}
