@@ -6,6 +6,7 @@
 #   shot_json    shot files                            scheduler/shot_file.h parseShotFile
 #   mesh_readers OBJ and PLY files ("ply" magic: PLY)  renderer/scene/mesh_io.h parseObj, parsePly
 #   exr_chunk    EXR chunks as workers fetch them      image/exr_io.h decodeExr
+#   rpc_handlers sequences of RPC calls and requests   scheduler/*_service.cpp over gRPC in-process
 # CI (tests/CMakeLists.txt, label fuzz) runs each briefly with --quick; a long run is e.g.
 #   bench/fuzz.sh --target all --runs 1000000
 # A finding (crash-*, leak-*, timeout-*, oom-*) fails the run, naming the target; it is
@@ -20,7 +21,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
-all_targets=(gltf_loader scene_json shot_json mesh_readers exr_chunk)
+all_targets=(gltf_loader scene_json shot_json mesh_readers exr_chunk rpc_handlers)
 target=all
 runs=-1
 seconds=0
@@ -72,6 +73,16 @@ scene=("${gltf[@]}" "${meshes[@]}" "${exr[@]}"
 shot=("${scene[@]}" scheduler/shot_file.cpp scheduler/planner.cpp postproc/poisson/window_blend.cpp
       renderer/decomposition/decomposition.cpp renderer/decomposition/lpe_automaton.cpp
       "$generated/pathfarm/shot.pb.cc" "$generated/pathfarm/chunk.pb.cc")
+# The RPC handlers and what they call into are instrumented; the renderer, the filters and
+# the generated protocol code they reach are linked from the CMake build's libraries.
+rpc=(fuzz/rpc_handlers_fuzzer.cpp fuzz/rpc_fuzz_calls.cpp
+     scheduler/worker_service.cpp scheduler/client_service.cpp scheduler/client_service_inputs.cpp
+     scheduler/service_chunks.cpp scheduler/worker_sessions.cpp scheduler/farm_state.cpp
+     scheduler/farm_state_queries.cpp scheduler/farm_state_requeue.cpp scheduler/farm_state_retention.cpp
+     scheduler/farm_state_sessions.cpp scheduler/farm_state_submit.cpp scheduler/schema.cpp scheduler/sqlite_db.cpp
+     scheduler/planner.cpp scheduler/farm_names.cpp scheduler/output_check.cpp scheduler/shot_report.cpp
+     proto/wire/chunk_store.cpp proto/wire/chunk_transfer.cpp proto/wire/connection.cpp proto/wire/input_files.cpp
+     proto/wire/sha256.cpp proto/wire/tls.cpp)
 sources_of() {
   case "$1" in
     gltf_loader) echo fuzz/gltf_loader_fuzzer.cpp "${gltf[@]}" ;;
@@ -79,6 +90,7 @@ sources_of() {
     shot_json) echo fuzz/shot_json_fuzzer.cpp "${shot[@]}" ;;
     mesh_readers) echo fuzz/mesh_readers_fuzzer.cpp "${meshes[@]}" ;;
     exr_chunk) echo fuzz/exr_chunk_fuzzer.cpp "${exr[@]}" ;;
+    rpc_handlers) echo "${rpc[@]}" ;;
   esac
 }
 exr_libs="$(pkg-config --libs OpenEXR)"
@@ -90,6 +102,10 @@ libs_of() {
     shot_json) echo "$stb_libs $exr_libs -lprotobuf -lspdlog -lfmt -lpthread" ;;
     mesh_readers) echo "-lspdlog -lfmt -lpthread" ;;
     exr_chunk) echo "$exr_libs -lspdlog -lfmt -lpthread" ;;
+    rpc_handlers) echo "$build/postproc/libpathfarm_postproc.a $build/renderer/libpathfarm_renderer.a" \
+                       "$build/image/libpathfarm_image.a $build/proto/libpathfarm_proto.a" \
+                       "$(pkg-config --libs grpc++ protobuf sqlite3 openssl) $exr_libs $stb_libs" \
+                       "-lembree3 -ltbb -lspdlog -lfmt -lpthread" ;;
   esac
 }
 max_len_of() {
@@ -102,9 +118,12 @@ max_len_of() {
 if ((quick)); then mode=quick; optimize="-O0 -g1"; else mode=full; optimize="-O1 -g"; fi
 out=$work/$mode
 mkdir -p "$out"
+# What shot_json and rpc_handlers take from the CMake build.
+needs_build() { [[ $1 == shot_json && ! -f $generated/pathfarm/shot.pb.cc ]] ||
+                [[ $1 == rpc_handlers && ! -f $build/renderer/libpathfarm_renderer.a ]]; }
 for name in "${targets[@]}"; do
-  if [[ $name == shot_json && ! -f $generated/pathfarm/shot.pb.cc ]]; then
-    echo "fuzz: $generated/pathfarm/shot.pb.cc is missing: build pathfarm first (cmake --build $build)" >&2
+  if needs_build "$name"; then
+    echo "fuzz: $name needs the libraries and generated code of $build: build pathfarm first (cmake --build $build)" >&2
     exit 2
   fi
 done
@@ -137,7 +156,7 @@ flock 9
   echo "  description = fuzz: linking \$out"
   declare -A seen=()
   for name in "${all_targets[@]}"; do
-    [[ $name == shot_json && ! -f $generated/pathfarm/shot.pb.cc ]] && continue
+    needs_build "$name" && continue
     objects=()
     declare -A linked=()
     for source in $(sources_of "$name"); do

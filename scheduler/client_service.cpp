@@ -72,10 +72,12 @@ grpc::Status ClientServiceImpl::WatchShot(grpc::ServerContext* context, const Sh
         last = key;
       }
       if (isFinished(summary.state())) return grpc::Status::OK;
-      if (context->IsCancelled()) return grpc::Status(grpc::StatusCode::CANCELLED, "the watcher went away");
+      const auto cancelled = [&] { return context->IsCancelled(); };
+      if (cancelled()) return grpc::Status(grpc::StatusCode::CANCELLED, "the watcher went away");
       // At most ten summaries a second: a busy farm changes far more often than that, and
-      // each summary reads the whole shot.
+      // each summary reads the whole shot. A watcher that left stops holding the thread.
       std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      if (cancelled()) return grpc::Status(grpc::StatusCode::CANCELLED, "the watcher went away");
       seen = c_.signal.waitFor(seen, std::chrono::milliseconds(400));
     }
   });

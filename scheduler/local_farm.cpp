@@ -3,24 +3,10 @@
 #include <signal.h>
 #include <spdlog/spdlog.h>
 
-#include <fstream>
 #include <stdexcept>
 #include <thread>
 
 namespace pathfarm::farm {
-
-std::string randomToken() {
-  std::ifstream random("/dev/urandom", std::ios::binary);
-  unsigned char bytes[16];
-  if (!random.read(reinterpret_cast<char*>(bytes), sizeof bytes)) throw std::runtime_error("cannot read /dev/urandom");
-  static const char* hex = "0123456789abcdef";
-  std::string token;
-  for (unsigned char b : bytes) {
-    token.push_back(hex[b >> 4]);
-    token.push_back(hex[b & 15]);
-  }
-  return token;
-}
 
 LocalFarm::LocalFarm(LocalFarmOptions options) : options_(std::move(options)), token_(randomToken()) {
   std::filesystem::create_directories(options_.folder / "logs");

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "proto/wire/connection.h"
 #include "scheduler/child_process.h"
 #include "scheduler/farm_client.h"
 #include "scheduler/scheduler_server.h"
@@ -40,8 +41,5 @@ class LocalFarm {
   std::string address_;
   std::vector<ChildProcess> workers_;
 };
-
-// 128 random bits as hex, from the kernel's generator.
-std::string randomToken();
 
 }  // namespace pathfarm::farm

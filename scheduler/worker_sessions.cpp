@@ -2,7 +2,6 @@
 
 #include "proto/wire/connection.h"
 #include "proto/wire/sha256.h"
-#include "scheduler/local_farm.h"
 
 namespace pathfarm::farm {
 

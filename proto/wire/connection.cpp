@@ -8,9 +8,6 @@
 namespace pathfarm::farm {
 namespace {
 
-constexpr const char* kTokenHeader = "x-pathfarm-token";
-constexpr const char* kSessionHeader = "x-pathfarm-session";
-
 // Compares without an early exit, so timing does not reveal how much of a guess matched
 // (a token's length is no secret worth guarding).
 bool equalInConstantTime(std::string_view a, std::string_view b) {
@@ -62,12 +59,29 @@ std::string loadToken(const std::string& tokenFile) {
   return "";
 }
 
+std::string randomToken() {
+  std::ifstream random("/dev/urandom", std::ios::binary);
+  unsigned char bytes[16];
+  if (!random.read(reinterpret_cast<char*>(bytes), sizeof bytes)) throw std::runtime_error("cannot read /dev/urandom");
+  static const char* hex = "0123456789abcdef";
+  std::string token;
+  for (unsigned char b : bytes) {
+    token.push_back(hex[b >> 4]);
+    token.push_back(hex[b & 15]);
+  }
+  return token;
+}
+
 void attachToken(grpc::ClientContext& context, const std::string& token) {
   if (!token.empty()) context.AddMetadata(kTokenHeader, token);
 }
 
 void attachSession(grpc::ClientContext& context, const WorkerSession& session) {
-  if (session.workerId > 0) context.AddMetadata(kSessionHeader, std::to_string(session.workerId) + ":" + session.key);
+  if (session.workerId > 0) context.AddMetadata(kSessionHeader, sessionHeaderValue(session));
+}
+
+std::string sessionHeaderValue(const WorkerSession& session) {
+  return std::to_string(session.workerId) + ":" + session.key;
 }
 
 std::optional<WorkerSession> sessionOf(const grpc::ServerContext& context) {

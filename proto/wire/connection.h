@@ -26,6 +26,13 @@ void configureServer(grpc::ServerBuilder& builder);
 // std::runtime_error if a named file cannot be read or is empty.
 std::string loadToken(const std::string& tokenFile);
 
+// 128 random bits as hex, from the kernel's generator: a local farm's token, a session key.
+std::string randomToken();
+
+// The metadata that carries the token and a worker's session ("ID:KEY").
+inline constexpr const char* kTokenHeader = "x-pathfarm-token";
+inline constexpr const char* kSessionHeader = "x-pathfarm-session";
+
 void attachToken(grpc::ClientContext& context, const std::string& token);
 
 // A registered worker's name for itself on every call after Register.
@@ -34,6 +41,7 @@ struct WorkerSession {
   std::string key;
 };
 void attachSession(grpc::ClientContext& context, const WorkerSession& session);
+std::string sessionHeaderValue(const WorkerSession& session);
 // The session a call carries, or nothing (absent or malformed).
 std::optional<WorkerSession> sessionOf(const grpc::ServerContext& context);
 // True when no token is configured or the call carries it.
