@@ -1,6 +1,7 @@
 #include "fuzz/rpc_fuzz_calls.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
@@ -45,12 +46,17 @@ std::vector<farm::ChunkPart> chunkParts(std::string_view bytes) {
   return parts;
 }
 
-// With PATHFARM_FUZZ_VERBOSE set (to check what the seeds reach), every call's status.
+// A refusal names its reason with a status a caller can act on; INTERNAL and UNKNOWN
+// mean a handler met an exception nobody meant (service_guard.h), and are findings. With
+// PATHFARM_FUZZ_VERBOSE set (to check what the seeds reach), every call's status.
 void note(uint8_t op, const grpc::Status& status) {
   static const bool verbose = std::getenv("PATHFARM_FUZZ_VERBOSE") != nullptr;
-  if (verbose)
+  const bool unexpected =
+      status.error_code() == grpc::StatusCode::INTERNAL || status.error_code() == grpc::StatusCode::UNKNOWN;
+  if (verbose || unexpected)
     std::fprintf(stderr, "call %d%s: %d %s\n", (op & ~kOutsider) % RpcCalls::kCalls, op & kOutsider ? " (outsider)" : "",
                  static_cast<int>(status.error_code()), status.error_message().c_str());
+  if (unexpected) std::abort();
 }
 
 }  // namespace
@@ -403,6 +409,15 @@ void writeRpcSeeds(const std::filesystem::path& folder) {
                        .add(kCancelShot, shot(0))
                        .add(kRetryShot, shot(0))
                        .add(kGetShot, shot(0)));
+
+  // Finding 5 of docs/reliability.md: a heartbeat whose progress is no number.
+  farm::HeartbeatRequest nanProgress;
+  nanProgress.set_progress(std::nan(""));
+  write("nan_progress", SeedInput()
+                            .add(kSubmit, noop)
+                            .add(kRegister, registration)
+                            .add(kLeaseTask, farm::LeaseRequest())
+                            .add(kHeartbeat, nanProgress));
 
   // The same calls from someone without the token.
   write("outsider", SeedInput()

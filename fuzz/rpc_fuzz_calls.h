@@ -60,7 +60,8 @@ class RpcCalls {
 };
 
 // Writes the seed corpus (fuzz/corpus/rpc_handlers): a worker's life on a noop shot and on
-// a small pt shot, chunks put and fetched, and the client's controls.
+// a small pt shot, chunks put and fetched, the client's controls, and the inputs of
+// findings since fixed.
 void writeRpcSeeds(const std::filesystem::path& folder);
 
 }  // namespace pathfarm::fuzz

@@ -1,7 +1,7 @@
 // libFuzzer target for the scheduler's RPC handlers: any sequence of calls, each any
 // request bytes, from a client or worker that may or may not carry the token and its
-// session, must be answered with a status, never crash, hang, leak or read out of
-// bounds. Each input runs against a fresh farm (an in-memory database, an empty chunk
+// session, must be answered with a status that names a reason (never INTERNAL or
+// UNKNOWN), and never crash, hang, leak or read out of bounds. Each input runs against a fresh farm (an in-memory database, an empty chunk
 // store) and the real WorkerService and ClientService (rpc_fuzz_calls.h says how calls
 // reach them). Built and run by bench/fuzz.sh (clang, ASan, UBSan).
 //

@@ -238,7 +238,7 @@ HeartbeatReply FarmState::heartbeat(int64_t attemptId, double progress, double n
     db_.query("UPDATE attempts SET expires_at = ?1, progress_at = CASE WHEN ?2 > progress THEN ?3 ELSE progress_at END, "
               "progress = MAX(progress, ?2) WHERE id = ?4")
         .bind(1, now + settings_.leaseSeconds)
-        .bind(2, std::clamp(progress, 0.0, 1.0))
+        .bind(2, std::isfinite(progress) ? std::clamp(progress, 0.0, 1.0) : 0.0)  // no number: no progress
         .bind(3, now)
         .bind(4, attemptId)
         .run();

@@ -367,8 +367,14 @@ function taskRow(task, shotId) {
   const p = shotPage;
   const where = task.window ? ' [' + task.window[0] + ',' + task.window[2] + ')\u00d7[' + task.window[1] + ',' +
     task.window[3] + ')' : '';
+  // The open state is kept at the click itself: the toggle event comes later, and a poll
+  // that redraws the table in between would draw this task closed again.
+  const remember = () => {
+    if (details.open) p.openTasks.delete(task.id);
+    else p.openTasks.add(task.id);
+  };
   const details = el('details', { open: p.openTasks.has(task.id) },
-    el('summary', {}, task.attempts.length + ' attempt' + (task.attempts.length === 1 ? '' : 's') +
+    el('summary', { onclick: remember }, task.attempts.length + ' attempt' + (task.attempts.length === 1 ? '' : 's') +
       (task.log.length ? ', ' + task.log.length + ' event' + (task.log.length === 1 ? '' : 's') : '')),
     el('ul', { className: 'log' },
       task.attempts.map((a) => el('li', {},

@@ -1,5 +1,8 @@
 // The farm's state machine with a controlled clock: leasing rules, stale reports,
 // expiry, retries, blocklists, hung tasks, shot control, and a restart.
+#include <cmath>
+#include <limits>
+
 #include "scheduler/farm_state_fixture.h"
 #include "scheduler/schema.h"
 
@@ -316,6 +319,27 @@ TEST_F(FarmStateTest, TaskWithoutProgressIsRevokedAsHung) {
   now_ += 9;
   EXPECT_EQ(state_->expireLeases(now_), 1);
   EXPECT_FALSE(state_->heartbeat(lease.attempt_id(), 0.2, now_).keep_going());
+}
+
+// Found by the rpc_handlers fuzzer: a NaN progress failed the heartbeat's SQL (NaN is
+// stored as NULL), so a worker reporting one lost its lease. It renews the lease and
+// counts as no progress.
+TEST_F(FarmStateTest, AHeartbeatWithoutAFiniteProgressRenewsTheLeaseButIsNoProgress) {
+  submitFrame();
+  const int64_t worker = state_->registerWorker("w", 1, now_);
+  const Lease lease = leaseFor(worker);
+  now_ += 9;
+  ASSERT_TRUE(state_->heartbeat(lease.attempt_id(), 0.2, now_).keep_going());
+  const double lastProgress = now_;
+  const double unknown[] = {std::nan(""), std::numeric_limits<double>::infinity(),
+                            -std::numeric_limits<double>::infinity()};
+  for (int i = 0; now_ + 9 <= lastProgress + settings_.hungSeconds; ++i) {
+    now_ += 9;
+    EXPECT_TRUE(state_->heartbeat(lease.attempt_id(), unknown[i % 3], now_).keep_going());
+    EXPECT_EQ(state_->expireLeases(now_), 0);
+  }
+  now_ += 9;
+  EXPECT_EQ(state_->expireLeases(now_), 1);
 }
 
 TEST_F(FarmStateTest, CancelStopsLeasesAndTellsRunningWorkers) {
