@@ -45,7 +45,7 @@ void printTable(const std::string& label, const ImageMetrics& m) {
 }
 
 // The frame_*.exr files of a folder, by name.
-std::vector<std::filesystem::path> framesIn(const std::filesystem::path& folder) {
+std::vector<std::filesystem::path> frameFilesIn(const std::filesystem::path& folder) {
   if (!std::filesystem::is_directory(folder)) throw std::invalid_argument(folder.string() + ": not a folder");
   std::vector<std::filesystem::path> files;
   for (const auto& entry : std::filesystem::directory_iterator(folder)) {
@@ -72,7 +72,7 @@ int runCompare(const CompareArguments& a) {
 
 int runCompareSequence(const CompareArguments& a) {
   return runReportingBadInput([&] {
-    const auto files = framesIn(a.image);
+    const auto files = frameFilesIn(a.image);
     std::vector<FrameImage> images, references;
     for (const auto& file : files) {
       const auto reference = std::filesystem::path(a.reference) / file.filename();

@@ -30,7 +30,7 @@ struct NumberedFrame {
 
 // DIR's frame_NNNN.exr files in frame order; they must be consecutive, since a temporal
 // difference always points at the next frame.
-std::vector<NumberedFrame> framesIn(const std::filesystem::path& folder) {
+std::vector<NumberedFrame> consecutiveFramesIn(const std::filesystem::path& folder) {
   if (!std::filesystem::is_directory(folder)) throw std::invalid_argument(folder.string() + ": no such folder");
   const std::regex name("frame_([0-9]+)\\.exr");
   std::vector<NumberedFrame> frames;
@@ -52,7 +52,7 @@ int runPoisson(PoissonArguments& a) {
   return runReportingBadInput([&] {
     a.settings.norm = parsePoissonNorm(a.norm);
     if (a.overlap >= a.window) throw std::invalid_argument("--overlap must be smaller than --window");
-    const std::vector<NumberedFrame> frames = framesIn(a.in);
+    const std::vector<NumberedFrame> frames = consecutiveFramesIn(a.in);
     // Check the first frame before any work, so a wrong folder fails at once.
     const FrameImage first = readExr(frames[0].file);
     GradientFrame::fromImage(first, frames[0].file.string());
