@@ -1,16 +1,16 @@
 #include "fuzz/rpc_fuzz_calls.h"
 
+#include <grpcpp/test/server_context_test_spouse.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <functional>
 #include <fstream>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <grpcpp/test/server_context_test_spouse.h>
 
 #include "proto/wire/sha256.h"
 
@@ -18,10 +18,30 @@ namespace pathfarm::fuzz {
 namespace {
 
 enum Call : uint8_t {
-  kRegister, kLeaseTask, kHeartbeat, kCompleteTask, kFailTask, kPutChunk, kGetChunk,
-  kMissingInputs, kPutInput, kSubmit, kListShots, kGetShot, kGetReport, kWatchShot, kCancelShot,
-  kPauseShot, kResumeShot, kRetryShot, kFetchOutputs, kListWorkers, kSetPriority, kRequeue,
-  kListBlocklist, kClearBlocklist,
+  kRegister,
+  kLeaseTask,
+  kHeartbeat,
+  kCompleteTask,
+  kFailTask,
+  kPutChunk,
+  kGetChunk,
+  kMissingInputs,
+  kPutInput,
+  kSubmit,
+  kListShots,
+  kGetShot,
+  kGetReport,
+  kWatchShot,
+  kCancelShot,
+  kPauseShot,
+  kResumeShot,
+  kRetryShot,
+  kFetchOutputs,
+  kListWorkers,
+  kSetPriority,
+  kRequeue,
+  kListBlocklist,
+  kClearBlocklist,
 };
 static_assert(kClearBlocklist + 1 == RpcCalls::kCalls);
 
@@ -38,8 +58,8 @@ Message parsed(std::string_view bytes) {
 std::vector<farm::ChunkPart> chunkParts(std::string_view bytes) {
   std::vector<farm::ChunkPart> parts;
   while (bytes.size() >= 2) {
-    const size_t length = std::min<size_t>(static_cast<uint8_t>(bytes[0]) | static_cast<uint8_t>(bytes[1]) << 8,
-                                           bytes.size() - 2);
+    const size_t length =
+        std::min<size_t>(static_cast<uint8_t>(bytes[0]) | static_cast<uint8_t>(bytes[1]) << 8, bytes.size() - 2);
     parts.push_back(parsed<farm::ChunkPart>(bytes.substr(2, length)));
     bytes.remove_prefix(2 + length);
   }
@@ -54,8 +74,9 @@ void note(uint8_t op, const grpc::Status& status) {
   const bool unexpected =
       status.error_code() == grpc::StatusCode::INTERNAL || status.error_code() == grpc::StatusCode::UNKNOWN;
   if (verbose || unexpected)
-    std::fprintf(stderr, "call %d%s: %d %s\n", (op & ~kOutsider) % RpcCalls::kCalls, op & kOutsider ? " (outsider)" : "",
-                 static_cast<int>(status.error_code()), status.error_message().c_str());
+    std::fprintf(stderr, "call %d%s: %d %s\n", (op & ~kOutsider) % RpcCalls::kCalls,
+                 op & kOutsider ? " (outsider)" : "", static_cast<int>(status.error_code()),
+                 status.error_message().c_str());
   if (unexpected) std::abort();
 }
 
@@ -84,13 +105,13 @@ void RpcCalls::prepare(grpc::ClientContext& context, uint8_t op, bool worker) co
   if (worker && session_.workerId != 0) farm::attachSession(context, session_);
 }
 
-grpc::Status RpcCalls::call(uint8_t op, bool worker,
-                            const std::function<grpc::Status(grpc::ServerContext*)>& handle) {
+grpc::Status RpcCalls::call(uint8_t op, bool worker, const std::function<grpc::Status(grpc::ServerContext*)>& handle) {
   grpc::ServerContext context;
   grpc::testing::ServerContextTestSpouse metadata(&context);
   if (!(op & kOutsider)) {
     metadata.AddClientMetadata(farm::kTokenHeader, kFuzzToken);
-    if (worker && session_.workerId != 0) metadata.AddClientMetadata(farm::kSessionHeader, farm::sessionHeaderValue(session_));
+    if (worker && session_.workerId != 0)
+      metadata.AddClientMetadata(farm::kSessionHeader, farm::sessionHeaderValue(session_));
   }
   const grpc::Status status = handle(&context);
   note(op, status);
@@ -121,158 +142,125 @@ void RpcCalls::download(uint8_t op, bool worker, Open open, std::chrono::millise
   note(op, reader->Finish());
 }
 
+template <class Service, class Request, class Reply>
+std::pair<grpc::Status, Reply> RpcCalls::unary(uint8_t op, bool worker, Service& service,
+                                               Handler<Service, Request, Reply> handler, const Request& request) {
+  Reply reply;
+  const grpc::Status status =
+      call(op, worker, [&](grpc::ServerContext* c) { return (service.*handler)(c, &request, &reply); });
+  return {status, reply};
+}
+
 void RpcCalls::run(uint8_t op, std::string_view bytes) {
-  using farm::ShotRequest;
+  using W = farm::WorkerServiceImpl;
+  using C = farm::ClientServiceImpl;
   constexpr bool kWorker = true, kClient = false;
   constexpr std::chrono::milliseconds kStream{2000};
   // A shot or an attempt left 0 names the last one this input submitted or leased, which
   // the fuzzer could not guess from its bytes.
-  const auto shotRequest = [&] {
-    auto request = parsed<ShotRequest>(bytes);
+  const auto withShot = [&](auto request) {
     if (request.shot_id() == 0) request.set_shot_id(lastShot_);
     return request;
   };
-  const auto attempt = [&](int64_t id) { return id == 0 ? lastAttempt_ : id; };
-  const int which = (op & ~kOutsider) % kCalls;
-  switch (which) {
+  const auto withAttempt = [&](auto request) {
+    if (request.attempt_id() == 0) request.set_attempt_id(lastAttempt_);
+    return request;
+  };
+  const auto shotRequest = [&] { return withShot(parsed<farm::ShotRequest>(bytes)); };
+  switch ((op & ~kOutsider) % kCalls) {
     case kRegister: {
-      const auto request = parsed<farm::RegisterRequest>(bytes);
-      farm::RegisterReply reply;
-      if (call(op, kClient, [&](auto* c) { return workers_.Register(c, &request, &reply); }).ok())
-        session_ = {reply.worker_id(), reply.session_key()};
+      const auto [status, reply] = unary(op, kClient, workers_, &W::Register, parsed<farm::RegisterRequest>(bytes));
+      if (status.ok()) session_ = {reply.worker_id(), reply.session_key()};
       break;
     }
     case kLeaseTask: {
       auto request = parsed<farm::LeaseRequest>(bytes);
       if (request.worker_id() == 0) request.set_worker_id(session_.workerId);
       request.set_wait_seconds(0);  // a long poll would only wait for the deadline
-      farm::LeaseReply reply;
-      if (call(op, kWorker, [&](auto* c) { return workers_.LeaseTask(c, &request, &reply); }).ok() &&
-          reply.has_task())
-        lastAttempt_ = reply.lease().attempt_id();
+      const auto [status, reply] = unary(op, kWorker, workers_, &W::LeaseTask, request);
+      if (status.ok() && reply.has_task()) lastAttempt_ = reply.lease().attempt_id();
       break;
     }
-    case kHeartbeat: {
-      auto request = parsed<farm::HeartbeatRequest>(bytes);
-      request.set_attempt_id(attempt(request.attempt_id()));
-      farm::HeartbeatReply reply;
-      call(op, kWorker, [&](auto* c) { return workers_.Heartbeat(c, &request, &reply); });
+    case kHeartbeat:
+      unary(op, kWorker, workers_, &W::Heartbeat, withAttempt(parsed<farm::HeartbeatRequest>(bytes)));
       break;
-    }
-    case kCompleteTask: {
-      auto request = parsed<farm::CompleteRequest>(bytes);
-      request.set_attempt_id(attempt(request.attempt_id()));
-      farm::ReportReply reply;
-      call(op, kWorker, [&](auto* c) { return workers_.CompleteTask(c, &request, &reply); });
+    case kCompleteTask:
+      unary(op, kWorker, workers_, &W::CompleteTask, withAttempt(parsed<farm::CompleteRequest>(bytes)));
       break;
-    }
-    case kFailTask: {
-      auto request = parsed<farm::FailRequest>(bytes);
-      request.set_attempt_id(attempt(request.attempt_id()));
-      farm::ReportReply reply;
-      call(op, kWorker, [&](auto* c) { return workers_.FailTask(c, &request, &reply); });
+    case kFailTask:
+      unary(op, kWorker, workers_, &W::FailTask, withAttempt(parsed<farm::FailRequest>(bytes)));
       break;
-    }
     case kPutChunk:
-      upload<farm::PutChunkReply>(op, kWorker, [&](auto* c, auto* r) { return workerStub().PutChunk(c, r); }, bytes);
+      upload<farm::PutChunkReply>(
+          op, kWorker, [&](auto* c, auto* r) { return workerStub().PutChunk(c, r); }, bytes);
       break;
     case kGetChunk: {
       const auto request = parsed<farm::GetChunkRequest>(bytes);
-      download<farm::ChunkPart>(op, kWorker, [&](auto* c) { return workerStub().GetChunk(c, request); }, kStream);
+      download<farm::ChunkPart>(
+          op, kWorker, [&](auto* c) { return workerStub().GetChunk(c, request); }, kStream);
       break;
     }
-    case kMissingInputs: {
-      const auto request = parsed<farm::MissingInputsRequest>(bytes);
-      farm::MissingInputsReply reply;
-      call(op, kClient, [&](auto* c) { return clients_.MissingInputs(c, &request, &reply); });
+    case kMissingInputs:
+      unary(op, kClient, clients_, &C::MissingInputs, parsed<farm::MissingInputsRequest>(bytes));
       break;
-    }
     case kPutInput:
-      upload<farm::PutInputReply>(op, kClient, [&](auto* c, auto* r) { return clientStub().PutInput(c, r); }, bytes);
+      upload<farm::PutInputReply>(
+          op, kClient, [&](auto* c, auto* r) { return clientStub().PutInput(c, r); }, bytes);
       break;
     case kSubmit: {
-      const auto request = parsed<farm::SubmitRequest>(bytes);
-      farm::SubmitReply reply;
-      if (call(op, kClient, [&](auto* c) { return clients_.Submit(c, &request, &reply); }).ok())
-        lastShot_ = reply.shot_id();
+      const auto [status, reply] = unary(op, kClient, clients_, &C::Submit, parsed<farm::SubmitRequest>(bytes));
+      if (status.ok()) lastShot_ = reply.shot_id();
       break;
     }
-    case kListShots: {
-      const farm::ListShotsRequest request;
-      farm::ListShotsReply reply;
-      call(op, kClient, [&](auto* c) { return clients_.ListShots(c, &request, &reply); });
+    case kListShots:
+      unary(op, kClient, clients_, &C::ListShots, farm::ListShotsRequest());
       break;
-    }
-    case kGetShot: {
-      const ShotRequest request = shotRequest();
-      farm::ShotReply reply;
-      call(op, kClient, [&](auto* c) { return clients_.GetShot(c, &request, &reply); });
+    case kGetShot:
+      unary(op, kClient, clients_, &C::GetShot, shotRequest());
       break;
-    }
-    case kGetReport: {
-      const ShotRequest request = shotRequest();
-      farm::ShotReport reply;
-      call(op, kClient, [&](auto* c) { return clients_.GetReport(c, &request, &reply); });
+    case kGetReport:
+      unary(op, kClient, clients_, &C::GetReport, shotRequest());
       break;
-    }
     case kWatchShot: {
       // Until the shot ends, which in a fuzz input it mostly does not: a short look.
-      const ShotRequest request = shotRequest();
-      download<farm::ShotSummary>(op, kClient, [&](auto* c) { return clientStub().WatchShot(c, request); },
-                                  std::chrono::milliseconds(20));
+      const farm::ShotRequest request = shotRequest();
+      download<farm::ShotSummary>(
+          op, kClient, [&](auto* c) { return clientStub().WatchShot(c, request); }, std::chrono::milliseconds(20));
       break;
     }
     case kCancelShot:
+      unary(op, kClient, clients_, &C::CancelShot, shotRequest());
+      break;
     case kPauseShot:
+      unary(op, kClient, clients_, &C::PauseShot, shotRequest());
+      break;
     case kResumeShot:
-    case kRetryShot: {
-      const ShotRequest request = shotRequest();
-      farm::ControlReply reply;
-      call(op, kClient, [&](auto* c) {
-        switch (which) {
-          case kCancelShot: return clients_.CancelShot(c, &request, &reply);
-          case kPauseShot: return clients_.PauseShot(c, &request, &reply);
-          case kResumeShot: return clients_.ResumeShot(c, &request, &reply);
-          default: return clients_.RetryShot(c, &request, &reply);
-        }
-      });
+      unary(op, kClient, clients_, &C::ResumeShot, shotRequest());
       break;
-    }
+    case kRetryShot:
+      unary(op, kClient, clients_, &C::RetryShot, shotRequest());
+      break;
     case kFetchOutputs: {
-      const ShotRequest request = shotRequest();
-      download<farm::OutputPart>(op, kClient, [&](auto* c) { return clientStub().FetchOutputs(c, request); }, kStream);
+      const farm::ShotRequest request = shotRequest();
+      download<farm::OutputPart>(
+          op, kClient, [&](auto* c) { return clientStub().FetchOutputs(c, request); }, kStream);
       break;
     }
-    case kListWorkers: {
-      const farm::ListWorkersRequest request;
-      farm::ListWorkersReply reply;
-      call(op, kClient, [&](auto* c) { return clients_.ListWorkers(c, &request, &reply); });
+    case kListWorkers:
+      unary(op, kClient, clients_, &C::ListWorkers, farm::ListWorkersRequest());
       break;
-    }
-    case kSetPriority: {
-      auto request = parsed<farm::PriorityRequest>(bytes);
-      if (request.shot_id() == 0) request.set_shot_id(lastShot_);
-      farm::ControlReply reply;
-      call(op, kClient, [&](auto* c) { return clients_.SetPriority(c, &request, &reply); });
+    case kSetPriority:
+      unary(op, kClient, clients_, &C::SetPriority, withShot(parsed<farm::PriorityRequest>(bytes)));
       break;
-    }
-    case kRequeue: {
-      auto request = parsed<farm::RequeueRequest>(bytes);
-      if (request.shot_id() == 0) request.set_shot_id(lastShot_);
-      farm::ControlReply reply;
-      call(op, kClient, [&](auto* c) { return clients_.Requeue(c, &request, &reply); });
+    case kRequeue:
+      unary(op, kClient, clients_, &C::Requeue, withShot(parsed<farm::RequeueRequest>(bytes)));
       break;
-    }
     case kListBlocklist:
-    case kClearBlocklist: {
-      const auto request = parsed<farm::BlocklistRequest>(bytes);
-      farm::BlocklistReply reply;
-      call(op, kClient, [&](auto* c) {
-        return which == kListBlocklist ? clients_.ListBlocklist(c, &request, &reply)
-                                             : clients_.ClearBlocklist(c, &request, &reply);
-      });
+      unary(op, kClient, clients_, &C::ListBlocklist, parsed<farm::BlocklistRequest>(bytes));
       break;
-    }
+    case kClearBlocklist:
+      unary(op, kClient, clients_, &C::ClearBlocklist, parsed<farm::BlocklistRequest>(bytes));
+      break;
   }
 }
 

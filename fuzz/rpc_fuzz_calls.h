@@ -14,6 +14,7 @@
 #include <functional>
 #include <memory>
 #include <string_view>
+#include <utility>
 
 #include "pathfarm/client_service.grpc.pb.h"
 #include "pathfarm/worker_service.grpc.pb.h"
@@ -38,7 +39,14 @@ class RpcCalls {
   void run(uint8_t op, std::string_view request);
 
  private:
+  template <class Service, class Request, class Reply>
+  using Handler = grpc::Status (Service::*)(grpc::ServerContext*, const Request*, Reply*);
+
   grpc::Status call(uint8_t op, bool worker, const std::function<grpc::Status(grpc::ServerContext*)>& handle);
+  // A unary handler called with the request; its status and reply.
+  template <class Service, class Request, class Reply>
+  std::pair<grpc::Status, Reply> unary(uint8_t op, bool worker, Service& service,
+                                       Handler<Service, Request, Reply> handler, const Request& request);
   void prepare(grpc::ClientContext& context, uint8_t op, bool worker) const;
   // A client stream of the parts in `parts` (see rpc_handlers_fuzzer.cpp).
   template <class Reply, class Open>

@@ -1,9 +1,10 @@
 // libFuzzer target for the scheduler's RPC handlers: any sequence of calls, each any
 // request bytes, from a client or worker that may or may not carry the token and its
 // session, must be answered with a status that names a reason (never INTERNAL or
-// UNKNOWN), and never crash, hang, leak or read out of bounds. Each input runs against a fresh farm (an in-memory database, an empty chunk
-// store) and the real WorkerService and ClientService (rpc_fuzz_calls.h says how calls
-// reach them). Built and run by bench/fuzz.sh (clang, ASan, UBSan).
+// UNKNOWN), and never crash, hang, leak or read out of bounds. Each input runs against a
+// fresh farm (an in-memory database, an empty chunk store) and the real WorkerService and
+// ClientService (rpc_fuzz_calls.h says how calls reach them). Built and run by
+// bench/fuzz.sh (clang, ASan, UBSan).
 //
 // An input is a list of calls: [call][length, 2 bytes little-endian][request bytes].
 // `call` without its bit 0x80, modulo RpcCalls::kCalls, picks the RPC; the bit 0x80 drops
@@ -120,8 +121,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   // A bound on calls per input keeps one input's time in check whatever its length.
   for (int calls = 0; input.size() >= 3 && calls < 64; ++calls) {
     const auto op = static_cast<uint8_t>(input[0]);
-    const size_t length = std::min<size_t>(static_cast<uint8_t>(input[1]) | static_cast<uint8_t>(input[2]) << 8,
-                                           input.size() - 3);
+    const size_t length =
+        std::min<size_t>(static_cast<uint8_t>(input[1]) | static_cast<uint8_t>(input[2]) << 8, input.size() - 3);
     farm.calls().run(op, input.substr(3, length));
     input.remove_prefix(3 + length);
   }

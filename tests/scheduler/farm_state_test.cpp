@@ -1,6 +1,7 @@
 // The farm's state machine with a controlled clock: leasing rules, stale reports,
 // expiry, retries, blocklists, hung tasks, shot control, and a restart.
 #include <cmath>
+#include <functional>
 #include <limits>
 
 #include "scheduler/farm_state_fixture.h"
@@ -303,43 +304,42 @@ TEST_F(FarmStateTest, ShotFailsWhenEveryLiveWorkerIsBlocklisted) {
   EXPECT_NE(summary.failure().find("cannot open the scene file"), std::string::npos) << summary.failure();
 }
 
-TEST_F(FarmStateTest, TaskWithoutProgressIsRevokedAsHung) {
-  submitFrame();
-  const int64_t worker = state_->registerWorker("w", 1, now_);
-  const Lease lease = leaseFor(worker);
-  now_ += 9;
-  ASSERT_TRUE(state_->heartbeat(lease.attempt_id(), 0.2, now_).keep_going());
-  const double lastProgress = now_;
-  // Heartbeats keep the lease alive, but the progress stays at 0.2.
-  while (now_ + 9 <= lastProgress + settings_.hungSeconds) {
+// A leased task reports progress 0.2, then heartbeats every 9 s reporting `reported(i)`
+// at the i-th: they keep the lease alive, but as they are no progress, the task is
+// revoked as hung once hungSeconds have passed.
+class HungTaskTest : public FarmStateTest {
+ protected:
+  void expectRevokedAsHung(const std::function<double(int)>& reported) {
+    submitFrame();
+    const int64_t worker = state_->registerWorker("w", 1, now_);
+    const Lease lease = leaseFor(worker);
     now_ += 9;
-    EXPECT_TRUE(state_->heartbeat(lease.attempt_id(), 0.2, now_).keep_going());
-    EXPECT_EQ(state_->expireLeases(now_), 0);
+    ASSERT_TRUE(state_->heartbeat(lease.attempt_id(), 0.2, now_).keep_going());
+    const double lastProgress = now_;
+    for (int i = 0; now_ + 9 <= lastProgress + settings_.hungSeconds; ++i) {
+      now_ += 9;
+      EXPECT_TRUE(state_->heartbeat(lease.attempt_id(), reported(i), now_).keep_going());
+      EXPECT_EQ(state_->expireLeases(now_), 0);
+    }
+    now_ += 9;
+    EXPECT_EQ(state_->expireLeases(now_), 1);
+    EXPECT_FALSE(state_->heartbeat(lease.attempt_id(), 0.2, now_).keep_going());
   }
-  now_ += 9;
-  EXPECT_EQ(state_->expireLeases(now_), 1);
-  EXPECT_FALSE(state_->heartbeat(lease.attempt_id(), 0.2, now_).keep_going());
+};
+
+TEST_F(HungTaskTest, TaskWithoutProgressIsRevokedAsHung) {
+  expectRevokedAsHung([](int) { return 0.2; });
 }
 
 // Found by the rpc_handlers fuzzer: a NaN progress failed the heartbeat's SQL (NaN is
 // stored as NULL), so a worker reporting one lost its lease. It renews the lease and
 // counts as no progress.
-TEST_F(FarmStateTest, AHeartbeatWithoutAFiniteProgressRenewsTheLeaseButIsNoProgress) {
-  submitFrame();
-  const int64_t worker = state_->registerWorker("w", 1, now_);
-  const Lease lease = leaseFor(worker);
-  now_ += 9;
-  ASSERT_TRUE(state_->heartbeat(lease.attempt_id(), 0.2, now_).keep_going());
-  const double lastProgress = now_;
-  const double unknown[] = {std::nan(""), std::numeric_limits<double>::infinity(),
-                            -std::numeric_limits<double>::infinity()};
-  for (int i = 0; now_ + 9 <= lastProgress + settings_.hungSeconds; ++i) {
-    now_ += 9;
-    EXPECT_TRUE(state_->heartbeat(lease.attempt_id(), unknown[i % 3], now_).keep_going());
-    EXPECT_EQ(state_->expireLeases(now_), 0);
-  }
-  now_ += 9;
-  EXPECT_EQ(state_->expireLeases(now_), 1);
+TEST_F(HungTaskTest, AHeartbeatWithoutAFiniteProgressRenewsTheLeaseButIsNoProgress) {
+  expectRevokedAsHung([](int i) {
+    const double unknown[] = {std::nan(""), std::numeric_limits<double>::infinity(),
+                              -std::numeric_limits<double>::infinity()};
+    return unknown[i % 3];
+  });
 }
 
 TEST_F(FarmStateTest, CancelStopsLeasesAndTellsRunningWorkers) {
