@@ -1,9 +1,10 @@
 // The dashboard in a real browser (Debian's headless Chromium, driven by playwright-core):
 // a scheduler with a token and its HTTP side on loopback, a shot submitted, the page opened
-// without the token (it asks), the progress seen moving once a worker starts, pause and
-// resume, the thumbnails, a done frame requeued and rendered again, a priority changed,
-// a screenshot, and a link carrying the token (as `pathfarm local --http` logs it). Everything talks to 127.0.0.1 only; every wait has a deadline, and
-// every process started here is killed when the script ends, however it ends.
+// without the token (it asks), pause and resume, the progress seen moving once a worker
+// starts, the thumbnails, a done frame requeued and rendered again, a priority changed, a
+// screenshot, and a link carrying the token (as `pathfarm local --http` logs it).
+// Everything talks to 127.0.0.1 only; every wait has a deadline, and every process started
+// here is killed when the script ends, however it ends.
 //
 // node dashboard_test.mjs --pathfarm BIN --source DIR --work DIR --screenshot PNG
 import { spawn, execFileSync } from 'node:child_process';
@@ -128,6 +129,19 @@ try {
   const total = Number((await tasksText()).match(/\/ (\d+)/)[1]);
   log(`shots table: ${await tasksText()}`);
 
+  // The shot's page: pause, then resume. This happens before any worker runs: a fast
+  // worker could otherwise finish the shot before the click, and a done shot stays done.
+  await row.click();
+  await page.locator('.shot-header h1').waitFor();
+  await page.click('button:text-is("Pause")');
+  await page.locator('.shot-header .badge', { hasText: 'paused' }).waitFor();
+  log('paused');
+  await page.click('button:text-is("Resume")');
+  await page.locator('.shot-header .badge', { hasText: 'queued' }).waitFor();
+  log('resumed');
+  await page.click('a:text-is("\u2190 all shots")');
+  await row.waitFor();
+
   // The worker starts: the progress moves while the page watches.
   start('worker', [args.pathfarm, 'worker', '--scheduler', scheduler, '--threads', '1', '--name', 'browser-worker',
     '--cache', join(args.work, 'cache')], tokenEnv);
@@ -142,16 +156,9 @@ try {
   await page.screenshot({ path: farmScreenshot });
   log(`screenshot of the farm: ${farmScreenshot}`);
 
-  // The shot's page: pause, then resume.
+  // Back on the shot's page, to watch it finish.
   await row.click();
-  const header = page.locator('.shot-header h1');
-  await header.waitFor();
-  await page.click('button:text-is("Pause")');
-  await page.locator('.shot-header .badge', { hasText: 'paused' }).waitFor();
-  log('paused');
-  await page.click('button:text-is("Resume")');
-  await page.locator('.shot-header .badge', { hasText: /running|queued/ }).waitFor();
-  log('resumed');
+  await page.locator('.shot-header h1').waitFor();
 
   // Done: every frame has its thumbnail, at the frame's size (it fits 160 pixels).
   await page.locator('.shot-header .badge', { hasText: 'done' }).waitFor({ timeout: 60000 });
