@@ -19,6 +19,19 @@ GradientFrame::Color colorLayer(const FrameImage& image, const std::string& laye
   return color;
 }
 
+// The layer's variance summed over the channels, or nothing when a channel lacks one.
+std::vector<float> summedVariance(const FrameImage& image, const std::string& layer) {
+  std::vector<float> sum;
+  for (const char* channel : kColorChannels)
+    if (!image.hasChannel(layer + ".variance." + channel)) return {};
+  sum.assign(static_cast<size_t>(image.width()) * static_cast<size_t>(image.height()), 0.0f);
+  for (const char* channel : kColorChannels) {
+    const auto& variance = image.channel(layer + ".variance." + channel);
+    for (size_t p = 0; p < sum.size(); ++p) sum[p] += variance[p];
+  }
+  return sum;
+}
+
 }  // namespace
 
 GradientFrame GradientFrame::fromImage(const FrameImage& image, const std::string& label) {
@@ -29,6 +42,7 @@ GradientFrame GradientFrame::fromImage(const FrameImage& image, const std::strin
   frame.gradientX = colorLayer(image, "gradient_x", label);
   frame.gradientY = colorLayer(image, "gradient_y", label);
   frame.directEmission = colorLayer(image, "direct_emission", label);
+  for (size_t k = 0; k < kLayers; ++k) frame.variance[k] = summedVariance(image, kLayerNames[k]);
   if (!image.hasChannel("temporal.valid.Y")) return frame;
 
   frame.temporal = colorLayer(image, "temporal", label);

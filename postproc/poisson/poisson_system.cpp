@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace pathfarm {
@@ -95,11 +96,45 @@ PoissonSystem::PoissonSystem(const std::vector<const GradientFrame*>& frames, fl
     if (p % w + 1 < w) add(MixedX, 1, frames[f]->mixedX);
     if (p / w + 1 < h) add(MixedY, w, frames[f]->mixedY);
   });
+  weighByVariance(frames);
   for (size_t k = 0; k < kBlocks; ++k) {
     factors_[k].resize(3 * n);
     forEach(n, [&](size_t g) {
-      const uint16_t factor = toBfloat16(present(static_cast<Block>(k), g) ? 1.0f : 0.0f);
-      for (size_t c = 0; c < 3; ++c) factors_[k][3 * g + c] = factor;
+      for (size_t c = 0; c < 3; ++c) factors_[k][3 * g + c] = confidence_[k][g];
+    });
+  }
+}
+
+void PoissonSystem::weighByVariance(const std::vector<const GradientFrame*>& frames) {
+  static_assert(GradientFrame::kLayers == kBlocks, "a block per layer, in the same order");
+  // The variance of block k's row g, or -1 where its frame has no variance layer; a value
+  // that is no variance (NaN, negative) comes out as infinity: the row is not trusted.
+  const auto varianceOf = [&](size_t k, size_t g) -> float {
+    const std::vector<float>& layer = frames[g / pixels_]->variance[k];
+    if (layer.empty()) return -1;
+    const float v = layer[g % pixels_];
+    return v >= 0 ? v : std::numeric_limits<float>::infinity();
+  };
+  for (size_t k = 0; k < kBlocks; ++k) {
+    // The typical variance: the median of the block's finite non-zero ones. Not the mean,
+    // which a few outliers would raise enough to trust them in a small window; zeros (black
+    // or exactly static regions) say nothing of the noise of the others.
+    std::vector<float> variances;
+    for (size_t g = 0; g < rows_; ++g) {
+      const float v = present(static_cast<Block>(k), g) ? varianceOf(k, g) : 0;
+      if (v > 0 && std::isfinite(v)) variances.push_back(v);
+    }
+    const auto middle = variances.begin() + static_cast<std::ptrdiff_t>(variances.size() / 2);
+    std::nth_element(variances.begin(), middle, variances.end());
+    const double typical = variances.empty() ? 0 : *middle;
+    confidence_[k].resize(rows_);
+    forEach(rows_, [&](size_t g) {
+      float confidence = 0;
+      if (present(static_cast<Block>(k), g)) {
+        const float v = varianceOf(k, g);
+        confidence = v < 0 || typical <= 0 ? 1.0f : static_cast<float>(1 / (1 + v / (kOutlierVarianceRatio * typical)));
+      }
+      confidence_[k][g] = toBfloat16(confidence);
     });
   }
 }
@@ -135,17 +170,19 @@ ChannelSums PoissonSystem::gather(const std::vector<float>& x, std::vector<float
     const float base = block == Data ? alphaSquared_ : 1.0f;
     const size_t first = line * lineSize;
     if (reweighting) {
-      // Branch-free, so that it vectorizes: absent rows keep 0 through a mask, and a line
+      // Branch-free, so that it vectorizes: absent rows have confidence 0, and a line
       // another chunk owns goes to scratch.
-      thread_local std::vector<uint16_t> keep, scratch;
-      keep.resize(lineSize);
+      thread_local std::vector<float> confidence;
+      thread_local std::vector<uint16_t> scratch;
+      confidence.resize(lineSize);
       scratch.resize(lineSize);
-      for (size_t j = 0; j < lineSize; j += 3) keep[j] = keep[j + 1] = keep[j + 2] = present(block, (first + j) / 3) ? 0xFFFF : 0;
+      for (size_t j = 0; j < lineSize; j += 3)
+        confidence[j] = confidence[j + 1] = confidence[j + 2] = fromBfloat16(confidence_[block][(first + j) / 3]);
       uint16_t* factor = ownsLine ? &reweighting->factors[block][first] : scratch.data();
       const float scale = block == Data ? alpha_ : 1.0f;
       for (size_t j = 0; j < end; ++j) {
         const float r = residual(j);
-        factor[j] = toBfloat16(1.0f / std::max(scale * std::abs(r), reweighting->epsilon)) & keep[j];
+        factor[j] = toBfloat16(confidence[j] / std::max(scale * std::abs(r), reweighting->epsilon));
         result[j] = base * fromBfloat16(factor[j]) * r;
       }
     } else {

@@ -13,6 +13,15 @@
 // The transpose gathers through the inverse map m^-1, which exists because the
 // correspondence is one-to-one (gradient_frame.h). A row with a non-finite value in any
 // channel constrains nothing.
+// Rows are weighted by their confidence 1 / (1 + v / (K v_mean)), with v the variance of
+// the row's target (its layer's, summed over channels), v_mean the mean of v over the
+// block's rows in the window and K = kOutlierVarianceRatio: close to 1 for typical rows,
+// and like inverse-variance weighting for an outlier (a replayed path that found the sun
+// gives a temporal row far off its neighbours, with a variance thousands of times the
+// typical one). K keeps typical rows near 1 because a sample variance grows with the
+// sampled value: weighting every row by it would pull the image down (the sky furnace,
+// tests/renderer/integrators/gradient_render_test.cpp, sees it at K = 1). Without a
+// variance layer, or where every variance is 0, the confidence is 1.
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -25,6 +34,8 @@ namespace pathfarm {
 
 class PoissonSystem {
  public:
+  static constexpr double kOutlierVarianceRatio = 16;  // a row this far above the mean weighs 1/2
+
   enum Block { Data, SpatialX, SpatialY, Temporal, MixedX, MixedY, kBlocks };
 
   // `frames` all have one size; temporal rows of the last frame are left out.
@@ -46,9 +57,10 @@ class PoissonSystem {
   std::array<std::vector<float>, kBlocks> residuals(const std::vector<float>& x) const;
 
   // Iteratively reweighted least squares for the L1 norm: every row's weight becomes the
-  // unweighted system's (alpha^2 for data, 1 elsewhere) times 1 / max(|scaled residual|,
-  // epsilon) at x, the scaled residual being alpha times it for data rows. A row's squared
-  // error then equals its absolute error at x (up to the factors' rounding to bfloat16).
+  // unweighted system's (alpha^2 for data, 1 elsewhere) times its confidence times
+  // 1 / max(|scaled residual|, epsilon) at x, the scaled residual being alpha times it for
+  // data rows. A row's squared error then equals its confidence times its absolute error
+  // at x (up to the factors' rounding to bfloat16).
   // In the same pass, `gradient` becomes the gradient at x under the new weights.
   void reweightForL1(const std::vector<float>& x, float epsilon, std::vector<float>& gradient);
   // The data rows' target: the primal images of the window, indexed like the unknowns.
@@ -70,6 +82,8 @@ class PoissonSystem {
   template <bool kWithTargets>
   ChannelSums gather(const std::vector<float>& x, std::vector<float>& out,
                      const Reweighting* reweighting = nullptr) const;
+  // Sets confidence_ from the frames' variance layers (present rows only).
+  void weighByVariance(const std::vector<const GradientFrame*>& frames);
   // The temporal row g's A x - b in channel c, 0 where it is absent.
   float temporalResidual(const std::vector<float>& x, size_t g, size_t c) const;
 
@@ -83,9 +97,11 @@ class PoissonSystem {
   float alpha_, alphaSquared_;
   std::vector<uint8_t> presence_;                    // per row, bit k: block k's row exists
   // A row's weight is the unweighted system's (alpha^2 for data, 1 elsewhere) times its
-  // factor: 1 for a present row, the IRLS factor after reweightForL1, 0 for an absent row.
-  // bfloat16 (bfloat16.h), per row and channel: the operator reads them on every pass.
+  // factor: its confidence, times the IRLS factor after reweightForL1; 0 for an absent
+  // row. bfloat16 (bfloat16.h), per row and channel: the operator reads them on every pass.
   std::array<std::vector<uint16_t>, kBlocks> factors_;
+  // The confidence of every row (above; 0 for an absent row), bfloat16, one per row.
+  std::array<std::vector<uint16_t>, kBlocks> confidence_;
   // Scratch of gather(), kept between calls: a window's vectors are large.
   mutable std::vector<float> z_;
 };

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -28,6 +30,11 @@ const Image kSmooth = [](int c, int x, int y) {
 
 using Row = std::map<size_t, double>;  // unknown (frame * pixels + pixel) -> coefficient
 
+// Which layer's row (GradientFrame::kLayerNames order), of which frame and pixel.
+struct RowId {
+  size_t layer, frame, pixel;
+};
+
 // Minimizes sum of weight * (row . I - target)^2 by Gaussian elimination on the dense
 // normal equations, in double: the reference the matrix-free solver must match.
 struct DenseLeastSquares {
@@ -37,7 +44,7 @@ struct DenseLeastSquares {
 
   explicit DenseLeastSquares(size_t unknowns) : n(unknowns), normal(n, std::vector<double>(n, 0.0)), rhs(n, 0.0) {}
 
-  void addRow(const Row& row, double target, double weight) {
+  void addRow(const Row& row, double target, double weight, RowId) {
     for (const auto& [i, a] : row) {
       rhs[i] += weight * a * target;
       for (const auto& [j, b] : row) normal[i][j] += weight * a * b;
@@ -67,13 +74,31 @@ struct DenseLeastSquares {
   }
 };
 
+// The weight a row's variance gives it (poisson_system.h): 1 / (1 + v / (K v_typical)),
+// with v its layer's variance summed over channels, v_typical the median of the non-zero
+// v over the layer's rows in the window and K the outlier ratio; 1 without a variance
+// layer.
+struct Confidence {
+  std::vector<const GradientFrame*> frames;
+  std::array<double, GradientFrame::kLayers> typical{};
+  double of(RowId id) const {
+    const std::vector<float>& variance = frames[id.frame]->variance[id.layer];
+    if (variance.empty() || typical[id.layer] == 0) return 1;
+    return 1 / (1 + variance[id.pixel] / (PoissonSystem::kOutlierVarianceRatio * typical[id.layer]));
+  }
+};
+
 // The rows of docs/gradient-domain.md for channel c, written out one by one:
-// system.addRow(row, target, weight) for each.
+// system.addRow(row, target, weight, id) for each, the weight including the confidence.
 template <class System>
-void addRows(const std::vector<const GradientFrame*>& frames, size_t c, double alpha, System& system) {
+void addRows(const std::vector<const GradientFrame*>& frames, size_t c, double alpha, System& system,
+             const Confidence* confidence = nullptr) {
   const int w = frames[0]->width, h = frames[0]->height;
   const size_t pixels = frames[0]->pixelCount();
   const auto at = [&](size_t f, int x, int y) { return f * pixels + static_cast<size_t>(y * w + x); };
+  const auto add = [&](const Row& row, double target, double weight, RowId id) {
+    system.addRow(row, target, weight * (confidence ? confidence->of(id) : 1.0), id);
+  };
   for (size_t f = 0; f < frames.size(); ++f) {
     const GradientFrame& frame = *frames[f];
     const auto temporalRow = [&](int x, int y) -> std::optional<std::pair<Row, double>> {
@@ -85,33 +110,54 @@ void addRows(const std::vector<const GradientFrame*>& frames, size_t c, double a
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
         const size_t p = static_cast<size_t>(y * w + x);
-        system.addRow({{at(f, x, y), 1.0}}, frame.primal[c][p], alpha * alpha);
-        if (x + 1 < w) system.addRow({{at(f, x + 1, y), 1.0}, {at(f, x, y), -1.0}}, frame.gradientX[c][p], 1);
-        if (y + 1 < h) system.addRow({{at(f, x, y + 1), 1.0}, {at(f, x, y), -1.0}}, frame.gradientY[c][p], 1);
+        add({{at(f, x, y), 1.0}}, frame.primal[c][p], alpha * alpha, {0, f, p});
+        if (x + 1 < w) add({{at(f, x + 1, y), 1.0}, {at(f, x, y), -1.0}}, frame.gradientX[c][p], 1, {1, f, p});
+        if (y + 1 < h) add({{at(f, x, y + 1), 1.0}, {at(f, x, y), -1.0}}, frame.gradientY[c][p], 1, {2, f, p});
         const auto t = temporalRow(x, y);
         if (!t) continue;
-        system.addRow(t->first, t->second, 1);
+        add(t->first, t->second, 1, {3, f, p});
         // Mixed rows where the neighbour's target is the target's neighbour.
         const size_t target = static_cast<size_t>(frame.temporalTarget[p]);
         if (x + 1 < w && frame.temporalTarget[p + 1] == static_cast<int32_t>(target + 1) && f + 1 < frames.size())
-          system.addRow({{at(f + 1, 0, 0) + target + 1, 1.0},
-                         {at(f + 1, 0, 0) + target, -1.0},
-                         {at(f, x + 1, y), -1.0},
-                         {at(f, x, y), 1.0}},
-                        frame.mixedX[c][p], 1);
+          add({{at(f + 1, 0, 0) + target + 1, 1.0},
+               {at(f + 1, 0, 0) + target, -1.0},
+               {at(f, x + 1, y), -1.0},
+               {at(f, x, y), 1.0}},
+              frame.mixedX[c][p], 1, {4, f, p});
         if (y + 1 < h && frame.temporalTarget[p + static_cast<size_t>(w)] == static_cast<int32_t>(target) + w)
-          system.addRow({{at(f + 1, 0, 0) + target + static_cast<size_t>(w), 1.0},
-                         {at(f + 1, 0, 0) + target, -1.0},
-                         {at(f, x, y + 1), -1.0},
-                         {at(f, x, y), 1.0}},
-                        frame.mixedY[c][p], 1);
+          add({{at(f + 1, 0, 0) + target + static_cast<size_t>(w), 1.0},
+              {at(f + 1, 0, 0) + target, -1.0},
+              {at(f, x, y + 1), -1.0},
+              {at(f, x, y), 1.0}},
+              frame.mixedY[c][p], 1, {5, f, p});
       }
   }
 }
 
+// The confidence of the window's rows: the median variances over the rows addRows writes.
+Confidence confidenceOf(const std::vector<const GradientFrame*>& frames) {
+  struct Medians {
+    const std::vector<const GradientFrame*>& frames;
+    std::array<std::vector<double>, GradientFrame::kLayers> nonZero;
+    void addRow(const Row&, double, double, RowId id) {
+      const std::vector<float>& variance = frames[id.frame]->variance[id.layer];
+      if (!variance.empty() && variance[id.pixel] > 0) nonZero[id.layer].push_back(variance[id.pixel]);
+    }
+  } medians{frames};
+  addRows(frames, 0, 1.0, medians);
+  Confidence confidence{frames};
+  for (size_t k = 0; k < GradientFrame::kLayers; ++k) {
+    auto& values = medians.nonZero[k];
+    std::sort(values.begin(), values.end());
+    confidence.typical[k] = values.empty() ? 0 : values[values.size() / 2];
+  }
+  return confidence;
+}
+
 std::vector<double> denseSolve(const std::vector<const GradientFrame*>& frames, size_t c, double alpha) {
   DenseLeastSquares system(frames.size() * frames[0]->pixelCount());
-  addRows(frames, c, alpha, system);
+  const Confidence confidence = confidenceOf(frames);
+  addRows(frames, c, alpha, system, &confidence);
   return system.solve();
 }
 
@@ -122,7 +168,7 @@ double l1Objective(const std::vector<const GradientFrame*>& frames, const std::v
   struct Sum {
     std::vector<double> image;
     double total = 0;
-    void addRow(const Row& row, double target, double weight) {
+    void addRow(const Row& row, double target, double weight, RowId) {
       double value = -target;
       for (const auto& [i, a] : row) value += a * image[i];
       total += std::sqrt(weight) * std::abs(value);
@@ -149,14 +195,14 @@ PoissonSettings precise(float alpha, PoissonNorm norm = PoissonNorm::L2) {
   return settings;
 }
 
-void expectMatchesDense(const std::vector<const GradientFrame*>& frames, float alpha) {
+void expectMatchesDense(const std::vector<const GradientFrame*>& frames, float alpha, double tolerance = 1e-4) {
   const auto solved = reconstructWindow(frames, precise(alpha));
   const size_t pixels = frames[0]->pixelCount();
   for (size_t c = 0; c < 3; ++c) {
     const std::vector<double> reference = denseSolve(frames, c, alpha);
     for (size_t f = 0; f < frames.size(); ++f)
       for (size_t p = 0; p < pixels; ++p)
-        ASSERT_NEAR(solved[f][c][p], reference[f * pixels + p], 1e-4) << f << " " << p;
+        ASSERT_NEAR(solved[f][c][p], reference[f * pixels + p], tolerance) << f << " " << p;
   }
 }
 
@@ -192,6 +238,53 @@ TEST(ScreenedPoisson, ThreeFrameWindowWithMotionEqualsTheDenseSolution) {
   std::swap(f1.temporalTarget[5], f1.temporalTarget[7]);
   const GradientFrame f2 = noisyFrame(5, 4, 41, nullptr, 0);
   expectMatchesDense({&f0, &f1, &f2}, 0.2f);
+}
+
+// Variance layers of hashed values, a few of them thousands of times the rest.
+void addVariances(GradientFrame& frame, uint32_t seed) {
+  for (size_t k = 0; k < GradientFrame::kLayers; ++k) {
+    if (k >= 3 && !frame.hasTemporal()) break;
+    auto& variance = frame.variance[k];
+    variance.resize(frame.pixelCount());
+    for (size_t p = 0; p < variance.size(); ++p) {
+      const double u = test_support::hashed(seed, static_cast<int>(k), static_cast<int>(p), 3);
+      variance[p] = static_cast<float>(0.01 * u * u * (p % 7 == 3 ? 5000 : 1));
+    }
+  }
+}
+
+TEST(ScreenedPoisson, VarianceWeightedRowsEqualTheDenseWeightedSolution) {
+  GradientFrame f0 = noisyFrame(5, 4, 21, &kSmooth, 1), f1 = noisyFrame(5, 4, 31, &kSmooth, 1);
+  GradientFrame f2 = noisyFrame(5, 4, 41, nullptr, 0);
+  const std::vector<GradientFrame> unweighted{f0, f1, f2};
+  addVariances(f0, 1);
+  addVariances(f1, 2);
+  addVariances(f2, 3);
+  // The solver keeps weights in bfloat16 (within 2^-8), the dense reference in double.
+  expectMatchesDense({&f0, &f1, &f2}, 0.2f, 2e-3);
+  // The weights matter: the unweighted solution is farther off than that.
+  const auto plain = reconstructWindow({&unweighted[0], &unweighted[1], &unweighted[2]}, precise(0.2f));
+  const std::vector<double> weighted = denseSolve({&f0, &f1, &f2}, 0, 0.2);
+  double largest = 0;
+  for (size_t f = 0; f < 3; ++f)
+    for (size_t p = 0; p < f0.pixelCount(); ++p)
+      largest = std::max(largest, std::abs(plain[f][0][p] - weighted[f * f0.pixelCount() + p]));
+  EXPECT_GT(largest, 2e-2);
+}
+
+TEST(ScreenedPoisson, EqualVariancesEverywhereChangeNothing) {
+  // Every row then has one confidence, which scales the whole objective. Under L1 the IRLS
+  // weights are rounded to bfloat16 with the confidence in them, hence the looser bound.
+  for (const auto& [norm, tolerance] : {std::pair{PoissonNorm::L2, 1e-6}, std::pair{PoissonNorm::L1, 5e-4}}) {
+    GradientFrame f0 = noisyFrame(8, 6, 5, &kSmooth, 1), f1 = noisyFrame(8, 6, 6, nullptr, 0);
+    const auto plain = reconstructWindow({&f0, &f1}, precise(0.2f, norm));
+    for (GradientFrame* frame : {&f0, &f1})
+      for (size_t k = 0; k < GradientFrame::kLayers; ++k) frame->variance[k].assign(frame->pixelCount(), 0.3f);
+    const auto weighted = reconstructWindow({&f0, &f1}, precise(0.2f, norm));
+    for (size_t f = 0; f < 2; ++f)
+      for (size_t c = 0; c < 3; ++c)
+        for (size_t p = 0; p < f0.pixelCount(); ++p) ASSERT_NEAR(weighted[f][c][p], plain[f][c][p], tolerance);
+  }
 }
 
 TEST(ScreenedPoisson, ExactDifferencesRecoverTheCleanImageFromANoisyPrimal) {
@@ -258,6 +351,19 @@ TEST(ScreenedPoisson, PixelsWithoutCorrespondenceIgnoreTheirTemporalValues) {
   }
 }
 
+TEST(ScreenedPoisson, FramesReadTheirVarianceLayersSummedOverChannels) {
+  FrameImage image(2, 1);
+  for (const char* layer : {"primal", "gradient_x", "gradient_y", "direct_emission"})
+    for (const char* channel : kColorChannels) image.addChannel(std::string(layer) + "." + channel);
+  image.addChannel("primal.variance.R") = {1, 2};
+  image.addChannel("primal.variance.G") = {10, 20};
+  image.addChannel("primal.variance.B") = {100, 200};
+  image.addChannel("gradient_x.variance.R") = {1, 1};  // G and B missing: no variance
+  const GradientFrame frame = GradientFrame::fromImage(image, "variances");
+  EXPECT_EQ(frame.variance[0], (std::vector<float>{111, 222}));
+  for (size_t k = 1; k < GradientFrame::kLayers; ++k) EXPECT_TRUE(frame.variance[k].empty()) << k;
+}
+
 TEST(ScreenedPoisson, ZeroVarianceRegionsComeOutExactly) {
   const Image black = [](int, int, int) { return 0.0f; };
   const Image grey = [](int c, int, int) { return 0.25f * static_cast<float>(c + 1); };
@@ -309,6 +415,59 @@ TEST(ScreenedPoisson, L1KeepsAFireflyAndOutlierGradientsFromSmearing) {
   const auto smeared = reconstructWindow({&firefly}, PoissonSettings{});
   EXPECT_GT(ringDeviation(smeared[0], w, c, c), 0.1);
   EXPECT_GT(poisson_test::relativeError(reconstructWindow({&outlier}, PoissonSettings{})[0], flat, w, h), 0.5);
+}
+
+TEST(ScreenedPoisson, AnOutlierTemporalSampleWithItsVarianceMovesNoPixel) {
+  // What a replayed path that finds the sun leaves in a tgpt frame: a temporal difference
+  // 5 above the truth and mixed differences 2.5 below it, among rows with noise of 0.05;
+  // the sample's variances say so (the variance of a mean of 64 samples, one of which
+  // carries it all). Weighed by their variances, the rows leave the pixel within 0.02 (L2)
+  // or 0.03 (L1) of where the same noise without the outlier puts it.
+  const int w = 15, h = 15;
+  const size_t c = 7 * w + 7;
+  const Image flat = [](int, int, int) { return 1.0f; };
+  GradientFrame first = exactFrame(w, h, flat, &flat, 0), second = exactFrame(w, h, flat);
+  uint32_t seed = 90;
+  for (GradientFrame* frame : {&first, &second})
+    for (GradientFrame::Color* layer : {&frame->primal, &frame->gradientX, &frame->gradientY, &frame->temporal,
+                                        &frame->mixedX, &frame->mixedY})
+      if (!layer->front().empty()) poisson_test::addZeroMeanNoise(*layer, 0.05f, seed++);
+  // Uniform noise of amplitude 0.05 has a variance of 0.05^2 / 3 per channel.
+  for (GradientFrame* frame : {&first, &second})
+    for (size_t k = 0; k < GradientFrame::kLayers; ++k)
+      if (k < 3 || frame->hasTemporal()) frame->variance[k].assign(frame->pixelCount(), 0.05f * 0.05f);
+  const GradientFrame noiseOnly = first;
+  for (size_t ch = 0; ch < 3; ++ch) {
+    first.temporal[ch][c] += 5;
+    first.mixedX[ch][c] -= 2.5f;
+    first.mixedY[ch][c] -= 2.5f;
+  }
+  GradientFrame withoutVariance = first, withoutVarianceSecond = second;
+  for (GradientFrame* frame : {&withoutVariance, &withoutVarianceSecond})
+    for (auto& variance : frame->variance) variance.clear();
+  first.variance[3][c] = 3 * 25.0f;
+  first.variance[4][c] = first.variance[5][c] = 3 * 6.25f;
+
+  // The largest difference at the pixel from the noise-only reconstruction, over both
+  // frames and the channels.
+  const auto moved = [&](const std::vector<GradientFrame::Color>& solved,
+                         const std::vector<GradientFrame::Color>& base) {
+    double worst = 0;
+    for (size_t f = 0; f < 2; ++f)
+      for (size_t ch = 0; ch < 3; ++ch) worst = std::max(worst, std::abs(double{solved[f][ch][c]} - base[f][ch][c]));
+    return worst;
+  };
+  PoissonSettings l1;
+  l1.norm = PoissonNorm::L1;
+  for (const auto& [settings, bound] : {std::pair{PoissonSettings{}, 0.02}, std::pair{l1, 0.03}}) {
+    const auto base = reconstructWindow({&noiseOnly, &second}, settings);
+    const double weighted = moved(reconstructWindow({&first, &second}, settings), base);
+    const double unweighted = moved(reconstructWindow({&withoutVariance, &withoutVarianceSecond}, settings), base);
+    EXPECT_LE(weighted, bound);
+    // The weights are what holds the pixel: without them L2 moves it by the outlier's
+    // share, and L1 (which stops short of its minimum) by twice as much as with them.
+    EXPECT_GT(unweighted, settings.norm == PoissonNorm::L2 ? 0.5 : 2 * weighted);
+  }
 }
 
 TEST(ScreenedPoisson, L1EndsNearTheL1Minimum) {
