@@ -35,6 +35,7 @@ struct RenderOptions {
   std::string integrator = "pt";
   int batches = 1;
   bool noMotion = false;
+  int mixedEvery = GradientSettings{}.mixedEvery;
   // Metropolis integrators (docs/metropolis.md).
   int window = 0;  // frames per window; 0: the whole range
   std::optional<double> mutationsPerPixel;
@@ -172,6 +173,10 @@ int runRender(const RenderOptions& options) {
     spdlog::error("--batches and --no-motion apply to --integrator gpt and tgpt only");
     return kExitBadInput;
   }
+  if (options.integrator != "tgpt" && options.mixedEvery != GradientSettings{}.mixedEvery) {
+    spdlog::error("--mixed-every applies to --integrator tgpt only");
+    return kExitBadInput;
+  }
   const bool metropolisOptions = options.window != 0 || options.mutationsPerPixel || options.chains ||
                                  options.chainsPerBlock || options.bootstrap || options.delta || options.tuneDelta;
   if (!metropolis && metropolisOptions) {
@@ -187,7 +192,8 @@ int runRender(const RenderOptions& options) {
     spdlog::error("--integrator {} takes --mutations-per-pixel (and --bootstrap), not --spp", options.integrator);
     return kExitBadInput;
   }
-  const GradientSettings gradientSettings{options.integrator == "tgpt", !options.noMotion, options.batches};
+  const GradientSettings gradientSettings{options.integrator == "tgpt", !options.noMotion, options.batches,
+                                          options.mixedEvery};
   if (options.spp) settings.spp = *options.spp;
   if (options.maxDepth) settings.maxDepth = *options.maxDepth;
   settings.threads = options.threads;
@@ -293,6 +299,10 @@ std::vector<Command> addRenderCommand(CLI::App& app) {
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
   render->add_flag("--no-motion", options->noMotion, "tgpt: temporal offsets keep their pixel instead of following the motion");
+  render->add_option("--mixed-every", options->mixedEvery,
+                     "tgpt: the temporal offset traces its spatial offsets (the mixed differences) on one sample in N")
+      ->check(CLI::Range(1, 1 << 20))
+      ->capture_default_str();
   render->add_option("--window", options->window,
                      "pssmlt/tmlt: frames per window of Markov chains (default: the whole frame range; mlt: 1)")
       ->check(CLI::Range(1, 100000));

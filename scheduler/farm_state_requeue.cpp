@@ -19,7 +19,7 @@ ShotSummary FarmState::requeueTask(int64_t shotId, int64_t taskId, double now) {
     const bool found = q.step();
     q.reset();
     if (!found)
-      throw std::invalid_argument("shot " + std::to_string(shotId) + " has no task " + std::to_string(taskId));
+      throw std::out_of_range("shot " + std::to_string(shotId) + " has no task " + std::to_string(taskId));
     return requeueLocked(shotId, {taskId}, "task " + std::to_string(taskId), now);
   });
 }
@@ -36,7 +36,7 @@ ShotSummary FarmState::requeueFrame(int64_t shotId, int64_t frame, double now) {
       if (params.frame() == frame) seeds.push_back(q.integer(0));
     }
     if (seeds.empty())
-      throw std::invalid_argument("shot " + std::to_string(shotId) + " has no task for frame " + std::to_string(frame));
+      throw std::out_of_range("shot " + std::to_string(shotId) + " has no task for frame " + std::to_string(frame));
     return requeueLocked(shotId, seeds, "frame " + std::to_string(frame), now);
   });
 }

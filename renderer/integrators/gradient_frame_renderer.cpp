@@ -6,6 +6,7 @@
 
 #include <array>
 #include <chrono>
+#include <limits>
 #include <stdexcept>
 
 #include "renderer/accel/shot_geometry.h"
@@ -29,6 +30,7 @@ namespace {
 struct PixelSums {
   uint32_t drawn = 0;             // sample indices used so far
   uint32_t samples = 0;           // finite samples accumulated
+  uint32_t mixedSamples = 0;      // of which with the temporal offset's spatial offsets
   SampleMoments direct, own, temporal;  // own: the base's parts of its pixel, averaged over the 4 pairs
   std::array<SampleMoments, 4> offset, difference;
   std::array<SampleMoments, 4> mixed;  // the temporal offset's difference minus the base's, per direction
@@ -112,6 +114,7 @@ class FrameLayers {
 GradientFrameRenderer::GradientFrameRenderer(const Scene& scene, RenderSettings settings, GradientSettings gradient)
     : scene_(scene), settings_(settings), gradient_(gradient), shot_(std::make_unique<Shot>(scene)) {
   if (gradient_.batches < 1) throw std::invalid_argument("adaptive sampling needs at least one batch");
+  if (gradient_.mixedEvery < 1) throw std::invalid_argument("mixed differences need at least one sample in every N");
 }
 
 GradientFrameRenderer::~GradientFrameRenderer() = default;
@@ -175,13 +178,15 @@ FrameImage GradientFrameRenderer::render(int64_t frame, const ProgressCallback& 
           tracer.trace(rayThrough(x, y, cameraNow), offsetRays(x, y, cameraNow), time, stream, local.rays);
       ++local.samples;
       std::optional<GradientSample> later;
+      const bool withMixed = (s.drawn + i) % static_cast<uint32_t>(gradient_.mixedEvery) == 0;
       if (nextTracer && correspondence[p] >= 0) {
         // The temporal offset: the same random numbers one frame later, through the
         // corresponding pixel, with its own spatial offsets for the mixed differences.
         const int tx = correspondence[p] % width, ty = correspondence[p] / width;
         const Transform cameraLater = camera.cameraToWorld(scene_.timeAt(frame + 1, time));
-        later = nextTracer->trace(rayThrough(tx, ty, cameraLater), offsetRays(tx, ty, cameraLater), time, replay,
-                                  local.rays);
+        later = nextTracer->trace(rayThrough(tx, ty, cameraLater),
+                                  withMixed ? offsetRays(tx, ty, cameraLater) : std::array<std::optional<Ray>, 4>{},
+                                  time, replay, local.rays);
       }
       if (!isFinite(g) || (later && !isFinite(*later))) {
         ++local.nonFinite;
@@ -195,9 +200,10 @@ FrameImage GradientFrameRenderer::render(int64_t frame, const ProgressCallback& 
         s.difference[k].add(g.difference[k]);
       }
       s.own.add(own);
-      if (later) {
-        s.temporal.add(later->radiance - g.radiance);
+      if (later) s.temporal.add(later->radiance - g.radiance);
+      if (later && withMixed) {
         for (size_t k = 0; k < 4; ++k) s.mixed[k].add(later->difference[k] - g.difference[k]);
+        ++s.mixedSamples;
       }
       ++s.samples;
     }
@@ -266,7 +272,9 @@ FrameImage GradientFrameRenderer::render(int64_t frame, const ProgressCallback& 
       }
     }
     // Mixed differences where the motion is rigid across the pair: like the spatial
-    // differences, p's forward part minus its neighbour's backward part.
+    // differences, p's forward part minus its neighbour's backward part. A pair whose
+    // pixel has no sample with mixed offsets (too few samples for mixedEvery) gets NaN:
+    // the reconstruction drops it.
     const auto rigid = [&](size_t p, size_t k) {
       const size_t n = layers.neighbour(p, k);
       const int step = kShiftDirections[k][0] + kShiftDirections[k][1] * width;
@@ -281,9 +289,13 @@ FrameImage GradientFrameRenderer::render(int64_t frame, const ProgressCallback& 
         for (size_t p = 0; p < pixels; ++p) {
           if (!rigid(p, k)) continue;
           const PixelSums &a = sums[p], &b = sums[layers.neighbour(p, k)];
-          mixed[p] = static_cast<float>(a.mixed[k].mean(c, a.samples) - b.mixed[k ^ 1].mean(c, b.samples));
-          variance[p] =
-              static_cast<float>(a.mixed[k].varianceOfMean(c, a.samples) + b.mixed[k ^ 1].varianceOfMean(c, b.samples));
+          if (a.mixedSamples == 0 || b.mixedSamples == 0) {
+            mixed[p] = variance[p] = std::numeric_limits<float>::quiet_NaN();
+            continue;
+          }
+          mixed[p] = static_cast<float>(a.mixed[k].mean(c, a.mixedSamples) - b.mixed[k ^ 1].mean(c, b.mixedSamples));
+          variance[p] = static_cast<float>(a.mixed[k].varianceOfMean(c, a.mixedSamples) +
+                                           b.mixed[k ^ 1].varianceOfMean(c, b.mixedSamples));
         }
       }
     }

@@ -18,6 +18,11 @@ struct GradientSettings {
   bool temporal = false;      // also the temporal offset frame towards the next frame
   bool motionVectors = true;  // temporal offsets follow the primary motion
   int batches = 1;            // 1: uniform sampling; more: adaptive after the first batch
+  // The temporal offset traces its own spatial offsets (for the mixed differences) on one
+  // sample of every `mixedEvery` of a pixel (sample indices 0, N, 2N, ...); the others
+  // replay the base path alone. The mixed differences then rest on fewer samples, and
+  // each skipped sample saves about half of the temporal offset's rays.
+  int mixedEvery = 1;
 };
 
 class GradientFrameRenderer {

@@ -125,9 +125,11 @@ TEST_F(RequeueTest, WhatCannotRunAgainIsRefused) {
   const int64_t worker = state_->registerWorker("w", 1, now_);
   const Lease lease = leaseFor(worker);
   ASSERT_EQ(lease.shot_id(), shot);
-  EXPECT_THROW(state_->requeueTask(other, lease.task_id(), now_), std::invalid_argument) << "a task of another shot";
-  EXPECT_THROW(state_->requeueTask(shot, 9999, now_), std::invalid_argument);
-  EXPECT_THROW(state_->requeueFrame(shot, 7, now_), std::invalid_argument) << "the shot has only frame 0";
+  // A task or frame the shot does not have is not found (NOT_FOUND, 404); one that cannot
+  // run again now is refused (FAILED_PRECONDITION, 409).
+  EXPECT_THROW(state_->requeueTask(other, lease.task_id(), now_), std::out_of_range) << "a task of another shot";
+  EXPECT_THROW(state_->requeueTask(shot, 9999, now_), std::out_of_range);
+  EXPECT_THROW(state_->requeueFrame(shot, 7, now_), std::out_of_range) << "the shot has only frame 0";
   EXPECT_THROW(state_->requeueFrame(shot + 100, 0, now_), std::out_of_range);
   state_->cancel(other, now_);
   EXPECT_THROW(state_->requeueFrame(other, 0, now_), std::invalid_argument);

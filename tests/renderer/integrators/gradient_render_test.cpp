@@ -338,5 +338,29 @@ TEST(GradientRender, ThreadsTilesAndBatchesGiveIdenticalBits) {
   EXPECT_GT(*std::max_element(counts.begin(), counts.end()), *std::min_element(counts.begin(), counts.end()));
 }
 
+TEST(GradientRender, MixedOffsetsOnFewerSamplesLeaveEveryOtherLayerAlone) {
+  // The temporal offset replays the base's random numbers whether or not it traces its
+  // spatial offsets, so only the mixed layers (and the timing) may change.
+  const Scene scene = loadScene(test_support::sourceDir() / "scenes/cornell/scene.json");
+  GradientSettings every, fewer;
+  every.temporal = fewer.temporal = true;
+  fewer.mixedEvery = 3;
+  const RenderSettings settings = small(12, 10, 6, 4);
+  const FrameImage a = GradientFrameRenderer(scene, settings, every).render(7);
+  const FrameImage b = GradientFrameRenderer(scene, settings, fewer).render(7);
+  size_t mixedDiffer = 0;
+  for (const std::string& name : a.channelNames()) {
+    if (name.starts_with("mixed_")) {
+      mixedDiffer += a.channel(name) != b.channel(name);
+      for (float v : b.channel(name)) ASSERT_TRUE(std::isfinite(v)) << name;  // every pixel has sample 0
+    } else {
+      EXPECT_EQ(a.channel(name), b.channel(name)) << name;
+    }
+  }
+  EXPECT_GT(mixedDiffer, 0u);
+  EXPECT_THROW(GradientFrameRenderer(scene, settings, GradientSettings{.temporal = true, .mixedEvery = 0}),
+               std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace pathfarm
