@@ -92,6 +92,9 @@ TaskOutput TaskRunner::renderTile(const Lease& lease, const ChunkFetcher& fetch,
   if (params.beauty_only()) settings.decomposition = nullptr;
   if (params.motion_forward() > 0) settings.motionSpan.forward = params.motion_forward();
   if (params.motion_backward() > 0) settings.motionSpan.backward = params.motion_backward();
+  // A reference measures the shot's frames: it must not share their samples, or their
+  // errors would partly cancel in the comparison.
+  if (params.role() == ROLE_REFERENCE) settings.firstSample = kIndependentFirstSample;
   const FrameRenderer renderer(*shot->renderer, settings);
   const PixelWindow& w = params.window();
   const std::vector<uint8_t> only(params.pixel_mask().begin(), params.pixel_mask().end());

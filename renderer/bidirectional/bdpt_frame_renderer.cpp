@@ -63,7 +63,7 @@ FrameImage BdptFrameRenderer::render(int64_t frame, const ProgressCallback& prog
     SampleMoments moments;
     uint32_t accepted = 0;
     for (int i = 0; i < settings_.spp; ++i) {
-      SampleStream stream({scene_.seed, frame, x, y, static_cast<uint32_t>(i)});
+      SampleStream stream({scene_.seed, frame, x, y, settings_.firstSample + static_cast<uint32_t>(i)});
       StreamSource u(stream);
       const Vec2f jitter = u.next2D();
       const float time = u.next1D();

@@ -92,6 +92,7 @@ void writeRenderAttributes(FrameImage& image, const Scene& scene, int64_t frame,
   attributes["pathfarm.spp"] = std::to_string(settings.spp);
   attributes["pathfarm.max_depth"] = std::to_string(settings.maxDepth);
   attributes["pathfarm.seed"] = std::to_string(scene.seed);
+  if (settings.firstSample != 0) attributes["pathfarm.first_sample"] = std::to_string(settings.firstSample);
   attributes["pathfarm.nonfinite_samples"] = std::to_string(stats.nonFiniteSamples);
 }
 
@@ -148,7 +149,7 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
         std::optional<DecomposedFilm::Pixel> sums;
         if (film) sums.emplace(decomposition->size());
         for (int s = 0; s < settings_.spp; ++s) {
-          SampleStream stream({scene_.seed, frame, x, y, static_cast<uint32_t>(s)});
+          SampleStream stream({scene_.seed, frame, x, y, settings_.firstSample + static_cast<uint32_t>(s)});
           // Fixed order of the first dimensions: pixel position, shutter time, lens.
           const Vec2f jitter = stream.next2D();
           const float time = stream.next1D();

@@ -26,6 +26,10 @@ struct PixelWindow {
   int height() const { return y1 - y0; }
 };
 
+// Where the sample indices of a reference start: far above any shot's spp (at most 2^20),
+// so a reference and the renders it measures draw disjoint, independent samples.
+inline constexpr uint32_t kIndependentFirstSample = 1u << 31;
+
 struct RenderSettings {
   int width = 320, height = 240;
   int spp = 16;
@@ -36,6 +40,9 @@ struct RenderSettings {
   std::shared_ptr<const Decomposition> decomposition;
   // How far the components' motion vectors reach (a keyframe's: its neighbouring keyframes).
   MotionSpan motionSpan;
+  // Sample indices run from here (sample_stream.h). A render that measures another must
+  // share none of its samples: a reference starts at kIndependentFirstSample.
+  uint32_t firstSample = 0;
 
   static RenderSettings defaultsOf(const Scene& scene);
 };

@@ -59,5 +59,33 @@ TEST_F(FarmTest, ThreeWorkersRenderTheFramesThatRenderWritesLocally) {
   for (const auto& [name, exitStatus] : stopWorkers()) EXPECT_EQ(exitStatus, 0) << "worker " << name;
 }
 
+TEST_F(FarmTest, AReferenceSharesNoSampleWithTheFramesItMeasures) {
+  // A reference at the shot's own spp: were it drawn from the same samples as the output,
+  // both would be the same image and the measured error exactly 0.
+  RenderSpec spec;
+  spec.name = "own-reference";
+  spec.frameStart = spec.frameEnd = 2;
+  spec.width = 32;
+  spec.height = 24;
+  spec.spp = 2;
+  spec.maxDepth = 4;
+  spec.tile = 32;
+  farm::ShotSpec shot = shotSpec(spec);
+  shot.set_reference_spp(spec.spp);
+  shot.add_evaluation_frames(2);
+  const std::string scheduler = startScheduler();
+  startWorker("w1");
+  const int64_t id = client().submit(shot);
+  ASSERT_EQ(waitForShot(id, 60s).state(), farm::SHOT_DONE);
+  const farm::ShotReport report = client().report(id);
+  bool measured = false;
+  for (const farm::StageError& error : report.errors()) {
+    if (error.stage() != "final") continue;
+    measured = true;
+    EXPECT_GT(error.relmse(), 0) << "the reference repeated the output's samples";
+  }
+  EXPECT_TRUE(measured) << report.DebugString();
+}
+
 }  // namespace
 }  // namespace pathfarm::farmtest

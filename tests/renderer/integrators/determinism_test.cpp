@@ -75,5 +75,26 @@ TEST(Determinism, DifferentFramesAndSeedsDiffer) {
   EXPECT_NE(a, reseeded.render(3).channel("R"));
 }
 
+TEST(Determinism, SampleIndicesStartWhereTheSettingsSay) {
+  // Two samples from index 0 are the mean of one from index 0 and one from index 1: the
+  // render draws exactly the samples its first index names. A reference starts at
+  // kIndependentFirstSample, beyond any shot's 2^20 spp, so it shares none of them.
+  const Scene scene = loadScene(test_support::sourceDir() / "scenes/cornell/scene.json");
+  RenderSettings settings;
+  settings.width = settings.height = 12;
+  settings.spp = 2;
+  const auto both = FrameRenderer(scene, settings).render(3).channel("G");
+  settings.spp = 1;
+  const auto first = FrameRenderer(scene, settings).render(3).channel("G");
+  settings.firstSample = 1;
+  const auto second = FrameRenderer(scene, settings).render(3).channel("G");
+  for (size_t p = 0; p < both.size(); ++p) ASSERT_NEAR(both[p], 0.5f * (first[p] + second[p]), 1e-5f * (1 + both[p]));
+  settings.firstSample = kIndependentFirstSample;
+  const FrameImage reference = FrameRenderer(scene, settings).render(3);
+  EXPECT_NE(reference.channel("G"), first);
+  EXPECT_NE(reference.channel("G"), second);
+  EXPECT_EQ(reference.attributes().at("pathfarm.first_sample"), std::to_string(kIndependentFirstSample));
+}
+
 }  // namespace
 }  // namespace pathfarm
