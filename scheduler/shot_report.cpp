@@ -85,6 +85,10 @@ void judge(ShotReport& report, const std::map<std::string, double>& errors) {
   const double worstTile = figure("worst_tile.final"), ptWorstTile = figure("worst_tile.baseline");
   if (ptWorstTile > 0 && worstTile > 2 * ptWorstTile)
     verdict += " Its worst 16x16 tile has " + format("%.1f", worstTile / ptWorstTile) + "x pt's relMSE: look for artifacts.";
+  const double noise = figure("reference_noise");
+  if (noise > 0 && final < 2 * noise)
+    verdict += " Its relMSE is within 2x of the reference's own noise (" + format("%.4f", noise) +
+               "): raise reference_spp to measure it.";
   if (report.temporal_error() > 0 && report.baseline_temporal_error() > 0 &&
       report.temporal_error() > report.baseline_temporal_error())
     verdict += " It flickers more than pt (temporal error " + format("%.4f", report.temporal_error()) + " against " +
@@ -209,6 +213,7 @@ ShotReport buildReport(const ShotSummary& summary, const ShotSpec& spec, const s
     error->set_worst_percent_share(figure("worst_share"));
     error->set_kept(errors.count(std::string("kept.") + stage) ? figure("kept") : 1.0);
   }
+  report.set_reference_noise(errors.count("reference_noise") ? errors.at("reference_noise") : -1);
   if (errors.count("temporal.final")) report.set_temporal_error(errors.at("temporal.final"));
   if (errors.count("temporal.baseline")) report.set_baseline_temporal_error(errors.at("temporal.baseline"));
   judge(report, errors);
@@ -294,6 +299,9 @@ std::string reportMarkdown(const ShotReport& r) {
           measured + " |\n";
   }
   md += "\n| figure | value |\n| --- | ---: |\n";
+  if (r.reference_noise() >= 0)
+    md += "| the reference's own noise (its expected relMSE, included in every relMSE above) | " +
+          format("%.5f", r.reference_noise()) + " |\n";
   if (r.temporal_error() >= 0)
     md += "| temporal error, final | " + format("%.5f", r.temporal_error()) + " |\n";
   if (r.baseline_temporal_error() >= 0)

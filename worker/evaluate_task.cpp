@@ -4,13 +4,16 @@
 // temporal error (relMSE of frame-to-frame differences) of the final frames and of the
 // baseline. A stage that flags pixels for re-rendering (upsample, interpolate) is measured
 // on the pixels it keeps: the flagged ones hold best-effort values the re-render replaces.
-// The task's chunk is the contact sheet of the evaluation frames (PNG; contact_sheet.h).
+// The reference's own noise (its expected relMSE from its variance) bounds what the
+// figures can tell. The task's chunk is the contact sheet of the evaluation frames (PNG;
+// contact_sheet.h).
 #include <algorithm>
 #include <map>
 
 #include "image/png_preview.h"
 #include "postproc/metrics/contact_sheet.h"
 #include "postproc/metrics/image_metrics.h"
+#include "postproc/metrics/relmse.h"
 #include "worker/failure_class.h"
 #include "worker/filter_inputs.h"
 
@@ -109,6 +112,10 @@ TaskOutput runEvaluateTask(const Lease& /*lease*/, const std::vector<TaskInput>&
     output.metrics["temporal." + stage] = compareSequences(images, referenced, kBeauty).temporalRelMse;
   }
   output.metrics["evaluation_frames"] = static_cast<double>(references.size());
+  // The references' own expected relMSE, from their variance: the floor of the figures.
+  double noise = 0;
+  for (const auto& [frame, reference] : references) noise += expectedRelMse(*reference);
+  output.metrics["reference_noise"] = noise / static_cast<double>(references.size());
   std::vector<ContactSheetRow> rows;
   for (const auto& [frame, reference] : references) {
     const auto& finals = sequences["final"];

@@ -21,4 +21,16 @@ double relMse(const FrameImage& image, const FrameImage& reference,
   return sum / static_cast<double>(channels.size());
 }
 
+double expectedRelMse(const FrameImage& image) {
+  double sum = 0;
+  for (const char* channel : {"R", "G", "B"}) {
+    const std::string name = std::string("variance.") + channel;
+    if (!image.hasChannel(name)) throw std::invalid_argument("no \"" + name + "\" channel to estimate the noise from");
+    const std::vector<float>& value = image.channel(channel);
+    const std::vector<float>& variance = image.channel(name);
+    for (size_t p = 0; p < value.size(); ++p) sum += variance[p] / (double{value[p]} * value[p] + 0.01);
+  }
+  return image.pixelCount() > 0 ? sum / (3.0 * static_cast<double>(image.pixelCount())) : 0;
+}
+
 }  // namespace pathfarm

@@ -16,4 +16,11 @@ double relMse(const std::vector<float>& image, const std::vector<float>& referen
 double relMse(const FrameImage& image, const FrameImage& reference,
               const std::vector<std::string>& channels = {"R", "G", "B"});
 
+// The relMSE an unbiased render is expected to have against the truth, from the variance
+// of its per-pixel means ("variance.R/G/B", as pt writes them): the mean over pixels and
+// channels of variance / (value^2 + 0.01). For a reference, it is the floor under which
+// the errors measured against it say nothing. Throws std::invalid_argument without the
+// variance channels.
+double expectedRelMse(const FrameImage& image);
+
 }  // namespace pathfarm

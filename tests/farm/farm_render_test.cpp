@@ -85,6 +85,7 @@ TEST_F(FarmTest, AReferenceSharesNoSampleWithTheFramesItMeasures) {
     EXPECT_GT(error.relmse(), 0) << "the reference repeated the output's samples";
   }
   EXPECT_TRUE(measured) << report.DebugString();
+  EXPECT_GT(report.reference_noise(), 0);  // estimated from the reference's variance
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "postproc/metrics/relmse.h"
+#include "test_support.h"
 
 namespace pathfarm {
 namespace {
@@ -21,6 +22,46 @@ TEST(RelMse, AveragesTheBeautyChannels) {
   }
   a.channel("G")[0] = 0;
   EXPECT_NEAR(relMse(a, b), (2.0 / 0.01) / 3.0, 1e-9);
+}
+
+TEST(RelMse, ExpectedFromTheVarianceMatchesTheDefinitionOnHandComputedValues) {
+  FrameImage image(2, 1);
+  for (const char* c : {"R", "G", "B"}) {
+    image.addChannel(c) = {1, 0};
+    image.addChannel(std::string("variance.") + c) = {0.5f, 0.02f};
+  }
+  EXPECT_NEAR(expectedRelMse(image), (0.5 / 1.01 + 0.02 / 0.01) / 2, 1e-7);
+  FrameImage bare(2, 1);
+  for (const char* c : {"R", "G", "B"}) bare.addChannel(c);
+  EXPECT_THROW(expectedRelMse(bare), std::invalid_argument);
+}
+
+TEST(RelMse, ExpectedFromTheVarianceIsTheErrorAgainstTheTruth) {
+  // Each pixel the mean of 16 draws around the truth 1 (uniform, half-width 0.5), with the
+  // variance of that mean estimated from the draws as a renderer does: over 30,000 values
+  // the expected relMSE and the one measured against the truth agree within 5 % (the
+  // measured one's standard error is under 1 %).
+  const int w = 100, h = 100, draws = 16;
+  FrameImage image(w, h), truth(w, h);
+  for (int c = 0; c < 3; ++c) {
+    const std::string name = std::string(1, "RGB"[c]);
+    auto& value = image.addChannel(name);
+    auto& variance = image.addChannel("variance." + name);
+    truth.addChannel(name).assign(value.size(), 1.0f);
+    for (size_t p = 0; p < value.size(); ++p) {
+      double sum = 0, squares = 0;
+      for (int i = 0; i < draws; ++i) {
+        const double x = 0.5 + test_support::hashed(11, c, static_cast<int>(p), i);
+        sum += x;
+        squares += x * x;
+      }
+      const double mean = sum / draws;
+      value[p] = static_cast<float>(mean);
+      variance[p] = static_cast<float>((squares / draws - mean * mean) * draws / (draws - 1) / draws);
+    }
+  }
+  const double measured = relMse(image, truth), expected = expectedRelMse(image);
+  EXPECT_NEAR(expected / measured, 1.0, 0.05) << expected << " " << measured;
 }
 
 }  // namespace

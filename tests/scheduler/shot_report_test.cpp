@@ -125,6 +125,21 @@ TEST(ShotReport, TheVerdictSaysPlainlyWhenThePipelineLost) {
   EXPECT_EQ(verdict.rfind("dui did not pay off: it cost 4.00x what plain pt would for the same error", 0), 0u) << verdict;
   EXPECT_NE(verdict.find("worst 16x16 tile has 6.0x pt's"), std::string::npos) << verdict;
   EXPECT_NE(verdict.find("flickers more than pt"), std::string::npos) << verdict;
+  EXPECT_EQ(verdict.find("reference's own noise"), std::string::npos) << verdict;
+  EXPECT_EQ(report.reference_noise(), -1);  // not measured
+
+  // A final relMSE within 2x of the reference's own noise is said to be at its floor.
+  tasks.back().metrics["reference_noise"] = 0.0125;
+  const ShotReport atTheFloor = buildReport(ShotSummary(), spec(), tasks);
+  EXPECT_DOUBLE_EQ(atTheFloor.reference_noise(), 0.0125);
+  EXPECT_NE(atTheFloor.verdict().find("within 2x of the reference's own noise (0.0125): raise reference_spp"),
+            std::string::npos)
+      << atTheFloor.verdict();
+  EXPECT_NE(reportMarkdown(atTheFloor).find("| the reference's own noise (its expected relMSE, included in every "
+                                            "relMSE above) | 0.01250 |"),
+            std::string::npos);
+  tasks.back().metrics["reference_noise"] = 0.009;
+  EXPECT_EQ(buildReport(ShotSummary(), spec(), tasks).verdict().find("reference's own noise"), std::string::npos);
 
   // No reference, no verdict; pt is its own baseline.
   tasks.pop_back();
