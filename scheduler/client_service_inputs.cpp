@@ -1,5 +1,6 @@
 // Scene files a client uploads before it submits (inputs without shared storage).
 #include "proto/wire/input_files.h"
+#include "scheduler/quoted_text.h"
 #include "scheduler/service_chunks.h"
 #include "scheduler/service_guard.h"
 
@@ -33,7 +34,7 @@ std::string ClientServiceImpl::inputProblem(const ShotSpec& spec) const {
   }
   for (const InputFile& file : spec.inputs()) {
     if (!c_.state.hasChunk(file.chunk().sha256()) || !c_.store.has(file.chunk().sha256()))
-      return "scene file \"" + file.path() + "\" (" + file.chunk().sha256() + ") was not uploaded";
+      return "scene file " + quotedInput(file.path()) + " (" + quotedInput(file.chunk().sha256()) + ") was not uploaded";
   }
   return "";
 }

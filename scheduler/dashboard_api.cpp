@@ -8,6 +8,7 @@
 #include "scheduler/dashboard_assets.h"
 #include "scheduler/dashboard_json.h"
 #include "scheduler/farm_names.h"
+#include "scheduler/quoted_text.h"
 #include "scheduler/shot_report.h"
 
 namespace pathfarm::farm {
@@ -30,7 +31,7 @@ int64_t integerFrom(const std::string& text, const std::string& what) {
   int64_t value = 0;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (error != std::errc() || end != text.data() + text.size() || text.empty())
-    throw BadRequest(what + " must be a whole number, not \"" + text + "\"");
+    throw BadRequest(what + " must be a whole number, not " + quotedInput(text));
   return value;
 }
 

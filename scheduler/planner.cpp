@@ -1,4 +1,5 @@
 #include "scheduler/planner.h"
+#include "scheduler/quoted_text.h"
 
 #include <algorithm>
 #include <cctype>
@@ -304,7 +305,7 @@ bool isFilteringPipeline(const std::string& pipeline) {
 }
 
 PipelineStages stagesOf(const std::string& pipeline) {
-  if (!isFilteringPipeline(pipeline)) throw PlanError("\"" + pipeline + "\" is not a filtering pipeline");
+  if (!isFilteringPipeline(pipeline)) throw PlanError(quotedInput(pipeline) + " is not a filtering pipeline");
   return {pipeline.find('u') != std::string::npos, pipeline.find('i') != std::string::npos};
 }
 
@@ -331,7 +332,8 @@ std::vector<PlannedTask> planShot(const ShotSpec& spec) {
     if (spec.noop_tasks() < 1) throw PlanError("noop_tasks: must be at least 1");
     plan.assign(static_cast<size_t>(spec.noop_tasks()), PlannedTask{TASK_NOOP, {}, {}});
   } else {
-    throw PlanError("pipeline \"" + spec.pipeline() + "\" is not available (this farm runs: pt, d, du, di, dui, tgpt, pssmlt, mlt, tmlt, noop)");
+    throw PlanError("pipeline " + quotedInput(spec.pipeline()) +
+                    " is not available (this farm runs: pt, d, du, di, dui, tgpt, pssmlt, mlt, tmlt, noop)");
   }
   return plan;
 }
@@ -356,7 +358,7 @@ int64_t plannedTasksAtLeast(const ShotSpec& spec) {
 
 std::vector<PlannedTask> planShotWithin(const ShotSpec& spec, const ShotLimits& limits) {
   for (const std::string& tag : spec.required_tags())
-    if (!isValidTag(tag)) throw PlanError("required_tags: \"" + tag + "\" is not a tag (letters, digits, '-', '_', '.')");
+    if (!isValidTag(tag)) throw PlanError("required_tags: " + quotedInput(tag) + " is not a tag (letters, digits, '-', '_', '.')");
   const int64_t frames = spec.frame_end() - spec.frame_start() + 1;
   if (frames > limits.maxFrames)
     throw PlanError("frames: " + std::to_string(frames) + " frames is more than this scheduler takes in one shot (" +

@@ -2,6 +2,7 @@
 #include <chrono>
 
 #include "proto/wire/chunk_transfer.h"
+#include "scheduler/quoted_text.h"
 #include "scheduler/service_chunks.h"
 #include "scheduler/service_guard.h"
 
@@ -32,7 +33,7 @@ grpc::Status WorkerServiceImpl::Register(grpc::ServerContext* context, const Reg
     for (const std::string& tag : request->tags())
       if (!isValidTag(tag))
         return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
-                            "tag \"" + tag + "\" is not letters, digits, '-', '_' or '.'");
+                            "tag " + quotedInput(tag) + " is not letters, digits, '-', '_' or '.'");
     const NewSession session = WorkerSessions::make();
     reply->set_worker_id(c_.state.registerWorker(request->name(), slots, farmClockSeconds(),
                                                  {request->tags().begin(), request->tags().end()}, session.hash));
