@@ -261,7 +261,7 @@ TEST_F(DashboardTest, BadRequestsGetJsonErrors) {
   post(shotPath(id) + "/priority", R"({"priority": 1e40})", 400);
   post(shotPath(id) + "/priority", "not json", 400);
   post(shotPath(id) + "/tasks/x/requeue", "{}", 400);
-  post(shotPath(id) + "/tasks/987654/requeue", "{}", 409);
+  post(shotPath(id) + "/tasks/987654/requeue", "{}", 404);  // no such task
   post(shotPath(id) + "/explode", "{}", 404);
   // An action is a JSON POST: not a GET, not a form.
   get(shotPath(id) + "/pause", 404);
