@@ -73,10 +73,20 @@ void judge(ShotReport& report, const std::map<std::string, double>& errors) {
   };
   const double final = figure("relmse.final"), baseline = figure("relmse.baseline");
   if (report.pipeline() == "pt" || !(report.relative_cost() > 0) || !(final > 0) || !(baseline > 0)) return;
-  const double cost = report.relative_cost() * final / baseline;
+  // Each relMSE includes the independent reference's own noise; the errors compared are
+  // what is left of them.
+  const double noise = figure("reference_noise");
+  if (final <= noise || baseline <= noise) {
+    report.set_verdict("The errors cannot be told from the reference's own noise (" + format("%.4f", noise) + "): " +
+                       report.pipeline() + "'s relMSE " + format("%.4f", final) + ", plain pt's " +
+                       format("%.4f", baseline) + ". Raise reference_spp to compare them.");
+    return;
+  }
+  const double cost = report.relative_cost() * (final - noise) / (baseline - noise);
   report.set_cost_at_equal_error(cost);
   const std::string figures = " (relative cost " + format("%.2f", report.relative_cost()) + " at relMSE " +
-                              format("%.4f", final) + ", pt " + format("%.4f", baseline) + " at the same spp)";
+                              format("%.4f", final) + ", pt " + format("%.4f", baseline) + " at the same spp" +
+                              (noise > 0 ? ", both less the reference's noise " + format("%.4f", noise) : "") + ")";
   std::string verdict =
       cost < 1 ? report.pipeline() + " paid off: " + format("%.2f", cost) +
                      " of plain pt's core-seconds for the same error" + figures + "."
@@ -85,7 +95,6 @@ void judge(ShotReport& report, const std::map<std::string, double>& errors) {
   const double worstTile = figure("worst_tile.final"), ptWorstTile = figure("worst_tile.baseline");
   if (ptWorstTile > 0 && worstTile > 2 * ptWorstTile)
     verdict += " Its worst 16x16 tile has " + format("%.1f", worstTile / ptWorstTile) + "x pt's relMSE: look for artifacts.";
-  const double noise = figure("reference_noise");
   if (noise > 0 && final < 2 * noise)
     verdict += " Its relMSE is within 2x of the reference's own noise (" + format("%.4f", noise) +
                "): raise reference_spp to measure it.";

@@ -128,18 +128,23 @@ TEST(ShotReport, TheVerdictSaysPlainlyWhenThePipelineLost) {
   EXPECT_EQ(verdict.find("reference's own noise"), std::string::npos) << verdict;
   EXPECT_EQ(report.reference_noise(), -1);  // not measured
 
-  // A final relMSE within 2x of the reference's own noise is said to be at its floor.
+  // Errors at the reference's own noise cannot be compared.
   tasks.back().metrics["reference_noise"] = 0.0125;
   const ShotReport atTheFloor = buildReport(ShotSummary(), spec(), tasks);
   EXPECT_DOUBLE_EQ(atTheFloor.reference_noise(), 0.0125);
-  EXPECT_NE(atTheFloor.verdict().find("within 2x of the reference's own noise (0.0125): raise reference_spp"),
-            std::string::npos)
-      << atTheFloor.verdict();
+  EXPECT_EQ(atTheFloor.verdict(), "The errors cannot be told from the reference's own noise (0.0125): dui's relMSE "
+                                  "0.0200, plain pt's 0.0100. Raise reference_spp to compare them.");
   EXPECT_NE(reportMarkdown(atTheFloor).find("| the reference's own noise (its expected relMSE, included in every "
                                             "relMSE above) | 0.01250 |"),
             std::string::npos);
-  tasks.back().metrics["reference_noise"] = 0.009;
-  EXPECT_EQ(buildReport(ShotSummary(), spec(), tasks).verdict().find("reference's own noise"), std::string::npos);
+  // Both errors less the noise: (0.02 - 0.0125) / (0.01 - 0.0125) cannot be compared.
+  EXPECT_EQ(atTheFloor.cost_at_equal_error(), -1);
+  tasks.back().metrics["reference_noise"] = 0.005;
+  const ShotReport belowTheFloor = buildReport(ShotSummary(), spec(), tasks);
+  EXPECT_EQ(belowTheFloor.verdict().find("reference's own noise"), std::string::npos) << belowTheFloor.verdict();
+  EXPECT_DOUBLE_EQ(belowTheFloor.cost_at_equal_error(), 2.0 * (0.02 - 0.005) / (0.01 - 0.005));
+  EXPECT_NE(belowTheFloor.verdict().find("both less the reference's noise 0.0050"), std::string::npos)
+      << belowTheFloor.verdict();
 
   // No reference, no verdict; pt is its own baseline.
   tasks.pop_back();
