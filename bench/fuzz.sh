@@ -70,7 +70,8 @@ scene=("${gltf[@]}" "${meshes[@]}" "${exr[@]}"
        renderer/scene/scene_loader.cpp renderer/scene/environment_parser.cpp renderer/scene/light_parser.cpp
        renderer/scene/material_parser.cpp renderer/scene/transform_parser.cpp renderer/scene/mesh.cpp
        renderer/lights/environment_light.cpp renderer/sampling/piecewise_constant.cpp)
-shot=("${scene[@]}" scheduler/shot_file.cpp scheduler/planner.cpp postproc/poisson/window_blend.cpp
+shot=("${scene[@]}" scheduler/shot_file.cpp scheduler/planner.cpp scheduler/quoted_text.cpp
+      postproc/poisson/window_blend.cpp
       renderer/decomposition/decomposition.cpp renderer/decomposition/lpe_automaton.cpp
       "$generated/pathfarm/shot.pb.cc" "$generated/pathfarm/chunk.pb.cc")
 # The RPC handlers and what they call into are instrumented; the renderer, the filters and
@@ -80,8 +81,8 @@ rpc=(fuzz/rpc_handlers_fuzzer.cpp fuzz/rpc_fuzz_calls.cpp
      scheduler/service_chunks.cpp scheduler/worker_sessions.cpp scheduler/farm_state.cpp
      scheduler/farm_state_queries.cpp scheduler/farm_state_requeue.cpp scheduler/farm_state_retention.cpp
      scheduler/farm_state_sessions.cpp scheduler/farm_state_submit.cpp scheduler/schema.cpp scheduler/sqlite_db.cpp
-     scheduler/planner.cpp scheduler/farm_names.cpp scheduler/output_check.cpp scheduler/shot_report.cpp
-     proto/wire/chunk_store.cpp proto/wire/chunk_transfer.cpp proto/wire/connection.cpp proto/wire/input_files.cpp
+     scheduler/planner.cpp scheduler/quoted_text.cpp scheduler/farm_names.cpp scheduler/output_check.cpp
+     scheduler/shot_report.cpp proto/wire/chunk_store.cpp proto/wire/chunk_transfer.cpp proto/wire/connection.cpp proto/wire/input_files.cpp
      proto/wire/sha256.cpp proto/wire/tls.cpp)
 sources_of() {
   case "$1" in

@@ -1,6 +1,11 @@
 // `pathfarm scheduler` and `pathfarm worker`: the farm's long-running processes.
 #include <spdlog/spdlog.h>
+#include <sys/prctl.h>
+#include <unistd.h>
 
+#include <cerrno>
+#include <csignal>
+#include <cstring>
 #include <fstream>
 #include <memory>
 #include <thread>
@@ -56,10 +61,24 @@ struct WorkerArguments {
   farm::WorkerOptions options;
   std::string tokenFile;
   double cacheMaxGb = 20;
+  pid_t parent = 0;  // stop when this process ends (0: never)
 };
+
+// The worker is asked to stop (SIGTERM) when its parent ends, even by SIGKILL: the workers
+// of a killed `pathfarm local` do not outlive it. Returns false when the parent is gone
+// already.
+bool stopWithParent(pid_t parent) {
+  if (parent == 0) return true;
+  if (prctl(PR_SET_PDEATHSIG, SIGTERM) != 0) spdlog::warn("cannot follow the parent process: {}", std::strerror(errno));
+  return getppid() == parent;
+}
 
 int runWorker(WorkerArguments& arguments) {
   const auto& stop = stopRequested();
+  if (!stopWithParent(arguments.parent)) {
+    spdlog::error("the process that started this worker ({}) has ended", arguments.parent);
+    return kExitFailure;
+  }
   try {
     arguments.options.token = farm::loadToken(arguments.tokenFile);
     arguments.options.tls = farm::clientTlsFromEnvironment(arguments.options.tls);
@@ -135,6 +154,7 @@ std::vector<Command> addFarmProcessCommands(CLI::App& app) {
       ->capture_default_str();
   w->add_option("--token-file", worker->tokenFile, "file holding the farm's access token (or PATHFARM_TOKEN[_FILE])");
   addClientTlsOptions(w, worker->options.tls);
+  w->add_option("--parent", worker->parent, "stop when process PID ends (`pathfarm local` passes its own)");
 
   return {{s, [scheduler] { return runScheduler(*scheduler); }}, {w, [worker] { return runWorker(*worker); }}};
 }

@@ -40,13 +40,28 @@ farm::ShotLimits fuzzLimits() {
   return limits;
 }
 
-std::filesystem::path storeFolder() {
-  static const std::filesystem::path folder = [] {
+// The chunk store's folder: one per process, emptied for every input and removed when the
+// process exits (libFuzzer's runs end with exit(), fork mode's children too).
+class StoreFolder {
+ public:
+  StoreFolder() {
     std::string name = (std::filesystem::temp_directory_path() / "pathfarm-rpc-fuzz-XXXXXX").string();
     if (!mkdtemp(name.data())) std::abort();
-    return std::filesystem::path(name);
-  }();
-  return folder;
+    path_ = name;
+  }
+  ~StoreFolder() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+const std::filesystem::path& storeFolder() {
+  static const StoreFolder folder;
+  return folder.path();
 }
 
 // One input's farm: state, store and both services, and an in-process server over them

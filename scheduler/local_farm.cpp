@@ -1,5 +1,7 @@
 #include "scheduler/local_farm.h"
 
+#include <unistd.h>
+
 #include <signal.h>
 #include <spdlog/spdlog.h>
 
@@ -33,7 +35,7 @@ LocalFarm::LocalFarm(LocalFarmOptions options) : options_(std::move(options)), t
     workers_.emplace_back(
         std::vector<std::string>{options_.executable, "worker", "--scheduler", address_, "--threads",
                                  std::to_string(threads), "--name", name, "--cache",
-                                 (options_.folder / "cache" / name).string()},
+                                 (options_.folder / "cache" / name).string(), "--parent", std::to_string(getpid())},
         (options_.folder / "logs" / (name + ".log")).string(), std::vector<std::string>{"PATHFARM_TOKEN=" + token_});
   }
   spdlog::info("local farm: scheduler on {}, {} workers with {} threads each (logs in {})", address_,

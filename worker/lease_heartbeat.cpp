@@ -1,5 +1,7 @@
 #include "worker/lease_heartbeat.h"
 
+#include <spdlog/spdlog.h>
+
 namespace pathfarm::farm {
 
 LeaseHeartbeat::LeaseHeartbeat(SchedulerLink& link, std::chrono::milliseconds period)
@@ -14,12 +16,22 @@ LeaseHeartbeat::~LeaseHeartbeat() {
   thread_.join();
 }
 
-LeaseHeartbeat::Renewal LeaseHeartbeat::renew(int64_t attemptId, const std::atomic<double>& progress,
-                                              std::atomic<bool>& abandon) {
+namespace {
+
+std::chrono::steady_clock::time_point after(double seconds) {
+  return std::chrono::steady_clock::now() +
+         std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(seconds));
+}
+
+}  // namespace
+
+LeaseHeartbeat::Renewal LeaseHeartbeat::renew(int64_t attemptId, double lifetimeSeconds,
+                                              const std::atomic<double>& progress, std::atomic<bool>& abandon) {
   {
     const std::lock_guard lock(mutex_);
     armed_ = true;
     attemptId_ = attemptId;
+    expires_ = after(lifetimeSeconds);
     progress_ = &progress;
     abandon_ = &abandon;
   }
@@ -50,7 +62,14 @@ void LeaseHeartbeat::run() {
     HeartbeatReply beat;
     const grpc::Status status = link_.heartbeat(attempt, progress, beat);
     lock.lock();
-    if (status.ok() && !beat.keep_going()) *abandon_ = true;
+    if (status.ok() && beat.keep_going()) {
+      expires_ = after(beat.expires_in_seconds());
+    } else if (status.ok() || std::chrono::steady_clock::now() > expires_) {
+      if (!status.ok())
+        spdlog::warn("attempt {}: the lease lapsed while the scheduler was out of reach ({}); the task stops",
+                     attempt, status.error_message());
+      *abandon_ = true;
+    }
     beating_ = false;
     changed_.notify_all();
   }

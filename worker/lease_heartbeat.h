@@ -22,8 +22,11 @@ class LeaseHeartbeat {
   LeaseHeartbeat& operator=(const LeaseHeartbeat&) = delete;
 
   // While a Renewal lives, the attempt is renewed every period with `progress`; a lease
-  // the scheduler no longer keeps sets `abandon`. Its end waits for a renewal in flight,
-  // so that `progress` and `abandon` may end with it.
+  // the scheduler no longer keeps sets `abandon`, and so does a lease left unrenewed for
+  // longer than its lifetime (`lifetimeSeconds` from the lease, then from each renewal):
+  // with its scheduler out of reach, a task would otherwise wait for it forever, though
+  // the lease is gone once the scheduler runs again. Its end waits for a renewal in
+  // flight, so that `progress` and `abandon` may end with it.
   class Renewal {
    public:
     explicit Renewal(LeaseHeartbeat& owner) : owner_(owner) {}
@@ -34,7 +37,8 @@ class LeaseHeartbeat {
    private:
     LeaseHeartbeat& owner_;
   };
-  [[nodiscard]] Renewal renew(int64_t attemptId, const std::atomic<double>& progress, std::atomic<bool>& abandon);
+  [[nodiscard]] Renewal renew(int64_t attemptId, double lifetimeSeconds, const std::atomic<double>& progress,
+                              std::atomic<bool>& abandon);
 
  private:
   void run();
@@ -46,6 +50,7 @@ class LeaseHeartbeat {
   std::condition_variable changed_;
   bool armed_ = false, beating_ = false, ending_ = false;
   int64_t attemptId_ = 0;
+  std::chrono::steady_clock::time_point expires_;  // when the lease lapses unless renewed
   const std::atomic<double>* progress_ = nullptr;
   std::atomic<bool>* abandon_ = nullptr;
   std::thread thread_;  // last: starts once the members it reads exist

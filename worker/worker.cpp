@@ -170,7 +170,8 @@ class Slot {
   template <class Work>
   std::invoke_result_t<Work> whileHeartbeating(const Lease& lease, const std::atomic<double>& progress,
                                                std::atomic<bool>& abandon, Work work) {
-    const LeaseHeartbeat::Renewal renewal = heartbeat_.renew(lease.attempt_id(), progress, abandon);
+    const LeaseHeartbeat::Renewal renewal =
+        heartbeat_.renew(lease.attempt_id(), lease.expires_in_seconds(), progress, abandon);
     return work();
   }
 
