@@ -59,6 +59,7 @@ int runLocal(const LocalArguments& arguments) {
     farm::LocalFarm farm(
         {out / "farm", arguments.workers, arguments.threads, farm::currentExecutable(), {}, arguments.http});
     farm::FarmClient client = farm.client();
+    spec = withChosenPipeline(client, arguments.shotFile, spec, out / "probe");
     const int64_t id = client.submit(spec);
     spdlog::info("shot {} submitted: {} frames {}..{} at {}x{}, {} spp, {}-pixel tiles", id, spec.name(),
                  spec.frame_start(), spec.frame_end(), spec.width(), spec.height(), spec.spp(), spec.tile());
@@ -75,6 +76,8 @@ int runLocal(const LocalArguments& arguments) {
     spdlog::info("{} EXR frames in {}; report.md and report.json there too", files.size(), out.string());
     spdlog::info("relative cost {:.3f} (resolution gain {:.2f}, overhead {:.2f}), re-render rate {:.1f}%",
                  report.relative_cost(), report.resolution_gain(), report.overhead(), 100 * report.rerender_rate());
+    if (const std::string prediction = farm::predictionSummary(report); !prediction.empty())
+      spdlog::info("{}", prediction);
     if (report.cost_at_equal_error() >= 1) {
       spdlog::warn("{}", report.verdict());
     } else if (!report.verdict().empty()) {
@@ -83,6 +86,9 @@ int runLocal(const LocalArguments& arguments) {
     const bool done = summary.state() == farm::SHOT_DONE;
     if (done && !arguments.keepFarm) removeIntermediateData(out / "farm");
     return done ? kExitOk : kExitFailure;
+  } catch (const SceneError& e) {  // the shot file does not read as one of auto's candidates
+    spdlog::error("{}", e.what());
+    return kExitBadInput;
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
     return kExitFailure;

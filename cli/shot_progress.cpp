@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <string>
 
+#include "scheduler/pipeline_probe.h"
+
 namespace pathfarm {
 
 std::string describeShot(const farm::ShotSummary& s) {
@@ -46,6 +48,14 @@ void ShotProgress::update(const farm::ShotSummary& s) {
                  s.tasks_total(), s.workers_busy(), s.elapsed_seconds(), remaining);
     lastLogged_ = s.elapsed_seconds();
   }
+}
+
+farm::ShotSpec withChosenPipeline(farm::FarmClient& client, const std::filesystem::path& shotFile, farm::ShotSpec spec,
+                                  const std::filesystem::path& probeFolder) {
+  if (spec.pipeline() != "auto") return spec;
+  ShotProgress progress;
+  return farm::choosePipeline(client, shotFile, spec, probeFolder,
+                              [&](const farm::ShotSummary& summary) { progress.update(summary); });
 }
 
 }  // namespace pathfarm

@@ -1,7 +1,10 @@
 #pragma once
 // Shows a watched shot's progress: a bar with tasks done/total, workers busy, elapsed
 // and remaining time on a terminal; a log line now and then otherwise.
+#include <filesystem>
+
 #include "pathfarm/shot.pb.h"
+#include "scheduler/farm_client.h"
 
 namespace pathfarm {
 
@@ -17,5 +20,10 @@ class ShotProgress {
 
 // One line for listings: "12 cornell RUNNING 40/96 tasks ...".
 std::string describeShot(const farm::ShotSummary& summary);
+
+// `spec` with the pipeline its probe chose when it is "auto" (each probe shot's progress
+// shown, its frames written under probeFolder), else `spec` itself.
+farm::ShotSpec withChosenPipeline(farm::FarmClient& client, const std::filesystem::path& shotFile, farm::ShotSpec spec,
+                                  const std::filesystem::path& probeFolder);
 
 }  // namespace pathfarm

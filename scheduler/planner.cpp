@@ -331,6 +331,9 @@ std::vector<PlannedTask> planShot(const ShotSpec& spec) {
   } else if (spec.pipeline() == "noop") {
     if (spec.noop_tasks() < 1) throw PlanError("noop_tasks: must be at least 1");
     plan.assign(static_cast<size_t>(spec.noop_tasks()), PlannedTask{TASK_NOOP, {}, {}});
+  } else if (spec.pipeline() == "auto") {
+    throw PlanError("pipeline \"auto\" is chosen by a probe before the shot is submitted (pathfarm submit and "
+                    "pathfarm local do it); submit the pipeline it chose");
   } else {
     throw PlanError("pipeline " + quotedInput(spec.pipeline()) +
                     " is not available (this farm runs: pt, d, du, di, dui, tgpt, pssmlt, mlt, tmlt, noop)");

@@ -25,7 +25,8 @@ std::vector<int64_t> defaultEvaluationFrames(const ShotSpec& spec) {
   return frames;
 }
 
-void readFilteringKeys(const JsonNode& root, const Scene& scene, ShotSpec& spec) {
+// `probeKeyframes` false only checks the keys: "keyframe_interval": "auto" stays unresolved.
+void readFilteringKeys(const JsonNode& root, const Scene& scene, ShotSpec& spec, bool probeKeyframes = true) {
   spec.set_feature_spp(root.has("feature_spp") ? root["feature_spp"].integer(1, 1 << 20) : 4);
   if (!stagesOf(spec.pipeline()).interpolate) {
     spec.set_keyframe_interval(1);
@@ -39,6 +40,7 @@ void readFilteringKeys(const JsonNode& root, const Scene& scene, ShotSpec& spec)
     spec.set_keyframe_reason("k = " + std::to_string(spec.keyframe_interval()) + ": given in the shot file");
     return;
   }
+  if (!probeKeyframes) return;
   const KeyframeChoice choice = chooseKeyframeInterval(scene, spec, bound);
   spec.set_keyframe_interval(choice.interval);
   spec.set_keyframe_reason(choice.reason);
@@ -93,17 +95,39 @@ void readEvaluationKeys(const JsonNode& root, ShotSpec& spec) {
   }
 }
 
+// The keys of the spec's pipeline: its decomposition, resolved here once so that every
+// worker splits the frames the same way (filtering pipelines split by default into what
+// the scene can produce), and its filtering, gradient or Metropolis settings.
+void readPipelineKeys(const JsonNode& root, const Scene& scene, ShotSpec& spec, bool probeKeyframes = true) {
+  const bool filtering = isFilteringPipeline(spec.pipeline());
+  const auto decompose = root.optional("decompose");
+  const std::string decomposeText = decompose ? decompose->string() : filtering ? "auto" : "none";
+  try {
+    const auto decomposition = decompositionFor(scene, decomposeText);
+    spec.set_decompose(decomposition ? decomposition->describe() : "none");
+  } catch (const std::invalid_argument& e) {
+    if (!decompose) root.fail(std::string("decompose: ") + e.what());
+    decompose->fail(e.what());
+  }
+  if (filtering && spec.decompose() == "none") root["decompose"].fail("the filtering pipelines need a decomposition");
+  if (filtering) readFilteringKeys(root, scene, spec, probeKeyframes);
+  if (spec.pipeline() == "tgpt") readGradientKeys(root, spec);
+  if (isMetropolisPipeline(spec.pipeline())) readMetropolisKeys(root, scene, spec);
+}
+
 }  // namespace
 
-ShotSpec loadShotFile(const std::filesystem::path& file) {
+std::string readShotFileText(const std::filesystem::path& file) {
   std::ifstream in(file);
   if (!in) throw SceneError(file.string() + ": cannot open the shot file");
   std::ostringstream text;
   text << in.rdbuf();
-  return parseShotFile(text.str(), file);
+  return text.str();
 }
 
-ShotSpec parseShotFile(std::string_view text, const std::filesystem::path& file) {
+ShotSpec loadShotFile(const std::filesystem::path& file) { return parseShotFile(readShotFileText(file), file); }
+
+ShotSpec parseShotFile(std::string_view text, const std::filesystem::path& file, std::string_view pipeline) {
   const std::string label = file.string();
   const nlohmann::json document = parseJsonDocument(text, label);
   const JsonNode root(document, "", label);
@@ -117,12 +141,12 @@ ShotSpec parseShotFile(std::string_view text, const std::filesystem::path& file)
 
   ShotSpec spec;
   spec.set_name(root.has("name") ? root["name"].string() : file.stem().string());
-  spec.set_pipeline(root.has("pipeline") ? root["pipeline"].string() : "dui");
+  spec.set_pipeline(!pipeline.empty() ? std::string(pipeline) : root.has("pipeline") ? root["pipeline"].string() : "auto");
   const bool filtering = isFilteringPipeline(spec.pipeline());
-  if (spec.pipeline() != "pt" && spec.pipeline() != "noop" && spec.pipeline() != "tgpt" && !filtering &&
-      !isMetropolisPipeline(spec.pipeline()))
+  if (spec.pipeline() != "pt" && spec.pipeline() != "noop" && spec.pipeline() != "tgpt" && spec.pipeline() != "auto" &&
+      !filtering && !isMetropolisPipeline(spec.pipeline()))
     root["pipeline"].fail("unknown pipeline \"" + spec.pipeline() +
-                          "\" (this farm runs: pt, d, du, di, dui, tgpt, pssmlt, mlt, tmlt, noop)");
+                          "\" (this farm runs: auto, pt, d, du, di, dui, tgpt, pssmlt, mlt, tmlt, noop)");
   spec.set_priority(root.has("priority") ? root["priority"].integer(-1000, 1000) : 0);
   spec.set_max_attempts(root.has("max_attempts") ? root["max_attempts"].integer(1, 100) : 3);
   if (const auto tags = root.optional("required_tags")) {
@@ -163,21 +187,19 @@ ShotSpec parseShotFile(std::string_view text, const std::filesystem::path& file)
   }
   spec.set_spp(root.has("spp") ? root["spp"].integer(1, 1 << 20) : scene.defaults.spp);
   spec.set_max_depth(root.has("max_depth") ? root["max_depth"].integer(0, 1024) : scene.defaults.maxDepth);
-  // Resolved here, once: every worker then splits the frames the same way. Filtering
-  // pipelines split by default into what the scene can produce.
-  const auto decompose = root.optional("decompose");
-  const std::string decomposeText = decompose ? decompose->string() : filtering ? "auto" : "none";
-  try {
-    const auto decomposition = decompositionFor(scene, decomposeText);
-    spec.set_decompose(decomposition ? decomposition->describe() : "none");
-  } catch (const std::invalid_argument& e) {
-    if (!decompose) throw SceneError(label + ": decompose: " + e.what());
-    decompose->fail(e.what());
+  if (spec.pipeline() == "auto") {
+    // The rest depends on the pipeline the probe chooses, which reads the file again as
+    // each candidate. Their keys are checked now, so that a bad one is refused before any
+    // probe runs; the keyframe probe waits for the candidates that interpolate.
+    for (const char* candidate : {"dui", "tgpt"}) {
+      ShotSpec checked = spec;
+      checked.set_pipeline(candidate);
+      readPipelineKeys(root, scene, checked, false);
+    }
+    readEvaluationKeys(root, spec);
+    return spec;
   }
-  if (filtering && spec.decompose() == "none") root["decompose"].fail("the filtering pipelines need a decomposition");
-  if (filtering) readFilteringKeys(root, scene, spec);
-  if (spec.pipeline() == "tgpt") readGradientKeys(root, spec);
-  if (isMetropolisPipeline(spec.pipeline())) readMetropolisKeys(root, scene, spec);
+  readPipelineKeys(root, scene, spec);
   readEvaluationKeys(root, spec);
   // A shot the farm cannot plan is refused here, naming the reason. One too large for a
   // scheduler's default limits (a mistyped frame range or tile size could plan 10^13 tasks,

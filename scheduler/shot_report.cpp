@@ -2,6 +2,7 @@
 
 #include <google/protobuf/util/json_util.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <map>
@@ -114,6 +115,9 @@ ShotReport buildReport(const ShotSummary& summary, const ShotSpec& spec, const s
   report.set_state(summary.state());
   report.set_pipeline(spec.pipeline());
   report.set_pipeline_reason(spec.pipeline_reason());
+  report.set_predicted_core_seconds_per_frame(spec.predicted_core_seconds_per_frame());
+  report.set_predicted_relmse(spec.predicted_relmse());
+  report.set_probe_core_seconds(spec.probe_core_seconds());
   report.set_frames(spec.frame_end() - spec.frame_start() + 1);
   report.set_width(spec.width());
   report.set_height(spec.height());
@@ -229,6 +233,27 @@ ShotReport buildReport(const ShotSummary& summary, const ShotSpec& spec, const s
   return report;
 }
 
+std::string predictionSummary(const ShotReport& r) {
+  if (!(r.predicted_core_seconds_per_frame() > 0)) return "";
+  const auto off = [](double measured, double predicted) {
+    return format("%+.0f%%", 100 * (measured / predicted - 1));
+  };
+  std::string text = "The probe predicted " + format("%.3f", r.predicted_core_seconds_per_frame()) +
+                     " core-seconds per frame; the shot took " + format("%.3f", r.core_seconds_per_frame()) + " (" +
+                     off(r.core_seconds_per_frame(), r.predicted_core_seconds_per_frame()) + "). ";
+  const auto final = std::find_if(r.errors().begin(), r.errors().end(), [](const auto& e) { return e.stage() == "final"; });
+  if (final != r.errors().end() && r.predicted_relmse() > 0) {
+    const double measured = final->relmse() - std::max(0.0, r.reference_noise());
+    text += "It predicted relMSE " + format("%.5f", r.predicted_relmse()) + "; the shot measured " +
+            format("%.5f", measured) + (r.reference_noise() > 0 ? " less the reference's noise" : "") + " (" +
+            off(measured, r.predicted_relmse()) + "). ";
+  }
+  const double shot = r.core_seconds();
+  text += "The probe cost " + format("%.1f", r.probe_core_seconds()) + " core-seconds" +
+          (shot > 0 ? ", " + format("%.1f%%", 100 * r.probe_core_seconds() / shot) + " of the shot's" : "") + ".";
+  return text;
+}
+
 std::string reportJson(const ShotReport& full) {
   ShotReport report = full;
   report.clear_contact_sheet_png();  // written beside it as a PNG
@@ -266,6 +291,8 @@ std::string reportMarkdown(const ShotReport& r) {
         "x" + std::to_string(r.height()) + ", " + std::to_string(r.spp()) + " spp; state " + ShotState_Name(r.state()) +
         ", " + std::to_string(r.tasks_done()) + " of " + std::to_string(r.tasks_total()) + " tasks done.\n\n";
   if (!r.verdict().empty()) md += "**Verdict:** " + r.verdict() + "\n\n";
+  if (const std::string prediction = predictionSummary(r); !prediction.empty())
+    md += "**The probe against the shot:** " + prediction + "\n\n";
   md += "Keyframes: " + std::to_string(r.keyframes()) + " (" + r.keyframe_reason() + ").\n\n";
   md += "| stage | tasks | core-seconds | core-seconds per frame | share |\n| --- | ---: | ---: | ---: | ---: |\n";
   for (const StageCost& s : r.stages())

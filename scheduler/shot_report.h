@@ -15,6 +15,10 @@ namespace pathfarm::farm {
 
 ShotReport buildReport(const ShotSummary& summary, const ShotSpec& spec, const std::vector<TaskRecord>& tasks);
 
+// For a shot whose pipeline `auto` chose: the probe's predictions against what the shot
+// measured, and the probe's cost against the shot's, in a sentence (empty otherwise).
+std::string predictionSummary(const ShotReport& report);
+
 std::string reportJson(const ShotReport& report);
 std::string reportMarkdown(const ShotReport& report);
 // report.json and report.md in `folder` (created), each written atomically.

@@ -27,6 +27,7 @@ RenderSettings settingsOf(const Scene& scene, const ShotSpec& spec, int threads)
   settings.height = spec.height();
   settings.spp = spec.spp();
   settings.maxDepth = spec.max_depth();
+  settings.firstSample = spec.first_sample();
   settings.threads = threads;
   // Small internal tiles: progress (each finished one) reaches the scheduler often enough
   // that a slow farm tile is never mistaken for a hung one. The bits do not depend on it.
@@ -55,6 +56,7 @@ std::shared_ptr<TaskRunner::ShotRenderer> TaskRunner::rendererFor(const Lease& l
   }
   auto shot = std::make_shared<ShotRenderer>();
   shot->scene = loadScene(localSceneFile(lease.spec(), scenesRoot_, fetch));
+  if (lease.spec().camera_zoom() > 1) shot->scene.camera = zoomedIn(shot->scene.camera, lease.spec().camera_zoom());
   shot->renderer = std::make_unique<FrameRenderer>(shot->scene, settingsOf(shot->scene, lease.spec(), threads_));
   if (isMetropolisPipeline(lease.spec().pipeline()))
     shot->metropolis = std::make_unique<MetropolisRenderer>(shot->scene, metropolisSettingsOf(lease.spec(), threads_));

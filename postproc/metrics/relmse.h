@@ -23,4 +23,18 @@ double relMse(const FrameImage& image, const FrameImage& reference,
 // variance channels.
 double expectedRelMse(const FrameImage& image);
 
+// The relMSE `image` has against the truth, estimated without the truth, from an
+// independent unbiased render that carries its variance: the mean of
+// ((image - reference)^2 - variance) / (d^2 + 0.01), since an independent reference adds
+// its variance to every squared error. d is the mean of the reference's 8 neighbours of
+// the pixel (those inside the frame), not its own noisy value: a denominator sharing the
+// numerator's noise would bias the estimate upward wherever the image is brighter than the
+// truth and downward where darker. Near zero, or a little below it, when the image is
+// within the reference's noise of the truth. Throws std::invalid_argument without the
+// reference's variance channels or for frames of different sizes.
+double relMseLessReferenceNoise(const FrameImage& image, const FrameImage& reference);
+// The same render's own relMSE against the truth, from its variance, with the same
+// denominators.
+double ownRelMseFromVariance(const FrameImage& reference);
+
 }  // namespace pathfarm

@@ -13,6 +13,12 @@ Camera::Camera(const CameraDesc& desc, int width, int height)
       width_(width),
       height_(height) {}
 
+CameraDesc zoomedIn(CameraDesc desc, double factor) {
+  const double halfFov = 0.5 * double{desc.fovDegrees} * kPi / 180.0;
+  desc.fovDegrees = static_cast<float>(2.0 * std::atan(std::tan(halfFov) / factor) * 180.0 / kPi);
+  return desc;
+}
+
 Transform Camera::cameraToWorld(double seconds) const {
   return animated_ ? desc_.transform.transformAt(seconds) : staticCameraToWorld_;
 }

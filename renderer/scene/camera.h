@@ -22,6 +22,10 @@ struct CameraDesc {
   float shutterClose = 0;
 };
 
+// The same camera seeing only the centre 1/factor of its picture (per axis): its field of
+// view narrowed so that a frame 1/factor the size, in pixels, has pixels of the same size.
+CameraDesc zoomedIn(CameraDesc desc, double factor);
+
 class Camera {
  public:
   Camera(const CameraDesc& desc, int width, int height);

@@ -36,22 +36,19 @@ TEST(RelMse, ExpectedFromTheVarianceMatchesTheDefinitionOnHandComputedValues) {
   EXPECT_THROW(expectedRelMse(bare), std::invalid_argument);
 }
 
-TEST(RelMse, ExpectedFromTheVarianceIsTheErrorAgainstTheTruth) {
-  // Each pixel the mean of 16 draws around the truth 1 (uniform, half-width 0.5), with the
-  // variance of that mean estimated from the draws as a renderer does: over 30,000 values
-  // the expected relMSE and the one measured against the truth agree within 5 % (the
-  // measured one's standard error is under 1 %).
-  const int w = 100, h = 100, draws = 16;
-  FrameImage image(w, h), truth(w, h);
+// Each pixel the mean of 16 draws around the truth 1 (uniform, half-width 0.5), with the
+// variance of that mean estimated from the draws as a renderer does.
+FrameImage noisyRenderOfOne(int w, int h, int seed) {
+  const int draws = 16;
+  FrameImage image(w, h);
   for (int c = 0; c < 3; ++c) {
     const std::string name = std::string(1, "RGB"[c]);
     auto& value = image.addChannel(name);
     auto& variance = image.addChannel("variance." + name);
-    truth.addChannel(name).assign(value.size(), 1.0f);
     for (size_t p = 0; p < value.size(); ++p) {
       double sum = 0, squares = 0;
       for (int i = 0; i < draws; ++i) {
-        const double x = 0.5 + test_support::hashed(11, c, static_cast<int>(p), i);
+        const double x = 0.5 + test_support::hashed(seed, c, static_cast<int>(p), i);
         sum += x;
         squares += x * x;
       }
@@ -60,8 +57,38 @@ TEST(RelMse, ExpectedFromTheVarianceIsTheErrorAgainstTheTruth) {
       variance[p] = static_cast<float>((squares / draws - mean * mean) * draws / (draws - 1) / draws);
     }
   }
+  return image;
+}
+
+FrameImage constantImage(int w, int h, float value) {
+  FrameImage image(w, h);
+  for (const char* c : {"R", "G", "B"}) image.addChannel(c).assign(static_cast<size_t>(w) * h, value);
+  return image;
+}
+
+TEST(RelMse, ExpectedFromTheVarianceIsTheErrorAgainstTheTruth) {
+  // Over 30,000 values the expected relMSE and the one measured against the truth agree
+  // within 5 % (the measured one's standard error is under 1 %).
+  const FrameImage image = noisyRenderOfOne(100, 100, 11), truth = constantImage(100, 100, 1.0f);
   const double measured = relMse(image, truth), expected = expectedRelMse(image);
   EXPECT_NEAR(expected / measured, 1.0, 0.05) << expected << " " << measured;
+}
+
+TEST(RelMse, LessTheReferenceNoiseEstimatesTheErrorAgainstTheTruth) {
+  // An image off the truth 1 by 0.1 everywhere has relMSE 0.01 / 1.01 against it. Against
+  // a noisy reference whose own relMSE (about 0.005) is half that, plain relMSE reads
+  // about 1.5x too high; less the reference's noise it reads right within 5 %.
+  const FrameImage biased = constantImage(100, 100, 1.1f);
+  const FrameImage reference = noisyRenderOfOne(100, 100, 23);
+  const double truth = 0.01 / 1.01;
+  EXPECT_GT(relMse(biased, reference) / truth, 1.3);
+  EXPECT_NEAR(relMseLessReferenceNoise(biased, reference) / truth, 1.0, 0.05);
+  // Off the other way by as much, the same.
+  EXPECT_NEAR(relMseLessReferenceNoise(constantImage(100, 100, 0.9f), reference) / truth, 1.0, 0.05);
+  // The truth itself measures as no error, within the reference's noise of zero.
+  EXPECT_NEAR(relMseLessReferenceNoise(constantImage(100, 100, 1.0f), reference), 0.0, 0.05 * truth);
+  // And the reference's own error, from its variance, is what it measures against the truth.
+  EXPECT_NEAR(ownRelMseFromVariance(reference) / relMse(reference, constantImage(100, 100, 1.0f)), 1.0, 0.05);
 }
 
 }  // namespace

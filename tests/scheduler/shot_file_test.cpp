@@ -46,7 +46,8 @@ std::string errorOf(const std::string& json) {
 }
 
 TEST(ShotFile, FillsDefaultsFromTheSceneAndMakesPathsAbsolute) {
-  const auto file = writeShot("defaults", R"({"scene": "cornell/scene.json", "frames": {"start": 3, "end": 5}, "tile": 16})");
+  const auto file = writeShot("defaults", R"({"scene": "cornell/scene.json", "frames": {"start": 3, "end": 5}, "tile": 16,
+    "pipeline": "dui"})");
   const ShotSpec spec = loadShotFile(file);
   std::filesystem::remove(file);
   EXPECT_EQ(spec.name(), "test_defaults");
@@ -56,7 +57,7 @@ TEST(ShotFile, FillsDefaultsFromTheSceneAndMakesPathsAbsolute) {
   EXPECT_EQ(spec.evaluation_frames(0), 4);
   EXPECT_EQ(spec.reference_spp(), 0);
   // Three frames allow only k = 2, which the probe accepts or refuses with its prediction
-  // (and with k = 1 the default dui runs as d).
+  // (and with k = 1 dui runs as d).
   EXPECT_TRUE(spec.keyframe_interval() == 1 || spec.keyframe_interval() == 2);
   EXPECT_EQ(spec.pipeline(), spec.keyframe_interval() == 2 ? "dui" : "d");
   EXPECT_NE(spec.keyframe_reason().find("k = 2: "), std::string::npos) << spec.keyframe_reason();
@@ -121,10 +122,35 @@ TEST(ShotFile, ReadsTheFilteringAndEvaluationKeys) {
   std::filesystem::remove(pt);
 }
 
+TEST(ShotFile, WithoutAPipelineAProbeChoosesItAndEachCandidateReadsTheFileAgain) {
+  const std::string text = R"({"scene": "cornell/scene.json", "frames": {"start": 0, "end": 9},
+    "resolution": [64, 64], "spp": 8, "keyframe_interval": 3, "poisson_window": 6})";
+  const auto file = writeShot("auto", text);
+  const ShotSpec spec = loadShotFile(file);
+  std::filesystem::remove(file);
+  EXPECT_EQ(spec.pipeline(), "auto");
+  // What every candidate shares is resolved; what depends on the pipeline is not.
+  EXPECT_EQ(spec.width(), 64);
+  EXPECT_EQ(spec.evaluation_frames_size(), 2);
+  EXPECT_EQ(spec.decompose(), "");
+  EXPECT_EQ(spec.keyframe_interval(), 0);
+  EXPECT_THROW(planShot(spec), PlanError);  // the farm never runs "auto" itself
+  const ShotSpec dui = parseShotFile(text, file, "dui");
+  EXPECT_EQ(dui.pipeline(), "dui");
+  EXPECT_EQ(dui.keyframe_interval(), 3);
+  EXPECT_NE(dui.decompose(), "none");
+  const ShotSpec tgpt = parseShotFile(text, file, "tgpt");
+  EXPECT_EQ(tgpt.poisson_window(), 6);
+  EXPECT_EQ(tgpt.decompose(), "none");
+  // A key only some candidate reads is still checked when the file is read.
+  EXPECT_NE(errorOf(R"({"scene": "cornell/scene.json", "poisson_norm": "l3"})").find("poisson_norm"), std::string::npos);
+  EXPECT_NE(errorOf(R"({"scene": "cornell/scene.json", "feature_spp": 0})").find("feature_spp"), std::string::npos);
+}
+
 TEST(ShotFile, DuiWhoseProbeChoosesNoIntervalRunsAsDenoisingAlone) {
   // A re-render bound of 0 refuses every interval the probe tries: k = 1.
   const auto chosen = writeShot("dui-k1", R"({"scene": "cornell/scene.json", "frames": {"start": 0, "end": 4},
-    "resolution": [64, 64], "spp": 8, "rerender_bound": 0})");
+    "resolution": [64, 64], "spp": 8, "pipeline": "dui", "rerender_bound": 0})");
   const ShotSpec spec = loadShotFile(chosen);
   std::filesystem::remove(chosen);
   EXPECT_EQ(spec.keyframe_interval(), 1) << spec.keyframe_reason();
@@ -132,7 +158,7 @@ TEST(ShotFile, DuiWhoseProbeChoosesNoIntervalRunsAsDenoisingAlone) {
   EXPECT_NE(spec.pipeline_reason().find("asked for dui"), std::string::npos) << spec.pipeline_reason();
   // k = 1 given in the shot file is the user's word: dui stays dui.
   const auto given = writeShot("dui-given-k1", R"({"scene": "cornell/scene.json", "frames": {"start": 0, "end": 4},
-    "resolution": [64, 64], "spp": 8, "keyframe_interval": 1})");
+    "resolution": [64, 64], "spp": 8, "pipeline": "dui", "keyframe_interval": 1})");
   const ShotSpec kept = loadShotFile(given);
   std::filesystem::remove(given);
   EXPECT_EQ(kept.pipeline(), "dui");
@@ -146,7 +172,7 @@ TEST(ShotFile, AStaticSceneGetsTheLongestKeyframeIntervalTheProbeTries) {
   const auto folder = writeShot("static-scene-folder", "{}").parent_path();
   std::ofstream(folder / "static_scene.json") << scene.dump();
   const auto file = writeShot("static", R"({"scene": "static_scene.json", "frames": {"start": 0, "end": 11},
-    "resolution": [64, 64], "spp": 8})");
+    "resolution": [64, 64], "spp": 8, "pipeline": "dui"})");
   const ShotSpec spec = loadShotFile(file);
   std::filesystem::remove(file);
   EXPECT_EQ(spec.keyframe_interval(), 8) << spec.keyframe_reason();

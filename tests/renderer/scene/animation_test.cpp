@@ -105,5 +105,20 @@ TEST(Animation, CameraFollowsItsKeys) {
   expectNear(ray.direction, {-h, 0, -h});
 }
 
+TEST(Animation, AZoomedCameraSeesTheCentreOfThePictureAtTheSamePixelSize) {
+  // Zoomed in 4x, a 16x12 frame is the middle of the 64x48 one: its pixel (x, y) is the
+  // full frame's (x + 24, y + 18), with the same ray, at any time of the camera's motion.
+  const Scene scene = test_support::sceneFromJson(kMovingScene);
+  const CameraDesc zoomed = zoomedIn(scene.camera, 4.0);
+  const Camera full(scene.camera, 64, 48), centre(zoomed, 16, 12);
+  for (const double seconds : {0.0, 0.3, 0.5})
+    for (const Vec2f film : {Vec2f{0.5f, 0.5f}, Vec2f{15.25f, 3.75f}, Vec2f{8.0f, 11.9f}}) {
+      const Ray a = centre.generateRay(film, {0.5f, 0.5f}, seconds);
+      const Ray b = full.generateRay({film.x + 24, film.y + 18}, {0.5f, 0.5f}, seconds);
+      expectNear(a.origin, b.origin);
+      expectNear(a.direction, b.direction, 1e-5f);
+    }
+}
+
 }  // namespace
 }  // namespace pathfarm

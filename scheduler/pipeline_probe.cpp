@@ -1,0 +1,119 @@
+#include "scheduler/pipeline_probe.h"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <map>
+
+#include "image/exr_io.h"
+#include "postproc/metrics/relmse.h"
+#include "scheduler/pipeline_choice.h"
+#include "scheduler/shot_file.h"
+
+namespace pathfarm::farm {
+namespace {
+
+// The shot read as each candidate, its scene as uploaded. A dui shot whose keyframe probe
+// chose k = 1 reads as d, and di with k = 1 interpolates nothing: both are d, probed once.
+std::vector<ShotSpec> candidateSpecs(const std::filesystem::path& shotFile, const ShotSpec& autoSpec) {
+  const std::string text = readShotFileText(shotFile);
+  std::vector<ShotSpec> specs;
+  for (const std::string& pipeline : autoCandidates()) {
+    ShotSpec spec = parseShotFile(text, shotFile, pipeline);
+    spec.set_scene(autoSpec.scene());
+    *spec.mutable_inputs() = autoSpec.inputs();
+    if (spec.pipeline() == "di" && spec.keyframe_interval() == 1) continue;
+    const bool probed = std::any_of(specs.begin(), specs.end(), [&](const ShotSpec& s) {
+      return s.pipeline() == spec.pipeline();
+    });
+    if (!probed) specs.push_back(std::move(spec));
+  }
+  return specs;
+}
+
+// The frames a finished probe shot wrote, by file name.
+std::map<std::string, FrameImage> fetchFrames(FarmClient& client, int64_t id, const std::filesystem::path& folder) {
+  std::map<std::string, FrameImage> frames;
+  for (const auto& file : client.fetch(id, folder)) frames.emplace(file.filename().string(), readExr(file));
+  return frames;
+}
+
+// The mean over the probe's frames of the candidate's relMSE against the truth, estimated
+// against plain pt's independent frames; for pt itself, their own noise.
+double estimatedRelMse(const std::map<std::string, FrameImage>& frames,
+                       const std::map<std::string, FrameImage>& truthStandIn, bool isStandIn) {
+  double sum = 0;
+  for (const auto& [name, standIn] : truthStandIn) {
+    if (isStandIn) {
+      sum += ownRelMseFromVariance(standIn);
+      continue;
+    }
+    const auto frame = frames.find(name);
+    if (frame == frames.end()) throw std::runtime_error("the probe has no " + name);
+    sum += relMseLessReferenceNoise(frame->second, standIn);
+  }
+  return sum / static_cast<double>(truthStandIn.size());
+}
+
+}  // namespace
+
+ShotSpec choosePipeline(FarmClient& client, const std::filesystem::path& shotFile, const ShotSpec& autoSpec,
+                        const std::filesystem::path& probeFolder,
+                        const std::function<void(const ShotSummary&)>& progress) {
+  const std::vector<ShotSpec> candidates = candidateSpecs(shotFile, autoSpec);
+  int longestInterval = 1;
+  for (const ShotSpec& c : candidates) longestInterval = std::max(longestInterval, c.keyframe_interval());
+  const ProbeGeometry geometry = probeGeometry(autoSpec, longestInterval);
+  std::vector<int64_t> ids;
+  std::string names;
+  for (const ShotSpec& candidate : candidates) {
+    ids.push_back(client.submit(probeSpecOf(candidate, geometry, probeFolder)));
+    names += (names.empty() ? "" : ", ") + candidate.pipeline();
+  }
+  spdlog::info("pipeline auto: probing {} on frames {}..{} at {}x{}, {} spp (shots {}..{})", names,
+               geometry.frameStart, geometry.frameEnd, geometry.width, geometry.height, autoSpec.spp(), ids.front(),
+               ids.back());
+
+  std::vector<CandidateMeasure> measures;
+  std::map<std::string, FrameImage> truthStandIn;
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    const std::string& pipeline = candidates[i].pipeline();
+    const ShotSummary summary = client.watch(ids[i], progress);
+    CandidateMeasure measure;
+    measure.pipeline = pipeline;
+    if (summary.state() != SHOT_DONE) {
+      measure.failure = "shot " + std::to_string(ids[i]) + " " + ShotState_Name(summary.state()) +
+                        (summary.failure().empty() ? "" : ": " + summary.failure());
+      if (pipeline == "pt") throw std::runtime_error("pipeline auto: plain pt's probe, which the others are "
+                                                     "measured against, did not finish: " + measure.failure);
+      spdlog::warn("pipeline auto: the {} probe did not finish ({}); it is left out", pipeline, measure.failure);
+      measures.push_back(measure);
+      continue;
+    }
+    const auto frames = fetchFrames(client, ids[i], probeFolder / pipeline);
+    if (pipeline == "pt") truthStandIn = frames;  // candidates come pt first
+    measure.coreSeconds = client.report(ids[i]).core_seconds();
+    measure.relMse = estimatedRelMse(frames, truthStandIn, pipeline == "pt");
+    spdlog::info("pipeline auto: {} probe: {:.2f} core-seconds, estimated relMSE {:.5f}", pipeline,
+                 measure.coreSeconds, measure.relMse);
+    measures.push_back(measure);
+  }
+
+  PipelineChoice choice;
+  try {
+    choice = decidePipeline(measures, geometry, autoSpec);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(std::string("pipeline auto: ") + e.what());
+  }
+  spdlog::info("{}", choice.reason);
+  const auto winner = std::find_if(candidates.begin(), candidates.end(),
+                                   [&](const ShotSpec& c) { return c.pipeline() == choice.pipeline; });
+  ShotSpec spec = *winner;
+  spec.set_pipeline_reason(choice.reason + (spec.pipeline_reason().empty() ? "" : "; " + spec.pipeline_reason()));
+  spec.set_predicted_core_seconds_per_frame(choice.predictedCoreSecondsPerFrame);
+  spec.set_predicted_relmse(choice.predictedRelMse);
+  spec.set_probe_core_seconds(choice.probeCoreSeconds);
+  return spec;
+}
+
+}  // namespace pathfarm::farm

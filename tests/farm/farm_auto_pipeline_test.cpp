@@ -1,0 +1,49 @@
+// `pipeline: "auto"` as a user runs it: a shot file naming no pipeline goes through
+// `pathfarm local`, which probes every candidate on the farm, submits the winner, and
+// reports the choice, the probe's predictions and the probe's cost.
+#include <nlohmann/json.hpp>
+
+#include "farm/farm_fixture.h"
+#include "image/exr_io.h"
+#include "renderer/integrators/frame_renderer.h"
+
+namespace pathfarm::farmtest {
+namespace {
+
+TEST_F(FarmTest, AutoProbesEveryCandidateAndRunsOneThatBeatsPlainPt) {
+  // The Cornell box at 4 spp: plain pt's noise is large (relMSE about 0.4), so the winner
+  // must pay off against it, measured against an independent 256-spp reference.
+  const fs::path shot = dir() / "auto.shot.json";
+  writeFile(shot, R"({"name": "auto", "scene": ")" + cornellScene().string() + R"(",
+    "frames": {"start": 0, "end": 5}, "resolution": [64, 64], "spp": 4, "max_depth": 6, "tile": 32,
+    "keyframe_interval": 2, "reference_spp": 256})");
+  const fs::path out = dir() / "out";
+  const CommandResult local =
+      runPathfarm({"local", shot.string(), "--workers", "2", "--threads", "1", "--out", out.string()}, {}, 300s);
+  ASSERT_EQ(local.status, 0) << local.output;
+
+  const auto report = nlohmann::json::parse(readFile(out / "report.json"));
+  const std::string chosen = report["pipeline"];
+  const std::string reason = report["pipeline_reason"];
+  EXPECT_EQ(reason.rfind("auto chose " + chosen + ",", 0), 0u) << reason;
+  for (const char* candidate : {"pt", "d", "di", "dui", "tgpt"}) {
+    EXPECT_TRUE(contains(reason, std::string(candidate) + " ")) << candidate << " is not in: " << reason;
+    // Each candidate's probe frames are kept for the user to look at; only plain pt's,
+    // which the others are measured against, shares no sample with them.
+    const FrameImage probe = readExr(out / "probe" / candidate / farm::frameFileName(2));
+    EXPECT_EQ(probe.width(), 32) << candidate;
+    EXPECT_EQ(probe.attributes().count("pathfarm.first_sample"), std::string(candidate) == "pt" ? 1u : 0u)
+        << candidate;
+  }
+  EXPECT_GT(report["predicted_core_seconds_per_frame"].get<double>(), 0);
+  EXPECT_GT(report["predicted_relmse"].get<double>(), 0);
+  EXPECT_GT(report["probe_core_seconds"].get<double>(), 0);
+  EXPECT_TRUE(contains(readFile(out / "report.md"), "**The probe against the shot:** The probe predicted"));
+  // What the choice is worth, measured: less than plain pt would cost for the same error.
+  const double cost = report["cost_at_equal_error"];
+  EXPECT_GT(cost, 0) << report.dump(1);
+  EXPECT_LT(cost, 1) << report["verdict"];
+}
+
+}  // namespace
+}  // namespace pathfarm::farmtest
