@@ -98,7 +98,7 @@ std::vector<Command> addClientCommands(CLI::App& app) {
           spdlog::info("scene: {} files, {:.1f} MB; sent {} ({:.1f} MB), the farm had the rest", sent.files,
                        static_cast<double>(sent.bytes) / 1e6, sent.filesSent, static_cast<double>(sent.bytesSent) / 1e6);
         }
-        spec = withChosenPipeline(client, a.shotFile, spec, std::filesystem::path(spec.output()) / "probe");
+        spec = withChosenPipeline(client, a.shotFile, spec, std::filesystem::path(spec.output()) / "probe", a.submitKey);
         std::printf("%lld\n", static_cast<long long>(client.submit(spec, a.submitKey)));
         return kExitOk;
       });

@@ -51,11 +51,11 @@ void ShotProgress::update(const farm::ShotSummary& s) {
 }
 
 farm::ShotSpec withChosenPipeline(farm::FarmClient& client, const std::filesystem::path& shotFile, farm::ShotSpec spec,
-                                  const std::filesystem::path& probeFolder) {
+                                  const std::filesystem::path& probeFolder, const std::string& submitKey) {
   if (spec.pipeline() != "auto") return spec;
   ShotProgress progress;
   return farm::choosePipeline(client, shotFile, spec, probeFolder,
-                              [&](const farm::ShotSummary& summary) { progress.update(summary); });
+                              [&](const farm::ShotSummary& summary) { progress.update(summary); }, submitKey);
 }
 
 }  // namespace pathfarm

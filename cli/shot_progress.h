@@ -24,6 +24,6 @@ std::string describeShot(const farm::ShotSummary& summary);
 // `spec` with the pipeline its probe chose when it is "auto" (each probe shot's progress
 // shown, its frames written under probeFolder), else `spec` itself.
 farm::ShotSpec withChosenPipeline(farm::FarmClient& client, const std::filesystem::path& shotFile, farm::ShotSpec spec,
-                                  const std::filesystem::path& probeFolder);
+                                  const std::filesystem::path& probeFolder, const std::string& submitKey = "");
 
 }  // namespace pathfarm

@@ -59,7 +59,7 @@ double estimatedRelMse(const std::map<std::string, FrameImage>& frames,
 
 ShotSpec choosePipeline(FarmClient& client, const std::filesystem::path& shotFile, const ShotSpec& autoSpec,
                         const std::filesystem::path& probeFolder,
-                        const std::function<void(const ShotSummary&)>& progress) {
+                        const std::function<void(const ShotSummary&)>& progress, const std::string& submitKey) {
   const std::vector<ShotSpec> candidates = candidateSpecs(shotFile, autoSpec);
   int longestInterval = 1;
   for (const ShotSpec& c : candidates) longestInterval = std::max(longestInterval, c.keyframe_interval());
@@ -67,7 +67,8 @@ ShotSpec choosePipeline(FarmClient& client, const std::filesystem::path& shotFil
   std::vector<int64_t> ids;
   std::string names;
   for (const ShotSpec& candidate : candidates) {
-    ids.push_back(client.submit(probeSpecOf(candidate, geometry, probeFolder)));
+    const std::string key = submitKey.empty() ? "" : submitKey + ".probe." + candidate.pipeline();
+    ids.push_back(client.submit(probeSpecOf(candidate, geometry, probeFolder), key));
     names += (names.empty() ? "" : ", ") + candidate.pipeline();
   }
   spdlog::info("pipeline auto: probing {} on frames {}..{} at {}x{}, {} spp (shots {}..{})", names,

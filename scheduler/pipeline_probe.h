@@ -16,11 +16,12 @@ namespace pathfarm::farm {
 // `autoSpec` is loadShotFile(shotFile) for a shot whose pipeline is "auto", with its scene
 // inputs uploaded if they were (their digests carry over to every probe). The probes'
 // frames go to probeFolder/<pipeline>/. `progress` sees each probe shot's summaries while
-// it runs. Returns the spec to submit. Throws SceneError when the file does not read as a
+// it runs. With a `submitKey`, each probe is submitted under that key and its pipeline, so
+// submitting the same shot again with the same key reuses the probes the farm has. Returns the spec to submit. Throws SceneError when the file does not read as a
 // candidate, FarmError when the farm refuses a probe, std::runtime_error when plain pt's
 // probe fails (a candidate whose probe fails is left out, and the reason says so).
 ShotSpec choosePipeline(FarmClient& client, const std::filesystem::path& shotFile, const ShotSpec& autoSpec,
                         const std::filesystem::path& probeFolder,
-                        const std::function<void(const ShotSummary&)>& progress);
+                        const std::function<void(const ShotSummary&)>& progress, const std::string& submitKey = "");
 
 }  // namespace pathfarm::farm
