@@ -45,5 +45,26 @@ TEST_F(FarmTest, AutoProbesEveryCandidateAndRunsOneThatBeatsPlainPt) {
   EXPECT_LT(cost, 1) << report["verdict"];
 }
 
+TEST_F(FarmTest, AutoSubmittedAgainWithItsKeyReusesItsProbes) {
+  const std::string scheduler = startScheduler();
+  startWorker("one");
+  startWorker("two");
+  const fs::path shot = dir() / "keyed.shot.json";
+  writeFile(shot, R"({"name": "keyed", "scene": ")" + cornellScene().string() + R"(",
+    "frames": {"start": 0, "end": 4}, "resolution": [32, 32], "spp": 2, "max_depth": 4, "tile": 32,
+    "output": ")" + (dir() / "keyed").string() + R"("})");
+  const auto submit = [&] {
+    const CommandResult result = runPathfarm({"submit", shot.string(), "--scheduler", scheduler, "--submit-key", "k1"},
+                                             {}, 120s);
+    EXPECT_EQ(result.status, 0) << result.output;
+    return shotIdFrom(result);
+  };
+  const int64_t first = submit();
+  const size_t shots = client().shots().size();
+  EXPECT_GE(shots, 3u) << "plain pt's probe, at least one other, and the shot";
+  EXPECT_EQ(submit(), first);
+  EXPECT_EQ(client().shots().size(), shots) << "the second submit probed again";
+}
+
 }  // namespace
 }  // namespace pathfarm::farmtest
