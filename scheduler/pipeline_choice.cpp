@@ -17,9 +17,10 @@ constexpr int kMinProbeEdge = 32;
 // d 1.1, di 0.6, dui 0.4 and tgpt about 6 (docs/performance.md), with some slack.
 constexpr double kProbeCostInPtFrames = 10;
 constexpr double kProbeBudget = 0.05;  // of a plain pt shot
-// An estimate below this share of pt's error is within the probe's noise: it counts as
-// this share, so noise cannot pick a winner. Below kNegligibleError no error counts apart.
-constexpr double kResolvableErrorShare = 0.05;
+// An estimate within this many standard errors of zero is within the probe's noise: it
+// counts as that bound, so that noise cannot pick a winner. Below kNegligibleError no
+// error counts apart.
+constexpr double kResolvableStandardErrors = 2;
 constexpr double kNegligibleError = 1e-8;
 
 std::string printed(const char* pattern, double value) {
@@ -86,8 +87,7 @@ PipelineChoice decidePipeline(const std::vector<CandidateMeasure>& measures, con
   PipelineChoice choice;
   const double pixelRatio = static_cast<double>(shot.width()) * shot.height() /
                             (static_cast<double>(geometry.width) * geometry.height);
-  const double floor = std::max(kResolvableErrorShare * pt->relMse, kNegligibleError);
-  const double ptError = std::max(pt->relMse, floor);
+  const double ptError = std::max(pt->relMse, kNegligibleError);
   double best = 0;
   std::string table;
   for (const CandidateMeasure& m : measures) {
@@ -97,6 +97,7 @@ PipelineChoice decidePipeline(const std::vector<CandidateMeasure>& measures, con
       table += m.pipeline + " failed (" + m.failure + ")";
       continue;
     }
+    const double floor = std::max(kResolvableStandardErrors * m.relMseStandardError, kNegligibleError);
     const double error = std::max(m.relMse, floor);
     const double cost = m.coreSeconds / pt->coreSeconds * error / ptError;
     table += m.pipeline + " " + printed("%.2f", cost) + (m.relMse < floor ? " (its error within the probe's noise)" : "");

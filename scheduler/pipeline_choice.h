@@ -46,6 +46,7 @@ struct CandidateMeasure {
   std::string pipeline;
   double coreSeconds = 0;  // the probe shot's
   double relMse = 0;       // against the truth, estimated; pt's: the stand-in's own noise
+  double relMseStandardError = 0;  // of that estimate
   std::string failure;     // non-empty: the probe shot failed, and this is why
 };
 

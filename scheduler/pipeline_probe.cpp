@@ -38,21 +38,21 @@ std::map<std::string, FrameImage> fetchFrames(FarmClient& client, int64_t id, co
   return frames;
 }
 
-// The mean over the probe's frames of the candidate's relMSE against the truth, estimated
-// against plain pt's independent frames; for pt itself, their own noise.
-double estimatedRelMse(const std::map<std::string, FrameImage>& frames,
-                       const std::map<std::string, FrameImage>& truthStandIn, bool isStandIn) {
-  double sum = 0;
+// The candidate's relMSE against the truth over the probe's frames, estimated against
+// plain pt's independent frames; for pt itself, their own noise.
+MeanEstimate estimatedRelMse(const std::map<std::string, FrameImage>& frames,
+                             const std::map<std::string, FrameImage>& truthStandIn, bool isStandIn) {
+  MeanEstimate estimate;
   for (const auto& [name, standIn] : truthStandIn) {
     if (isStandIn) {
-      sum += ownRelMseFromVariance(standIn);
+      estimate += ownRelMseFromVariance(standIn);
       continue;
     }
     const auto frame = frames.find(name);
     if (frame == frames.end()) throw std::runtime_error("the probe has no " + name);
-    sum += relMseLessReferenceNoise(frame->second, standIn);
+    estimate += relMseLessReferenceNoise(frame->second, standIn);
   }
-  return sum / static_cast<double>(truthStandIn.size());
+  return estimate;
 }
 
 }  // namespace
@@ -94,9 +94,11 @@ ShotSpec choosePipeline(FarmClient& client, const std::filesystem::path& shotFil
     const auto frames = fetchFrames(client, ids[i], probeFolder / pipeline);
     if (pipeline == "pt") truthStandIn = frames;  // candidates come pt first
     measure.coreSeconds = client.report(ids[i]).core_seconds();
-    measure.relMse = estimatedRelMse(frames, truthStandIn, pipeline == "pt");
-    spdlog::info("pipeline auto: {} probe: {:.2f} core-seconds, estimated relMSE {:.5f}", pipeline,
-                 measure.coreSeconds, measure.relMse);
+    const MeanEstimate error = estimatedRelMse(frames, truthStandIn, pipeline == "pt");
+    measure.relMse = error.mean();
+    measure.relMseStandardError = error.standardError();
+    spdlog::info("pipeline auto: {} probe: {:.2f} core-seconds, estimated relMSE {:.5f} ± {:.5f}", pipeline,
+                 measure.coreSeconds, measure.relMse, measure.relMseStandardError);
     measures.push_back(measure);
   }
 

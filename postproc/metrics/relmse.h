@@ -23,6 +23,22 @@ double relMse(const FrameImage& image, const FrameImage& reference,
 // variance channels.
 double expectedRelMse(const FrameImage& image);
 
+// A mean of many per-value terms, kept as sums so that estimates over several frames add
+// up, with the standard error of the mean. Neighbouring terms are not independent (a
+// filtered image errs alike over an area; a pixel's denominator is its neighbours'
+// values), so the error is taken from the spread of the sums over 8x8-pixel blocks, which
+// holds while blocks are independent of each other.
+struct MeanEstimate {
+  double sum = 0, count = 0;
+  // Over blocks b with sum s_b of n_b terms: the sums of s_b^2, s_b n_b and n_b^2.
+  double blockSquares = 0, blockCross = 0, blockCountSquares = 0;
+  double blocks = 0;
+  double mean() const { return count > 0 ? sum / count : 0; }
+  double standardError() const;
+  void addBlock(double blockSum, double blockCount);
+  MeanEstimate& operator+=(const MeanEstimate& other);
+};
+
 // The relMSE `image` has against the truth, estimated without the truth, from an
 // independent unbiased render that carries its variance: the mean of
 // ((image - reference)^2 - variance) / (d^2 + 0.01), since an independent reference adds
@@ -32,9 +48,9 @@ double expectedRelMse(const FrameImage& image);
 // truth and downward where darker. Near zero, or a little below it, when the image is
 // within the reference's noise of the truth. Throws std::invalid_argument without the
 // reference's variance channels or for frames of different sizes.
-double relMseLessReferenceNoise(const FrameImage& image, const FrameImage& reference);
+MeanEstimate relMseLessReferenceNoise(const FrameImage& image, const FrameImage& reference);
 // The same render's own relMSE against the truth, from its variance, with the same
 // denominators.
-double ownRelMseFromVariance(const FrameImage& reference);
+MeanEstimate ownRelMseFromVariance(const FrameImage& reference);
 
 }  // namespace pathfarm

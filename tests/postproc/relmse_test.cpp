@@ -82,13 +82,38 @@ TEST(RelMse, LessTheReferenceNoiseEstimatesTheErrorAgainstTheTruth) {
   const FrameImage reference = noisyRenderOfOne(100, 100, 23);
   const double truth = 0.01 / 1.01;
   EXPECT_GT(relMse(biased, reference) / truth, 1.3);
-  EXPECT_NEAR(relMseLessReferenceNoise(biased, reference) / truth, 1.0, 0.05);
+  EXPECT_NEAR(relMseLessReferenceNoise(biased, reference).mean() / truth, 1.0, 0.05);
   // Off the other way by as much, the same.
-  EXPECT_NEAR(relMseLessReferenceNoise(constantImage(100, 100, 0.9f), reference) / truth, 1.0, 0.05);
+  EXPECT_NEAR(relMseLessReferenceNoise(constantImage(100, 100, 0.9f), reference).mean() / truth, 1.0, 0.05);
   // The truth itself measures as no error, within the reference's noise of zero.
-  EXPECT_NEAR(relMseLessReferenceNoise(constantImage(100, 100, 1.0f), reference), 0.0, 0.05 * truth);
+  EXPECT_NEAR(relMseLessReferenceNoise(constantImage(100, 100, 1.0f), reference).mean(), 0.0, 0.05 * truth);
   // And the reference's own error, from its variance, is what it measures against the truth.
-  EXPECT_NEAR(ownRelMseFromVariance(reference) / relMse(reference, constantImage(100, 100, 1.0f)), 1.0, 0.05);
+  EXPECT_NEAR(ownRelMseFromVariance(reference).mean() / relMse(reference, constantImage(100, 100, 1.0f)), 1.0, 0.05);
+}
+
+TEST(RelMse, TheEstimatesStandardErrorIsTheSpreadOfEstimatesFromIndependentReferences) {
+  // 48 references of the same truth, each 64x64: the estimates of one biased image spread
+  // as their standard errors say, within the 30 % (3 standard deviations) a sample of 48
+  // allows.
+  const int references = 48;
+  const FrameImage biased = constantImage(64, 64, 1.1f);
+  std::vector<double> means;
+  double standardErrors = 0;
+  for (int seed = 0; seed < references; ++seed) {
+    const MeanEstimate estimate = relMseLessReferenceNoise(biased, noisyRenderOfOne(64, 64, 100 + seed));
+    means.push_back(estimate.mean());
+    standardErrors += estimate.standardError() / references;
+  }
+  double average = 0, spread = 0;
+  for (const double m : means) average += m / references;
+  for (const double m : means) spread += (m - average) * (m - average) / (references - 1);
+  EXPECT_NEAR(std::sqrt(spread) / standardErrors, 1.0, 0.3);
+  // Estimates of several frames add up to the estimate of all their terms.
+  const FrameImage small = constantImage(40, 40, 1.1f);
+  MeanEstimate both = relMseLessReferenceNoise(small, noisyRenderOfOne(40, 40, 1));
+  both += relMseLessReferenceNoise(small, noisyRenderOfOne(40, 40, 2));
+  EXPECT_EQ(both.count, 2.0 * 3 * 40 * 40);
+  EXPECT_EQ(both.blocks, 2.0 * 5 * 5);
 }
 
 }  // namespace

@@ -37,11 +37,13 @@ ShotSpec candidateSpec(const std::string& pipeline, int keyframeInterval = 1) {
   return spec;
 }
 
-CandidateMeasure measured(const std::string& pipeline, double coreSeconds, double relMse) {
+CandidateMeasure measured(const std::string& pipeline, double coreSeconds, double relMse,
+                          double standardError = 0) {
   CandidateMeasure m;
   m.pipeline = pipeline;
   m.coreSeconds = coreSeconds;
   m.relMse = relMse;
+  m.relMseStandardError = standardError;
   return m;
 }
 
@@ -120,14 +122,24 @@ TEST(PipelineChoice, PlainPtWinsWhenNothingBeatsIt) {
 }
 
 TEST(PipelineChoice, AnErrorWithinTheProbesNoiseCannotWinByItself) {
-  // A below-zero estimate (within the stand-in's noise) counts as 5 % of pt's error, so a
-  // cheaper pipeline with a real error still beats a costlier one that measured nothing.
+  // An estimate within two standard errors of zero (here below it) counts as two standard
+  // errors, so a cheaper pipeline with a real error still beats a costlier one that
+  // measured nothing.
   const ShotSpec shot = probedShot(24, 320, 180);
-  const PipelineChoice choice =
-      decidePipeline({measured("pt", 10, 0.01), measured("tgpt", 60, -0.001), measured("dui", 2, 0.002)}, probeGeometry(shot, 4), shot);
-  EXPECT_EQ(choice.pipeline, "dui");  // 0.2 x 0.2 = 0.04 against 6 x 0.05 = 0.3
+  const PipelineChoice choice = decidePipeline(
+      {measured("pt", 10, 0.01), measured("tgpt", 60, -0.001, 0.0005), measured("dui", 2, 0.002, 0.0005)},
+      probeGeometry(shot, 4), shot);
+  EXPECT_EQ(choice.pipeline, "dui");  // 0.2 x 0.2 = 0.04 against 6 x 0.1 = 0.6
+  EXPECT_NE(choice.reason.find("tgpt 0.60 (its error within the probe's noise)"), std::string::npos) << choice.reason;
+  // Resolved estimates are taken as they are: the same tgpt with a smaller error bar wins.
+  EXPECT_EQ(decidePipeline({measured("pt", 10, 0.01), measured("tgpt", 60, 0.00005, 0.00001),
+                            measured("dui", 2, 0.002, 0.0005)},
+                           probeGeometry(shot, 4), shot)
+                .pipeline,
+            "tgpt");  // 6 x 0.005 = 0.03
   // When plain pt has no error at all, a pipeline with any error cannot beat it.
-  EXPECT_EQ(decidePipeline({measured("pt", 10, 0.0), measured("dui", 2, 1e-4)}, probeGeometry(shot, 4), shot).pipeline, "pt");
+  EXPECT_EQ(decidePipeline({measured("pt", 10, 0.0), measured("dui", 2, 1e-4)}, probeGeometry(shot, 4), shot).pipeline,
+            "pt");
 }
 
 TEST(PipelineChoice, AFailedProbeIsLeftOutAndNamed) {
