@@ -14,8 +14,9 @@ constexpr int64_t kMinProbeFrames = 5;
 constexpr int kMaxProbeScale = 4;
 constexpr int kMinProbeEdge = 32;
 // The probe's cost, in plain pt frames of its size per probe frame: pt (the stand-in) 1,
-// d 1.1, di 0.6, dui 0.4 and tgpt about 6 (docs/performance.md), with some slack.
-constexpr double kProbeCostInPtFrames = 10;
+// d 1.1, di 0.6, dui 0.4 and tgpt about 6 (docs/performance.md), plain pt's at
+// kStandInSppFactor times the spp.
+constexpr double kProbeCostInPtFrames = 9 + kStandInSppFactor;
 constexpr double kProbeBudget = 0.05;  // of a plain pt shot
 // An estimate within this many standard errors of zero is within the probe's noise: it
 // counts as that bound, so that noise cannot pick a winner. Below kNegligibleError no
@@ -74,7 +75,10 @@ ShotSpec probeSpecOf(const ShotSpec& candidate, const ProbeGeometry& geometry, c
     probe.set_poisson_overlap(std::min(candidate.poisson_overlap(), probe.poisson_window() - 1));
   }
   if (geometry.zoom > 1) probe.set_camera_zoom(geometry.zoom);
-  if (candidate.pipeline() == "pt") probe.set_first_sample(kIndependentFirstSample);
+  if (candidate.pipeline() == "pt") {
+    probe.set_first_sample(kIndependentFirstSample);
+    probe.set_spp(candidate.spp() * kStandInSppFactor);
+  }
   return probe;
 }
 
@@ -91,7 +95,7 @@ PipelineChoice decidePipeline(const std::vector<CandidateMeasure>& measures, con
   double best = 0;
   std::string table;
   for (const CandidateMeasure& m : measures) {
-    choice.probeCoreSeconds += m.coreSeconds;
+    choice.probeCoreSeconds += m.probeCoreSeconds;
     if (!table.empty()) table += ", ";
     if (!m.failure.empty()) {
       table += m.pipeline + " failed (" + m.failure + ")";

@@ -36,6 +36,12 @@ struct ProbeGeometry {
 // no edge under 32 pixels unless the shot's is.
 ProbeGeometry probeGeometry(const ShotSpec& shot, int longestInterval);
 
+// Plain pt's probe renders this many times the shot's spp: it stands in for the truth, and
+// its noise sets how small an error the probe can resolve (on the courtyard, where the sun
+// makes fireflies, at the shot's spp it could not tell d or tgpt from zero, and auto chose
+// pt, the worst of the three). Its cost and error at the shot's spp follow from 1/spp.
+inline constexpr int kStandInSppFactor = 4;
+
 // A candidate's probe: its spec over the probe's frames and crop, without measurements,
 // writing into folder/<pipeline>. pt's samples start at kIndependentFirstSample, so that
 // it can stand in for the truth: it shares no sample with the other candidates.
@@ -44,7 +50,8 @@ ShotSpec probeSpecOf(const ShotSpec& candidate, const ProbeGeometry& geometry, c
 // What the probe measured of one candidate.
 struct CandidateMeasure {
   std::string pipeline;
-  double coreSeconds = 0;  // the probe shot's
+  double coreSeconds = 0;       // the probe shot's at the shot's spp
+  double probeCoreSeconds = 0;  // what the probe shot cost (plain pt's renders more samples)
   double relMse = 0;       // against the truth, estimated; pt's: the stand-in's own noise
   double relMseStandardError = 0;  // of that estimate
   std::string failure;     // non-empty: the probe shot failed, and this is why

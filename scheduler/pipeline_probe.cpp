@@ -93,10 +93,14 @@ ShotSpec choosePipeline(FarmClient& client, const std::filesystem::path& shotFil
     }
     const auto frames = fetchFrames(client, ids[i], probeFolder / pipeline);
     if (pipeline == "pt") truthStandIn = frames;  // candidates come pt first
-    measure.coreSeconds = client.report(ids[i]).core_seconds();
+    // Plain pt's probe renders kStandInSppFactor times the spp: at the shot's, it would
+    // cost that much less and err that much more.
+    const double sppScale = pipeline == "pt" ? kStandInSppFactor : 1;
+    measure.probeCoreSeconds = client.report(ids[i]).core_seconds();
+    measure.coreSeconds = measure.probeCoreSeconds / sppScale;
     const MeanEstimate error = estimatedRelMse(frames, truthStandIn, pipeline == "pt");
-    measure.relMse = error.mean();
-    measure.relMseStandardError = error.standardError();
+    measure.relMse = error.mean() * sppScale;
+    measure.relMseStandardError = error.standardError() * sppScale;
     spdlog::info("pipeline auto: {} probe: {:.2f} core-seconds, estimated relMSE {:.5f} ± {:.5f}", pipeline,
                  measure.coreSeconds, measure.relMse, measure.relMseStandardError);
     measures.push_back(measure);

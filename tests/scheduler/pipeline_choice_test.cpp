@@ -42,6 +42,7 @@ CandidateMeasure measured(const std::string& pipeline, double coreSeconds, doubl
   CandidateMeasure m;
   m.pipeline = pipeline;
   m.coreSeconds = coreSeconds;
+  m.probeCoreSeconds = coreSeconds;
   m.relMse = relMse;
   m.relMseStandardError = standardError;
   return m;
@@ -90,6 +91,7 @@ TEST(PipelineChoice, EveryProbePlansAndOnlyPlainPtSamplesApart) {
     EXPECT_EQ(probe.reference_spp(), 0) << "a probe measures nothing itself";
     EXPECT_TRUE(probe.evaluation_frames().empty());
     EXPECT_EQ(probe.first_sample(), pipeline == "pt" ? kIndependentFirstSample : 0u) << pipeline;
+    EXPECT_EQ(probe.spp(), pipeline == "pt" ? 64 * kStandInSppFactor : 64) << pipeline;
     EXPECT_DOUBLE_EQ(probe.camera_zoom(), 180.0 / g.height);
     EXPECT_NO_THROW(planShot(probe)) << pipeline;
     if (pipeline == "tgpt") {
