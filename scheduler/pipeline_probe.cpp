@@ -71,7 +71,7 @@ ShotSpec choosePipeline(FarmClient& client, const std::filesystem::path& shotFil
     ids.push_back(client.submit(probeSpecOf(candidate, geometry, probeFolder), key));
     names += (names.empty() ? "" : ", ") + candidate.pipeline();
   }
-  spdlog::info("pipeline auto: probing {} on frames {}..{} at {}x{}, {} spp (shots {}..{})", names,
+  spdlog::info("pipeline auto: probing {} on frames {}..{}, the centre {}x{} pixels, {} spp (shots {}..{})", names,
                geometry.frameStart, geometry.frameEnd, geometry.width, geometry.height, autoSpec.spp(), ids.front(),
                ids.back());
 
