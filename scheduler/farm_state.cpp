@@ -6,6 +6,7 @@
 
 #include "scheduler/farm_names.h"
 #include "scheduler/farm_state_internal.h"
+#include "scheduler/quoted_text.h"
 #include "scheduler/schema.h"
 
 namespace pathfarm::farm {
@@ -287,6 +288,13 @@ ReportReply FarmState::complete(const CompleteRequest& request, double now) {
     }
     done.bind(3, std::max(0.0, request.core_seconds())).bind(4, attempt->taskId).run();
     for (const auto& [name, value] : request.metrics()) {
+      // SQLite stores NaN as NULL, which the column refuses: such a figure is left out and
+      // said, and the task's output is kept (found by the rpc_handlers fuzz target).
+      if (!std::isfinite(value)) {
+        addEvent(attempt->shotId, "task " + std::to_string(attempt->taskId) + " reported a metric " +
+                                      quotedInput(name) + " that is not a finite number; it is left out", now);
+        continue;
+      }
       db_.query("INSERT OR REPLACE INTO task_metrics (task_id, name, value) VALUES (?1, ?2, ?3)")
           .bind(1, attempt->taskId)
           .bind(2, name)
