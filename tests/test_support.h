@@ -5,6 +5,8 @@
 #include <string>
 #include <utility>
 
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include "image/frame_image.h"
@@ -14,6 +16,13 @@
 namespace pathfarm::test_support {
 
 inline std::filesystem::path sourceDir() { return PATHFARM_SOURCE_DIR; }
+
+// A folder under the temporary directory that no other test process uses. ctest runs
+// every test as a process of its own, two at a time: tests sharing a fixed folder
+// rewrite each other's files while they are being read.
+inline std::filesystem::path processTemporaryFolder(const std::string& prefix) {
+  return std::filesystem::temp_directory_path() / (prefix + "_" + std::to_string(::getpid()));
+}
 
 // A frame rendered twice, render(settings), on 1 thread in 8-pixel tiles and on 2
 // threads in 5-pixel tiles: the determinism tests compare the two frames' bits.

@@ -8,12 +8,15 @@
 #include <random>
 
 #include "image/exr_io.h"
+#include "test_support.h"
 
 namespace pathfarm {
 namespace {
 
 std::filesystem::path temporaryFile(const std::string& name) {
-  return std::filesystem::temp_directory_path() / ("pathfarm_exr_" + name);
+  const std::filesystem::path folder = test_support::processTemporaryFolder("pathfarm_exr");
+  std::filesystem::create_directories(folder);
+  return folder / name;
 }
 
 FrameImage sampleFrame() {

@@ -4,12 +4,13 @@
 
 #include "proto/wire/chunk_store.h"
 #include "proto/wire/chunk_transfer.h"
+#include "test_support.h"
 
 namespace pathfarm::farm {
 namespace {
 
 std::filesystem::path freshFolder(const std::string& name) {
-  const auto folder = std::filesystem::temp_directory_path() / ("pathfarm_chunks_" + name);
+  const auto folder = test_support::processTemporaryFolder("pathfarm_chunks") / name;
   std::filesystem::remove_all(folder);
   return folder;
 }

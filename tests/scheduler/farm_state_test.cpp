@@ -6,6 +6,7 @@
 
 #include "scheduler/farm_state_fixture.h"
 #include "scheduler/schema.h"
+#include "test_support.h"
 
 namespace pathfarm::farm {
 namespace {
@@ -434,7 +435,7 @@ TEST_F(FarmStateTest, ReportRecordsCarryCoreSecondsAndMetrics) {
 }
 
 TEST(Schema, MigratesOnceAndRefusesANewerDatabase) {
-  const auto file = std::filesystem::temp_directory_path() / "pathfarm_schema.db";
+  const auto file = test_support::processTemporaryFolder("pathfarm_schema") / "schema.db";
   std::filesystem::remove(file);
   {
     Database db(file.string());

@@ -14,7 +14,7 @@ namespace {
 // Shot files in a temporary folder that links to the demo scene's folder, so relative
 // scene paths are resolved against the shot file's own folder as in real use.
 std::filesystem::path writeShot(const std::string& name, const std::string& json) {
-  const auto folder = std::filesystem::temp_directory_path() / "pathfarm_shot_files";
+  const auto folder = test_support::processTemporaryFolder("pathfarm_shot_files");
   std::filesystem::create_directories(folder);
   // A link left by another checkout points elsewhere: replace it.
   const auto target = test_support::sourceDir() / "scenes/cornell";

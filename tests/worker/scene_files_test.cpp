@@ -12,6 +12,7 @@
 #include "proto/wire/sha256.h"
 #include "worker/cache_trim.h"
 #include "worker/failure_class.h"
+#include "test_support.h"
 
 namespace pathfarm::farm {
 namespace {
@@ -95,7 +96,7 @@ TEST_F(SceneFilesTest, AFileLeavingTheFolderIsRefusedBeforeAnythingIsWritten) {
 }
 
 TEST(CacheTrim, OldestEntriesGoFirstAndRecentOnesStay) {
-  const fs::path cache = fs::temp_directory_path() / "pathfarm_cache_trim";
+  const fs::path cache = test_support::processTemporaryFolder("pathfarm_cache_trim");
   fs::remove_all(cache);
   const auto write = [](const fs::path& file, size_t bytes, std::chrono::hours age) {
     fs::create_directories(file.parent_path());

@@ -507,19 +507,18 @@ TEST(SpecularMotion, PathLeavingTheMirrorIsFlagged) {
 TEST(SpecularMotion, DegenerateTrianglesGiveFlagsOrFiniteMotion) {
   // A bent mirror with interpolated normals and zero-area triangles (a repeated vertex,
   // three collinear vertices) among its faces; the camera moves.
-  const auto folder = std::filesystem::temp_directory_path() / "pathfarm_specular_degenerate";
+  const auto folder = test_support::processTemporaryFolder("pathfarm_specular_degenerate");
   std::filesystem::create_directories(folder);
   std::ofstream(folder / "bent.obj") << "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nv 0 -1 0\n"
                                         "vn -0.2 0 1\nvn 0.2 0 1\nvn 0.2 0 1\nvn -0.2 0 1\nvn 0 0 1\n"
                                         "f 1//1 2//2 3//3\nf 1//1 3//3 4//4\nf 1//1 1//1 3//3\nf 1//1 5//5 2//2\n";
-  // Scenes from JSON resolve files against the temporary folder.
   const TrackedScene scene(R"({
     "fps": 1,
     "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0], "fov": 30,
                "animation": {"translate": [{"frame": 0, "value": [-0.2, 0, 5]}, {"frame": 2, "value": [0.2, 0.1, 5]}]}},
     "materials": {"mirror": {"type": "conductor", "specular_color": 1}, "card": {"type": "diffuse", "reflectance": 0.5}},
     "shapes": [
-      {"type": "mesh", "file": "pathfarm_specular_degenerate/bent.obj", "material": "mirror",
+      {"type": "mesh", "file": ")" + (folder / "bent.obj").string() + R"(", "material": "mirror",
        "transform": {"rotate": {"axis": [0, 1, 0], "angle": 45}}},
       {"type": "rectangle", "size": [8, 8], "material": "card",
        "transform": {"translate": [3, 0, 0], "rotate": {"axis": [0, 1, 0], "angle": -90}}}]

@@ -23,7 +23,7 @@ TEST(Determinism, ThreadsAndTileSizesGiveIdenticalBytes) {
   settings.height = 40;
   settings.spp = 4;
   settings.maxDepth = 6;
-  const auto folder = std::filesystem::temp_directory_path() / "pathfarm_determinism";
+  const auto folder = test_support::processTemporaryFolder("pathfarm_determinism");
   std::filesystem::create_directories(folder);
 
   std::vector<std::string> files;

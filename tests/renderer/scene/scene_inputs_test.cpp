@@ -38,7 +38,7 @@ TEST(SceneInputs, AGlbIncludeAndASkyInASiblingFolder) {
 }
 
 TEST(SceneInputs, AGltfWithItsBufferAndImageButNotTheFilesBesideIt) {
-  const fs::path folder = fs::temp_directory_path() / "pathfarm_scene_inputs";
+  const fs::path folder = test_support::processTemporaryFolder("pathfarm_scene_inputs");
   fs::remove_all(folder);
   fs::create_directories(folder / "textures");
   const unsigned char texels[6] = {255, 0, 0, 0, 255, 0};

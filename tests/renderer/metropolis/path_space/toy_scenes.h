@@ -6,6 +6,8 @@
 #include <fstream>
 #include <string>
 
+#include "test_support.h"
+
 namespace pathfarm::test_support {
 
 inline std::string toyScene(const std::string& specularShape) {
@@ -34,10 +36,13 @@ inline std::string movingMirrorScene() {
        "animation": {"translate": [{"frame": 0, "value": [-1.3, 0.9, -0.6]}, {"frame": 4, "value": [-0.9, 1.1, -0.3]}]}})");
 }
 
-// A glass wedge (written next to the test scenes, sceneFromJson's folder): light enters
-// its sloped face and leaves by its base, faces that are not parallel.
+// A glass wedge (its mesh written to a folder of this test process's own, named by its
+// absolute path): light enters its sloped face and leaves by its base, faces that are
+// not parallel.
 inline std::string glassWedgeScene() {
-  std::ofstream(std::filesystem::temp_directory_path() / "path_space_wedge.obj") << R"(
+  const std::filesystem::path folder = processTemporaryFolder("pathfarm_path_space");
+  std::filesystem::create_directories(folder);
+  std::ofstream(folder / "wedge.obj") << R"(
 v -0.6 0 -0.6
 v 0.6 0 -0.6
 v -0.6 0.7 -0.6
@@ -53,7 +58,7 @@ f 1 6 3
 f 2 3 6
 f 2 6 5
 )";
-  return toyScene(R"({"type": "mesh", "file": "path_space_wedge.obj", "material": "glass",
+  return toyScene(R"({"type": "mesh", "file": ")" + (folder / "wedge.obj").string() + R"(", "material": "glass",
        "animation": {"translate": [{"frame": 0, "value": [-0.3, 0.9, 0]}, {"frame": 4, "value": [0.1, 1.0, 0.1]}]}})");
 }
 

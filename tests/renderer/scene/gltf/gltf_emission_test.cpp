@@ -18,7 +18,7 @@ namespace {
 
 using gltftest::GltfBuilder;
 
-std::filesystem::path emissionFolder() { return std::filesystem::temp_directory_path() / "pathfarm_gltf_emission"; }
+std::filesystem::path emissionFolder() { return test_support::processTemporaryFolder("pathfarm_gltf_emission"); }
 
 constexpr double kStrength = 5;
 

@@ -15,7 +15,7 @@ namespace {
 
 using gltftest::GltfBuilder;
 
-std::filesystem::path errorsFolder() { return std::filesystem::temp_directory_path() / "pathfarm_gltf_errors"; }
+std::filesystem::path errorsFolder() { return test_support::processTemporaryFolder("pathfarm_gltf_errors"); }
 
 // A valid scene to break: a square (accessors 0-3: position, normal, uv, indices) and
 // a camera.

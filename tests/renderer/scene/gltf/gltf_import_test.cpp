@@ -17,7 +17,7 @@ using gltftest::GltfBuilder;
 using test_support::expectNear;
 
 std::filesystem::path testFolder(const std::string& name) {
-  return std::filesystem::temp_directory_path() / ("pathfarm_gltf_" + name);
+  return test_support::processTemporaryFolder("pathfarm_gltf") / name;
 }
 
 TEST(GltfImport, SquareMeshKeepsPositionsNormalsAndFlipsV) {

@@ -17,7 +17,7 @@ namespace {
 using gltftest::GltfBuilder;
 using test_support::expectNear;
 
-std::filesystem::path lightsFolder() { return std::filesystem::temp_directory_path() / "pathfarm_gltf_lights"; }
+std::filesystem::path lightsFolder() { return test_support::processTemporaryFolder("pathfarm_gltf_lights"); }
 
 const float kHalfTurn = std::sqrt(0.5f);  // sin and cos of 45 degrees, for quarter-turn quaternions
 

@@ -18,7 +18,7 @@ namespace {
 using gltftest::GltfBuilder;
 using test_support::expectNear;
 
-std::filesystem::path normalMapFolder() { return std::filesystem::temp_directory_path() / "pathfarm_gltf_normal_map"; }
+std::filesystem::path normalMapFolder() { return test_support::processTemporaryFolder("pathfarm_gltf_normal_map"); }
 
 // One texel (204, 128, 230): tangent-space (2 * 204/255 - 1, 2 * 128/255 - 1,
 // 2 * 230/255 - 1) = (0.6, 0.0039, 0.8039) before scaling.

@@ -16,7 +16,7 @@ namespace {
 
 using gltftest::GltfBuilder;
 
-std::filesystem::path renderFolder() { return std::filesystem::temp_directory_path() / "pathfarm_gltf_render"; }
+std::filesystem::path renderFolder() { return test_support::processTemporaryFolder("pathfarm_gltf_render"); }
 
 // The sRGB decoding of an 8-bit value, by the IEC 61966-2-1 formula.
 double srgbDecoded(int v) {

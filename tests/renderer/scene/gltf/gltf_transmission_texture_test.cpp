@@ -14,13 +14,14 @@
 #include "renderer/integrators/path_vertex.h"
 #include "renderer/scene/scene_loader.h"
 #include "tests/renderer/scene/gltf/gltf_builder.h"
+#include "test_support.h"
 
 namespace pathfarm {
 namespace {
 
 using gltftest::GltfBuilder;
 
-std::filesystem::path transmissionFolder() { return std::filesystem::temp_directory_path() / "pathfarm_gltf_transmission"; }
+std::filesystem::path transmissionFolder() { return test_support::processTemporaryFolder("pathfarm_gltf_transmission"); }
 
 // The 2 x 1 texture's red texels (1, 0; linear data) at u = 1/4 and 3/4, blended linearly
 // between them and clamped beyond (CLAMP_TO_EDGE).
