@@ -17,11 +17,13 @@ namespace pathfarm::test_support {
 
 inline std::filesystem::path sourceDir() { return PATHFARM_SOURCE_DIR; }
 
-// A folder under the temporary directory that no other test process uses. ctest runs
-// every test as a process of its own, two at a time: tests sharing a fixed folder
-// rewrite each other's files while they are being read.
+// A folder under the temporary directory that no other test process uses, created.
+// ctest runs every test as a process of its own, two at a time: tests sharing a fixed
+// folder rewrite each other's files while they are being read.
 inline std::filesystem::path processTemporaryFolder(const std::string& prefix) {
-  return std::filesystem::temp_directory_path() / (prefix + "_" + std::to_string(::getpid()));
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() / (prefix + "_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(folder);
+  return folder;
 }
 
 // A frame rendered twice, render(settings), on 1 thread in 8-pixel tiles and on 2

@@ -14,9 +14,7 @@ namespace pathfarm {
 namespace {
 
 std::filesystem::path temporaryFile(const std::string& name) {
-  const std::filesystem::path folder = test_support::processTemporaryFolder("pathfarm_exr");
-  std::filesystem::create_directories(folder);
-  return folder / name;
+  return test_support::processTemporaryFolder("pathfarm_exr") / name;
 }
 
 FrameImage sampleFrame() {

@@ -41,7 +41,6 @@ inline std::string movingMirrorScene() {
 // not parallel.
 inline std::string glassWedgeScene() {
   const std::filesystem::path folder = processTemporaryFolder("pathfarm_path_space");
-  std::filesystem::create_directories(folder);
   std::ofstream(folder / "wedge.obj") << R"(
 v -0.6 0 -0.6
 v 0.6 0 -0.6
