@@ -5,6 +5,7 @@
 #include <string>
 
 #include "postproc/filters/decomposed_frame.h"
+#include "postproc/interpolation/solid_regions.h"
 #include "postproc/interpolation/window_sums.h"
 
 namespace pathfarm {
@@ -57,7 +58,7 @@ std::vector<uint8_t> radianceMismatch(const FrameImage& interpolated, const Fram
           mismatch[static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)] = 1;
       }
   }
-  return mismatch;
+  return solidRegions(mismatch, width, height, settings.solidRadius);
 }
 
 }  // namespace pathfarm

@@ -9,6 +9,12 @@
 //   <c>.variance)  and  > relative * (sum of the features' beauty)
 // (luminances; the variance of a luminance bounded above by (sum_k w_k sigma_k)^2) flags p:
 // a difference the feature render's noise cannot explain, large enough to see.
+// A real difference flags every window that holds it, a solid region; what the flags keep
+// is the regions holding a solid square of side 2 solidRadius + 1 (solid_regions.h). The
+// feature render's few samples underestimate their own variance where rare paths carry
+// much of the light (a caustic's fireflies on a ceiling), and there the statistic grazes
+// its threshold in scattered, thin specks that a re-render at full samples, denoised among
+// themselves, would turn into blotches.
 #include <cstdint>
 #include <vector>
 
@@ -20,6 +26,7 @@ struct RadianceCheckSettings {
   int radius = 3;
   float z = 4.0f;
   float relative = 0.1f;
+  int solidRadius = 1;  // 0: keep every flag
 };
 
 // One byte per pixel, 1 where any component's light disagrees. Throws

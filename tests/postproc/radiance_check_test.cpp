@@ -68,6 +68,28 @@ TEST(RadianceCheck, NoiseOrASmallDifferenceExplainsAway) {
   EXPECT_GT(flaggedCount(radianceMismatch(ghost, exact)), 0u);
 }
 
+TEST(RadianceCheck, ADifferenceThatOnlyGrazesTheThresholdLeavesNoSpecks) {
+  // Features that brighten to the right (1 + 0.02 x) and one pixel at (24, 24) brighter in
+  // the interpolated frame by D. The windows holding it have centres x in [21, 27], and a
+  // centre passes the relative test when D > 0.1 x 49 (1 + 0.02 x), i.e. x < (D / 4.9 - 1)
+  // / 0.02. At D = 7 only x = 21 does: a band 1 pixel wide and 7 tall, which is dropped.
+  // At D = 10 every one of them does: the whole 7 x 7 square is flagged, and kept.
+  const auto ramp = [](int x, int) { return 1.0f + 0.02f * static_cast<float>(x); };
+  const FrameImage features = checkFrame(ramp, 1e-4f);
+  const auto brighterAtTheCentre = [&](float d) {
+    return checkFrame([&](int x, int y) { return ramp(x, y) + (x == 24 && y == 24 ? d : 0.0f); });
+  };
+  const FrameImage grazing = brighterAtTheCentre(7.0f);
+  RadianceCheckSettings everyFlag;
+  everyFlag.solidRadius = 0;
+  EXPECT_EQ(flaggedCount(radianceMismatch(grazing, features, everyFlag)), 7u);
+  EXPECT_EQ(flaggedCount(radianceMismatch(grazing, features)), 0u);
+  const std::vector<uint8_t> flags = radianceMismatch(brighterAtTheCentre(10.0f), features);
+  EXPECT_EQ(flaggedCount(flags), 49u);
+  for (int y = 21; y <= 27; ++y)
+    for (int x = 21; x <= 27; ++x) EXPECT_EQ(flags[static_cast<size_t>(y * kCheckSize + x)], 1) << x << ", " << y;
+}
+
 TEST(RadianceCheck, RefusesFramesThatDoNotFit) {
   const FrameImage features = checkFrame([](int, int) { return 1.0f; }, 0.01f);
   EXPECT_THROW(radianceMismatch(FrameImage(2, 2), features), std::invalid_argument);
