@@ -94,7 +94,11 @@ TaskOutput runInterpolateTask(const Lease& lease, const std::vector<TaskInput>& 
     motion.hasIrradianceMotion = true;
   }
   const float fraction = static_cast<float>(params.frame() - before) / static_cast<float>(after - before);
-  InterpolationResult result = interpolateFrameDetailed(k0, k1, motions, fraction);
+  // Light seen by one keyframe only, with nothing nearby to tell whether it changed, is
+  // left to the radiance check below: it compares the frame's own render there.
+  InterpolationSettings settings;
+  settings.unknownChangeMasks = false;
+  InterpolationResult result = interpolateFrameDetailed(k0, k1, motions, fraction, settings);
   for (const auto& [key, value] : k0.attributes()) result.frame.attributes().emplace(key, value);
   result.frame.attributes()["pathfarm.frame"] = std::to_string(params.frame());
   result.frame.attributes()["pathfarm.interpolated"] =

@@ -194,7 +194,7 @@ LayerOutcome combine(const KeyframeLayer& l0, const KeyframeLayer& l1, const Spl
 }
 
 // The illumination test: a one-sided pixel is `changed` when the largest change within the
-// radius exceeds the threshold, or no pixel there has a change.
+// radius exceeds the threshold, or (unknownChangeMasks) no pixel there has a change.
 void markChanged(LayerOutcome& out, const InterpolationSettings& settings, int width, int height) {
   const std::vector<float>& change = out.change;
   out.changed.assign(change.size(), 0);
@@ -207,7 +207,7 @@ void markChanged(LayerOutcome& out, const InterpolationSettings& settings, int w
       for (int j = std::max(0, y - radius); j <= std::min(height - 1, y + radius); ++j)
         for (int i = std::max(0, x - radius); i <= std::min(width - 1, x + radius); ++i)
           largest = std::max(largest, change[static_cast<size_t>(j) * static_cast<size_t>(width) + static_cast<size_t>(i)]);
-      out.changed[t] = largest < 0.0f || largest > settings.illuminationChange;
+      out.changed[t] = (largest < 0.0f && settings.unknownChangeMasks) || largest > settings.illuminationChange;
     }
 }
 

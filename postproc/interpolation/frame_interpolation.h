@@ -48,7 +48,7 @@
 //                 |L(E0) - L(E1)| / max((L(E0) + L(E1)) / 2, irradianceFloor) (L: luminance of
 //                 the splatted irradiances) over the pixels within illuminationRadius that both
 //                 keyframes cover exceeds illuminationChange; with no such pixel nearby the
-//                 change is unknown and the pixel is marked.
+//                 change is unknown, and the pixel is marked when unknownChangeMasks.
 // "Significant": the component's luminance there exceeds `significance` times the
 // pixel's beauty luminance (and 1e-6). Masked pixels keep their best-effort value.
 // The re-render rate (masked fraction) is in attribute `pathfarm.rerender_rate`.
@@ -119,6 +119,10 @@ struct InterpolationSettings {
   float illuminationChange = 0.25f;  // relative irradiance change that masks one-sided pixels
   float irradianceFloor = 1e-3f;  // denominator floor of that relative change
   int illuminationRadius = 2;     // window of the change estimate
+  // Whether a one-sided pixel with no two-sided pixel nearby (content entering the view,
+  // a wide disocclusion) is masked. The farm's interpolate task checks every pixel's light
+  // against the frame's own render instead (radiance_check.h), so it passes false.
+  bool unknownChangeMasks = true;
   // Best effort for untracked pixels (still masked): splat them along the frame-wide motion
   // (ComponentMotions key "", when given) instead of leaving them to the static hole blend.
   bool untrackedFollowPrimary = true;

@@ -130,6 +130,32 @@ TEST(Interpolation, UntrackedAndSilhouettePixelsAreMasked) {
   EXPECT_EQ(r.silhouettePixels, 1u);
 }
 
+TEST(Interpolation, OneSidedLightWithNothingNearbyToCompareIsMaskedUnlessTheCallerChecksIt) {
+  // A pan: everything moves 8 px left between the keyframes. At s = 0.5 the 4 columns on
+  // each side are seen by one keyframe only, and the outer 2 have no pixel seen by both
+  // within the illumination radius (2) to tell whether their light changed.
+  const int w = 20, h = 6;
+  const FrameImage k0 = flatFrame(w, h, 0.5f, 3.0f), k1 = flatFrame(w, h, 0.5f, 3.0f);
+  MotionField forward = zeroField(w, h), backward = zeroField(w, h);
+  for (size_t p = 0; p < forward.x.size(); ++p) {
+    forward.x[p] = -8.0f;
+    backward.x[p] = 8.0f;
+  }
+  const InterpolationResult masked = interpolateFrameDetailed(k0, k1, motionsOf(forward, backward), 0.5f);
+  InterpolationSettings checkedElsewhere;
+  checkedElsewhere.unknownChangeMasks = false;
+  const InterpolationResult kept = interpolateFrameDetailed(k0, k1, motionsOf(forward, backward), 0.5f, checkedElsewhere);
+  EXPECT_EQ(masked.illuminationPixels, static_cast<size_t>(4 * h));
+  EXPECT_EQ(kept.illuminationPixels, 0u);
+  for (int y = 0; y < h; ++y)
+    for (const int x : {0, 1, w - 2, w - 1}) {
+      const size_t p = static_cast<size_t>(y * w + x);
+      EXPECT_EQ(masked.mask[p], 1) << x << ", " << y;
+      EXPECT_EQ(kept.mask[p], 0) << x << ", " << y;
+      EXPECT_FLOAT_EQ(kept.frame.channel("R")[p], 0.5f);  // the one keyframe's light
+    }
+}
+
 TEST(Interpolation, BadInputIsRefusedWithTheFrameAndLayerNamed) {
   const FrameImage k0 = flatFrame(8, 4, 0.5f, 3.0f);
   const ComponentMotions motions = motionsOf(zeroField(8, 4), zeroField(8, 4));
