@@ -46,8 +46,13 @@ KeyframeChoice chooseKeyframeInterval(const Scene& scene, const ShotSpec& spec, 
   for (int k = longest; k >= 2; --k) {
     const std::vector<FrameImage> span(rendered.begin(), rendered.begin() + k + 1);
     const float fraction = static_cast<float>(k / 2) / static_cast<float>(k);
+    // The interpolate task's rule (worker/interpolation_tasks.cpp): light with no change
+    // known nearby is left to its radiance check, which the probe does not run.
+    InterpolationSettings interpolation;
+    interpolation.unknownChangeMasks = false;
     const double rate =
-        interpolateFrameDetailed(span.front(), span.back(), concatenatePrimaryMotion(span), fraction).rerenderRate;
+        interpolateFrameDetailed(span.front(), span.back(), concatenatePrimaryMotion(span), fraction, interpolation)
+            .rerenderRate;
     predictions += (predictions.empty() ? "" : ", ") + std::string("k = ") + std::to_string(k) + ": " + percent(rate);
     if (rate <= rerenderBound) {
       chosen = k;
