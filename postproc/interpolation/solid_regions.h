@@ -6,6 +6,7 @@
 // judge a pixel by a window (radiance_check.h) flag whole windows' worth of pixels around
 // a real difference, and such a region is left exactly as it was; a statistic that only
 // grazes its threshold flags thin and scattered pixels, which vanish.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
