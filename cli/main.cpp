@@ -4,8 +4,10 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/command.h"
+#include "image/plane_memory.h"
 
 int main(int argc, char** argv) {
+  pathfarm::keepFreedPlanesForReuse();
   CLI::App app{"pathfarm: renders animations with Monte Carlo light transport on a farm"};
   app.require_subcommand(1);
   bool verbose = false;
