@@ -61,6 +61,7 @@ struct WorkerArguments {
   farm::WorkerOptions options;
   std::string tokenFile;
   double cacheMaxGb = 20;
+  double decodedInputsGb = 0.25;
   pid_t parent = 0;  // stop when this process ends (0: never)
 };
 
@@ -83,6 +84,7 @@ int runWorker(WorkerArguments& arguments) {
     arguments.options.token = farm::loadToken(arguments.tokenFile);
     arguments.options.tls = farm::clientTlsFromEnvironment(arguments.options.tls);
     arguments.options.cacheMaxBytes = static_cast<uint64_t>(arguments.cacheMaxGb * 1e9);
+    arguments.options.decodedInputMaxBytes = static_cast<uint64_t>(arguments.decodedInputsGb * 1e9);
     farm::Worker(arguments.options).run(stop);
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
@@ -151,6 +153,10 @@ std::vector<Command> addFarmProcessCommands(CLI::App& app) {
   w->add_option("--cache", worker->options.cache, "folder caching input chunks and uploaded scenes");
   w->add_option("--cache-max-gb", worker->cacheMaxGb, "the cache is trimmed to this size, least recently used first")
       ->check(CLI::Range(0.001, 1e6))
+      ->capture_default_str();
+  w->add_option("--decoded-inputs-gb", worker->decodedInputsGb,
+                "memory for input frames kept decoded between tasks (0: decode every time)")
+      ->check(CLI::Range(0.0, 1e6))
       ->capture_default_str();
   w->add_option("--token-file", worker->tokenFile, "file holding the farm's access token (or PATHFARM_TOKEN[_FILE])");
   addClientTlsOptions(w, worker->options.tls);

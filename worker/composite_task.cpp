@@ -40,6 +40,58 @@ void invalidateUnrendered(FrameImage& sparse, const std::vector<uint8_t>& mask) 
   }
 }
 
+size_t localIndex(const PixelWindow& region, int x, int y) {
+  return static_cast<size_t>(y - region.y0()) * static_cast<size_t>(region.x1() - region.x0()) +
+         static_cast<size_t>(x - region.x0());
+}
+
+// Marks the pixels a re-render tile rendered (all of its window, or its pixel mask's) in the
+// frame-wide `mask` and returns their bounding box (empty when none).
+PixelWindow markRendered(const TaskParams& params, int width, std::vector<uint8_t>& mask) {
+  const PixelWindow& w = params.window();
+  PixelWindow flagged;
+  flagged.set_x0(w.x1());
+  flagged.set_y0(w.y1());
+  for (int y = w.y0(); y < w.y1(); ++y)
+    for (int x = w.x0(); x < w.x1(); ++x) {
+      if (!params.pixel_mask().empty() && params.pixel_mask()[localIndex(w, x, y)] == 0) continue;
+      mask[static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)] = 1;
+      flagged.set_x0(std::min(flagged.x0(), x));
+      flagged.set_y0(std::min(flagged.y0(), y));
+      flagged.set_x1(std::max(flagged.x1(), x + 1));
+      flagged.set_y1(std::max(flagged.y1(), y + 1));
+    }
+  return flagged;
+}
+
+// The re-rendered pixels of `region`, denoised among themselves (the pixels no tile
+// rendered there are invalid) with their directly seen light kept out of the filter.
+// Only the region is built: a frame-sized buffer of every tile channel would cost more
+// memory than the denoising itself.
+FrameImage denoisedRegion(const std::vector<const TaskInput*>& tiles, const std::vector<uint8_t>& mask, int width,
+                          const PixelWindow& region, const DenoiseSettings& settings) {
+  FrameImage sparse(region.x1() - region.x0(), region.y1() - region.y0());
+  for (const TaskInput* tile : tiles) {
+    const PixelWindow& w = tile->params.window();
+    const int x0 = std::max(w.x0(), region.x0()), y0 = std::max(w.y0(), region.y0());
+    const int x1 = std::min(w.x1(), region.x1()), y1 = std::min(w.y1(), region.y1());
+    if (x1 <= x0 || y1 <= y0) continue;
+    sparse.paste(tile->image().crop(x0 - w.x0(), y0 - w.y0(), x1 - x0, y1 - y0), x0 - region.x0(), y0 - region.y0());
+    for (const auto& [key, value] : tile->image().attributes()) sparse.attributes()[key] = value;
+  }
+  std::vector<uint8_t> rendered(sparse.pixelCount());
+  for (int y = region.y0(); y < region.y1(); ++y)
+    for (int x = region.x0(); x < region.x1(); ++x)
+      rendered[localIndex(region, x, y)] = mask[static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)];
+  // Directly seen light skips the denoiser, as in the keyframes (worker/direct_emission.h).
+  const bool decomposed = !decompositionComponents(sparse).empty();
+  const FrameImage directLight = decomposed ? takeDirectEmission(sparse) : FrameImage();
+  invalidateUnrendered(sparse, rendered);
+  FrameImage denoised = denoiseFrame(sparse, nullptr, nullptr, settings);
+  if (decomposed) addDirectEmission(denoised, directLight, &rendered);
+  return denoised;
+}
+
 }  // namespace
 
 TaskOutput runCompositeTask(const Lease& lease, const std::vector<TaskInput>& inputs) {
@@ -47,67 +99,50 @@ TaskOutput runCompositeTask(const Lease& lease, const std::vector<TaskInput>& in
   const TaskInput& stage = findInput(
       inputs, [&](const TaskInput& input) { return input.kind != TASK_RENDER_TILE && input.params.frame() == frame; },
       "the stage output of frame " + std::to_string(frame));
-  const FrameImage& staged = stage.image;
-  FrameImage result(staged.width(), staged.height());
+  const FrameImage& staged = stage.image();
+  const int width = staged.width(), height = staged.height();
+  FrameImage result(width, height);
   for (const std::string& name : colorChannels(staged)) result.addChannel(name) = staged.channel(name);
   result.attributes() = staged.attributes();
 
-  FrameImage sparse(staged.width(), staged.height());
+  std::vector<const TaskInput*> tiles;
   std::vector<uint8_t> mask(staged.pixelCount(), 0);
   std::vector<PixelWindow> windows;
   for (const TaskInput& input : inputs) {
     if (input.kind != TASK_RENDER_TILE) continue;
     const PixelWindow& w = input.params.window();
-    if (input.image.width() != w.x1() - w.x0() || input.image.height() != w.y1() - w.y0())
-      throw BadInput("a re-render tile of frame " + std::to_string(frame) + " does not have its window's size");
-    sparse.paste(input.image, w.x0(), w.y0());
-    PixelWindow flagged;  // the bounding box of the tile's rendered pixels
-    flagged.set_x0(w.x1());
-    flagged.set_y0(w.y1());
-    for (int y = w.y0(); y < w.y1(); ++y)
-      for (int x = w.x0(); x < w.x1(); ++x) {
-        const size_t local = static_cast<size_t>(y - w.y0()) * static_cast<size_t>(w.x1() - w.x0()) +
-                             static_cast<size_t>(x - w.x0());
-        if (!input.params.pixel_mask().empty() && input.params.pixel_mask()[local] == 0) continue;
-        mask[static_cast<size_t>(y) * static_cast<size_t>(staged.width()) + static_cast<size_t>(x)] = 1;
-        flagged.set_x0(std::min(flagged.x0(), x));
-        flagged.set_y0(std::min(flagged.y0(), y));
-        flagged.set_x1(std::max(flagged.x1(), x + 1));
-        flagged.set_y1(std::max(flagged.y1(), y + 1));
-      }
+    if (w.x0() < 0 || w.y0() < 0 || w.x1() > width || w.y1() > height || input.image().width() != w.x1() - w.x0() ||
+        input.image().height() != w.y1() - w.y0())
+      throw BadInput("a re-render tile of frame " + std::to_string(frame) + " does not have its window's size or place");
+    tiles.push_back(&input);
+    const PixelWindow flagged = markRendered(input.params, width, mask);
     if (flagged.x1() > flagged.x0()) windows.push_back(flagged);
-    for (const auto& [key, value] : input.image.attributes()) sparse.attributes()[key] = value;
   }
   std::vector<float>& rerendered = result.addChannel("rerender.Y");
-  if (!windows.empty()) {
-    // Directly seen light skips the denoiser, as in the keyframes (worker/direct_emission.h).
-    const bool decomposed = !decompositionComponents(sparse).empty();
-    const FrameImage directLight = decomposed ? takeDirectEmission(sparse) : FrameImage();
-    invalidateUnrendered(sparse, mask);
-    DenoiseSettings settings;
-    settings.label = "re-rendered pixels of frame " + std::to_string(frame);
-    // They have the shot's full samples: a smaller search window than a keyframe's suffices.
-    settings.spatialRadius = kRerenderSearchRadius;
-    // Each tile is denoised with a margin wide enough for every patch its pixels compare.
-    const int margin = settings.spatialRadius + settings.patch;
-    for (const PixelWindow& w : windows) {
-      const int x0 = std::max(0, w.x0() - margin), y0 = std::max(0, w.y0() - margin);
-      const int x1 = std::min(staged.width(), w.x1() + margin), y1 = std::min(staged.height(), w.y1() + margin);
-      const FrameImage denoised = denoiseFrame(sparse.crop(x0, y0, x1 - x0, y1 - y0), nullptr, nullptr, settings);
-      for (const std::string& name : colorChannels(staged)) {
-        const std::vector<float>& source = denoised.channel(name);
-        std::vector<float>& target = result.channel(name);
-        for (int y = w.y0(); y < w.y1(); ++y)
-          for (int x = w.x0(); x < w.x1(); ++x) {
-            const size_t p = static_cast<size_t>(y) * static_cast<size_t>(staged.width()) + static_cast<size_t>(x);
-            if (mask[p]) target[p] = source[static_cast<size_t>(y - y0) * static_cast<size_t>(x1 - x0) +
-                                            static_cast<size_t>(x - x0)];
-          }
-      }
+  DenoiseSettings settings;
+  settings.label = "re-rendered pixels of frame " + std::to_string(frame);
+  // They have the shot's full samples: a smaller search window than a keyframe's suffices.
+  settings.spatialRadius = kRerenderSearchRadius;
+  // Each window is denoised with a margin wide enough for every patch its pixels compare.
+  const int margin = settings.spatialRadius + settings.patch;
+  for (const PixelWindow& w : windows) {
+    PixelWindow region;
+    region.set_x0(std::max(0, w.x0() - margin));
+    region.set_y0(std::max(0, w.y0() - margin));
+    region.set_x1(std::min(width, w.x1() + margin));
+    region.set_y1(std::min(height, w.y1() + margin));
+    FrameImage denoised = denoisedRegion(tiles, mask, width, region, settings);
+    for (const std::string& name : colorChannels(staged)) {
+      const std::vector<float>& source = denoised.channel(name);
+      std::vector<float>& target = result.channel(name);
+      for (int y = w.y0(); y < w.y1(); ++y)
+        for (int x = w.x0(); x < w.x1(); ++x) {
+          const size_t p = static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
+          if (mask[p]) target[p] = source[localIndex(region, x, y)];
+        }
     }
-    if (decomposed) addDirectEmission(result, directLight, &mask);
-    for (size_t p = 0; p < mask.size(); ++p) rerendered[p] = mask[p];
   }
+  for (size_t p = 0; p < mask.size(); ++p) rerendered[p] = mask[p];
   const size_t count = static_cast<size_t>(std::count(mask.begin(), mask.end(), 1));
   result.attributes()["pathfarm.rerender_pixels"] = std::to_string(count);
   result.attributes()["pathfarm.pipeline"] = lease.spec().pipeline();

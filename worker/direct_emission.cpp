@@ -54,7 +54,7 @@ std::vector<float> luminance(const FrameImage& frame, const std::string& prefix)
 
 }  // namespace
 
-FrameImage takeDirectEmission(FrameImage& frame) {
+FrameImage directEmissionOf(const FrameImage& frame) {
   FrameImage emission(frame.width(), frame.height());
   for (const std::string& component : componentsOf(frame)) {
     for (const char* c : kRgb) {
@@ -66,6 +66,11 @@ FrameImage takeDirectEmission(FrameImage& frame) {
       for (size_t p = 0; p < light.size(); ++p) light[p] = std::clamp(emitted[p], 0.0f, std::max(0.0f, color[p]));
     }
   }
+  return emission;
+}
+
+FrameImage takeDirectEmission(FrameImage& frame) {
+  FrameImage emission = directEmissionOf(frame);
   apply(frame, emission, -1.0f, nullptr);
   return emission;
 }

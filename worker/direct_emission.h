@@ -21,6 +21,8 @@ namespace pathfarm::farm {
 // component's color (and irradiance, when the frame has it) and returns it as
 // `<component>.direct.R/G/B`.
 FrameImage takeDirectEmission(FrameImage& frame);
+// The light takeDirectEmission would take, leaving the frame as it is.
+FrameImage directEmissionOf(const FrameImage& frame);
 // Adds it back to the beauty and the components' colors (and irradiance, recomputed),
 // at every pixel or only where `only` is set.
 void addDirectEmission(FrameImage& frame, const FrameImage& emission, const std::vector<uint8_t>* only = nullptr);

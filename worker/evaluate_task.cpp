@@ -73,7 +73,7 @@ TaskOutput runEvaluateTask(const Lease& /*lease*/, const std::vector<TaskInput>&
   std::map<int64_t, const FrameImage*> references;
   for (const TaskInput& input : inputs)
     if (input.kind == TASK_ASSEMBLE_FRAME && input.params.role() == ROLE_REFERENCE)
-      references[input.params.frame()] = &input.image;
+      references[input.params.frame()] = &input.image();
   if (references.empty()) throw BadInput("the evaluation has no reference frame");
 
   std::map<std::string, StageSums> sums;
@@ -83,17 +83,17 @@ TaskOutput runEvaluateTask(const Lease& /*lease*/, const std::vector<TaskInput>&
     const auto reference = references.find(input.params.frame());
     if (stage.empty() || reference == references.end()) continue;
     // A half-resolution denoise output has no full-resolution error; its upsampling has.
-    if (input.image.width() != reference->second->width() || input.image.height() != reference->second->height())
+    if (input.image().width() != reference->second->width() || input.image().height() != reference->second->height())
       continue;
-    const std::vector<uint8_t> kept = keptPixels(stage, input.image);
-    const ImageMetrics m = compareImages(input.image, *reference->second, kBeauty, {}, &kept);
+    const std::vector<uint8_t> kept = keptPixels(stage, input.image());
+    const ImageMetrics m = compareImages(input.image(), *reference->second, kBeauty, {}, &kept);
     StageSums& sum = sums[stage];
     sum.relMse += m.relMse;
     sum.worstTile = std::max(sum.worstTile, m.worstTileRelMse);
     sum.worstShare += m.worstPercentShare;
     sum.kept += static_cast<double>(std::count(kept.begin(), kept.end(), 1)) / static_cast<double>(kept.size());
     ++sum.frames;
-    if (stage == "final" || stage == "baseline") sequences[stage][input.params.frame()] = &input.image;
+    if (stage == "final" || stage == "baseline") sequences[stage][input.params.frame()] = &input.image();
   }
   TaskOutput output;
   for (const auto& [stage, total] : sums) {

@@ -4,6 +4,7 @@
 // join the results into the task's output frame and say which pixels need re-rendering.
 // Channel layout of the intermediate chunks: docs/farm.md, "Task graphs".
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -12,11 +13,14 @@
 
 namespace pathfarm::farm {
 
-// One input chunk: what made it and its image.
+// One input chunk: what made it and its image. The image is shared with the worker's
+// decoded inputs (worker/decoded_inputs.h) and other tasks: a task that changes it copies it.
 struct TaskInput {
   TaskKind kind;
   TaskParams params;
-  FrameImage image;
+  std::shared_ptr<const FrameImage> frame;
+
+  const FrameImage& image() const { return *frame; }
 };
 
 struct TaskOutput {

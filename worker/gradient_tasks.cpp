@@ -25,7 +25,7 @@ TaskOutput runPoissonWindowTask(const Lease& lease, const std::vector<TaskInput>
   const int count = lease.params().window_frames();
   std::vector<GradientFrame> frames;
   for (int64_t frame = first; frame < first + count; ++frame)
-    frames.push_back(GradientFrame::fromImage(inputOf(inputs, TASK_GRADIENT_RENDER, frame).image,
+    frames.push_back(GradientFrame::fromImage(inputOf(inputs, TASK_GRADIENT_RENDER, frame).image(),
                                               "the gradient render of frame " + std::to_string(frame)));
   std::vector<const GradientFrame*> window;
   for (const GradientFrame& frame : frames) window.push_back(&frame);
@@ -43,13 +43,13 @@ TaskOutput runPoissonWindowTask(const Lease& lease, const std::vector<TaskInput>
 
 TaskOutput runPoissonBlendTask(const Lease& lease, const std::vector<TaskInput>& inputs) {
   const int64_t frame = lease.params().frame();
-  const FrameImage& rendered = inputOf(inputs, TASK_GRADIENT_RENDER, frame).image;
+  const FrameImage& rendered = inputOf(inputs, TASK_GRADIENT_RENDER, frame).image();
   WindowBlend blend;
   for (const TaskInput& input : inputs) {  // in window order, as the plan lists them
     if (input.kind != TASK_POISSON_WINDOW) continue;
     const auto index = static_cast<size_t>(frame - input.params.window_first());
     GradientFrame::Color solved;
-    for (size_t c = 0; c < 3; ++c) solved[c] = input.image.channel(solvedChannel(index, kColorChannels[c]));
+    for (size_t c = 0; c < 3; ++c) solved[c] = input.image().channel(solvedChannel(index, kColorChannels[c]));
     blend.add(solved, index, static_cast<size_t>(input.params.window_frames()));
   }
   if (blend.weight == 0) throw BadInput("no window covers frame " + std::to_string(frame));

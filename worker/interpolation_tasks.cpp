@@ -44,8 +44,8 @@ bool componentIsEmpty(const FrameImage& frame, const std::string& component) {
 TaskOutput runFlowTask(const Lease& lease, const std::vector<TaskInput>& inputs) {
   const TaskParams& params = lease.params();
   const std::string& component = params.component();
-  const FrameImage& k0 = filteredKeyframe(inputs, params.keyframe_before()).image;
-  const FrameImage& k1 = filteredKeyframe(inputs, params.keyframe_after()).image;
+  const FrameImage& k0 = filteredKeyframe(inputs, params.keyframe_before()).image();
+  const FrameImage& k1 = filteredKeyframe(inputs, params.keyframe_after()).image();
   const ComponentMotions all = keyframeMotions(k0, k1);
   const auto primary = all.components.find(component);
   if (primary == all.components.end()) throw BadInput("the keyframes have no component " + component);
@@ -78,19 +78,18 @@ TaskOutput runInterpolateTask(const Lease& lease, const std::vector<TaskInput>& 
   const TaskParams& params = lease.params();
   const int64_t before = params.keyframe_before(), after = params.keyframe_after();
   // Directly seen light is not interpolated: the frame's own feature render has it exactly.
-  FrameImage k0 = filteredKeyframe(inputs, before).image, k1 = filteredKeyframe(inputs, after).image;
+  FrameImage k0 = filteredKeyframe(inputs, before).image(), k1 = filteredKeyframe(inputs, after).image();
   takeDirectEmission(k0);
   takeDirectEmission(k1);
-  const FrameImage& features = inputOf(inputs, TASK_ASSEMBLE_FRAME, params.frame()).image;
-  FrameImage ownFeatures = features;
-  const FrameImage directLight = takeDirectEmission(ownFeatures);
+  const FrameImage& features = inputOf(inputs, TASK_ASSEMBLE_FRAME, params.frame()).image();
+  const FrameImage directLight = directEmissionOf(features);
 
   ComponentMotions motions = keyframeMotions(k0, k1);
   for (const TaskInput& input : inputs) {
     if (input.kind != TASK_FLOW) continue;
     ComponentMotion& motion = motions.components.at(input.params.component());
-    motion.irradianceForward = readMotionField(input.image, input.params.component() + ".irradiance_forward");
-    motion.irradianceBackward = readMotionField(input.image, input.params.component() + ".irradiance_backward");
+    motion.irradianceForward = readMotionField(input.image(), input.params.component() + ".irradiance_forward");
+    motion.irradianceBackward = readMotionField(input.image(), input.params.component() + ".irradiance_backward");
     motion.hasIrradianceMotion = true;
   }
   const float fraction = static_cast<float>(params.frame() - before) / static_cast<float>(after - before);

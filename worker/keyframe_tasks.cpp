@@ -28,10 +28,10 @@ TaskOutput runDenoiseTask(const Lease& lease, const std::vector<TaskInput>& inpu
   if (at == keyframes.end()) throw BadInput("frame " + std::to_string(frame) + " is not a keyframe");
 
   // The keyframe's motion vectors reach its neighbouring keyframes (planner.h).
-  FrameImage current = inputOf(inputs, TASK_ASSEMBLE_FRAME, frame).image;
+  FrameImage current = inputOf(inputs, TASK_ASSEMBLE_FRAME, frame).image();
   std::optional<FrameImage> previous, next;
-  if (at != keyframes.begin()) previous = inputOf(inputs, TASK_ASSEMBLE_FRAME, *(at - 1)).image;
-  if (at + 1 != keyframes.end()) next = inputOf(inputs, TASK_ASSEMBLE_FRAME, *(at + 1)).image;
+  if (at != keyframes.begin()) previous = inputOf(inputs, TASK_ASSEMBLE_FRAME, *(at - 1)).image();
+  if (at + 1 != keyframes.end()) next = inputOf(inputs, TASK_ASSEMBLE_FRAME, *(at + 1)).image();
   const FrameImage emission = takeDirectEmission(current);
   if (previous) takeDirectEmission(*previous);
   if (next) takeDirectEmission(*next);
@@ -63,8 +63,8 @@ TaskOutput runDenoiseTask(const Lease& lease, const std::vector<TaskInput>& inpu
 
 TaskOutput runUpsampleTask(const Lease& lease, const std::vector<TaskInput>& inputs) {
   const int64_t frame = lease.params().frame();
-  const FrameImage& low = inputOf(inputs, TASK_DENOISE, frame).image;
-  FrameImage high = inputOf(inputs, TASK_ASSEMBLE_FRAME, frame).image;
+  const FrameImage& low = inputOf(inputs, TASK_DENOISE, frame).image();
+  FrameImage high = inputOf(inputs, TASK_ASSEMBLE_FRAME, frame).image();
   // A moving caustic spread by the half-resolution filtering is rendered again at full spp.
   const std::vector<uint8_t> caustics = movingCausticPixels(high);
   const FrameImage emission = takeDirectEmission(high);

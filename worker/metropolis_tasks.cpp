@@ -23,8 +23,8 @@ SeedPool poolOf(const std::vector<TaskInput>& inputs, FrameWindow window) {
   const TaskInput& input = findInput(
       inputs, [&](const TaskInput& i) { return i.kind == TASK_MLT_SEED_POOL && i.params.window_first() == window.first; },
       "the seed pool of the window starting at frame " + std::to_string(window.first));
-  const auto text = input.image.attributes().find(kSeedPoolAttribute);
-  if (text == input.image.attributes().end()) throw BadInput("the seed-pool chunk carries no seed pool");
+  const auto text = input.image().attributes().find(kSeedPoolAttribute);
+  if (text == input.image().attributes().end()) throw BadInput("the seed-pool chunk carries no seed pool");
   return SeedPool::parse(text->second);
 }
 
@@ -34,13 +34,13 @@ void readBlocks(const TaskInput& input, FrameWindow window, std::vector<BlockRes
   for (int block = first; block < first + input.params.block_count(); ++block) {
     BlockResult result;
     result.block = block;
-    const auto stats = input.image.attributes().find(blockAttribute(block));
-    if (stats == input.image.attributes().end())
+    const auto stats = input.image().attributes().find(blockAttribute(block));
+    if (stats == input.image().attributes().end())
       throw BadInput("chain chunk lacks the statistics of block " + std::to_string(block));
     result.stats = MutationStats::parse(stats->second);
     for (int f = 0; f < window.count; ++f) {
-      FrameImage frame(input.image.width(), input.image.height());
-      for (int c = 0; c < 3; ++c) frame.addChannel(kColor[c]) = input.image.channel(blockChannel(f, block, c));
+      FrameImage frame(input.image().width(), input.image().height());
+      for (int c = 0; c < 3; ++c) frame.addChannel(kColor[c]) = input.image().channel(blockChannel(f, block, c));
       result.frames.push_back(std::move(frame));
     }
     blocks.push_back(std::move(result));

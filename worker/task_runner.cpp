@@ -156,16 +156,22 @@ std::vector<TaskInput> TaskRunner::inputsOf(const Lease& lease, const ChunkFetch
     throw BadInput("the lease's inputs are incomplete (kinds or parameters missing)");
   std::vector<TaskInput> inputs;
   for (int i = 0; i < lease.inputs_size(); ++i) {
-    const ChunkRef& ref = lease.inputs(i);
     const bool image = lease.input_kinds(i) != TASK_EVALUATE;
     inputs.push_back({lease.input_kinds(i), lease.input_params(i),
-                      image ? decodeExr(fetch(ref), "input chunk " + ref.sha256()) : FrameImage{}});
-    if (const std::string bad = inputs.back().image.firstNonFinite(); !bad.empty())
-      throw BadInput("input chunk " + ref.sha256() + " holds a non-finite value (" + bad + ")");
+                      image ? decodedInput(lease.inputs(i), fetch) : std::make_shared<const FrameImage>()});
     // Fetching and decoding is the first half of a filter task's work, as far as anyone can tell.
     progress = 0.5 * static_cast<double>(i + 1) / static_cast<double>(lease.inputs_size());
   }
   return inputs;
+}
+
+std::shared_ptr<const FrameImage> TaskRunner::decodedInput(const ChunkRef& ref, const ChunkFetcher& fetch) {
+  if (auto kept = decoded_.find(ref.sha256())) return kept;
+  auto frame = std::make_shared<const FrameImage>(decodeExr(fetch(ref), "input chunk " + ref.sha256()));
+  if (const std::string bad = frame->firstNonFinite(); !bad.empty())
+    throw BadInput("input chunk " + ref.sha256() + " holds a non-finite value (" + bad + ")");
+  decoded_.keep(ref.sha256(), frame);
+  return frame;
 }
 
 TaskOutput TaskRunner::runMetropolis(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,

@@ -4,7 +4,8 @@
 // (worker/filter_tasks.h), the Metropolis tasks' (worker/metropolis_tasks.h), nothing
 // for noop.
 // Scenes and their built geometry are cached per shot, so the tiles of a shot pay for
-// loading and BVH building once per worker.
+// loading and BVH building once per worker; decoded input chunks are kept within a byte
+// budget (worker/decoded_inputs.h), so a keyframe many tasks read is decoded once.
 #include <atomic>
 #include <filesystem>
 #include <functional>
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "pathfarm/worker_service.pb.h"
+#include "worker/decoded_inputs.h"
 #include "worker/filter_tasks.h"
 
 namespace pathfarm {
@@ -33,11 +35,15 @@ class TaskAbandoned : public std::runtime_error {
 
 class TaskRunner {
  public:
+  static constexpr uint64_t kDefaultDecodedInputBytes = 250'000'000;
+
   // Input chunks' bytes by digest (from a cache or the scheduler); throws on failure.
   using ChunkFetcher = std::function<std::string(const ChunkRef&)>;
 
-  // Uploaded scenes are rebuilt under `scenesRoot` (worker/scene_files.h).
-  TaskRunner(int threads, std::filesystem::path scenesRoot) : threads_(threads), scenesRoot_(std::move(scenesRoot)) {}
+  // Uploaded scenes are rebuilt under `scenesRoot` (worker/scene_files.h); decoded inputs
+  // are kept up to `decodedInputBytes`.
+  TaskRunner(int threads, std::filesystem::path scenesRoot, uint64_t decodedInputBytes = kDefaultDecodedInputBytes)
+      : threads_(threads), scenesRoot_(std::move(scenesRoot)), decoded_(decodedInputBytes) {}
   ~TaskRunner();
 
   // `progress` receives 0..1; `abandon` turning true stops the task with TaskAbandoned.
@@ -57,10 +63,13 @@ class TaskRunner {
   TaskOutput runMetropolis(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,
                            const std::atomic<bool>& abandon);
   // The lease's input chunks, decoded; `progress` goes to 0.5 as they arrive.
-  static std::vector<TaskInput> inputsOf(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress);
+  std::vector<TaskInput> inputsOf(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress);
+  // An input chunk's frame: decoded and checked once, then kept in decoded_.
+  std::shared_ptr<const FrameImage> decodedInput(const ChunkRef& ref, const ChunkFetcher& fetch);
 
   int threads_;
   std::filesystem::path scenesRoot_;
+  DecodedInputs decoded_;
   std::mutex mutex_;
   std::vector<std::pair<int64_t, std::shared_ptr<ShotRenderer>>> renderers_;  // by shot id, recent first
 };

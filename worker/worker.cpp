@@ -299,7 +299,7 @@ void Worker::run(const std::atomic<bool>& stop) {
   ChunkStore cache(options_.cache, ChunkStore::Kind::Cache);
   CacheBound bound(options_.cache, options_.cacheMaxBytes);
   bound.maybeTrim();
-  TaskRunner runner(options_.threads, options_.cache / "scenes");
+  TaskRunner runner(options_.threads, options_.cache / "scenes", options_.decodedInputMaxBytes);
   std::vector<std::thread> slots;
   for (int i = 0; i < options_.slots; ++i) {
     slots.emplace_back([&] {

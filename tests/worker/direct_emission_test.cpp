@@ -49,6 +49,16 @@ TEST(DirectEmission, LeavesEveryComponentAndComesBackExactly) {
     for (size_t p = 0; p < 3; ++p) EXPECT_FLOAT_EQ(f.channel(name)[p], original.channel(name)[p]) << name << " " << p;
 }
 
+TEST(DirectEmission, ItsLightCanBeReadWithoutTakingIt) {
+  const FrameImage original = frame();
+  const FrameImage read = directEmissionOf(original);
+  FrameImage taken = original;
+  const FrameImage light = takeDirectEmission(taken);
+  ASSERT_EQ(read.channelNames(), light.channelNames());
+  for (const std::string& name : light.channelNames()) EXPECT_EQ(read.channel(name), light.channel(name)) << name;
+  EXPECT_EQ(read.channel("residual.direct.R"), (std::vector<float>{4.0f, 2.0f, 0.0f}));
+}
+
 TEST(DirectEmission, ComesBackWhereAskedOnAFrameWithColorsOnly) {
   FrameImage source = frame();
   const FrameImage light = takeDirectEmission(source);

@@ -1,0 +1,124 @@
+// The composite task replaces a frame's re-rendered pixels by their render, denoised among
+// themselves. It builds only the neighbourhood of each re-rendered window; the pixels it
+// writes must be those of denoising the whole frame of re-rendered pixels at once.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include "image/exr_io.h"
+#include "postproc/filters/component_denoiser.h"
+#include "postproc/filters/decomposed_frame.h"
+#include "renderer/integrators/frame_renderer.h"
+#include "renderer/scene/scene_loader.h"
+#include "test_support.h"
+#include "worker/direct_emission.h"
+#include "worker/task_runner.h"
+
+namespace pathfarm::farm {
+namespace {
+
+constexpr int kSize = 40;
+
+FrameImage renderCornell(int spp) {
+  RenderSettings settings;
+  settings.width = kSize;
+  settings.height = kSize;
+  settings.spp = spp;
+  settings.maxDepth = 6;
+  settings.decomposition = std::make_shared<Decomposition>(Decomposition::standard());
+  return FrameRenderer(loadScene(test_support::sourceDir() / "scenes/cornell/scene.json"), settings).render(0);
+}
+
+struct Tile {
+  PixelWindow window;
+  std::string mask;  // empty: every pixel
+};
+
+PixelWindow window(int x0, int y0, int x1, int y1) {
+  PixelWindow w;
+  w.set_x0(x0);
+  w.set_y0(y0);
+  w.set_x1(x1);
+  w.set_y1(y1);
+  return w;
+}
+
+TEST(CompositeTask, ReRenderedPixelsAreThoseOfDenoisingTheWholeSparseFrame) {
+  const FrameImage staged = renderCornell(1);
+  const FrameImage rendered = renderCornell(16);
+  // Three tiles: one re-rendered whole, one in part (a diagonal band), one far away.
+  std::vector<Tile> tiles = {{window(0, 0, 16, 16), ""}, {window(16, 0, 32, 16), std::string(256, '\0')},
+                             {window(24, 24, 40, 40), ""}};
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) tiles[1].mask[static_cast<size_t>(y * 16 + x)] = std::abs(x - y) < 3 ? 1 : 0;
+
+  std::map<std::string, std::string> chunks = {{"stage", encodeExr(staged, ExrCompression::Fast)}};
+  Lease lease;
+  lease.set_kind(TASK_COMPOSITE);
+  lease.mutable_spec()->set_pipeline("dui");
+  lease.mutable_params()->set_frame(0);
+  lease.add_inputs()->set_sha256("stage");
+  lease.add_input_kinds(TASK_INTERPOLATE);
+  lease.add_input_params()->set_frame(0);
+  std::vector<uint8_t> mask(staged.pixelCount(), 0);
+  FrameImage sparse(kSize, kSize);
+  for (size_t t = 0; t < tiles.size(); ++t) {
+    const PixelWindow& w = tiles[t].window;
+    const FrameImage part = rendered.crop(w.x0(), w.y0(), w.x1() - w.x0(), w.y1() - w.y0());
+    const std::string name = "tile" + std::to_string(t);
+    chunks[name] = encodeExr(part, ExrCompression::Fast);
+    lease.add_inputs()->set_sha256(name);
+    lease.add_input_kinds(TASK_RENDER_TILE);
+    TaskParams* params = lease.add_input_params();
+    params->set_frame(0);
+    *params->mutable_window() = w;
+    params->set_pixel_mask(tiles[t].mask);
+    sparse.paste(part, w.x0(), w.y0());
+    for (int y = w.y0(); y < w.y1(); ++y)
+      for (int x = w.x0(); x < w.x1(); ++x) {
+        const size_t local = static_cast<size_t>((y - w.y0()) * 16 + (x - w.x0()));
+        if (tiles[t].mask.empty() || tiles[t].mask[local]) mask[static_cast<size_t>(y * kSize + x)] = 1;
+      }
+  }
+  sparse.attributes() = rendered.attributes();
+
+  // The whole sparse frame, denoised at once: the directly seen light kept out, and every
+  // pixel no tile rendered invalid.
+  const FrameImage light = takeDirectEmission(sparse);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (const std::string& name : sparse.channelNames()) {
+    const bool sampled = name == "R" || name == "G" || name == "B" || name.rfind("variance.", 0) == 0 ||
+                         name.find(".color.") != std::string::npos ||
+                         name.find(".irradiance.") != std::string::npos ||
+                         name.find(".variance.") != std::string::npos;
+    if (sampled)
+      for (size_t p = 0; p < mask.size(); ++p)
+        if (!mask[p]) sparse.channel(name)[p] = nan;
+  }
+  DenoiseSettings settings;
+  settings.spatialRadius = 5;
+  FrameImage expected = denoiseFrame(sparse, nullptr, nullptr, settings);
+  addDirectEmission(expected, light, &mask);
+
+  TaskRunner runner(1, test_support::processTemporaryFolder("pathfarm_composite_scenes"));
+  std::atomic<double> progress{0};
+  std::atomic<bool> abandon{false};
+  const FrameImage result = decodeExr(
+      runner.run(lease, [&](const ChunkRef& ref) { return chunks.at(ref.sha256()); }, progress, abandon).chunk,
+      "composite");
+  size_t rerendered = 0;
+  for (const std::string& name : {std::string("R"), std::string("G"), std::string("B"),
+                                  std::string("diffuse_direct.color.G"), std::string("reflection.color.R")})
+    for (size_t p = 0; p < mask.size(); ++p) {
+      const float want = mask[p] ? expected.channel(name)[p] : staged.channel(name)[p];
+      ASSERT_NEAR(result.channel(name)[p], want, 1e-5f * std::max(1.0f, std::abs(want))) << name << " pixel " << p;
+      rerendered += mask[p];
+    }
+  EXPECT_EQ(result.attributes().at("pathfarm.rerender_pixels"), std::to_string(rerendered / 5));
+  for (size_t p = 0; p < mask.size(); ++p) ASSERT_EQ(result.channel("rerender.Y")[p], mask[p]) << p;
+}
+
+}  // namespace
+}  // namespace pathfarm::farm
