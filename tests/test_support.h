@@ -83,6 +83,21 @@ inline MeanEstimate renderedMean(const Scene& scene, int spp, int maxDepth, cons
   return meanOverPixels(FrameRenderer(scene, settings).render(0), channel);
 }
 
+// Frame `frame` of a scene of the source tree (e.g. "scenes/cornell/scene.json") with the
+// standard decomposition, path depth 6 and motion vectors reaching `span` frames, as a
+// worker's render tiles make it.
+inline FrameImage renderDecomposed(const std::string& sceneFile, int width, int height, int spp, int64_t frame,
+                                   MotionSpan span = {}) {
+  RenderSettings settings;
+  settings.width = width;
+  settings.height = height;
+  settings.spp = spp;
+  settings.maxDepth = 6;
+  settings.decomposition = std::make_shared<Decomposition>(Decomposition::standard());
+  settings.motionSpan = span;
+  return FrameRenderer(loadScene(sourceDir() / sceneFile), settings).render(frame);
+}
+
 // A deterministic value in [0, 1) per (seed, c, x, y): test images without a generator.
 inline float hashed(uint32_t seed, int c, int x, int y) {
   uint32_t h = seed * 0x9E3779B9u ^ static_cast<uint32_t>(c) * 0x85EBCA6Bu ^ static_cast<uint32_t>(x) * 0xC2B2AE35u ^

@@ -10,8 +10,6 @@
 #include "image/exr_io.h"
 #include "postproc/filters/component_denoiser.h"
 #include "postproc/filters/decomposed_frame.h"
-#include "renderer/integrators/frame_renderer.h"
-#include "renderer/scene/scene_loader.h"
 #include "test_support.h"
 #include "worker/direct_emission.h"
 #include "worker/task_runner.h"
@@ -22,13 +20,7 @@ namespace {
 constexpr int kSize = 40;
 
 FrameImage renderCornell(int spp) {
-  RenderSettings settings;
-  settings.width = kSize;
-  settings.height = kSize;
-  settings.spp = spp;
-  settings.maxDepth = 6;
-  settings.decomposition = std::make_shared<Decomposition>(Decomposition::standard());
-  return FrameRenderer(loadScene(test_support::sourceDir() / "scenes/cornell/scene.json"), settings).render(0);
+  return test_support::renderDecomposed("scenes/cornell/scene.json", kSize, kSize, spp, 0);
 }
 
 struct Tile {

@@ -7,8 +7,6 @@
 #include <gtest/gtest.h>
 
 #include "image/exr_io.h"
-#include "renderer/integrators/frame_renderer.h"
-#include "renderer/scene/scene_loader.h"
 #include "test_support.h"
 #include "worker/filter_tasks.h"
 
@@ -19,15 +17,7 @@ constexpr int kWidth = 96, kHeight = 54, kBefore = 0, kFrame = 1, kAfter = 3;
 constexpr int kStrip = 8;  // the changed columns at the left edge
 
 FrameImage render(int64_t frame, int spp, MotionSpan span) {
-  RenderSettings settings;
-  settings.width = kWidth;
-  settings.height = kHeight;
-  settings.spp = spp;
-  settings.maxDepth = 6;
-  settings.decomposition = std::make_shared<Decomposition>(Decomposition::standard());
-  settings.motionSpan = span;
-  return FrameRenderer(loadScene(test_support::sourceDir() / "scenes/walkthrough/scene.json"), settings)
-      .render(frame);
+  return test_support::renderDecomposed("scenes/walkthrough/scene.json", kWidth, kHeight, spp, frame, span);
 }
 
 // Scales every light buffer of the left strip: a lamp out of view switched on there.
