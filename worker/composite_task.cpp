@@ -114,6 +114,11 @@ TaskOutput runCompositeTask(const Lease& lease, const std::vector<TaskInput>& in
     if (w.x0() < 0 || w.y0() < 0 || w.x1() > width || w.y1() > height || input.image().width() != w.x1() - w.x0() ||
         input.image().height() != w.y1() - w.y0())
       throw BadInput("a re-render tile of frame " + std::to_string(frame) + " does not have its window's size or place");
+    const size_t area = static_cast<size_t>(w.x1() - w.x0()) * static_cast<size_t>(w.y1() - w.y0());
+    if (!input.params.pixel_mask().empty() && input.params.pixel_mask().size() != area)
+      throw BadInput("a re-render tile of frame " + std::to_string(frame) + " has a pixel mask of " +
+                     std::to_string(input.params.pixel_mask().size()) + " bytes for " + std::to_string(area) +
+                     " pixels");
     tiles.push_back(&input);
     const PixelWindow flagged = markRendered(input.params, width, mask);
     if (flagged.x1() > flagged.x0()) windows.push_back(flagged);

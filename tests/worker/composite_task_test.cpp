@@ -112,5 +112,33 @@ TEST(CompositeTask, ReRenderedPixelsAreThoseOfDenoisingTheWholeSparseFrame) {
   for (size_t p = 0; p < mask.size(); ++p) ASSERT_EQ(result.channel("rerender.Y")[p], mask[p]) << p;
 }
 
+TEST(CompositeTask, ATileWhosePixelMaskDoesNotFitItsWindowIsRefused) {
+  FrameImage flat(4, 4);
+  for (const char* c : {"R", "G", "B"}) flat.addChannel(c).assign(flat.pixelCount(), 0.5f);
+  const std::map<std::string, std::string> chunks = {{"stage", encodeExr(flat, ExrCompression::Fast)},
+                                                     {"tile", encodeExr(flat.crop(0, 0, 2, 2), ExrCompression::Fast)}};
+  Lease lease;
+  lease.set_kind(TASK_COMPOSITE);
+  lease.mutable_params()->set_frame(0);
+  lease.add_inputs()->set_sha256("stage");
+  lease.add_input_kinds(TASK_UPSAMPLE);
+  lease.add_input_params()->set_frame(0);
+  lease.add_inputs()->set_sha256("tile");
+  lease.add_input_kinds(TASK_RENDER_TILE);
+  TaskParams* params = lease.add_input_params();
+  params->set_frame(0);
+  *params->mutable_window() = window(0, 0, 2, 2);
+  params->set_pixel_mask(std::string(3, '\1'));
+  TaskRunner runner(1, test_support::processTemporaryFolder("pathfarm_composite_scenes"));
+  std::atomic<double> progress{0};
+  std::atomic<bool> abandon{false};
+  try {
+    runner.run(lease, [&](const ChunkRef& ref) { return chunks.at(ref.sha256()); }, progress, abandon);
+    FAIL() << "a pixel mask of the wrong size was read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("has a pixel mask of 3 bytes for 4 pixels"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace pathfarm::farm
