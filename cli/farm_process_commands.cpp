@@ -61,7 +61,7 @@ struct WorkerArguments {
   farm::WorkerOptions options;
   std::string tokenFile;
   double cacheMaxGb = 20;
-  double decodedInputsGb = 0.25;
+  double decodedInputsGb = static_cast<double>(farm::TaskRunner::kDefaultDecodedInputBytes) / 1e9;
   pid_t parent = 0;  // stop when this process ends (0: never)
 };
 

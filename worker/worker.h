@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "proto/wire/tls.h"
+#include "worker/task_runner.h"
 
 namespace pathfarm::farm {
 
@@ -22,7 +23,7 @@ struct WorkerOptions {
   std::string token;
   std::filesystem::path cache;  // input chunks and uploaded scenes; default: a folder under the temp dir
   uint64_t cacheMaxBytes = 20'000'000'000;  // the cache is trimmed to this, oldest first
-  uint64_t decodedInputMaxBytes = 250'000'000;  // input frames kept decoded in memory (worker/decoded_inputs.h)
+  uint64_t decodedInputMaxBytes = TaskRunner::kDefaultDecodedInputBytes;  // input frames kept decoded (decoded_inputs.h)
   std::vector<std::string> tags;  // the pools this worker serves (shots' required_tags)
   ClientTls tls;  // a CA names: the scheduler is reached over TLS
 };
