@@ -15,8 +15,12 @@ double seconds(Work work) {
 }
 
 // A frame at the scene's max depth; with `decompose`, split by the default decomposition.
-inline FrameImage render(const Scene& scene, int width, int height, int spp, int64_t frame, bool decompose) {
+// A reference passes a `firstSample` of its own, so that it shares no sample with the
+// frames it measures.
+inline FrameImage render(const Scene& scene, int width, int height, int spp, int64_t frame, bool decompose,
+                         uint32_t firstSample = 0) {
   RenderSettings settings;
+  settings.firstSample = firstSample;
   settings.width = width;
   settings.height = height;
   settings.spp = spp;

@@ -2,14 +2,15 @@
 // error they buy (the paper's Figure 9 as a table).
 //
 //   build/bin/filter_benchmark [--scene scenes/cornell/scene.json] [--frame 5]
-//                              [--spp 16] [--reference-spp 2048] [--size 256]
+//                              [--spp 16] [--reference-spp 2048] [--size 256] [--error-only]
 //
 // Part 1 renders three 1280x720 frames (4 spp, default decomposition) and prints the
 // seconds per frame per component of the spatial denoise (r = 10), the 3-frame denoise
-// (r = 5) and the 2x upsampling. Part 2 renders the frame at SIZE x SIZE with --spp and
-// a reference with --reference-spp, and prints the relMSE against the reference of the
-// input, the color-only denoise, the decomposition without features, and the
-// decomposition with features (3 frames).
+// (r = 5) and the 2x upsampling; --error-only skips it. Part 2 renders the frame at
+// SIZE x SIZE with --spp and a reference with --reference-spp (samples of its own), and
+// prints the relMSE against the reference of the input, the color-only denoise, the
+// decomposition without features, and the decomposition with features (3 frames), each
+// with the fireflies spread (the default) and kept in the filter.
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
@@ -28,21 +29,10 @@ using namespace pathfarm;
 using bench::render;
 using bench::seconds;
 
-}  // namespace
+constexpr uint32_t kReferenceFirstSample = 1u << 24;
 
-int main(int argc, char** argv) {
-  CLI::App app{"pathfarm filter benchmark"};
-  std::string scenePath = "scenes/cornell/scene.json";
-  int frame = 5, spp = 16, referenceSpp = 2048, size = 256;
-  app.add_option("--scene", scenePath);
-  app.add_option("--frame", frame);
-  app.add_option("--spp", spp);
-  app.add_option("--reference-spp", referenceSpp);
-  app.add_option("--size", size);
-  CLI11_PARSE(app, argc, argv);
-  const Scene scene = loadScene(scenePath);
-
-  // Part 1: speed at 1280x720.
+// Part 1: speed at 1280x720.
+void speedAt720p(const Scene& scene, int frame) {
   const FrameImage previous = render(scene, 1280, 720, 4, frame - 1, true);
   const FrameImage current = render(scene, 1280, 720, 4, frame, true);
   const FrameImage next = render(scene, 1280, 720, 4, frame + 1, true);
@@ -56,22 +46,49 @@ int main(int argc, char** argv) {
   std::printf("denoise, spatial (r=10, f=3):  %.3f s per frame, %.3f s per component\n", spatial, spatial / components);
   std::printf("denoise, 3 frames (r=5, f=3):  %.3f s per frame, %.3f s per component\n", temporal, temporal / components);
   std::printf("upsample 640x360 -> 1280x720:  %.3f s per frame, %.3f s per component\n", upsample, upsample / components);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"pathfarm filter benchmark"};
+  std::string scenePath = "scenes/cornell/scene.json";
+  int frame = 5, spp = 16, referenceSpp = 2048, size = 256;
+  app.add_option("--scene", scenePath);
+  app.add_option("--frame", frame);
+  app.add_option("--spp", spp);
+  app.add_option("--reference-spp", referenceSpp);
+  app.add_option("--size", size);
+  bool errorOnly = false;
+  app.add_flag("--error-only", errorOnly, "skip the speed part");
+  CLI11_PARSE(app, argc, argv);
+  const Scene scene = loadScene(scenePath);
+  if (!errorOnly) speedAt720p(scene, frame);
 
   // Part 2: error against a reference.
-  const FrameImage reference = render(scene, size, size, referenceSpp, frame, false);
+  const FrameImage reference = render(scene, size, size, referenceSpp, frame, false, kReferenceFirstSample);
   const FrameImage input = render(scene, size, size, spp, frame, true);
   const FrameImage before = render(scene, size, size, spp, frame - 1, true);
   const FrameImage after = render(scene, size, size, spp, frame + 1, true);
   const auto error = [&](const FrameImage& image) { return compareImages(image, reference, {"R", "G", "B"}).relMse; };
-  DenoiseSettings colorOnly, withoutFeatures, withFeatures;
-  colorOnly.mode = DenoiseMode::ColorOnly;
-  withoutFeatures.mode = DenoiseMode::DecompositionWithoutFeatures;
-  std::printf("\n%dx%d, frame %d, %d spp against %d spp (relMSE)\n", size, size, frame, spp, referenceSpp);
-  std::printf("input:                              %.5f\n", error(input));
-  std::printf("color only (spatial):               %.5f\n", error(denoiseFrame(input, nullptr, nullptr, colorOnly)));
-  std::printf("decomposition, no features:         %.5f\n",
-              error(denoiseFrame(input, nullptr, nullptr, withoutFeatures)));
-  std::printf("decomposition + features (spatial): %.5f\n", error(denoiseFrame(input, nullptr, nullptr, withFeatures)));
-  std::printf("decomposition + features (3 frames): %.5f\n", error(denoiseFrame(input, &before, &after, withFeatures)));
+  std::printf("\n%dx%d, frame %d, %d spp against %d spp (relMSE)   fireflies spread   kept\n", size, size, frame, spp,
+              referenceSpp);
+  std::printf("input:                               %.5f\n", error(input));
+  const auto row = [&](const char* name, DenoiseMode mode, bool neighbours) {
+    DenoiseSettings settings;
+    settings.mode = mode;
+    const auto run = [&] {
+      return error(neighbours ? denoiseFrame(input, &before, &after, settings)
+                              : denoiseFrame(input, nullptr, nullptr, settings));
+    };
+    const double spread = run();
+    settings.spreadFireflies = false;
+    std::printf("%-36s %.5f            %.5f\n", name, spread, run());
+  };
+  row("color only (spatial):", DenoiseMode::ColorOnly, false);
+  row("decomposition, no features:", DenoiseMode::DecompositionWithoutFeatures, false);
+  row("decomposition + features (spatial):", DenoiseMode::Decomposition, false);
+  row("decomposition + features (3 frames):", DenoiseMode::Decomposition, true);
   return 0;
 }
+

@@ -80,6 +80,8 @@ std::vector<Command> addFilterCommands(CLI::App& app) {
   d->add_option("--kf", denoise->settings.kf, "feature sensitivity")->capture_default_str();
   d->add_option("--tau", denoise->settings.tau, "feature normalization floor (the paper's tau^2)")->capture_default_str();
   d->add_flag("--depth", denoise->settings.useDepth, "use depth as a feature too");
+  d->add_flag("--keep-fireflies{false}", denoise->settings.spreadFireflies,
+              "filter fireflies with the frame instead of spreading their light over their surface");
 
   auto upsample = std::make_shared<UpsampleArguments>();
   CLI::App* u = app.add_subcommand("upsample", "guided-filter joint upsampling per component (He et al. 2013)");

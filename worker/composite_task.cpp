@@ -16,6 +16,7 @@ namespace pathfarm::farm {
 namespace {
 
 constexpr int kRerenderSearchRadius = 5;
+constexpr int kRerenderFireflyRadius = 8;
 
 // The channels the final frame keeps: the beauty and every component's color.
 std::vector<std::string> colorChannels(const FrameImage& frame) {
@@ -128,8 +129,14 @@ TaskOutput runCompositeTask(const Lease& lease, const std::vector<TaskInput>& in
   settings.label = "re-rendered pixels of frame " + std::to_string(frame);
   // They have the shot's full samples: a smaller search window than a keyframe's suffices.
   settings.spatialRadius = kRerenderSearchRadius;
-  // Each window is denoised with a margin wide enough for every patch its pixels compare.
-  const int margin = settings.spatialRadius + settings.patch;
+  // A firefly in a small re-rendered clump would light the whole clump; spread, it lights
+  // what its share of a Gaussian covers. The spread is kept short, as the neighbourhood
+  // below must hold everything that decides a window's pixels (else the frame would
+  // depend on how the re-render was cut into tiles).
+  settings.fireflies.maxRadius = kRerenderFireflyRadius;
+  // Each window is denoised with a margin wide enough for every patch its pixels compare
+  // and every firefly whose spread reaches them.
+  const int margin = settings.spatialRadius + settings.patch + fireflyReach(settings.fireflies);
   for (const PixelWindow& w : windows) {
     PixelWindow region;
     region.set_x0(std::max(0, w.x0() - margin));

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "postproc/filters/firefly_spread.h"
 #include "postproc/filters/warp.h"
 #include "renderer/decomposition/effective_irradiance.h"
 
@@ -118,7 +119,18 @@ struct LayerResult {
   Planes color;  // filtered (irradiance for a component)
   std::vector<uint8_t> invalid;
   int frames = 1;
+  size_t fireflies = 0;  // of the current frame, spread instead of filtered
 };
+
+// The guides of a firefly's spread among a layer's features (featureBuffers' order).
+FireflySurface surfaceOf(const NlMeansFrame& frame) {
+  FireflySurface surface;
+  if (frame.features.size() >= 3) {
+    surface.normal = &frame.features[0];
+    surface.objectId = &frame.features[2];
+  }
+  return surface;
+}
 
 LayerResult filterLayer(const FrameImage& current, const std::vector<Neighbour>& neighbours, const LayerSpec& layer,
                         const DenoiseSettings& s) {
@@ -162,10 +174,36 @@ LayerResult filterLayer(const FrameImage& current, const std::vector<Neighbour>&
                      features[g].kind == FeatureKind::ExactMatch ? WarpLookup::Nearest : WarpLookup::Bilinear));
     frame.valid = std::move(valids[i]);
   }
+  // Every frame's fireflies are filtered without their excess, and the excess, spread,
+  // is added back as the mean over the frames that hold each pixel: NL-means averages the
+  // frames, so each one's light counts as it would have.
+  Planes excess;
+  if (s.spreadFireflies) {
+    std::vector<float> frames(current.pixelCount(), 0.0f);
+    for (size_t i = 0; i < input.frames.size(); ++i) {
+      NlMeansFrame& frame = input.frames[i];
+      FireflySplit split = splitFireflies(frame.color, frame.variance, frame.valid, surfaceOf(frame), s.fireflies);
+      if (i == 0) {
+        result.fireflies = split.fireflies;
+        excess = Planes(current.width(), current.height(), static_cast<int>(split.excess.channels.size()));
+      }
+      for (size_t p = 0; p < frames.size(); ++p) {
+        const float weight = frame.valid.empty() ? 1.0f : frame.valid[p];
+        frames[p] += weight;
+        for (size_t c = 0; c < excess.channels.size(); ++c) excess.channels[c][p] += weight * split.excess.channels[c][p];
+      }
+    }
+    for (size_t c = 0; c < excess.channels.size(); ++c)
+      for (size_t p = 0; p < frames.size(); ++p)
+        if (frames[p] > 0.0f) excess.channels[c][p] /= frames[p];
+  }
   NlMeansSettings settings{s.spatialRadius, s.patch, s.kc, s.kf, s.tau, s.alpha};
   if (input.frames.size() > 1) settings.radius = s.temporalRadius;
   NlMeansStats stats;
   result.color = jointNlMeansOnContent(input, settings, &stats);
+  if (s.spreadFireflies)
+    for (size_t c = 0; c < result.color.channels.size(); ++c)
+      for (size_t p = 0; p < result.color.pixelCount(); ++p) result.color.channels[c][p] += excess.channels[c][p];
   result.invalid = std::move(stats.invalidCenter);
   result.frames = static_cast<int>(input.frames.size());
   return result;
@@ -175,7 +213,8 @@ std::string describe(const DenoiseSettings& s, int framesGiven) {
   std::ostringstream text;
   text << "mode=" << denoiseModeName(s.mode) << " frames=" << framesGiven << " r=" << s.spatialRadius << "/"
        << s.temporalRadius << " f=" << s.patch << " kc=" << s.kc << " kf=" << s.kf << " tau=" << s.tau
-       << " alpha=" << s.alpha << " depth=" << (s.useDepth ? 1 : 0) << " prefilter=" << (s.prefilterFeatures ? 1 : 0);
+       << " alpha=" << s.alpha << " depth=" << (s.useDepth ? 1 : 0) << " prefilter=" << (s.prefilterFeatures ? 1 : 0)
+       << " fireflies=" << (s.spreadFireflies ? 1 : 0);
   return text.str();
 }
 
@@ -249,8 +288,10 @@ FrameImage denoiseFrame(const FrameImage& current, const FrameImage* previous, c
   FrameImage out(current.width(), current.height());
   for (const char* c : kRgb) out.addChannel(c);
   std::vector<uint8_t> skipped(current.pixelCount(), 0);
+  size_t fireflies = 0;
   for (const LayerSpec& layer : layers) {
     const LayerResult filtered = filterLayer(current, neighbours, layer, s);
+    fireflies += filtered.fireflies;
     for (size_t p = 0; p < skipped.size(); ++p) skipped[p] |= filtered.invalid[p];
     for (size_t c = 0; c < 3; ++c) {
       std::vector<float>& beauty = out.channel(kRgb[c]);
@@ -272,6 +313,7 @@ FrameImage denoiseFrame(const FrameImage& current, const FrameImage* previous, c
   out.attributes() = current.attributes();
   out.attributes()["pathfarm.denoise"] = describe(s, 1 + static_cast<int>(neighbours.size()));
   out.attributes()["pathfarm.denoise_skipped"] = std::to_string(std::count(skipped.begin(), skipped.end(), uint8_t{1}));
+  out.attributes()["pathfarm.denoise_fireflies"] = std::to_string(fireflies);
   return out;
 }
 

@@ -38,13 +38,15 @@
 // Non-finite colors or variances are invalid pixels (see nlmeans.h): they never
 // contribute, and the current frame's are replaced by the filtered value of their valid
 // neighbours; the number of such pixels (over all components) is the output's
-// `pathfarm.denoise_skipped` attribute. A non-finite reflectance modulates as 0 (the
-// guard: the filtered irradiance is the color).
+// `pathfarm.denoise_skipped` attribute. The current frame's fireflies, spread instead of
+// filtered (firefly_spread.h), are counted in `pathfarm.denoise_fireflies`. A non-finite
+// reflectance modulates as 0 (the guard: the filtered irradiance is the color).
 #include <string>
 #include <vector>
 
 #include "image/frame_image.h"
 #include "postproc/filters/decomposed_frame.h"
+#include "postproc/filters/firefly_spread.h"
 #include "postproc/filters/nlmeans.h"
 
 namespace pathfarm {
@@ -71,6 +73,10 @@ struct DenoiseSettings {
   bool useDepth = false;  // `c.depth.Z` as a fourth feature
   bool prefilterFeatures = true;
   NlMeansSettings prefilter{.radius = 1, .patch = 3, .kc = 0.45f, .kf = 0.6f, .tau = 0.001f, .alpha = 4.0f};
+  // Every frame's fireflies are clamped before NL-means, and their excess, spread over
+  // their surface (firefly_spread.h), is added back as the mean over the frames.
+  bool spreadFireflies = true;
+  FireflySettings fireflies;
   // Name the frames in error messages (their files, say).
   std::string label = "frame";
   std::string previousLabel = "previous frame";

@@ -168,6 +168,69 @@ TEST(ComponentDenoiser, BaselinesRunThroughTheSameCode) {
   EXPECT_THROW(parseDenoiseMode("fast"), std::invalid_argument);
 }
 
+// Adds `light` to every channel of the diffuse component at (x, y), as one bright sample
+// would: its variance is its value squared.
+void addFirefly(FrameImage& frame, int x, int y, float light) {
+  const size_t p = static_cast<size_t>(y * frame.width() + x);
+  for (const char* ch : kRgb) {
+    const std::string c(ch);
+    const float color = frame.channel("diffuse.color." + c)[p] + light;
+    frame.channel("diffuse.color." + c)[p] = color;
+    frame.channel("diffuse.variance." + c)[p] = color * color;
+    frame.channel("diffuse.irradiance." + c)[p] =
+        effectiveIrradiance(color, frame.channel("diffuse.reflectance." + c)[p]);
+    frame.channel(c)[p] += light;
+    frame.channel("variance." + c)[p] = color * color;
+  }
+}
+
+TEST(ComponentDenoiser, AFireflyLeavesNoSquareAndKeepsItsLight) {
+  SyntheticShot shot;
+  shot.sigma = 0.02f;
+  const FrameImage clean = shot.frame(0, 12);
+  FrameImage withFirefly = clean;
+  constexpr int kX = 16, kY = 24, kStripe0 = 8, kStripe1 = 24;  // the firefly's object: x in [8, 24)
+  addFirefly(withFirefly, kX, kY, 4.0f);
+  // What the firefly adds to the denoised frame: its light, and the largest step between
+  // two pixels of its stripe relative to the largest addition (the firefly itself left out).
+  struct Added {
+    double light = 0;
+    float peak = 0, step = 0;
+  };
+  const auto addedBy = [&](const DenoiseSettings& s) {
+    const FrameImage a = denoiseFrame(withFirefly, nullptr, nullptr, s), b = denoiseFrame(clean, nullptr, nullptr, s);
+    const auto change = [&](int x, int y) {
+      const size_t p = static_cast<size_t>(y * shot.width + x);
+      return x == kX && y == kY ? 0.0f : a.channel("G")[p] - b.channel("G")[p];
+    };
+    Added added;
+    for (int y = 0; y < shot.height; ++y)
+      for (int x = 0; x < shot.width; ++x) {
+        const size_t p = static_cast<size_t>(y * shot.width + x);
+        added.light += a.channel("G")[p] - b.channel("G")[p];
+        if (x < kStripe0 || x >= kStripe1) continue;
+        added.peak = std::max(added.peak, change(x, y));
+        const bool beside = std::abs(x - kX) <= 1 && std::abs(y - kY) <= 1;  // steps to the firefly itself
+        if (x + 1 < kStripe1 && !beside) added.step = std::max(added.step, std::abs(change(x + 1, y) - change(x, y)));
+        if (y + 1 < shot.height && !beside) added.step = std::max(added.step, std::abs(change(x, y + 1) - change(x, y)));
+      }
+    return added;
+  };
+  DenoiseSettings s;
+  const Added spread = addedBy(s);
+  s.spreadFireflies = false;
+  const Added filtered = addedBy(s);
+  // The light stays, spread by a Gaussian (sigma r / 2, cut at r), whose steps between
+  // neighbours reach at most 14 % of its peak, where it is cut.
+  EXPECT_NEAR(spread.light, 4.0, 0.2);
+  EXPECT_LT(spread.step, 0.2f * spread.peak);
+  // Filtered with the frame, the firefly is taken in by every pixel whose search window
+  // holds it: a flat box with sharp edges.
+  EXPECT_GT(filtered.step, 0.5f * filtered.peak);
+  EXPECT_EQ(denoiseFrame(withFirefly, nullptr, nullptr, DenoiseSettings{}).attributes().at("pathfarm.denoise_fireflies"),
+            "1");
+}
+
 std::string errorOf(const std::function<void()>& call) {
   try {
     call();

@@ -91,7 +91,9 @@ TEST(CompositeTask, ReRenderedPixelsAreThoseOfDenoisingTheWholeSparseFrame) {
   }
   DenoiseSettings settings;
   settings.spatialRadius = 5;
+  settings.fireflies.maxRadius = 8;  // the composite's short spread
   FrameImage expected = denoiseFrame(sparse, nullptr, nullptr, settings);
+  ASSERT_NE(expected.attributes().at("pathfarm.denoise_fireflies"), "0");  // the spreads are compared too
   addDirectEmission(expected, light, &mask);
 
   TaskRunner runner(1, test_support::processTemporaryFolder("pathfarm_composite_scenes"));
