@@ -143,6 +143,9 @@ TaskOutput runCompositeTask(const Lease& lease, const std::vector<TaskInput>& in
     region.set_y0(std::max(0, w.y0() - margin));
     region.set_x1(std::min(width, w.x1() + margin));
     region.set_y1(std::min(height, w.y1() + margin));
+    // Only the window's pixels are kept: the filter need not finish the rest.
+    settings.onlyWithin = NlMeansArea{w.x0() - region.x0(), w.y0() - region.y0(), w.x1() - region.x0(),
+                                      w.y1() - region.y0()};
     FrameImage denoised = denoisedRegion(tiles, mask, width, region, settings);
     for (const std::string& name : colorChannels(staged)) {
       const std::vector<float>& source = denoised.channel(name);

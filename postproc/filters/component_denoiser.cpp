@@ -200,7 +200,7 @@ LayerResult filterLayer(const FrameImage& current, const std::vector<Neighbour>&
   NlMeansSettings settings{s.spatialRadius, s.patch, s.kc, s.kf, s.tau, s.alpha};
   if (input.frames.size() > 1) settings.radius = s.temporalRadius;
   NlMeansStats stats;
-  result.color = jointNlMeansOnContent(input, settings, &stats);
+  result.color = jointNlMeansOnContent(input, settings, &stats, s.onlyWithin ? &*s.onlyWithin : nullptr);
   if (s.spreadFireflies)
     for (size_t c = 0; c < result.color.channels.size(); ++c)
       for (size_t p = 0; p < result.color.pixelCount(); ++p) result.color.channels[c][p] += excess.channels[c][p];

@@ -41,6 +41,7 @@
 // `pathfarm.denoise_skipped` attribute. The current frame's fireflies, spread instead of
 // filtered (firefly_spread.h), are counted in `pathfarm.denoise_fireflies`. A non-finite
 // reflectance modulates as 0 (the guard: the filtered irradiance is the color).
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -77,6 +78,9 @@ struct DenoiseSettings {
   // their surface (firefly_spread.h), is added back as the mean over the frames.
   bool spreadFireflies = true;
   FireflySettings fireflies;
+  // Only these pixels matter to the caller (nlmeans.h, jointNlMeansOnContent): the
+  // filter skips what no pixel of it compares. Pixels outside come out unspecified.
+  std::optional<NlMeansArea> onlyWithin;
   // Name the frames in error messages (their files, say).
   std::string label = "frame";
   std::string previousLabel = "previous frame";

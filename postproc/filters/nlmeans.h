@@ -109,8 +109,14 @@ Planes jointNlMeans(const NlMeansInput& input, const NlMeansSettings& settings, 
 // A component that lives on a few objects (a mirror's reflection, glass) is filtered at
 // the cost of their area. The result equals jointNlMeans's up to float rounding (its sums
 // start elsewhere) and is the same bits for the same input.
+// With `wanted`, only the pixels of that rectangle matter to the caller: the filtered
+// part shrinks to it, grown by the same 2 (radius + patch), and pixels outside it may
+// come out otherwise than jointNlMeans makes them.
+struct NlMeansArea {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // [x0, x1) x [y0, y1)
+};
 Planes jointNlMeansOnContent(const NlMeansInput& input, const NlMeansSettings& settings,
-                             NlMeansStats* stats = nullptr);
+                             NlMeansStats* stats = nullptr, const NlMeansArea* wanted = nullptr);
 
 // The terms of the weights between every pixel p of frames[0] and q = p + (dx, dy) in
 // frames[frame], computed by the same code as jointNlMeans (for tests and diagnostics).

@@ -73,10 +73,16 @@ Planes cropPlanes(const Planes& planes, const Box& box) {
 
 }  // namespace
 
-Planes jointNlMeansOnContent(const NlMeansInput& input, const NlMeansSettings& settings, NlMeansStats* stats) {
+Planes jointNlMeansOnContent(const NlMeansInput& input, const NlMeansSettings& settings, NlMeansStats* stats,
+                             const NlMeansArea* wanted) {
   if (input.frames.empty() || !allOneSize(input)) return jointNlMeans(input, settings, stats);  // its error
   const Planes& center = input.frames[0].color;
-  const Box box = contentBox(input, 2 * (settings.radius + settings.patch));
+  const int margin = 2 * (settings.radius + settings.patch);
+  Box box = contentBox(input, margin);
+  if (wanted != nullptr)
+    box = {std::max(box.x0, wanted->x0 - margin), std::max(box.y0, wanted->y0 - margin),
+           std::min(box.x1, wanted->x1 + margin), std::min(box.y1, wanted->y1 + margin)};
+  if (box.x0 >= box.x1 || box.y0 >= box.y1) box = {0, 0, 0, 0};
   const auto area = [](int w, int h) { return static_cast<double>(w) * h; };
   // Most of the frame holds something: cropping would save little.
   if (area(box.width(), box.height()) > 0.8 * area(center.width, center.height))

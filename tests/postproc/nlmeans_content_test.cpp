@@ -72,6 +72,32 @@ TEST(NlMeansOnContent, FiltersLikeTheWholeFrameWhereverTheContentSits) {
   }
 }
 
+TEST(NlMeansOnContent, AWantedAreaIsFilteredLikeTheWholeFrame) {
+  std::mt19937 rng(7);
+  NlMeansInput input = sparseInput(20, 20, rng);
+  // Every pixel holds something (as the composite's invalid, NaN pixels do), so only the
+  // wanted area bounds the work.
+  for (NlMeansFrame& frame : input.frames) {
+    for (auto& channel : frame.color.channels)
+      for (float& v : channel) v += 0.5f;
+    for (auto& channel : frame.variance.channels)
+      for (float& v : channel) v += 0.05f;
+  }
+  const NlMeansSettings settings{.radius = 3, .patch = 2};
+  const Planes whole = jointNlMeans(input, settings);
+  const NlMeansArea wanted{24, 22, 30, 27};
+  const Planes part = jointNlMeansOnContent(input, settings, nullptr, &wanted);
+  for (size_t c = 0; c < whole.channels.size(); ++c)
+    for (int y = wanted.y0; y < wanted.y1; ++y)
+      for (int x = wanted.x0; x < wanted.x1; ++x) {
+        const size_t p = static_cast<size_t>(y) * kContentWidth + x;
+        ASSERT_NEAR(part.channels[c][p], whole.channels[c][p], 1e-5f * std::abs(whole.channels[c][p]) + 1e-7f);
+      }
+  // Far from it, nothing was filtered.
+  EXPECT_EQ(part.channels[0][static_cast<size_t>(60) * kContentWidth + 80], 0.0f);
+  EXPECT_NE(whole.channels[0][static_cast<size_t>(60) * kContentWidth + 80], 0.0f);
+}
+
 TEST(NlMeansOnContent, BrokenPixelsAreContentAndCountedTheSame) {
   std::mt19937 rng(5);
   NlMeansInput input = sparseInput(30, 20, rng);
