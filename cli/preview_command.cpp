@@ -19,7 +19,7 @@ struct PreviewArguments {
 };
 
 // The frame with `layer`.R/G/B (X/Y/Z, or Y alone as grey) as its beauty, to preview one
-// buffer of one component.
+// buffer of one component; a whole channel name (`rerender.Y`) shows that channel as grey.
 FrameImage layerAsBeauty(const FrameImage& frame, const std::string& layer) {
   const auto pick = [&](std::initializer_list<const char*> names) -> const std::vector<float>* {
     for (const char* name : names)
@@ -29,7 +29,9 @@ FrameImage layerAsBeauty(const FrameImage& frame, const std::string& layer) {
   const std::vector<float>* r = pick({"R", "X"});
   const std::vector<float>* g = pick({"G", "Y"});
   const std::vector<float>* b = pick({"B", "Z"});
-  if (!g) throw std::runtime_error("no layer \"" + layer + "\" (channels " + layer + ".R/G/B, .X/Y/Z or .Y)");
+  if (!g && frame.hasChannel(layer)) g = &frame.channel(layer);
+  if (!g)
+    throw std::runtime_error("no layer or channel \"" + layer + "\" (channels " + layer + ".R/G/B, .X/Y/Z or .Y)");
   FrameImage preview(frame.width(), frame.height());
   preview.addChannel("R") = r ? *r : *g;
   preview.addChannel("G") = *g;
@@ -72,7 +74,8 @@ std::vector<Command> addPreviewCommand(CLI::App& app) {
   preview->add_option("inputs", arguments->inputs, "EXR files or folders of them")->required();
   preview->add_option("--exposure", arguments->exposure, "exposure multiplier")->check(CLI::Range(1e-6, 1e6));
   preview->add_option("--layer", arguments->layer,
-                      "preview one buffer instead of the beauty, e.g. diffuse_indirect.color or reflection.normal");
+                      "preview one buffer instead of the beauty, e.g. diffuse_indirect.color or reflection.normal, or "
+                      "one channel as grey, e.g. rerender.Y");
   return {{preview, [arguments] { return runPreview(*arguments); }}};
 }
 

@@ -8,7 +8,7 @@
 namespace pathfarm {
 namespace {
 
-constexpr int kJudgeRadius = 2;               // the 5x5 window of the median
+constexpr int kJudgeRadius = 2;               // the 5x5 window a firefly is judged on
 constexpr float kSameSurfaceCosine = 0.906f;  // cos 25 degrees
 
 void requireShape(const Planes& planes, const Planes& color, size_t channels, const char* what) {
@@ -19,7 +19,7 @@ void requireShape(const Planes& planes, const Planes& color, size_t channels, co
 struct Firefly {
   int x, y;
   float scale;  // of its color to the clamped luminance
-  float level;  // its neighbours' median luminance
+  float level;  // its neighbours' mean luminance, the brightest left out
   int radius;   // of its spread
 };
 
@@ -165,6 +165,7 @@ int fireflyReach(const FireflySettings& settings) {
 FireflySplit splitFireflies(Planes& color, Planes& variance, const std::vector<float>& valid,
                             const FireflySurface& surface, const FireflySettings& settings) {
   const size_t channels = color.channels.size();
+  if (channels == 0) throw std::invalid_argument("splitFireflies: the color has no channel");
   requireShape(variance, color, channels, "variance");
   if (!valid.empty() && valid.size() != color.pixelCount())
     throw std::invalid_argument("splitFireflies: the validity does not match the color's size");
@@ -181,6 +182,7 @@ FireflySplit splitFireflies(Planes& color, Planes& variance, const std::vector<f
     for (int x = 0; x < color.width; ++x)
       if (Firefly f; judge.judge(x, y, settings, f)) fireflies.push_back(f);
   split.fireflies = fireflies.size();
+  if (fireflies.empty()) return split;
 
   const std::vector<float> receiverLevel = receiverLevels(judge, fireflies, surface, color.width, color.height);
   std::vector<float> share;

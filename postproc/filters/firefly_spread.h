@@ -44,7 +44,7 @@
 namespace pathfarm {
 
 struct FireflySettings {
-  float factor = 2.0f;            // a firefly exceeds this multiple of its neighbours' median
+  float factor = 2.0f;            // a firefly exceeds this multiple of its neighbours' level
   float outlierErrors = 4.0f;     // and exceeds it by this many of their standard errors
   float minRelativeError = 0.3f;  // and its own standard error is at least this share of its value
   int minNeighbours = 3;          // valid pixels of the 5x5 window needed to judge

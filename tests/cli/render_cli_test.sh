@@ -12,6 +12,13 @@ for f in frame_0003.exr frame_0004.exr frame_0003.png frame_0004.png; do
   [ -s "$work/out/$f" ] || fail "missing $f"
 done
 [ -e "$work/out/frame_0005.exr" ] && fail "rendered past the last frame"
+# One buffer, or one channel of it as grey, previewed beside the frame.
+for layer in variance variance.G; do
+  "$pathfarm" preview --layer "$layer" "$work/out/frame_0003.exr" > "$work/log" 2>&1 || fail "preview --layer $layer: $(cat "$work/log")"
+  [ -s "$work/out/frame_0003.$layer.png" ] || fail "no $layer preview"
+done
+"$pathfarm" preview --layer variance.Q "$work/out/frame_0003.exr" > "$work/log" 2>&1 && fail "previewed a missing channel"
+grep -q 'no layer or channel "variance.Q"' "$work/log" || fail "missing channel message: $(cat "$work/log")"
 ls "$work/out" | grep -q partial && fail "left a partial file behind"
 
 # A bad scene: exit 2, the key path in the message, no output folder.
