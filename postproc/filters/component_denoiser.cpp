@@ -178,6 +178,7 @@ LayerResult filterLayer(const FrameImage& current, const std::vector<Neighbour>&
   // is added back as the mean over the frames that hold each pixel: NL-means averages the
   // frames, so each one's light counts as it would have.
   Planes excess;
+  bool spread = false;  // some frame had a firefly
   if (s.spreadFireflies) {
     std::vector<float> frames(current.pixelCount(), 0.0f);
     for (size_t i = 0; i < input.frames.size(); ++i) {
@@ -187,6 +188,7 @@ LayerResult filterLayer(const FrameImage& current, const std::vector<Neighbour>&
         result.fireflies = split.fireflies;
         excess = Planes(current.width(), current.height(), static_cast<int>(split.excess.channels.size()));
       }
+      spread = spread || split.fireflies > 0;
       for (size_t p = 0; p < frames.size(); ++p) {
         const float weight = frame.valid.empty() ? 1.0f : frame.valid[p];
         frames[p] += weight;
@@ -201,7 +203,7 @@ LayerResult filterLayer(const FrameImage& current, const std::vector<Neighbour>&
   if (input.frames.size() > 1) settings.radius = s.temporalRadius;
   NlMeansStats stats;
   result.color = jointNlMeansOnContent(input, settings, &stats, s.onlyWithin ? &*s.onlyWithin : nullptr);
-  if (s.spreadFireflies)
+  if (spread)
     for (size_t c = 0; c < result.color.channels.size(); ++c)
       for (size_t p = 0; p < result.color.pixelCount(); ++p) result.color.channels[c][p] += excess.channels[c][p];
   result.invalid = std::move(stats.invalidCenter);
