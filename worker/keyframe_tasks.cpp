@@ -7,7 +7,6 @@
 #include "postproc/filters/component_upsampler.h"
 #include "postproc/filters/decomposed_frame.h"
 #include "postproc/interpolation/caustic_check.h"
-#include "renderer/decomposition/effective_irradiance.h"
 #include "scheduler/planner.h"
 #include "worker/direct_emission.h"
 #include "worker/failure_class.h"
@@ -46,14 +45,7 @@ TaskOutput runDenoiseTask(const Lease& lease, const std::vector<TaskInput>& inpu
   // The output keeps the keyframe's features and motion; its colors are the denoised ones
   // and its effective irradiance follows from them, as the upsampler and interpolation read it.
   current.paste(denoised, 0, 0);
-  for (const std::string& component : decompositionComponents(current)) {
-    for (const char* c : {"R", "G", "B"}) {
-      const std::vector<float>& color = current.channel(component + ".color." + c);
-      const std::vector<float>& reflectance = current.channel(component + ".reflectance." + c);
-      std::vector<float>& irradiance = current.channel(component + ".irradiance." + c);
-      for (size_t p = 0; p < irradiance.size(); ++p) irradiance[p] = effectiveIrradiance(color[p], reflectance[p]);
-    }
-  }
+  deriveIrradiance(current);
   // Upsampling adds the light back at full resolution (runUpsampleTask).
   if (!upsample) addDirectEmission(current, emission);
   TaskOutput output;

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <sstream>
+#include <stdexcept>
+
+#include "renderer/decomposition/effective_irradiance.h"
 
 namespace pathfarm {
 
@@ -20,6 +23,20 @@ std::vector<std::string> decompositionComponents(const FrameImage& frame) {
   }
   names.emplace_back("residual");
   return names;
+}
+
+void deriveIrradiance(FrameImage& frame) {
+  const auto channel = [&](const std::string& name) -> std::vector<float>& {
+    if (!frame.hasChannel(name)) throw std::invalid_argument("missing channel \"" + name + "\"");
+    return frame.channel(name);
+  };
+  for (const std::string& component : decompositionComponents(frame))
+    for (const char* c : {"R", "G", "B"}) {
+      const std::vector<float>& color = channel(component + ".color." + c);
+      const std::vector<float>& reflectance = channel(component + ".reflectance." + c);
+      std::vector<float>& irradiance = channel(component + ".irradiance." + c);
+      for (size_t p = 0; p < irradiance.size(); ++p) irradiance[p] = effectiveIrradiance(color[p], reflectance[p]);
+    }
 }
 
 }  // namespace pathfarm

@@ -13,4 +13,9 @@ namespace pathfarm {
 // empty for a frame without the attribute.
 std::vector<std::string> decompositionComponents(const FrameImage& frame);
 
+// Sets every component's "<c>.irradiance.R/G/B" to the effective irradiance of its color and
+// reflectance, as the renderer derives it: for a frame whose colors a filter changed.
+// Throws std::invalid_argument naming a missing channel.
+void deriveIrradiance(FrameImage& frame);
+
 }  // namespace pathfarm

@@ -148,7 +148,9 @@ TEST(FireflySpread, TheLightStaysOnItsSurface) {
   for (int y = 0; y < kFlatSize; ++y)
     for (int x = 0; x < kFlatSize; ++x) {
       const float excess = split.excess.channels[0][static_cast<size_t>(y * kFlatSize + x)];
-      if (x >= kFlatCenter + 2 || y > kFlatCenter + 2) EXPECT_EQ(excess, 0.0f) << x << ", " << y;
+      if (x >= kFlatCenter + 2 || y > kFlatCenter + 2) {
+        EXPECT_EQ(excess, 0.0f) << x << ", " << y;
+      }
       kept += excess;
     }
   EXPECT_NEAR(kept, 48.0, 1e-3);  // all of it, on the firefly's side
@@ -182,7 +184,9 @@ TEST(FireflySpread, PixelsWithoutASampleTakeTheirShareAway) {
   ASSERT_EQ(split.fireflies, 1u);
   EXPECT_NEAR(sumOf(split.excess.channels[2]), 48.0 * gaussianMass(1) / gaussianMass(8), 1e-4);
   for (size_t p = 0; p < valid.size(); ++p)
-    if (valid[p] == 0.0f) EXPECT_EQ(split.excess.channels[2][p], 0.0f);
+    if (valid[p] == 0.0f) {
+      EXPECT_EQ(split.excess.channels[2][p], 0.0f);
+    }
 }
 
 TEST(FireflySpread, MismatchedPlanesAreRefused) {
