@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 #include "image/exr_io.h"
 #include "postproc/filters/component_denoiser.h"
@@ -93,6 +94,45 @@ FrameImage denoisedRegion(const std::vector<const TaskInput*>& tiles, const std:
   return denoised;
 }
 
+PixelWindow grown(const PixelWindow& w, int margin, int width, int height) {
+  PixelWindow out;
+  out.set_x0(std::max(0, w.x0() - margin));
+  out.set_y0(std::max(0, w.y0() - margin));
+  out.set_x1(std::min(width, w.x1() + margin));
+  out.set_y1(std::min(height, w.y1() + margin));
+  return out;
+}
+
+double area(const PixelWindow& w) { return static_cast<double>(w.x1() - w.x0()) * (w.y1() - w.y0()); }
+
+// Windows side by side in a row of tiles, joined wherever one neighbourhood around both
+// costs no more than two: each window is denoised in its neighbourhood, and neighbouring
+// windows' neighbourhoods hold mostly the same pixels. Which windows are joined changes
+// nothing but float rounding (every neighbourhood holds all that decides its pixels).
+std::vector<PixelWindow> joinedAlongRows(std::vector<PixelWindow> windows, int margin, int width, int height) {
+  std::sort(windows.begin(), windows.end(), [](const PixelWindow& a, const PixelWindow& b) {
+    return std::make_tuple(a.y0(), a.y1(), a.x0()) < std::make_tuple(b.y0(), b.y1(), b.x0());
+  });
+  std::vector<PixelWindow> joined;
+  for (const PixelWindow& w : windows) {
+    if (!joined.empty()) {
+      PixelWindow& last = joined.back();
+      PixelWindow both = last;
+      both.set_x0(std::min(last.x0(), w.x0()));
+      both.set_y0(std::min(last.y0(), w.y0()));
+      both.set_y1(std::max(last.y1(), w.y1()));
+      both.set_x1(std::max(last.x1(), w.x1()));
+      if (area(grown(both, margin, width, height)) <=
+          area(grown(last, margin, width, height)) + area(grown(w, margin, width, height))) {
+        last = both;
+        continue;
+      }
+    }
+    joined.push_back(w);
+  }
+  return joined;
+}
+
 }  // namespace
 
 TaskOutput runCompositeTask(const Lease& lease, const std::vector<TaskInput>& inputs) {
@@ -137,12 +177,8 @@ TaskOutput runCompositeTask(const Lease& lease, const std::vector<TaskInput>& in
   // Each window is denoised with a margin wide enough for every patch its pixels compare
   // and every firefly whose spread reaches them.
   const int margin = settings.spatialRadius + settings.patch + fireflyReach(settings.fireflies);
-  for (const PixelWindow& w : windows) {
-    PixelWindow region;
-    region.set_x0(std::max(0, w.x0() - margin));
-    region.set_y0(std::max(0, w.y0() - margin));
-    region.set_x1(std::min(width, w.x1() + margin));
-    region.set_y1(std::min(height, w.y1() + margin));
+  for (const PixelWindow& w : joinedAlongRows(windows, margin, width, height)) {
+    const PixelWindow region = grown(w, margin, width, height);
     // Only the window's pixels are kept: the filter need not finish the rest.
     settings.onlyWithin = NlMeansArea{w.x0() - region.x0(), w.y0() - region.y0(), w.x1() - region.x0(),
                                       w.y1() - region.y0()};

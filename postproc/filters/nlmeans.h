@@ -110,8 +110,8 @@ Planes jointNlMeans(const NlMeansInput& input, const NlMeansSettings& settings, 
 // the cost of their area. The result equals jointNlMeans's up to float rounding (its sums
 // start elsewhere) and is the same bits for the same input.
 // With `wanted`, only the pixels of that rectangle matter to the caller: the filtered
-// part shrinks to it, grown by the same 2 (radius + patch), and pixels outside it may
-// come out otherwise than jointNlMeans makes them.
+// part shrinks to it, grown by radius + patch (the partners its pixels compare and their
+// patches), and pixels outside it may come out otherwise than jointNlMeans makes them.
 struct NlMeansArea {
   int x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // [x0, x1) x [y0, y1)
 };

@@ -79,9 +79,12 @@ Planes jointNlMeansOnContent(const NlMeansInput& input, const NlMeansSettings& s
   const Planes& center = input.frames[0].color;
   const int margin = 2 * (settings.radius + settings.patch);
   Box box = contentBox(input, margin);
+  // A wanted pixel's value depends on its partners within the radius and on their patches
+  // (and on the features' 1-pixel gradient at the pixel itself): radius + patch around it.
+  const int reach = std::max(1, settings.radius + settings.patch);
   if (wanted != nullptr)
-    box = {std::max(box.x0, wanted->x0 - margin), std::max(box.y0, wanted->y0 - margin),
-           std::min(box.x1, wanted->x1 + margin), std::min(box.y1, wanted->y1 + margin)};
+    box = {std::max(box.x0, wanted->x0 - reach), std::max(box.y0, wanted->y0 - reach),
+           std::min(box.x1, wanted->x1 + reach), std::min(box.y1, wanted->y1 + reach)};
   if (box.x0 >= box.x1 || box.y0 >= box.y1) box = {0, 0, 0, 0};
   const auto area = [](int w, int h) { return static_cast<double>(w) * h; };
   // Most of the frame holds something: cropping would save little.

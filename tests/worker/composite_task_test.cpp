@@ -40,11 +40,16 @@ PixelWindow window(int x0, int y0, int x1, int y1) {
 TEST(CompositeTask, ReRenderedPixelsAreThoseOfDenoisingTheWholeSparseFrame) {
   const FrameImage staged = renderCornell(1);
   const FrameImage rendered = renderCornell(16);
-  // Three tiles: one re-rendered whole, one in part (a diagonal band), one far away.
-  std::vector<Tile> tiles = {{window(0, 0, 16, 16), ""}, {window(16, 0, 32, 16), std::string(256, '\0')},
-                             {window(24, 24, 40, 40), ""}};
+  // Three tiles: one re-rendered below its first two rows, its neighbour in part (a
+  // diagonal band from the top, so that its window comes first in a row though it lies to
+  // the right), and one far away re-rendered whole.
+  std::vector<Tile> tiles = {{window(0, 0, 16, 16), std::string(256, '\0')},
+                             {window(16, 0, 32, 16), std::string(256, '\0')}, {window(24, 24, 40, 40), ""}};
   for (int y = 0; y < 16; ++y)
-    for (int x = 0; x < 16; ++x) tiles[1].mask[static_cast<size_t>(y * 16 + x)] = std::abs(x - y) < 3 ? 1 : 0;
+    for (int x = 0; x < 16; ++x) {
+      tiles[0].mask[static_cast<size_t>(y * 16 + x)] = y >= 2 ? 1 : 0;
+      tiles[1].mask[static_cast<size_t>(y * 16 + x)] = std::abs(x - y) < 3 ? 1 : 0;
+    }
 
   std::map<std::string, std::string> chunks = {{"stage", encodeExr(staged, ExrCompression::Fast)}};
   Lease lease;
