@@ -201,6 +201,7 @@ LayerResult filterLayer(const FrameImage& current, const std::vector<Neighbour>&
   }
   NlMeansSettings settings{s.spatialRadius, s.patch, s.kc, s.kf, s.tau, s.alpha};
   if (input.frames.size() > 1) settings.radius = s.temporalRadius;
+  settings.validCentersOnly = s.onlyWithin.has_value();
   NlMeansStats stats;
   result.color = jointNlMeansOnContent(input, settings, &stats, s.onlyWithin ? &*s.onlyWithin : nullptr);
   if (spread)

@@ -78,8 +78,9 @@ struct DenoiseSettings {
   // their surface (firefly_spread.h), is added back as the mean over the frames.
   bool spreadFireflies = true;
   FireflySettings fireflies;
-  // Only these pixels matter to the caller (nlmeans.h, jointNlMeansOnContent): the
-  // filter skips what no pixel of it compares. Pixels outside come out unspecified.
+  // Only the sampled pixels of this area matter to the caller (nlmeans.h,
+  // jointNlMeansOnContent and NlMeansSettings::validCentersOnly): the filter skips what no
+  // such pixel compares. Pixels outside, and pixels without a sample, come out unspecified.
   std::optional<NlMeansArea> onlyWithin;
   // Name the frames in error messages (their files, say).
   std::string label = "frame";

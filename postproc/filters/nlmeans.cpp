@@ -298,10 +298,30 @@ class Prepared {
 };
 
 // The weights of one band of rows [y0, y1) of frame 0 towards one frame and one offset.
+// Per row of frame 0, the columns [first, last + 1) that hold its valid pixels ({0, 0}: none).
+using RowSpans = std::vector<std::pair<int, int>>;
+
+RowSpans validSpans(const Prepared& prepared) {
+  const int w = prepared.width;
+  RowSpans spans(static_cast<size_t>(prepared.height), {0, 0});
+  const float* valid = prepared.frames[0].valid;
+  for (int y = 0; y < prepared.height; ++y) {
+    const float* row = valid + static_cast<size_t>(y) * static_cast<size_t>(w);
+    int first = 0;
+    while (first < w && !(row[first] > 0.0f)) ++first;
+    int last = w;
+    while (last > first && !(row[last - 1] > 0.0f)) --last;
+    if (first < last) spans[static_cast<size_t>(y)] = {first, last};
+  }
+  return spans;
+}
+
 class BandFilter {
  public:
-  BandFilter(const Prepared& prepared, const NlMeansSettings& s, int y0, int y1, bool keepFeatureDistances)
-      : in_(prepared), s_(s), y0_(y0), y1_(y1), keep_(keepFeatureDistances) {
+  // `spans` (may be null: every pixel is wanted): the wanted columns of each row.
+  BandFilter(const Prepared& prepared, const NlMeansSettings& s, int y0, int y1, bool keepFeatureDistances,
+             const RowSpans* spans = nullptr)
+      : in_(prepared), s_(s), y0_(y0), y1_(y1), keep_(keepFeatureDistances), spans_(spans) {
     const size_t w = static_cast<size_t>(in_.width);
     const size_t rows = static_cast<size_t>(y1 - y0 + 2 * s.patch);
     distance_.resize(rows * w);
@@ -327,9 +347,22 @@ class BandFilter {
   template <class RowFn>
   void run(int t, int dx, int dy, RowFn&& onRow) {
     const int w = in_.width, h = in_.height, f = s_.patch;
-    const int xa = std::max(0, -dx), xb = std::min(w, w - dx);
+    int xa = std::max(0, -dx), xb = std::min(w, w - dx);
     const int oy0 = std::max(y0_, -dy), oy1 = std::min(y1_, h - dy);
     if (xa >= xb || oy0 >= oy1) return;
+    if (spans_ != nullptr) {
+      // Distances are needed only within a patch of the wanted columns.
+      int lo = w, hi = 0;
+      for (int y = oy0; y < oy1; ++y) {
+        const auto [first, last] = (*spans_)[static_cast<size_t>(y)];
+        if (first >= last) continue;
+        lo = std::min(lo, first);
+        hi = std::max(hi, last);
+      }
+      xa = std::max(xa, lo - f);
+      xb = std::min(xb, hi + f);
+      if (xa >= xb) return;
+    }
     const Prepared::Frame& p0 = in_.frames[0];
     const Prepared::Frame& pt = in_.frames[static_cast<size_t>(t)];
     const bool center = t == 0 && dx == 0 && dy == 0;
@@ -389,6 +422,13 @@ class BandFilter {
         if (y + f < ry1) addRow(y + f, 1.0);
         if (y - f - 1 >= ry0) addRow(y - f - 1, -1.0);
       }
+      // The columns of this row whose weights are wanted.
+      int wx0 = xa, wx1 = xb;
+      if (spans_ != nullptr) {
+        wx0 = std::max(xa, (*spans_)[static_cast<size_t>(y)].first);
+        wx1 = std::min(xb, (*spans_)[static_cast<size_t>(y)].second);
+        if (wx0 >= wx1) continue;
+      }
       // Row box filter through prefix sums over [xa, xb) (everything outside is zero).
       const int n = xb - xa;
       const double* pd = prefixDistance_.data();
@@ -414,7 +454,7 @@ class BandFilter {
       const ptrdiff_t rowQ = static_cast<ptrdiff_t>(y + dy) * w + dx;
       float* largest = largest_.data();
       float* equal = equal_.data();
-      for (int x = xa; x < xb; ++x) {
+      for (int x = wx0; x < wx1; ++x) {
         largest[x] = std::max(0.0f, patch[x]);
         equal[x] = 1.0f;
       }
@@ -422,15 +462,15 @@ class BandFilter {
         const size_t count = static_cast<size_t>(in_.featureChannels[g]);
         if (in_.kinds[g] == FeatureKind::ExactMatch) {
           float* eq = keep_ ? sum_.data() : equal;
-          if (keep_) std::fill(sum_.begin() + xa, sum_.begin() + xb, 1.0f);
+          if (keep_) std::fill(sum_.begin() + wx0, sum_.begin() + wx1, 1.0f);
           for (size_t j = 0; j < count; ++j) {
             const float* a = p0.feature[g][j] + rowP;
             const float* b = pt.feature[g][j] + rowQ;
-            for (int x = xa; x < xb; ++x) eq[x] = a[x] == b[x] ? eq[x] : 0.0f;
+            for (int x = wx0; x < wx1; ++x) eq[x] = a[x] == b[x] ? eq[x] : 0.0f;
           }
           if (keep_) {
             float* out = featureDistance_[g].data();
-            for (int x = xa; x < xb; ++x) {
+            for (int x = wx0; x < wx1; ++x) {
               out[x] = eq[x] != 0.0f ? 0.0f : std::numeric_limits<float>::infinity();
               equal[x] *= eq[x];
             }
@@ -438,23 +478,23 @@ class BandFilter {
           continue;
         }
         float* sum = sum_.data();
-        std::fill(sum + xa, sum + xb, 0.0f);
+        std::fill(sum + wx0, sum + wx1, 0.0f);
         for (size_t j = 0; j < count; ++j) {
           const float* a = p0.feature[g][j] + rowP;
           const float* b = pt.feature[g][j] + rowQ;
-          for (int x = xa; x < xb; ++x) {
+          for (int x = wx0; x < wx1; ++x) {
             const float diff = a[x] - b[x];
             sum[x] += diff * diff;
           }
           if (!p0.featureVariance[g].empty()) {
             const float* va = p0.featureVariance[g][j] + rowP;
             const float* vb = pt.featureVariance[g][j] + rowQ;
-            for (int x = xa; x < xb; ++x) sum[x] -= va[x] + std::min(va[x], vb[x]);
+            for (int x = wx0; x < wx1; ++x) sum[x] -= va[x] + std::min(va[x], vb[x]);
           }
         }
         const float* scale = in_.featureScale[g].data() + rowP;
         float* out = keep_ ? featureDistance_[g].data() : sum;
-        for (int x = xa; x < xb; ++x) {
+        for (int x = wx0; x < wx1; ++x) {
           const float distance = sum[x] * scale[x];
           out[x] = distance;
           largest[x] = std::max(largest[x], distance);
@@ -463,12 +503,12 @@ class BandFilter {
       float* weight = weight_.data();
       const float* validQ = pt.valid + rowQ;
       if (center) {
-        for (int x = xa; x < xb; ++x) weight[x] = p0.valid[rowP + static_cast<size_t>(x)];
+        for (int x = wx0; x < wx1; ++x) weight[x] = p0.valid[rowP + static_cast<size_t>(x)];
       } else {
-        for (int x = xa; x < xb; ++x) largest[x] = std::min(kExpClamp, largest[x]);  // NaN: the clamp
-        for (int x = xa; x < xb; ++x) weight[x] = expNegative(largest[x]) * equal[x] * validQ[x];
+        for (int x = wx0; x < wx1; ++x) largest[x] = std::min(kExpClamp, largest[x]);  // NaN: the clamp
+        for (int x = wx0; x < wx1; ++x) weight[x] = expNegative(largest[x]) * equal[x] * validQ[x];
       }
-      onRow(y, xa, xb);
+      onRow(y, wx0, wx1);
     }
   }
 
@@ -477,6 +517,7 @@ class BandFilter {
   const NlMeansSettings& s_;
   int y0_, y1_;
   bool keep_;
+  const RowSpans* spans_;
   std::vector<float> distance_, mask_;
   std::vector<double> columnDistance_;
   std::vector<float> columnMask_;
@@ -496,13 +537,14 @@ Planes jointNlMeans(const NlMeansInput& input, const NlMeansSettings& settings, 
   const size_t channels = static_cast<size_t>(prepared.channels);
   Planes out(w, h, prepared.channels);
   std::vector<uint8_t> unfilled(out.pixelCount(), 0);
+  const RowSpans spans = settings.validCentersOnly ? validSpans(prepared) : RowSpans{};
 
   tbb::parallel_for(tbb::blocked_range<int>(0, bandCount(h), 1), [&](const tbb::blocked_range<int>& bands) {
     for (int band = bands.begin(); band != bands.end(); ++band) {
       const int y0 = band * kBandRows, y1 = std::min(h, y0 + kBandRows);
       const size_t cells = static_cast<size_t>(y1 - y0) * W;
       std::vector<float> weightSum(cells, 0.0f), colorSum(channels * cells, 0.0f);
-      BandFilter filter(prepared, settings, y0, y1, false);
+      BandFilter filter(prepared, settings, y0, y1, false, settings.validCentersOnly ? &spans : nullptr);
       for (size_t t = 0; t < prepared.frames.size(); ++t) {
         const Prepared::Frame& frame = prepared.frames[t];
         if (!frame.active) continue;

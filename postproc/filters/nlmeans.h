@@ -76,6 +76,10 @@ struct NlMeansSettings {
   float kf = 0.6f;     // feature sensitivity
   float tau = 0.001f;  // tau^2 of the paper: floor of the feature normalization
   float alpha = 4.0f;  // variance cancellation strength (Rousselle et al. 2012)
+  // Only frame 0's valid pixels are wanted: the filter skips the rows and columns that hold
+  // none, and invalid pixels come out 0 instead of filled from their neighbours. A sparse
+  // frame (re-rendered pixels) then filters at the cost of what it holds.
+  bool validCentersOnly = false;
 };
 
 // One frame to filter and its (warped) neighbours. Index 0 is the frame being filtered.

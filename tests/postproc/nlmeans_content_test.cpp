@@ -98,6 +98,38 @@ TEST(NlMeansOnContent, AWantedAreaIsFilteredLikeTheWholeFrame) {
   EXPECT_NE(whole.channels[0][static_cast<size_t>(60) * kContentWidth + 80], 0.0f);
 }
 
+TEST(NlMeansOnContent, OnlyValidCentersAreFilteredLikeTheWholeFrame) {
+  std::mt19937 rng(11);
+  NlMeansInput input = sparseInput(20, 20, rng);
+  input.frames.resize(1);
+  // A sparse frame, as the composite's re-rendered pixels are: a diagonal band, a lone
+  // pixel far from it, and rows with none.
+  NlMeansFrame& frame = input.frames[0];
+  frame.valid.assign(static_cast<size_t>(kContentWidth) * kContentHeight, 0.0f);
+  for (int y = 18; y < 34; ++y)
+    for (int x = y; x < y + 4; ++x) frame.valid[static_cast<size_t>(y) * kContentWidth + x] = 1.0f;
+  frame.valid[static_cast<size_t>(50) * kContentWidth + 70] = 1.0f;
+  for (auto& channel : frame.color.channels)
+    for (float& v : channel) v += 0.5f;
+  const NlMeansSettings settings{.radius = 3, .patch = 2};
+  NlMeansSettings sparse = settings;
+  sparse.validCentersOnly = true;
+  const Planes whole = jointNlMeans(input, settings);
+  const Planes part = jointNlMeans(input, sparse);
+  size_t valid = 0;
+  for (size_t c = 0; c < whole.channels.size(); ++c)
+    for (size_t p = 0; p < whole.pixelCount(); ++p) {
+      if (frame.valid[p] > 0.0f) {
+        ++valid;
+        ASSERT_NEAR(part.channels[c][p], whole.channels[c][p], 1e-5f * std::abs(whole.channels[c][p]) + 1e-7f) << p;
+      } else {
+        ASSERT_EQ(part.channels[c][p], 0.0f) << p;  // jointNlMeans fills these from their neighbours
+      }
+    }
+  EXPECT_EQ(valid, 3u * 65u);
+  EXPECT_NE(whole.channels[0][static_cast<size_t>(18) * kContentWidth + 23], 0.0f);
+}
+
 TEST(NlMeansOnContent, BrokenPixelsAreContentAndCountedTheSame) {
   std::mt19937 rng(5);
   NlMeansInput input = sparseInput(30, 20, rng);
