@@ -115,6 +115,10 @@ std::vector<Command> addFarmProcessCommands(CLI::App& app) {
   s->add_option("--retry-backoff", scheduler->options.farm.retryBackoffSeconds, "first retry delay in seconds")
       ->check(CLI::Range(0.0, 3600.0))
       ->capture_default_str();
+  s->add_option("--lease-inputs", scheduler->options.farm.inlineLeaseInputs,
+                "a lease names at most this many input chunks; a task with more streams them to its worker")
+      ->check(CLI::Range(int64_t{0}, int64_t{1'000'000}))
+      ->capture_default_str();
   s->add_option("--max-tasks-per-shot", scheduler->options.limits.maxTasks, "a shot planning more tasks is refused")
       ->check(CLI::Range(int64_t{1}, int64_t{1'000'000'000}))
       ->capture_default_str();

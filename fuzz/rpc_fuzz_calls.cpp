@@ -42,8 +42,10 @@ enum Call : uint8_t {
   kRequeue,
   kListBlocklist,
   kClearBlocklist,
+  kLeaseInputs,
+  kReportFollowUps,
 };
-static_assert(kClearBlocklist + 1 == RpcCalls::kCalls);
+static_assert(kReportFollowUps + 1 == RpcCalls::kCalls);
 
 constexpr uint8_t kOutsider = RpcCalls::kOutsider;
 
@@ -261,6 +263,15 @@ void RpcCalls::run(uint8_t op, std::string_view bytes) {
     case kClearBlocklist:
       unary(op, kClient, clients_, &C::ClearBlocklist, parsed<farm::BlocklistRequest>(bytes));
       break;
+    case kLeaseInputs: {
+      const auto request = withAttempt(parsed<farm::LeaseInputsRequest>(bytes));
+      download<farm::LeaseInputsPart>(
+          op, kWorker, [&](auto* c) { return workerStub().LeaseInputs(c, request); }, kStream);
+      break;
+    }
+    case kReportFollowUps:
+      unary(op, kWorker, workers_, &W::ReportFollowUps, withAttempt(parsed<farm::FollowUpsRequest>(bytes)));
+      break;
   }
 }
 
@@ -382,6 +393,12 @@ void writeRpcSeeds(const std::filesystem::path& folder) {
   const std::vector<farm::ChunkPart> tile = chunkOf(std::string(1024, '\x7f'));
   farm::CompleteRequest withOutput = complete;
   *withOutput.mutable_output() = tile.front().ref();
+  farm::FollowUpsRequest followUps;
+  farm::TaskParams& followUp = *followUps.add_follow_ups();
+  followUp.set_role(farm::ROLE_RERENDER);
+  followUp.set_pixel_mask(std::string(64, '\1'));
+  followUp.mutable_window()->set_x1(8);
+  followUp.mutable_window()->set_y1(8);
   write("pt_shot", SeedInput()
                        .add(kMissingInputs, missing)
                        .stream(kPutInput, sceneChunk)
@@ -390,7 +407,9 @@ void writeRpcSeeds(const std::filesystem::path& folder) {
                        .add(kRegister, registration)
                        .add(kLeaseTask, farm::LeaseRequest())
                        .add(kGetChunk, get)
+                       .add(kLeaseInputs, farm::LeaseInputsRequest())
                        .stream(kPutChunk, tile)
+                       .add(kReportFollowUps, followUps)
                        .add(kCompleteTask, withOutput)
                        .add(kPauseShot, shot(0))
                        .add(kResumeShot, shot(0))

@@ -28,7 +28,7 @@ inline constexpr const char* kFuzzToken = "fuzz-token";
 
 class RpcCalls {
  public:
-  static constexpr int kCalls = 24;
+  static constexpr int kCalls = 26;
   static constexpr uint8_t kOutsider = 0x80;  // the call carries neither token nor session
 
   // `streamChannel` opens the in-process channel, the first time a stream is called.

@@ -13,20 +13,6 @@ namespace pathfarm::farm {
 
 namespace {
 
-constexpr const char* kStaleLease = "the lease is no longer current (expired, revoked or superseded)";
-
-ReportReply refused(const std::string& reason) {
-  ReportReply reply;
-  reply.set_reason(reason);
-  return reply;
-}
-
-ReportReply accepted() {
-  ReportReply reply;
-  reply.set_accepted(true);
-  return reply;
-}
-
 bool carriesEveryTag(const std::string& offered, const std::string& required) {
   size_t start = 1;
   while (start < required.size()) {
@@ -37,25 +23,7 @@ bool carriesEveryTag(const std::string& offered, const std::string& required) {
   return true;
 }
 
-std::string describeTask(int64_t taskId, TaskKind kind, const TaskParams& params) {
-  std::string text = "task " + std::to_string(taskId) + " (" + TaskKind_Name(kind);
-  if (kind != TASK_NOOP) text += ", frame " + std::to_string(params.frame());
-  if (params.has_window()) {
-    const PixelWindow& w = params.window();
-    text += ", pixels [" + std::to_string(w.x0()) + "," + std::to_string(w.x1()) + ")x[" + std::to_string(w.y0()) +
-            "," + std::to_string(w.y1()) + ")";
-  }
-  return text + ")";
-}
-
 }  // namespace
-
-struct FarmState::AttemptRow {
-  int64_t id, taskId, shotId, workerId;
-  TaskKind kind;
-  int failures, maxAttempts, lost;
-  TaskParams params;
-};
 
 FarmState::FarmState(const std::string& databaseFile, FarmSettings settings, double now)
     : db_(databaseFile), settings_(settings) {
@@ -185,16 +153,12 @@ std::optional<Lease> FarmState::lease(int64_t workerId, double now) {
         addEvent(lease.shot_id(), "started", now);
       }
     }
-    Statement& inputs = db_.query(
-        "SELECT t.output_sha, c.size, t.params, t.kind FROM task_deps d JOIN tasks t ON t.id = d.depends_on "
-        "JOIN chunks c ON c.sha256 = t.output_sha WHERE d.task_id = ?1 ORDER BY t.id");
-    inputs.bind(1, *taskId);
-    while (inputs.step()) {
-      ChunkRef* ref = lease.add_inputs();
-      ref->set_sha256(inputs.text(0));
-      ref->set_size(inputs.integer(1));
-      lease.add_input_params()->ParseFromString(inputs.blob(2));
-      lease.add_input_kinds(static_cast<TaskKind>(inputs.integer(3)));
+    // However many inputs a task has, no message is near gRPC's limit: above
+    // inlineLeaseInputs, the worker reads them in parts (leaseInputs).
+    if (inputCount(*taskId) > settings_.inlineLeaseInputs) {
+      lease.set_inputs_streamed(true);
+    } else {
+      appendInputs(*taskId, 0, settings_.inlineLeaseInputs, lease);
     }
     return lease;
   });
@@ -263,6 +227,7 @@ void FarmState::endAttempt(const AttemptRow& attempt, int state, const std::stri
       .bind(5, failureClass)
       .bind(6, attempt.id)
       .run();
+  dropStaleFollowUps();
 }
 
 ReportReply FarmState::complete(const CompleteRequest& request, double now) {
@@ -277,6 +242,7 @@ ReportReply FarmState::complete(const CompleteRequest& request, double now) {
       chunk.reset();
       if (!stored) return refused("the output chunk " + output.sha256() + " was not stored first");
     }
+    addFollowUps(*attempt, now);  // before the attempt ends, which drops what it staged
     endAttempt(*attempt, static_cast<int>(AttemptState::Done), "", now, request.log_tail());
     Statement& done =
         db_.query("UPDATE tasks SET state = ?1, attempt_id = NULL, output_sha = ?2, core_seconds = ?3 WHERE id = ?4");
@@ -301,7 +267,6 @@ ReportReply FarmState::complete(const CompleteRequest& request, double now) {
           .bind(3, value)
           .run();
     }
-    addFollowUps(*attempt, request.follow_ups(), now);
     db_.query("UPDATE tasks SET pending_deps = pending_deps - 1, state = CASE WHEN pending_deps = 1 AND state = ?1 "
               "THEN ?2 ELSE state END WHERE id IN (SELECT task_id FROM task_deps WHERE depends_on = ?3)")
         .bind(1, asInt(TaskState::Waiting))
@@ -461,34 +426,6 @@ bool FarmState::anyWorkerCanRun(int64_t shotId, double now) {
   return any;
 }
 
-void FarmState::addFollowUps(const AttemptRow& attempt, const google::protobuf::RepeatedPtrField<TaskParams>& followUps,
-                             double now) {
-  if (followUps.empty()) return;
-  // The composite tasks waiting for the reporting task wait for the follow-ups too; they
-  // cannot be ready yet, as the reporting task is not counted done until after this.
-  std::vector<int64_t> composites;
-  Statement& q = db_.query("SELECT t.id FROM task_deps d JOIN tasks t ON t.id = d.task_id "
-                           "WHERE d.depends_on = ?1 AND t.kind = ?2");
-  q.bind(1, attempt.taskId).bind(2, int64_t{TASK_COMPOSITE});
-  while (q.step()) composites.push_back(q.integer(0));
-  for (const TaskParams& params : followUps) {
-    const int64_t id = insertTask(attempt.shotId, TASK_RENDER_TILE, params, 0, attempt.maxAttempts, false);
-    db_.query("UPDATE tasks SET created_by = ?1 WHERE id = ?2").bind(1, attempt.taskId).bind(2, id).run();
-    for (const int64_t composite : composites) {
-      db_.query("INSERT INTO task_deps (task_id, depends_on) VALUES (?1, ?2)").bind(1, composite).bind(2, id).run();
-      db_.query("UPDATE tasks SET pending_deps = pending_deps + 1 WHERE id = ?1").bind(1, composite).run();
-    }
-  }
-  db_.query("UPDATE shots SET tasks_left = tasks_left + ?1 WHERE id = ?2")
-      .bind(1, static_cast<int64_t>(followUps.size()))
-      .bind(2, attempt.shotId)
-      .run();
-  addEvent(attempt.shotId,
-           describeTask(attempt.taskId, attempt.kind, attempt.params) + " asked for " +
-               std::to_string(followUps.size()) + " re-render tiles",
-           now);
-}
-
 void FarmState::countTaskDone(int64_t shotId, double now) {
   db_.query("UPDATE shots SET tasks_left = tasks_left - 1 WHERE id = ?1").bind(1, shotId).run();
   Statement& q = db_.query("SELECT tasks_left FROM shots WHERE id = ?1").bind(1, shotId);
@@ -513,6 +450,7 @@ void FarmState::endShot(int64_t shotId, ShotState state, const std::string& fail
       .bind(3, int64_t{kRunning})
       .bind(4, shotId)
       .run();
+  dropStaleFollowUps();
   db_.query("UPDATE tasks SET state = ?1, attempt_id = NULL WHERE shot_id = ?2 AND state = ?3")
       .bind(1, asInt(TaskState::Ready))
       .bind(2, shotId)

@@ -30,6 +30,10 @@ struct FarmSettings {
   // to the task's max_attempts; a task whose workers vanish this often may be what kills
   // them, and fails the shot.
   int maxLostWorkers = 10;
+  // A lease names at most this many inputs; a task with more (a composite waiting for the
+  // re-render tiles of a large frame) is leased with none, and the worker reads them in
+  // parts of at most kInputsPerPart (leaseInputs). Either way no message nears gRPC's limit.
+  int64_t inlineLeaseInputs = 1024;
   // A shot finished this long ago is deleted with its tasks, attempts and events, and so
   // are chunks nothing kept refers to and stored as long ago; 0 keeps everything.
   double retainSeconds = 0;
@@ -83,8 +87,23 @@ class FarmState {
   // the worker is not blocklisted for, by shot priority (high first), then shot age,
   // then task order; tasks in retry backoff wait.
   std::optional<Lease> lease(int64_t workerId, double now);
+  // A running attempt's inputs in task order, after the input the task `afterTaskId` made
+  // (0: from the first), at most kInputsPerPart of them; nothing for an attempt that is not
+  // running (farm_state_follow_ups.cpp).
+  struct InputsPart {
+    LeaseInputsPart part;
+    int64_t lastTaskId = 0;  // the `afterTaskId` of the next part; 0 when none was left
+  };
+  std::optional<InputsPart> leaseInputs(int64_t attemptId, int64_t afterTaskId);
+  static constexpr int64_t kInputsPerPart = 1024;
   HeartbeatReply heartbeat(int64_t attemptId, double progress, double now);
-  // Accepts the output, the task's figures and its follow-up render tiles.
+  // Render tiles a running attempt asks for (pixels its filter flagged), kept until it
+  // completes, when they join the shot, or ends otherwise, when they are dropped. A batch
+  // is refused whole for an attempt that is not running, a tile outside its frame or
+  // larger than the shot's tiles, or more tiles in all than one frame holds
+  // (farm_state_follow_ups.cpp).
+  ReportReply stageFollowUps(int64_t attemptId, const google::protobuf::RepeatedPtrField<TaskParams>& followUps);
+  // Accepts the output and the task's figures; its staged follow-up tiles join the shot.
   ReportReply complete(const CompleteRequest& request, double now);
   // `logTail`: what the worker logged while it ran the attempt (kept to kMaxLogTailBytes).
   // A worker fault runs the task again and counts toward the worker's blocklist; a
@@ -206,8 +225,16 @@ class FarmState {
   void retryLater(const AttemptRow& attempt, const char* counter, int count, double notBefore);
   int64_t insertTask(int64_t shotId, TaskKind kind, const TaskParams& params, size_t dependencies,
                      int64_t maxAttempts, bool output);
-  void addFollowUps(const AttemptRow& attempt, const google::protobuf::RepeatedPtrField<TaskParams>& followUps,
-                    double now);
+  // The attempt's staged follow-ups become render tiles of its shot, and every composite
+  // task waiting for the attempt's task waits for them too.
+  void addFollowUps(const AttemptRow& attempt, double now);
+  // Staged follow-ups of attempts no longer running are dropped.
+  void dropStaleFollowUps();
+  int64_t inputCount(int64_t taskId);
+  // Adds the task's inputs after `afterTaskId`, at most `limit`, to a Lease or a
+  // LeaseInputsPart; returns the last one's task id (0: none).
+  template <class Message>
+  int64_t appendInputs(int64_t taskId, int64_t afterTaskId, int64_t limit, Message& message);
   void countTaskDone(int64_t shotId, double now);
   bool anyWorkerCanRun(int64_t shotId, double now);
   void endShot(int64_t shotId, ShotState state, const std::string& failure, double now);

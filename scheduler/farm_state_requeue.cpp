@@ -87,6 +87,7 @@ ShotSummary FarmState::requeueLocked(int64_t shotId, const std::vector<int64_t>&
       .bind(2, now)
       .bind(3, int64_t{kRunning})
       .run();
+  dropStaleFollowUps();
   db_.execute(
       "DELETE FROM task_deps WHERE depends_on IN (SELECT id FROM tasks WHERE created_by IN (SELECT id FROM requeued));"
       "DELETE FROM tasks WHERE created_by IN (SELECT id FROM requeued);");

@@ -25,6 +25,9 @@ class WorkerServiceImpl final : public WorkerService::Service {
   grpc::Status Register(grpc::ServerContext*, const RegisterRequest*, RegisterReply*) override;
   grpc::Status LeaseTask(grpc::ServerContext*, const LeaseRequest*, LeaseReply*) override;
   grpc::Status Heartbeat(grpc::ServerContext*, const HeartbeatRequest*, HeartbeatReply*) override;
+  grpc::Status LeaseInputs(grpc::ServerContext*, const LeaseInputsRequest*,
+                           grpc::ServerWriter<LeaseInputsPart>*) override;
+  grpc::Status ReportFollowUps(grpc::ServerContext*, const FollowUpsRequest*, ReportReply*) override;
   grpc::Status CompleteTask(grpc::ServerContext*, const CompleteRequest*, ReportReply*) override;
   grpc::Status FailTask(grpc::ServerContext*, const FailRequest*, ReportReply*) override;
   grpc::Status PutChunk(grpc::ServerContext*, grpc::ServerReader<ChunkPart>*, PutChunkReply*) override;

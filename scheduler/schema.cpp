@@ -133,6 +133,16 @@ const std::vector<const char*>& migrations() {
       ALTER TABLE shots ADD COLUMN building INTEGER NOT NULL DEFAULT 0;
       CREATE INDEX tasks_by_creator ON tasks(created_by) WHERE created_by IS NOT NULL;
       )sql",
+      // 11: re-render tiles a running attempt asked for, in batches, until it completes
+      // (they become tasks) or ends otherwise (they are dropped).
+      R"sql(
+      CREATE TABLE follow_ups (
+        id INTEGER PRIMARY KEY,
+        attempt_id INTEGER NOT NULL REFERENCES attempts(id) ON DELETE CASCADE,
+        params BLOB NOT NULL               -- TaskParams of a render tile, serialized
+      );
+      CREATE INDEX follow_ups_by_attempt ON follow_ups(attempt_id);
+      )sql",
   };
   return list;
 }

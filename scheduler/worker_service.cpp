@@ -7,6 +7,11 @@
 #include "scheduler/service_guard.h"
 
 namespace pathfarm::farm {
+namespace {
+
+constexpr const char* kNoLongerLeased = "the attempt is no longer leased (expired, revoked or superseded)";
+
+}  // namespace
 
 template <class Body>
 grpc::Status WorkerServiceImpl::asWorker(grpc::ServerContext* context, Body&& body) {
@@ -78,6 +83,30 @@ grpc::Status WorkerServiceImpl::Heartbeat(grpc::ServerContext* context, const He
   return asWorker(context, [&](int64_t worker) {
     if (grpc::Status owner = checkAttemptOwner(request->attempt_id(), worker); !owner.ok()) return owner;
     *reply = c_.state.heartbeat(request->attempt_id(), request->progress(), farmClockSeconds());
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status WorkerServiceImpl::LeaseInputs(grpc::ServerContext* context, const LeaseInputsRequest* request,
+                                            grpc::ServerWriter<LeaseInputsPart>* writer) {
+  return asWorker(context, [&](int64_t worker) {
+    if (grpc::Status owner = checkAttemptOwner(request->attempt_id(), worker); !owner.ok()) return owner;
+    // A part per transaction: the database is not held while a slow reader takes them.
+    for (int64_t after = 0;;) {
+      const auto part = c_.state.leaseInputs(request->attempt_id(), after);
+      if (!part) return grpc::Status(grpc::StatusCode::FAILED_PRECONDITION, kNoLongerLeased);
+      if (part->lastTaskId == 0) return grpc::Status::OK;
+      if (!writer->Write(part->part)) return grpc::Status(grpc::StatusCode::CANCELLED, "the reader went away");
+      after = part->lastTaskId;
+    }
+  });
+}
+
+grpc::Status WorkerServiceImpl::ReportFollowUps(grpc::ServerContext* context, const FollowUpsRequest* request,
+                                                ReportReply* reply) {
+  return asWorker(context, [&](int64_t worker) {
+    if (grpc::Status owner = checkAttemptOwner(request->attempt_id(), worker); !owner.ok()) return owner;
+    *reply = c_.state.stageFollowUps(request->attempt_id(), request->follow_ups());
     return grpc::Status::OK;
   });
 }

@@ -79,6 +79,24 @@ grpc::Status SchedulerLink::heartbeat(int64_t attemptId, double progress, Heartb
   return stub_->Heartbeat(context(kCallSeconds).get(), request, &reply);
 }
 
+grpc::Status SchedulerLink::leaseInputs(Lease& lease) {
+  LeaseInputsRequest request;
+  request.set_attempt_id(lease.attempt_id());
+  const auto call = context(kTransferSeconds);
+  auto reader = stub_->LeaseInputs(call.get(), request);
+  LeaseInputsPart part;
+  while (reader->Read(&part)) {
+    for (ChunkRef& input : *part.mutable_inputs()) *lease.add_inputs() = std::move(input);
+    for (TaskParams& params : *part.mutable_input_params()) *lease.add_input_params() = std::move(params);
+    for (const int kind : part.input_kinds()) lease.add_input_kinds(static_cast<TaskKind>(kind));
+  }
+  return reader->Finish();
+}
+
+grpc::Status SchedulerLink::reportFollowUps(const FollowUpsRequest& request, ReportReply& reply) {
+  return stub_->ReportFollowUps(context(kCallSeconds).get(), request, &reply);
+}
+
 grpc::Status SchedulerLink::complete(const CompleteRequest& request, ReportReply& reply) {
   return stub_->CompleteTask(context(kCallSeconds).get(), request, &reply);
 }

@@ -32,6 +32,9 @@ class SchedulerLink {
   // for them to time out.
   void stopLeasing();
   grpc::Status heartbeat(int64_t attemptId, double progress, HeartbeatReply& reply);
+  // The inputs of a lease leased without them (Lease::inputs_streamed), appended to it.
+  grpc::Status leaseInputs(Lease& lease);
+  grpc::Status reportFollowUps(const FollowUpsRequest& request, ReportReply& reply);
   grpc::Status complete(const CompleteRequest& request, ReportReply& reply);
   grpc::Status fail(const FailRequest& request, ReportReply& reply);
   grpc::Status putChunk(const std::string& bytes, ChunkRef& stored);

@@ -29,6 +29,10 @@ constexpr auto kDeliveryGrace = std::chrono::seconds(60);
 // How often an output the scheduler could not take (DATA_LOSS: damaged on the way, or its
 // disk failing) is sent before the attempt fails with the scheduler's reason.
 constexpr int kUploadTries = 5;
+// Follow-up tiles go to the scheduler in batches of at most this many, or this many bytes
+// (a tile's pixel mask is a byte per pixel), far below gRPC's message limit.
+constexpr int kFollowUpsPerBatch = 1024;
+constexpr size_t kFollowUpBatchBytes = 1 << 20;
 
 // The scheduler is out of reach: waiting is right, since it is nobody's fault.
 bool isUnreachable(const grpc::Status& status) {
@@ -127,6 +131,22 @@ class Slot {
     }
   }
 
+  // The lease with its inputs: those it names or, leased without them
+  // (Lease::inputs_streamed), those the scheduler streams. An unreachable scheduler is
+  // waited for until the lease is lost.
+  Lease withInputs(const Lease& lease, const std::atomic<bool>& abandon) {
+    if (!lease.inputs_streamed()) return lease;
+    Backoff backoff;
+    for (;;) {
+      Lease full = lease;
+      const grpc::Status status = link_.leaseInputs(full);
+      if (status.ok()) return full;
+      if (abandon || status.error_code() == grpc::StatusCode::FAILED_PRECONDITION) throw TaskAbandoned();
+      if (!isTransient(status)) throw TransferFailed("cannot read the task's inputs: " + status.error_message());
+      backoff.sleep();
+    }
+  }
+
   void execute(const Lease& lease, const std::atomic<bool>& stop) {
     TaskLog log;  // what this slot and the task's thread say about the task, for the scheduler
     const TaskLog::Capture onSlot(log);
@@ -141,7 +161,8 @@ class Slot {
       output = whileHeartbeating(lease, progress, abandon, [&] {
         const TaskLog::Capture onRunner(log);
         return runner_.run(
-            lease, [&](const ChunkRef& ref) { return fetch(ref, abandon, inputs); }, progress, abandon);
+            withInputs(lease, abandon), [&](const ChunkRef& ref) { return fetch(ref, abandon, inputs); }, progress,
+            abandon);
       });
     } catch (const TaskAbandoned&) {
       spdlog::warn("task {}: lease lost, result dropped", lease.task_id());
@@ -199,7 +220,6 @@ class Slot {
     CompleteRequest request;
     request.set_attempt_id(lease.attempt_id());
     request.set_core_seconds(coreSeconds);
-    for (const TaskParams& params : output.followUps) *request.add_follow_ups() = params;
     for (const auto& [name, value] : output.metrics) (*request.mutable_metrics())[name] = value;
     ChunkRef& stored = *request.mutable_output();
     if (lease.kind() != TASK_NOOP) {
@@ -220,9 +240,37 @@ class Slot {
       spdlog::info("task {}: output {} uploaded ({:.2f} MB)", lease.task_id(), stored.sha256().substr(0, 12),
                    1e-6 * static_cast<double>(output.chunk.size()));
     }
+    if (!sendFollowUps(lease, output.followUps, log, stop)) return;
     request.set_log_tail(log.tail());
     if (report([&](ReportReply& r) { return link_.complete(request, r); }, stop))
       spdlog::info("task {}: done", lease.task_id());
+  }
+
+  // Sends the task's follow-up tiles in bounded batches, renewing the lease meanwhile.
+  // Tiles the scheduler refuses fail the attempt; returns whether all were taken.
+  bool sendFollowUps(const Lease& lease, const std::vector<TaskParams>& followUps, const TaskLog& log,
+                     const std::atomic<bool>& stop) {
+    const std::atomic<double> done{1.0};
+    std::atomic<bool> abandon{false};
+    ReportReply refusal;
+    const bool sent = whileHeartbeating(lease, done, abandon, [&] {
+      FollowUpsRequest batch;
+      batch.set_attempt_id(lease.attempt_id());
+      size_t bytes = 0;
+      for (size_t i = 0; i < followUps.size(); ++i) {
+        *batch.add_follow_ups() = followUps[i];
+        bytes += followUps[i].ByteSizeLong();
+        const bool last = i + 1 == followUps.size();
+        if (!last && batch.follow_ups_size() < kFollowUpsPerBatch && bytes < kFollowUpBatchBytes) continue;
+        if (!report([&](ReportReply& r) { return link_.reportFollowUps(batch, r); }, stop, &refusal)) return false;
+        batch.clear_follow_ups();
+        bytes = 0;
+      }
+      return true;
+    });
+    if (!sent && !refusal.reason().empty())
+      reportFailure(lease, FAILURE_WORKER_FAULT, "its follow-up tiles were refused: " + refusal.reason(), log, stop);
+    return sent;
   }
 
   void reportFailure(const Lease& lease, FailureClass kind, const std::string& reason, const TaskLog& log,
@@ -235,9 +283,10 @@ class Slot {
     report([&](ReportReply& r) { return link_.fail(request, r); }, stop);
   }
 
-  // Sends a completion or failure until the scheduler answers; true if it was accepted.
+  // Sends a report until the scheduler answers; true if it was accepted. The answer goes
+  // to `answer` if given.
   template <class Call>
-  bool report(Call call, const std::atomic<bool>& stop) {
+  bool report(Call call, const std::atomic<bool>& stop, ReportReply* answer = nullptr) {
     Backoff backoff;
     const auto since = Clock::now();
     for (;;) {
@@ -245,6 +294,7 @@ class Slot {
       const grpc::Status status = call(reply);
       if (status.ok()) {
         if (!reply.accepted()) spdlog::warn("the scheduler refused the report: {}", reply.reason());
+        if (answer) *answer = reply;
         return reply.accepted();
       }
       if (!isTransient(status) || (stop && Clock::now() - since > kDeliveryGrace)) {

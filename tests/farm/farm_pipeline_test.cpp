@@ -1,6 +1,7 @@
 // The DUI pipeline on a multi-process farm (issue: the shot planner and the DUI pipeline):
 // a small Cornell animation filtered end to end, judged against renders made apart from
-// the farm, and the same shot with a worker killed midway, which must not change a byte.
+// the farm, and the same shot with a worker killed midway and its inputs streamed, which
+// must not change a byte.
 #include <map>
 
 #include "farm/farm_fixture.h"
@@ -57,9 +58,11 @@ TEST_F(FarmTest, DuiShotIsFilteredEndToEndAndAKilledWorkerChangesNoByte) {
   const double keyframeBudget = meanRelMse(renderPt(kSpp / 4, "pt-keyframe-budget"), reference);
   EXPECT_LT(dui, keyframeBudget) << "dui relMSE " << dui << ", pt at " << kSpp / 4 << " spp " << keyframeBudget;
 
-  // The same shot on a farm whose first worker is killed while it holds a task.
+  // The same shot on a farm whose first worker is killed while it holds a task, and whose
+  // leases name at most two inputs: a task with more reads them in parts (LeaseInputs).
   SchedulerConfig config;
   config.leaseSeconds = 1.5;
+  config.extraArguments = {"--lease-inputs", "2"};
   startScheduler(config);
   const CommandResult submitted = runPathfarm({"submit", shot.string(), "--scheduler", address()});
   ASSERT_EQ(submitted.status, 0) << submitted.output;
@@ -82,6 +85,9 @@ TEST_F(FarmTest, DuiShotIsFilteredEndToEndAndAKilledWorkerChangesNoByte) {
   const farm::ShotSummary summary = waitForShot(id, 120s);
   ASSERT_EQ(summary.state(), farm::SHOT_DONE) << describe(summary);
   EXPECT_GT(db.integer("SELECT COUNT(*) FROM attempts WHERE state = 3"), 0) << "no lease expired: nothing was lost";
+  EXPECT_GT(db.integer("SELECT COUNT(*) FROM (SELECT task_id FROM task_deps GROUP BY task_id HAVING COUNT(*) > 2)"), 0)
+      << "no task had more inputs than a lease names";
+  EXPECT_GT(db.integer("SELECT COUNT(*) FROM tasks WHERE created_by IS NOT NULL"), 0) << "no follow-up tile was asked for";
   const fs::path disturbed = fetchFrames(id, "disturbed");
   for (int64_t frame = 0; frame <= 4; ++frame) {
     const std::string name = farm::frameFileName(frame);

@@ -44,6 +44,33 @@ class FarmStateTest : public ::testing::Test {
     spec.set_max_attempts(maxAttempts);
     return state_->submit(spec, planShot(spec), now_);
   }
+  // The frames of filteredSpec() are 16x8 in tiles of 8: a re-render of the tile at (x0, y0).
+  static ShotSpec filteredSpec() {
+    ShotSpec spec;
+    spec.set_name("filtered");
+    spec.set_pipeline("di");
+    spec.set_width(16);
+    spec.set_height(8);
+    spec.set_tile(8);
+    spec.set_spp(4);
+    return spec;
+  }
+  // An interpolation and the composite waiting for it, on filteredSpec()'s frames.
+  int64_t submitFiltered() {
+    const std::vector<PlannedTask> plan = {{TASK_INTERPOLATE, {}, {}}, {TASK_COMPOSITE, {}, {0}, true}};
+    return state_->submit(filteredSpec(), plan, now_);
+  }
+  static TaskParams rerenderTile(int x0, int y0) {
+    TaskParams tile;
+    tile.set_role(ROLE_RERENDER);
+    tile.set_spp(4);
+    PixelWindow* w = tile.mutable_window();
+    w->set_x0(x0);
+    w->set_y0(y0);
+    w->set_x1(x0 + 8);
+    w->set_y1(y0 + 8);
+    return tile;
+  }
   ChunkRef storedChunk(const std::string& name) {
     ChunkRef ref;
     ref.set_sha256(std::string(64 - name.size(), '0') + name);
@@ -53,10 +80,14 @@ class FarmStateTest : public ::testing::Test {
   }
   ReportReply complete(int64_t attemptId, const ChunkRef& output, double now,
                        const std::vector<TaskParams>& followUps = {}) {
+    // As a worker does: the follow-ups staged first, then the completion.
+    if (!followUps.empty()) {
+      google::protobuf::RepeatedPtrField<TaskParams> batch(followUps.begin(), followUps.end());
+      if (const ReportReply staged = state_->stageFollowUps(attemptId, batch); !staged.accepted()) return staged;
+    }
     CompleteRequest request;
     request.set_attempt_id(attemptId);
     *request.mutable_output() = output;
-    for (const TaskParams& params : followUps) *request.add_follow_ups() = params;
     return state_->complete(request, now);
   }
   Lease leaseFor(int64_t worker) {

@@ -80,16 +80,9 @@ TEST_F(RequeueTest, ARunningAttemptIsRevoked) {
 }
 
 TEST_F(RequeueTest, FollowUpTilesAreAskedForAfresh) {
-  ShotSpec spec;
-  spec.set_name("filtered");
-  spec.set_pipeline("di");
-  const std::vector<PlannedTask> plan = {{TASK_INTERPOLATE, {}, {}}, {TASK_COMPOSITE, {}, {0}, true}};
-  const int64_t shot = state_->submit(spec, plan, now_);
+  const int64_t shot = submitFiltered();
   const int64_t worker = state_->registerWorker("w", 1, now_);
-  std::vector<TaskParams> tiles(2);
-  tiles[0].set_role(ROLE_RERENDER);
-  tiles[1].set_role(ROLE_RERENDER);
-  tiles[1].mutable_window()->set_x0(8);
+  const std::vector<TaskParams> tiles = {rerenderTile(0, 0), rerenderTile(8, 0)};
   const Lease interpolate = leaseFor(worker);
   ASSERT_TRUE(complete(interpolate.attempt_id(), storedChunk("i"), now_, tiles).accepted());
   runEverything(worker);

@@ -372,19 +372,11 @@ TEST_F(FarmStateTest, RestartKeepsFinishedWorkAndGivesRunningLeasesGrace) {
 }
 
 TEST_F(FarmStateTest, FollowUpTilesJoinTheShotAndTheCompositeWaitsForThem) {
-  ShotSpec spec;
-  spec.set_name("filtered");
-  spec.set_pipeline("di");
-  std::vector<PlannedTask> plan = {{TASK_INTERPOLATE, {}, {}}, {TASK_COMPOSITE, {}, {0}, true}};
-  const int64_t shot = state_->submit(spec, plan, now_);
+  const int64_t shot = submitFiltered();
   const int64_t worker = state_->registerWorker("w", 1, now_);
   const Lease interpolate = leaseFor(worker);
   ASSERT_EQ(interpolate.kind(), TASK_INTERPOLATE);
-  std::vector<TaskParams> tiles(2);
-  tiles[0].set_role(ROLE_RERENDER);
-  tiles[0].mutable_window()->set_x1(8);
-  tiles[1].set_role(ROLE_RERENDER);
-  tiles[1].mutable_window()->set_x0(8);
+  const std::vector<TaskParams> tiles = {rerenderTile(0, 0), rerenderTile(8, 0)};
   ASSERT_TRUE(complete(interpolate.attempt_id(), storedChunk("i"), now_, tiles).accepted());
   EXPECT_EQ(state_->summary(shot, now_).tasks_total(), 4);
 
