@@ -11,12 +11,14 @@
 #include <OpenEXR/ImfStringAttribute.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 namespace pathfarm {
 
@@ -192,6 +194,28 @@ void refuseImplausibleSize(const HeaderSummary& header, size_t bytes) {
 
 }  // namespace
 
+namespace {
+
+// Points `buffer` at `planes` (one per channel of `header`, in its order) holding rows
+// firstRow, firstRow + 1, ... of the data window, `width` floats each. OpenEXR addresses
+// slices by absolute pixel coordinates: the base pointer is shifted so the window's
+// column min.x of row firstRow lands on the plane's first element.
+Imf::FrameBuffer frameBufferOf(const Imf::Header& header, std::vector<float*>& planes, int firstRow) {
+  const Imath::Box2i window = header.dataWindow();
+  const size_t rowStride = sizeof(float) * static_cast<size_t>(window.max.x - window.min.x + 1);
+  Imf::FrameBuffer buffer;
+  size_t c = 0;
+  for (auto it = header.channels().begin(); it != header.channels().end(); ++it, ++c) {
+    char* base = reinterpret_cast<char*>(planes[c]) -
+                 static_cast<ptrdiff_t>(window.min.x) * static_cast<ptrdiff_t>(sizeof(float)) -
+                 static_cast<ptrdiff_t>(firstRow) * static_cast<ptrdiff_t>(rowStride);
+    buffer.insert(it.name(), Imf::Slice(Imf::FLOAT, base, sizeof(float), rowStride));
+  }
+  return buffer;
+}
+
+}  // namespace
+
 FrameImage decodeExr(const std::string& bytes, const std::string& label) {
   try {
     refuseImplausibleSize(readHeaders(bytes), bytes.size());
@@ -199,27 +223,52 @@ FrameImage decodeExr(const std::string& bytes, const std::string& label) {
     stream.str(bytes);
     Imf::InputFile in(stream);
     const Imath::Box2i window = in.header().dataWindow();
-    const int width = window.max.x - window.min.x + 1;
-    const int height = window.max.y - window.min.y + 1;
-    FrameImage frame(width, height);
-    Imf::FrameBuffer buffer;
-    const size_t rowStride = sizeof(float) * static_cast<size_t>(width);
-    for (auto it = in.header().channels().begin(); it != in.header().channels().end(); ++it) {
-      std::vector<float>& plane = frame.addChannel(it.name());
-      // OpenEXR addresses slices by absolute pixel coordinates: shift the base pointer so
-      // the data window's corner lands on the plane's first element.
-      char* base = reinterpret_cast<char*>(plane.data()) -
-                   static_cast<ptrdiff_t>(window.min.x) * static_cast<ptrdiff_t>(sizeof(float)) -
-                   static_cast<ptrdiff_t>(window.min.y) * static_cast<ptrdiff_t>(rowStride);
-      buffer.insert(it.name(), Imf::Slice(Imf::FLOAT, base, sizeof(float), rowStride));
-    }
+    FrameImage frame(window.max.x - window.min.x + 1, window.max.y - window.min.y + 1);
+    std::vector<float*> planes;
+    for (auto it = in.header().channels().begin(); it != in.header().channels().end(); ++it)
+      planes.push_back(frame.addChannel(it.name()).data());
     for (auto it = in.header().begin(); it != in.header().end(); ++it) {
       if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
         frame.attributes()[it.name()] = s->value();
     }
-    in.setFrameBuffer(buffer);
+    in.setFrameBuffer(frameBufferOf(in.header(), planes, window.min.y));
     in.readPixels(window.min.y, window.max.y);
     return frame;
+  } catch (const std::exception& e) {
+    throw ExrError(label + ": cannot read EXR: " + e.what());
+  }
+}
+
+ExrScan scanExr(const std::string& bytes, const std::string& label, int rowsPerStrip) {
+  try {
+    refuseImplausibleSize(readHeaders(bytes), bytes.size());
+    Imf::StdISStream stream;
+    stream.str(bytes);
+    Imf::InputFile in(stream);
+    const Imath::Box2i window = in.header().dataWindow();
+    ExrScan scan{window.max.x - window.min.x + 1, window.max.y - window.min.y + 1, {}};
+    std::vector<std::string> names;
+    for (auto it = in.header().channels().begin(); it != in.header().channels().end(); ++it) names.emplace_back(it.name());
+    const int rows = std::clamp(rowsPerStrip, 1, scan.height);
+    std::vector<std::vector<float>> strips(names.size(), std::vector<float>(static_cast<size_t>(scan.width) * rows));
+    std::vector<float*> planes;
+    for (std::vector<float>& strip : strips) planes.push_back(strip.data());
+    for (int y0 = window.min.y; y0 <= window.max.y && scan.firstNonFinite.empty(); y0 += rows) {
+      const int y1 = std::min(window.max.y, y0 + rows - 1);
+      in.setFrameBuffer(frameBufferOf(in.header(), planes, y0));
+      in.readPixels(y0, y1);
+      const size_t count = static_cast<size_t>(scan.width) * static_cast<size_t>(y1 - y0 + 1);
+      for (size_t c = 0; c < names.size() && scan.firstNonFinite.empty(); ++c) {
+        const auto bad = std::find_if(strips[c].begin(), strips[c].begin() + static_cast<ptrdiff_t>(count),
+                                      [](float v) { return !std::isfinite(v); });
+        if (bad == strips[c].begin() + static_cast<ptrdiff_t>(count)) continue;
+        const auto p = static_cast<size_t>(bad - strips[c].begin());
+        const auto w = static_cast<size_t>(scan.width);
+        scan.firstNonFinite = "channel " + names[c] + " at pixel (" + std::to_string(p % w) + ", " +
+                              std::to_string(static_cast<size_t>(y0 - window.min.y) + p / w) + ")";
+      }
+    }
+    return scan;
   } catch (const std::exception& e) {
     throw ExrError(label + ": cannot read EXR: " + e.what());
   }

@@ -13,22 +13,23 @@ std::string sizeText(int width, int height) { return std::to_string(width) + "x"
 
 std::string refusalOfOutput(const std::string& bytes, TaskKind kind, const TaskParams& params, const ShotSpec& spec) {
   if (kind == TASK_NOOP || kind == TASK_EVALUATE) return {};
-  FrameImage image;
+  // A strip of rows at a time: a large frame's pixels are never all in memory here.
+  ExrScan image;
   try {
-    image = decodeExr(bytes, "the output");
+    image = scanExr(bytes, "the output");
   } catch (const std::exception& e) {
     return e.what();
   }
-  const std::string size = sizeText(image.width(), image.height());
+  const std::string size = sizeText(image.width, image.height);
   if (kind == TASK_RENDER_TILE || (kind == TASK_ASSEMBLE_FRAME && params.has_window())) {
     const auto& window = params.window();
     const int width = window.x1() - window.x0(), height = window.y1() - window.y0();
-    if (image.width() != width || image.height() != height)
+    if (image.width != width || image.height != height)
       return "the tile is " + size + ", its window " + sizeText(width, height);
-  } else if (image.width() > spec.width() || image.height() > spec.height()) {
+  } else if (image.width > spec.width() || image.height > spec.height()) {
     return "the image is " + size + ", larger than the shot's " + sizeText(spec.width(), spec.height()) + " frame";
   }
-  if (const std::string bad = image.firstNonFinite(); !bad.empty()) return "a non-finite value in " + bad;
+  if (!image.firstNonFinite.empty()) return "a non-finite value in " + image.firstNonFinite;
   return {};
 }
 

@@ -113,6 +113,27 @@ TEST(ExrIo, AChunkClaimingMorePixelsThanItsBytesCanHoldIsRefusedBeforeDecoding) 
   }
 }
 
+TEST(ExrIo, AScanInStripsFindsTheSizeAndTheFirstNonFiniteValueThatDecodingWholeFinds) {
+  FrameImage frame = sampleFrame();
+  frame.channel("depth.Z")[5] = 0.0f;
+  const std::string finite = encodeExr(frame, ExrCompression::Fast);
+  const ExrScan clean = scanExr(finite, "chunk", 4);
+  EXPECT_EQ(clean.width, 37);
+  EXPECT_EQ(clean.height, 23);
+  EXPECT_EQ(clean.firstNonFinite, "");
+  // A NaN in the last row, in a strip of its own (23 rows in strips of 4, 5 and 1), then
+  // an infinity in an earlier strip of a later channel: the first row wins.
+  frame.channel("reflection.normal.Z")[22 * 37 + 36] = std::numeric_limits<float>::quiet_NaN();
+  for (const int rows : {1, 4, 5, 23, 100}) {
+    const ExrScan scan = scanExr(encodeExr(frame), "chunk", rows);
+    EXPECT_EQ(scan.firstNonFinite, "channel reflection.normal.Z at pixel (36, 22)") << rows << " rows a strip";
+    EXPECT_EQ(scan.firstNonFinite, decodeExr(encodeExr(frame), "chunk").firstNonFinite());
+  }
+  frame.channel("transmission.motion.X")[3 * 37 + 2] = std::numeric_limits<float>::infinity();
+  EXPECT_EQ(scanExr(encodeExr(frame), "chunk", 4).firstNonFinite, "channel transmission.motion.X at pixel (2, 3)");
+  EXPECT_THROW(scanExr(finite.substr(0, finite.size() / 2), "chunk", 4), ExrError);
+}
+
 // Also found by the fuzzer: OpenEXR allocates what a header attribute claims before it
 // reads it, 1.6 GB for a damaged size; and it reads a channel list to its end whatever
 // size it declares, so the attributes after it were read from the wrong place.
