@@ -192,10 +192,6 @@ void refuseImplausibleSize(const HeaderSummary& header, size_t bytes) {
                             " times)");
 }
 
-}  // namespace
-
-namespace {
-
 // Points `buffer` at `planes` (one per channel of `header`, in its order) holding rows
 // firstRow, firstRow + 1, ... of the data window, `width` floats each. OpenEXR addresses
 // slices by absolute pixel coordinates: the base pointer is shifted so the window's
@@ -214,14 +210,25 @@ Imf::FrameBuffer frameBufferOf(const Imf::Header& header, std::vector<float*>& p
   return buffer;
 }
 
-}  // namespace
-
-FrameImage decodeExr(const std::string& bytes, const std::string& label) {
+// Runs `read` on an OpenEXR reader of `bytes` once their headers passed readHeaders'
+// checks; any error becomes an ExrError naming `label`.
+template <class Read>
+auto readChecked(const std::string& bytes, const std::string& label, Read read) {
   try {
     refuseImplausibleSize(readHeaders(bytes), bytes.size());
     Imf::StdISStream stream;
     stream.str(bytes);
     Imf::InputFile in(stream);
+    return read(in);
+  } catch (const std::exception& e) {
+    throw ExrError(label + ": cannot read EXR: " + e.what());
+  }
+}
+
+}  // namespace
+
+FrameImage decodeExr(const std::string& bytes, const std::string& label) {
+  return readChecked(bytes, label, [](Imf::InputFile& in) {
     const Imath::Box2i window = in.header().dataWindow();
     FrameImage frame(window.max.x - window.min.x + 1, window.max.y - window.min.y + 1);
     std::vector<float*> planes;
@@ -234,17 +241,11 @@ FrameImage decodeExr(const std::string& bytes, const std::string& label) {
     in.setFrameBuffer(frameBufferOf(in.header(), planes, window.min.y));
     in.readPixels(window.min.y, window.max.y);
     return frame;
-  } catch (const std::exception& e) {
-    throw ExrError(label + ": cannot read EXR: " + e.what());
-  }
+  });
 }
 
 ExrScan scanExr(const std::string& bytes, const std::string& label, int rowsPerStrip) {
-  try {
-    refuseImplausibleSize(readHeaders(bytes), bytes.size());
-    Imf::StdISStream stream;
-    stream.str(bytes);
-    Imf::InputFile in(stream);
+  return readChecked(bytes, label, [&](Imf::InputFile& in) {
     const Imath::Box2i window = in.header().dataWindow();
     ExrScan scan{window.max.x - window.min.x + 1, window.max.y - window.min.y + 1, {}};
     std::vector<std::string> names;
@@ -257,11 +258,11 @@ ExrScan scanExr(const std::string& bytes, const std::string& label, int rowsPerS
       const int y1 = std::min(window.max.y, y0 + rows - 1);
       in.setFrameBuffer(frameBufferOf(in.header(), planes, y0));
       in.readPixels(y0, y1);
-      const size_t count = static_cast<size_t>(scan.width) * static_cast<size_t>(y1 - y0 + 1);
+      const auto count = static_cast<ptrdiff_t>(scan.width) * (y1 - y0 + 1);
       for (size_t c = 0; c < names.size() && scan.firstNonFinite.empty(); ++c) {
-        const auto bad = std::find_if(strips[c].begin(), strips[c].begin() + static_cast<ptrdiff_t>(count),
-                                      [](float v) { return !std::isfinite(v); });
-        if (bad == strips[c].begin() + static_cast<ptrdiff_t>(count)) continue;
+        const auto end = strips[c].begin() + count;
+        const auto bad = std::find_if(strips[c].begin(), end, [](float v) { return !std::isfinite(v); });
+        if (bad == end) continue;
         const auto p = static_cast<size_t>(bad - strips[c].begin());
         const auto w = static_cast<size_t>(scan.width);
         scan.firstNonFinite = "channel " + names[c] + " at pixel (" + std::to_string(p % w) + ", " +
@@ -269,9 +270,7 @@ ExrScan scanExr(const std::string& bytes, const std::string& label, int rowsPerS
       }
     }
     return scan;
-  } catch (const std::exception& e) {
-    throw ExrError(label + ": cannot read EXR: " + e.what());
-  }
+  });
 }
 
 void writeExr(const std::filesystem::path& file, const FrameImage& frame) {
