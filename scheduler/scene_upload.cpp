@@ -20,7 +20,9 @@ std::string readWhole(const fs::path& file) {
   std::error_code error;
   const auto size = fs::file_size(file, error);
   if (error) throw SceneError(file.string() + ": cannot read the scene file (" + error.message() + ")");
-  if (size > kMaxChunkBytes) throw SceneError(file.string() + ": larger than the farm's 2 GiB limit per file");
+  if (size > kMaxChunkBytes)
+    throw SceneError(file.string() + ": larger than the farm's " + std::to_string(kMaxChunkBytes >> 30) +
+                     " GiB limit per file");
   std::ifstream in(file, std::ios::binary);
   std::ostringstream bytes;
   bytes << in.rdbuf();

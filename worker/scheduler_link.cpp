@@ -98,7 +98,8 @@ grpc::Status SchedulerLink::reportFollowUps(const FollowUpsRequest& request, Rep
 }
 
 grpc::Status SchedulerLink::complete(const CompleteRequest& request, ReportReply& reply) {
-  return stub_->CompleteTask(context(kCallSeconds).get(), request, &reply);
+  // The scheduler reads the whole output before it answers: a large frame's chunk.
+  return stub_->CompleteTask(context(kTransferSeconds).get(), request, &reply);
 }
 
 grpc::Status SchedulerLink::fail(const FailRequest& request, ReportReply& reply) {

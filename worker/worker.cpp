@@ -242,7 +242,12 @@ class Slot {
     }
     if (!sendFollowUps(lease, output.followUps, log, stop)) return;
     request.set_log_tail(log.tail());
-    if (report([&](ReportReply& r) { return link_.complete(request, r); }, stop))
+    // The scheduler checks the output before it answers: for a large frame that takes
+    // longer than a lease, so the lease is renewed until the answer comes.
+    const std::atomic<double> delivered{1.0};
+    std::atomic<bool> lost{false};
+    if (whileHeartbeating(lease, delivered, lost,
+                          [&] { return report([&](ReportReply& r) { return link_.complete(request, r); }, stop); }))
       spdlog::info("task {}: done", lease.task_id());
   }
 

@@ -12,8 +12,9 @@ namespace pathfarm::farm {
 
 // The largest gRPC message either side accepts; chunk parts are 1 MiB.
 inline constexpr int kMaxMessageBytes = 8 << 20;
-// The largest chunk (a whole frame's EXR) accepted.
-inline constexpr size_t kMaxChunkBytes = size_t{2} << 30;
+// The largest chunk (a whole frame's EXR) accepted: a 16384x16384 frame of plain pt (six
+// float channels, 6.4 GB before compression) comes to about 2.8 GB.
+inline constexpr size_t kMaxChunkBytes = size_t{8} << 30;
 
 // A channel to `address`, over TLS when `tls` names a CA (proto/wire/tls.h).
 std::shared_ptr<grpc::Channel> makeChannel(const std::string& address, const ClientTls& tls = {});
