@@ -131,6 +131,13 @@ TEST_F(FarmTest, CorruptUploadsAndLateCompletionsAreRefused) {
   blame.set_reason("blame the silent worker");
   EXPECT_EQ(intruder.fail(blame, intruderFailure).error_code(),
             grpc::StatusCode::PERMISSION_DENIED);
+  farm::FollowUpsRequest planted;
+  planted.set_attempt_id(attempt);
+  planted.add_follow_ups()->set_role(farm::ROLE_RERENDER);
+  farm::ReportReply plantedReply;
+  EXPECT_EQ(intruder.reportFollowUps(planted, plantedReply).error_code(), grpc::StatusCode::PERMISSION_DENIED);
+  farm::Lease peek = leased.lease();
+  EXPECT_EQ(intruder.leaseInputs(peek).error_code(), grpc::StatusCode::PERMISSION_DENIED);
   EXPECT_EQ(db.integer(attemptState), 0) << "the intruder's failure report was taken";
   EXPECT_EQ(db.integer("SELECT COUNT(*) FROM worker_failures"), 0);
 
@@ -159,6 +166,11 @@ TEST_F(FarmTest, CorruptUploadsAndLateCompletionsAreRefused) {
   late.set_reason("too late");
   ASSERT_TRUE(link.fail(late, failure).ok());
   EXPECT_FALSE(failure.accepted());
+  farm::ReportReply lateTiles;
+  ASSERT_TRUE(link.reportFollowUps(planted, lateTiles).ok());
+  EXPECT_FALSE(lateTiles.accepted());
+  EXPECT_EQ(db.integer("SELECT COUNT(*) FROM follow_ups"), 0);
+  EXPECT_EQ(link.leaseInputs(peek).error_code(), grpc::StatusCode::FAILED_PRECONDITION);
   EXPECT_EQ(db.integer(attemptState), 3);
   EXPECT_EQ(db.integer("SELECT state FROM tasks WHERE id = " + std::to_string(task)), 1) << "task back to ready";
   EXPECT_EQ(db.integer("SELECT COUNT(*) FROM tasks WHERE output_sha = '" + bogusRef.sha256() + "'"), 0);
