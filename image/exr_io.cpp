@@ -59,6 +59,9 @@ namespace {
 constexpr uint64_t kMaxExpansion = 4096;
 constexpr uint64_t kMaxDwaExpansion = 64 * kMaxExpansion;
 constexpr int kDwaaCompression = 8, kDwabCompression = 9;  // OpenEXR's file format numbers
+// scanExrFile walks at most this much of a file's start for its headers: a frame's
+// headers take kilobytes.
+constexpr size_t kMaxScannedHeaderBytes = size_t{16} << 20;
 
 // What decodeExr needs to know of the first header before OpenEXR reads it.
 struct HeaderSummary {
@@ -210,67 +213,81 @@ Imf::FrameBuffer frameBufferOf(const Imf::Header& header, std::vector<float*>& p
   return buffer;
 }
 
-// Runs `read` on an OpenEXR reader of `bytes` once their headers passed readHeaders'
-// checks; any error becomes an ExrError naming `label`.
+// Runs `read` on an OpenEXR reader of `stream` once its headers, the first bytes of the
+// `total` it holds, passed readHeaders' checks.
 template <class Read>
-auto readChecked(const std::string& bytes, const std::string& label, Read read) {
-  try {
-    refuseImplausibleSize(readHeaders(bytes), bytes.size());
-    Imf::StdISStream stream;
-    stream.str(bytes);
-    Imf::InputFile in(stream);
-    return read(in);
-  } catch (const std::exception& e) {
-    throw ExrError(label + ": cannot read EXR: " + e.what());
+auto readChecked(std::string_view headers, size_t total, Imf::IStream& stream, Read read) {
+  refuseImplausibleSize(readHeaders(headers), total);
+  Imf::InputFile in(stream);
+  return read(in);
+}
+
+// A file's size and first non-finite value, decoded `rowsPerStrip` rows at a time.
+ExrScan scanStrips(Imf::InputFile& in, int rowsPerStrip) {
+  const Imath::Box2i window = in.header().dataWindow();
+  ExrScan scan{window.max.x - window.min.x + 1, window.max.y - window.min.y + 1, {}};
+  std::vector<std::string> names;
+  for (auto it = in.header().channels().begin(); it != in.header().channels().end(); ++it) names.emplace_back(it.name());
+  const int rows = std::clamp(rowsPerStrip, 1, scan.height);
+  std::vector<std::vector<float>> strips(names.size(), std::vector<float>(static_cast<size_t>(scan.width) * rows));
+  std::vector<float*> planes;
+  for (std::vector<float>& strip : strips) planes.push_back(strip.data());
+  for (int y0 = window.min.y; y0 <= window.max.y && scan.firstNonFinite.empty(); y0 += rows) {
+    const int y1 = std::min(window.max.y, y0 + rows - 1);
+    in.setFrameBuffer(frameBufferOf(in.header(), planes, y0));
+    in.readPixels(y0, y1);
+    const auto count = static_cast<ptrdiff_t>(scan.width) * (y1 - y0 + 1);
+    for (size_t c = 0; c < names.size() && scan.firstNonFinite.empty(); ++c) {
+      const auto end = strips[c].begin() + count;
+      const auto bad = std::find_if(strips[c].begin(), end, [](float v) { return !std::isfinite(v); });
+      if (bad == end) continue;
+      const auto p = static_cast<size_t>(bad - strips[c].begin());
+      const auto w = static_cast<size_t>(scan.width);
+      scan.firstNonFinite = "channel " + names[c] + " at pixel (" + std::to_string(p % w) + ", " +
+                            std::to_string(static_cast<size_t>(y0 - window.min.y) + p / w) + ")";
+    }
   }
+  return scan;
 }
 
 }  // namespace
 
 FrameImage decodeExr(const std::string& bytes, const std::string& label) {
-  return readChecked(bytes, label, [](Imf::InputFile& in) {
-    const Imath::Box2i window = in.header().dataWindow();
-    FrameImage frame(window.max.x - window.min.x + 1, window.max.y - window.min.y + 1);
-    std::vector<float*> planes;
-    for (auto it = in.header().channels().begin(); it != in.header().channels().end(); ++it)
-      planes.push_back(frame.addChannel(it.name()).data());
-    for (auto it = in.header().begin(); it != in.header().end(); ++it) {
-      if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
-        frame.attributes()[it.name()] = s->value();
-    }
-    in.setFrameBuffer(frameBufferOf(in.header(), planes, window.min.y));
-    in.readPixels(window.min.y, window.max.y);
-    return frame;
-  });
+  try {
+    Imf::StdISStream stream;
+    stream.str(bytes);
+    return readChecked(bytes, bytes.size(), stream, [](Imf::InputFile& in) {
+      const Imath::Box2i window = in.header().dataWindow();
+      FrameImage frame(window.max.x - window.min.x + 1, window.max.y - window.min.y + 1);
+      std::vector<float*> planes;
+      for (auto it = in.header().channels().begin(); it != in.header().channels().end(); ++it)
+        planes.push_back(frame.addChannel(it.name()).data());
+      for (auto it = in.header().begin(); it != in.header().end(); ++it) {
+        if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
+          frame.attributes()[it.name()] = s->value();
+      }
+      in.setFrameBuffer(frameBufferOf(in.header(), planes, window.min.y));
+      in.readPixels(window.min.y, window.max.y);
+      return frame;
+    });
+  } catch (const std::exception& e) {
+    throw ExrError(label + ": cannot read EXR: " + e.what());
+  }
 }
 
-ExrScan scanExr(const std::string& bytes, const std::string& label, int rowsPerStrip) {
-  return readChecked(bytes, label, [&](Imf::InputFile& in) {
-    const Imath::Box2i window = in.header().dataWindow();
-    ExrScan scan{window.max.x - window.min.x + 1, window.max.y - window.min.y + 1, {}};
-    std::vector<std::string> names;
-    for (auto it = in.header().channels().begin(); it != in.header().channels().end(); ++it) names.emplace_back(it.name());
-    const int rows = std::clamp(rowsPerStrip, 1, scan.height);
-    std::vector<std::vector<float>> strips(names.size(), std::vector<float>(static_cast<size_t>(scan.width) * rows));
-    std::vector<float*> planes;
-    for (std::vector<float>& strip : strips) planes.push_back(strip.data());
-    for (int y0 = window.min.y; y0 <= window.max.y && scan.firstNonFinite.empty(); y0 += rows) {
-      const int y1 = std::min(window.max.y, y0 + rows - 1);
-      in.setFrameBuffer(frameBufferOf(in.header(), planes, y0));
-      in.readPixels(y0, y1);
-      const auto count = static_cast<ptrdiff_t>(scan.width) * (y1 - y0 + 1);
-      for (size_t c = 0; c < names.size() && scan.firstNonFinite.empty(); ++c) {
-        const auto end = strips[c].begin() + count;
-        const auto bad = std::find_if(strips[c].begin(), end, [](float v) { return !std::isfinite(v); });
-        if (bad == end) continue;
-        const auto p = static_cast<size_t>(bad - strips[c].begin());
-        const auto w = static_cast<size_t>(scan.width);
-        scan.firstNonFinite = "channel " + names[c] + " at pixel (" + std::to_string(p % w) + ", " +
-                              std::to_string(static_cast<size_t>(y0 - window.min.y) + p / w) + ")";
-      }
-    }
-    return scan;
-  });
+ExrScan scanExrFile(const std::filesystem::path& file, const std::string& label, int rowsPerStrip) {
+  try {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) throw std::runtime_error("no such file or not readable");
+    const auto total = static_cast<size_t>(std::filesystem::file_size(file));
+    std::string headers(std::min(total, kMaxScannedHeaderBytes), '\0');
+    in.read(headers.data(), static_cast<std::streamsize>(headers.size()));
+    in.seekg(0);
+    Imf::StdIFStream stream(in, file.c_str());
+    return readChecked(headers, total, stream, [&](Imf::InputFile& exr) { return scanStrips(exr, rowsPerStrip); });
+  } catch (const std::exception& e) {
+    throw ExrError(label + ": cannot read EXR: " + e.what());
+  }
 }
 
 void writeExr(const std::filesystem::path& file, const FrameImage& frame) {

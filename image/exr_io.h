@@ -25,14 +25,16 @@ std::string encodeExr(const FrameImage& frame, ExrCompression compression = ExrC
 // `label` names the bytes' origin (a file, a chunk) in error messages.
 FrameImage decodeExr(const std::string& bytes, const std::string& label);
 
-// What checking a chunk finds without holding its pixels: its size, and its first
-// non-finite value ("channel C at pixel (x, y)", "" when every value is finite), decoded
-// `rowsPerStrip` rows at a time. Throws ExrError as decodeExr does.
+// What checking a chunk finds without holding it: its size, and its first non-finite
+// value ("channel C at pixel (x, y)", "" when every value is finite). The file is read in
+// place, `rowsPerStrip` rows at a time, after the same header checks as decodeExr's (on
+// the file's first 16 MiB: headers beyond that are refused). Throws ExrError naming
+// `label`, as decodeExr does.
 struct ExrScan {
   int width = 0, height = 0;
   std::string firstNonFinite;
 };
-ExrScan scanExr(const std::string& bytes, const std::string& label, int rowsPerStrip = 16);
+ExrScan scanExrFile(const std::filesystem::path& file, const std::string& label, int rowsPerStrip = 16);
 
 void writeExr(const std::filesystem::path& file, const FrameImage& frame);
 // A missing, truncated or corrupted file throws ExrError naming the file.

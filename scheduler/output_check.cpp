@@ -11,12 +11,12 @@ std::string sizeText(int width, int height) { return std::to_string(width) + "x"
 
 }  // namespace
 
-std::string refusalOfOutput(const std::string& bytes, TaskKind kind, const TaskParams& params, const ShotSpec& spec) {
+std::string refusalOfOutput(const std::filesystem::path& file, TaskKind kind, const TaskParams& params,
+                            const ShotSpec& spec) {
   if (kind == TASK_NOOP || kind == TASK_EVALUATE) return {};
-  // A strip of rows at a time: a large frame's pixels are never all in memory here.
   ExrScan image;
   try {
-    image = scanExr(bytes, "the output");
+    image = scanExrFile(file, "the output");
   } catch (const std::exception& e) {
     return e.what();
   }

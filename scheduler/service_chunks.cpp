@@ -1,5 +1,6 @@
 #include "scheduler/service_chunks.h"
 
+#include "proto/wire/chunk_store.h"
 #include "proto/wire/chunk_transfer.h"
 #include "proto/wire/connection.h"
 #include "scheduler/output_check.h"
@@ -23,9 +24,9 @@ grpc::Status lostChunk(const SchedulerContext& c, const std::string& sha256) {
 std::string refusalOfCompletion(const SchedulerContext& c, const CompleteRequest& request) {
   const auto task = c.state.runningAttemptTask(request.attempt_id());
   if (!task || task->kind == TASK_NOOP) return {};
-  const std::optional<std::string> bytes = c.store.get(request.output().sha256());
-  if (!bytes) return {};
-  return refusalOfOutput(*bytes, task->kind, task->params, task->spec);
+  const std::string& sha256 = request.output().sha256();
+  if (!isSha256Hex(sha256) || !c.store.verifiedSize(sha256)) return {};  // the completion refuses a missing output
+  return refusalOfOutput(c.store.pathOf(sha256), task->kind, task->params, task->spec);
 }
 
 }  // namespace pathfarm::farm

@@ -69,13 +69,15 @@ class ChunkStore {
   // Hands a stored chunk's bytes to `part` in pieces of at most `partBytes`, until it
   // returns false (then false). Verify the chunk first (verifiedSize).
   bool readParts(const std::string& sha256, size_t partBytes, const std::function<bool(std::string_view)>& part) const;
+  // The file a stored chunk lives in, for a reader that reads it in place (verify the
+  // chunk first: verifiedSize). The digest must be a SHA-256 (isSha256Hex).
+  std::filesystem::path pathOf(const std::string& sha256) const;
   const std::filesystem::path& root() const { return root_; }
   // Bytes put into and read out of the store since it was opened (the farm's metrics).
   uint64_t bytesIn() const { return bytesIn_; }
   uint64_t bytesOut() const { return bytesOut_; }
 
  private:
-  std::filesystem::path pathOf(const std::string& sha256) const;
   std::filesystem::path root_;
   AtomicFileWriter::Sync sync_;
   std::atomic<uint64_t> bytesIn_{0};

@@ -6,6 +6,7 @@
 #include <iterator>
 #include <limits>
 #include <random>
+#include <stdexcept>
 
 #include "image/exr_io.h"
 #include "test_support.h"
@@ -95,16 +96,20 @@ std::string withInt32(std::string chunk, size_t offset, int32_t value) {
 // What bench/fuzz.sh --target exr_chunk found: a chunk whose data window was widened to
 // 50331656 pixels made decodeExr allocate 1 GB and spend 3 s before OpenEXR found the
 // pixels missing.
-TEST(ExrIo, AChunkClaimingMorePixelsThanItsBytesCanHoldIsRefusedBeforeDecoding) {
+// An 8x4 RGB chunk whose data window claims 2000000 x 4 pixels: 96 MB of planes from a few
+// hundred bytes (the fuzzer's case asked for 1 GB).
+std::string widenedChunk() {
   FrameImage tile(8, 4);
   for (const char* name : {"R", "G", "B"}) tile.addChannel(name);
   const std::string chunk = encodeExr(tile, ExrCompression::Fast);
   const size_t box = chunk.find(std::string("dataWindow\0box2i\0", 17));
-  ASSERT_NE(box, std::string::npos);
-  const size_t maxX = box + 17 + 4 + 8;  // after the name, type and size: xMin, yMin, xMax
+  if (box == std::string::npos) throw std::logic_error("the chunk has no data window");
+  return withInt32(chunk, box + 17 + 4 + 8, 1'999'999);  // after the name, type and size: xMin, yMin, xMax
+}
+
+TEST(ExrIo, AChunkClaimingMorePixelsThanItsBytesCanHoldIsRefusedBeforeDecoding) {
   try {
-    // 96 MB of planes from a few hundred bytes (the fuzzer's case asked for 1 GB).
-    decodeExr(withInt32(chunk, maxX, 1'999'999), "chunk 9a7b");
+    decodeExr(widenedChunk(), "chunk 9a7b");
     FAIL() << "a chunk claiming 2000000 x 4 pixels was decoded";
   } catch (const ExrError& e) {
     EXPECT_NE(std::string(e.what()).find("chunk 9a7b"), std::string::npos) << e.what();
@@ -114,10 +119,15 @@ TEST(ExrIo, AChunkClaimingMorePixelsThanItsBytesCanHoldIsRefusedBeforeDecoding) 
 }
 
 TEST(ExrIo, AScanInStripsFindsTheSizeAndTheFirstNonFiniteValueThatDecodingWholeFinds) {
+  const std::filesystem::path file = temporaryFile("scanned.exr");
+  const auto scan = [&](const std::string& bytes, int rows) {
+    std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
+    return scanExrFile(file, "chunk", rows);
+  };
   FrameImage frame = sampleFrame();
   frame.channel("depth.Z")[5] = 0.0f;
   const std::string finite = encodeExr(frame, ExrCompression::Fast);
-  const ExrScan clean = scanExr(finite, "chunk", 4);
+  const ExrScan clean = scan(finite, 4);
   EXPECT_EQ(clean.width, 37);
   EXPECT_EQ(clean.height, 23);
   EXPECT_EQ(clean.firstNonFinite, "");
@@ -125,13 +135,27 @@ TEST(ExrIo, AScanInStripsFindsTheSizeAndTheFirstNonFiniteValueThatDecodingWholeF
   // an infinity in an earlier strip of a later channel: the first row wins.
   frame.channel("reflection.normal.Z")[22 * 37 + 36] = std::numeric_limits<float>::quiet_NaN();
   for (const int rows : {1, 4, 5, 23, 100}) {
-    const ExrScan scan = scanExr(encodeExr(frame), "chunk", rows);
-    EXPECT_EQ(scan.firstNonFinite, "channel reflection.normal.Z at pixel (36, 22)") << rows << " rows a strip";
-    EXPECT_EQ(scan.firstNonFinite, decodeExr(encodeExr(frame), "chunk").firstNonFinite());
+    EXPECT_EQ(scan(encodeExr(frame), rows).firstNonFinite, "channel reflection.normal.Z at pixel (36, 22)")
+        << rows << " rows a strip";
+    EXPECT_EQ(scan(encodeExr(frame), rows).firstNonFinite, decodeExr(encodeExr(frame), "chunk").firstNonFinite());
   }
   frame.channel("transmission.motion.X")[3 * 37 + 2] = std::numeric_limits<float>::infinity();
-  EXPECT_EQ(scanExr(encodeExr(frame), "chunk", 4).firstNonFinite, "channel transmission.motion.X at pixel (2, 3)");
-  EXPECT_THROW(scanExr(finite.substr(0, finite.size() / 2), "chunk", 4), ExrError);
+  EXPECT_EQ(scan(encodeExr(frame), 4).firstNonFinite, "channel transmission.motion.X at pixel (2, 3)");
+  EXPECT_THROW(scan(finite.substr(0, finite.size() / 2), 4), ExrError);
+  EXPECT_THROW(scanExrFile(temporaryFile("absent.exr"), "chunk"), ExrError);
+}
+
+// The scan walks the headers before OpenEXR does, as decodeExr does: a damaged size is
+// refused before anything is allocated.
+TEST(ExrIo, AScannedFileClaimingMorePixelsThanItsBytesCanHoldIsRefused) {
+  const std::filesystem::path file = temporaryFile("widened.exr");
+  std::ofstream(file, std::ios::binary | std::ios::trunc) << widenedChunk();
+  try {
+    scanExrFile(file, "chunk 9a7b");
+    FAIL() << "a chunk claiming 2000000 x 4 pixels was scanned";
+  } catch (const ExrError& e) {
+    EXPECT_NE(std::string(e.what()).find("data window of 2000000 x 4 pixels"), std::string::npos) << e.what();
+  }
 }
 
 // Also found by the fuzzer: OpenEXR allocates what a header attribute claims before it
