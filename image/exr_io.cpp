@@ -14,9 +14,11 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -195,22 +197,27 @@ void refuseImplausibleSize(const HeaderSummary& header, size_t bytes) {
                             " times)");
 }
 
-// Points `buffer` at `planes` (one per channel of `header`, in its order) holding rows
-// firstRow, firstRow + 1, ... of the data window, `width` floats each. OpenEXR addresses
-// slices by absolute pixel coordinates: the base pointer is shifted so the window's
-// column min.x of row firstRow lands on the plane's first element.
-Imf::FrameBuffer frameBufferOf(const Imf::Header& header, std::vector<float*>& planes, int firstRow) {
-  const Imath::Box2i window = header.dataWindow();
+// A frame buffer of `planes`, one per channel in `names`, holding rows firstRow,
+// firstRow + 1, ... of the data window, its width in floats each. OpenEXR addresses slices
+// by absolute pixel coordinates: the base pointer is shifted so the window's column min.x
+// of row firstRow lands on the plane's first element.
+Imf::FrameBuffer frameBufferOf(const Imath::Box2i& window, const std::vector<std::string>& names,
+                               const std::vector<float*>& planes, int firstRow) {
   const size_t rowStride = sizeof(float) * static_cast<size_t>(window.max.x - window.min.x + 1);
   Imf::FrameBuffer buffer;
-  size_t c = 0;
-  for (auto it = header.channels().begin(); it != header.channels().end(); ++it, ++c) {
+  for (size_t c = 0; c < names.size(); ++c) {
     char* base = reinterpret_cast<char*>(planes[c]) -
                  static_cast<ptrdiff_t>(window.min.x) * static_cast<ptrdiff_t>(sizeof(float)) -
                  static_cast<ptrdiff_t>(firstRow) * static_cast<ptrdiff_t>(rowStride);
-    buffer.insert(it.name(), Imf::Slice(Imf::FLOAT, base, sizeof(float), rowStride));
+    buffer.insert(names[c], Imf::Slice(Imf::FLOAT, base, sizeof(float), rowStride));
   }
   return buffer;
+}
+
+std::vector<std::string> channelNames(const Imf::Header& header) {
+  std::vector<std::string> names;
+  for (auto it = header.channels().begin(); it != header.channels().end(); ++it) names.emplace_back(it.name());
+  return names;
 }
 
 // Runs `read` on an OpenEXR reader of `stream` once its headers, the first bytes of the
@@ -222,32 +229,27 @@ auto readChecked(std::string_view headers, size_t total, Imf::IStream& stream, R
   return read(in);
 }
 
-// A file's size and first non-finite value, decoded `rowsPerStrip` rows at a time.
-ExrScan scanStrips(Imf::InputFile& in, int rowsPerStrip) {
+// Hands `strip` the rows of `names` a strip at a time, until it returns false.
+std::pair<int, int> readStrips(Imf::InputFile& in, const std::vector<std::string>& names, int rowsPerStrip,
+                               const std::function<bool(const ExrStrip&)>& strip) {
   const Imath::Box2i window = in.header().dataWindow();
-  ExrScan scan{window.max.x - window.min.x + 1, window.max.y - window.min.y + 1, {}};
-  std::vector<std::string> names;
-  for (auto it = in.header().channels().begin(); it != in.header().channels().end(); ++it) names.emplace_back(it.name());
-  const int rows = std::clamp(rowsPerStrip, 1, scan.height);
-  std::vector<std::vector<float>> strips(names.size(), std::vector<float>(static_cast<size_t>(scan.width) * rows));
-  std::vector<float*> planes;
-  for (std::vector<float>& strip : strips) planes.push_back(strip.data());
-  for (int y0 = window.min.y; y0 <= window.max.y && scan.firstNonFinite.empty(); y0 += rows) {
+  const int width = window.max.x - window.min.x + 1, height = window.max.y - window.min.y + 1;
+  for (const std::string& name : names)
+    if (in.header().channels().findChannel(name) == nullptr) throw std::runtime_error("no channel \"" + name + "\"");
+  const int rows = std::clamp(rowsPerStrip, 1, height);
+  std::vector<std::vector<float>> planes(names.size(), std::vector<float>(static_cast<size_t>(width) * rows));
+  std::vector<float*> pointers;
+  for (std::vector<float>& plane : planes) pointers.push_back(plane.data());
+  ExrStrip part{width, height, 0, 0, names, {pointers.begin(), pointers.end()}};
+  for (int y0 = window.min.y; y0 <= window.max.y; y0 += rows) {
     const int y1 = std::min(window.max.y, y0 + rows - 1);
-    in.setFrameBuffer(frameBufferOf(in.header(), planes, y0));
+    in.setFrameBuffer(frameBufferOf(window, names, pointers, y0));
     in.readPixels(y0, y1);
-    const auto count = static_cast<ptrdiff_t>(scan.width) * (y1 - y0 + 1);
-    for (size_t c = 0; c < names.size() && scan.firstNonFinite.empty(); ++c) {
-      const auto end = strips[c].begin() + count;
-      const auto bad = std::find_if(strips[c].begin(), end, [](float v) { return !std::isfinite(v); });
-      if (bad == end) continue;
-      const auto p = static_cast<size_t>(bad - strips[c].begin());
-      const auto w = static_cast<size_t>(scan.width);
-      scan.firstNonFinite = "channel " + names[c] + " at pixel (" + std::to_string(p % w) + ", " +
-                            std::to_string(static_cast<size_t>(y0 - window.min.y) + p / w) + ")";
-    }
+    part.firstRow = y0 - window.min.y;
+    part.rows = y1 - y0 + 1;
+    if (!strip(part)) break;
   }
-  return scan;
+  return {width, height};
 }
 
 }  // namespace
@@ -259,14 +261,14 @@ FrameImage decodeExr(const std::string& bytes, const std::string& label) {
     return readChecked(bytes, bytes.size(), stream, [](Imf::InputFile& in) {
       const Imath::Box2i window = in.header().dataWindow();
       FrameImage frame(window.max.x - window.min.x + 1, window.max.y - window.min.y + 1);
+      const std::vector<std::string> names = channelNames(in.header());
       std::vector<float*> planes;
-      for (auto it = in.header().channels().begin(); it != in.header().channels().end(); ++it)
-        planes.push_back(frame.addChannel(it.name()).data());
+      for (const std::string& name : names) planes.push_back(frame.addChannel(name).data());
       for (auto it = in.header().begin(); it != in.header().end(); ++it) {
         if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
           frame.attributes()[it.name()] = s->value();
       }
-      in.setFrameBuffer(frameBufferOf(in.header(), planes, window.min.y));
+      in.setFrameBuffer(frameBufferOf(window, names, planes, window.min.y));
       in.readPixels(window.min.y, window.max.y);
       return frame;
     });
@@ -275,7 +277,9 @@ FrameImage decodeExr(const std::string& bytes, const std::string& label) {
   }
 }
 
-ExrScan scanExrFile(const std::filesystem::path& file, const std::string& label, int rowsPerStrip) {
+std::pair<int, int> readExrStrips(const std::filesystem::path& file, const std::string& label,
+                                  const std::vector<std::string>& channels, int rowsPerStrip,
+                                  const std::function<bool(const ExrStrip&)>& strip) {
   try {
     std::ifstream in(file, std::ios::binary);
     if (!in) throw std::runtime_error("no such file or not readable");
@@ -284,10 +288,31 @@ ExrScan scanExrFile(const std::filesystem::path& file, const std::string& label,
     in.read(headers.data(), static_cast<std::streamsize>(headers.size()));
     in.seekg(0);
     Imf::StdIFStream stream(in, file.c_str());
-    return readChecked(headers, total, stream, [&](Imf::InputFile& exr) { return scanStrips(exr, rowsPerStrip); });
+    return readChecked(headers, total, stream, [&](Imf::InputFile& exr) {
+      return readStrips(exr, channels.empty() ? channelNames(exr.header()) : channels, rowsPerStrip, strip);
+    });
   } catch (const std::exception& e) {
     throw ExrError(label + ": cannot read EXR: " + e.what());
   }
+}
+
+ExrScan scanExrFile(const std::filesystem::path& file, const std::string& label, int rowsPerStrip) {
+  ExrScan scan;
+  std::tie(scan.width, scan.height) = readExrStrips(file, label, {}, rowsPerStrip, [&](const ExrStrip& strip) {
+    const auto count = static_cast<ptrdiff_t>(strip.width) * strip.rows;
+    for (size_t c = 0; c < strip.names.size(); ++c) {
+      const float* plane = strip.planes[c];
+      const float* bad = std::find_if(plane, plane + count, [](float v) { return !std::isfinite(v); });
+      if (bad == plane + count) continue;
+      const auto p = static_cast<size_t>(bad - plane);
+      const auto w = static_cast<size_t>(strip.width);
+      scan.firstNonFinite = "channel " + strip.names[c] + " at pixel (" + std::to_string(p % w) + ", " +
+                            std::to_string(static_cast<size_t>(strip.firstRow) + p / w) + ")";
+      return false;
+    }
+    return true;
+  });
+  return scan;
 }
 
 void writeExr(const std::filesystem::path& file, const FrameImage& frame) {

@@ -5,8 +5,12 @@
 // over the wire (farm chunks). File writes are atomic (a temporary file, fsynced and
 // renamed into place), so a reader never sees half a frame.
 #include <filesystem>
+#include <functional>
+#include <span>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "image/frame_image.h"
 
@@ -35,6 +39,21 @@ struct ExrScan {
   std::string firstNonFinite;
 };
 ExrScan scanExrFile(const std::filesystem::path& file, const std::string& label, int rowsPerStrip = 16);
+
+// Rows firstRow .. firstRow + rows - 1 (from the top) of a width x height data window, of
+// the channels in `names`: one plane of width x rows floats each, valid during the call.
+struct ExrStrip {
+  int width = 0, height = 0, firstRow = 0, rows = 0;
+  std::span<const std::string> names;
+  std::span<float* const> planes;
+};
+// Reads a file in place a strip of `rowsPerStrip` rows at a time, with scanExrFile's
+// checks, handing each strip of `channels` (every channel when empty) to `strip` until it
+// returns false. Returns the data window's width and height. A channel the file lacks is
+// an ExrError naming `label`, as is everything scanExrFile refuses.
+std::pair<int, int> readExrStrips(const std::filesystem::path& file, const std::string& label,
+                                  const std::vector<std::string>& channels, int rowsPerStrip,
+                                  const std::function<bool(const ExrStrip&)>& strip);
 
 void writeExr(const std::filesystem::path& file, const FrameImage& frame);
 // A missing, truncated or corrupted file throws ExrError naming the file.

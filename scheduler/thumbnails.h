@@ -3,6 +3,7 @@
 // EXR chunks on first request and kept by chunk digest (a chunk never changes, so a
 // thumbnail never goes stale).
 #include <deque>
+#include <filesystem>
 #include <map>
 #include <mutex>
 #include <string>
@@ -15,10 +16,11 @@ namespace pathfarm::farm {
 // The longest edge of a thumbnail, at most.
 inline constexpr int kThumbnailEdge = 160;
 
-// The beauty (R, G, B) shrunk by the smallest whole factor that fits both edges in
-// `maxEdge`: each thumbnail pixel is the mean of its factor x factor block (fewer at the
-// right and bottom edges). A frame that fits already is copied as it is.
-FrameImage shrinkBeauty(const FrameImage& frame, int maxEdge = kThumbnailEdge);
+// The beauty (R, G, B) of the EXR `file` shrunk by the smallest whole factor that fits
+// both edges in `maxEdge`: each thumbnail pixel is the mean of its factor x factor block
+// (fewer at the right and bottom edges). A frame that fits already comes out as it is. The
+// file is read a strip of rows at a time. Throws ExrError naming `label`.
+FrameImage shrinkBeauty(const std::filesystem::path& file, const std::string& label, int maxEdge = kThumbnailEdge);
 
 class ThumbnailCache {
  public:
