@@ -34,8 +34,24 @@ size_t DecodedInputs::size() const {
   return recent_.size();
 }
 
+namespace {
+
+// What an entry costs besides its planes' floats, estimated on the high side: per channel
+// its name (in the frame's list and map) and its vector; per attribute its key and value;
+// and the entry itself (list and hash-map nodes, the digest, the frame object). An 8-pixel
+// tile's floats are about a third of what keeping it takes: counting only the floats, a
+// worker reading millions of tiles held three times its budget.
+constexpr uint64_t kPerChannelBytes = 192;
+constexpr uint64_t kPerAttributeBytes = 128;
+constexpr uint64_t kPerEntryBytes = 512;
+
+}  // namespace
+
 uint64_t DecodedInputs::frameBytes(const FrameImage& frame) {
-  return static_cast<uint64_t>(frame.channelNames().size()) * frame.pixelCount() * sizeof(float);
+  uint64_t bytes = kPerEntryBytes + static_cast<uint64_t>(frame.channelNames().size()) * frame.pixelCount() * sizeof(float);
+  for (const std::string& name : frame.channelNames()) bytes += kPerChannelBytes + 2 * name.size();
+  for (const auto& [key, value] : frame.attributes()) bytes += kPerAttributeBytes + key.size() + value.size();
+  return bytes;
 }
 
 }  // namespace pathfarm::farm

@@ -29,7 +29,7 @@ class DecodedInputs {
   uint64_t bytes() const;
   size_t size() const;
 
-  // The memory a frame's planes take.
+  // The memory keeping a frame takes: its planes and their bookkeeping.
   static uint64_t frameBytes(const FrameImage& frame);
 
  private:

@@ -13,19 +13,21 @@
 namespace pathfarm::farm {
 namespace {
 
-// A frame of `channels` planes of 10x10 pixels: 400 bytes each.
+// A frame of `channels` planes of 10x10 pixels: 400 bytes of floats each.
 std::shared_ptr<const FrameImage> planes(int channels, float value = 1.0f) {
   auto frame = std::make_shared<FrameImage>(10, 10);
   for (int c = 0; c < channels; ++c) frame->addChannel("c" + std::to_string(c)).assign(100, value);
   return frame;
 }
 
+const uint64_t kOnePlane = DecodedInputs::frameBytes(*planes(1));
+
 TEST(DecodedInputs, KeepsTheMostRecentlyUsedWithinTheBudget) {
-  DecodedInputs kept(1200);  // three planes
+  DecodedInputs kept(3 * kOnePlane);  // three one-plane frames
   kept.keep("a", planes(1));
   kept.keep("b", planes(1));
   kept.keep("c", planes(1));
-  EXPECT_EQ(kept.bytes(), 1200u);
+  EXPECT_EQ(kept.bytes(), 3 * kOnePlane);
   ASSERT_NE(kept.find("a"), nullptr);  // "a" is now the most recent; "b" the least
   kept.keep("d", planes(1));
   EXPECT_EQ(kept.find("b"), nullptr);
@@ -37,11 +39,28 @@ TEST(DecodedInputs, KeepsTheMostRecentlyUsedWithinTheBudget) {
   EXPECT_EQ(kept.size(), 2u);
   EXPECT_NE(kept.find("d"), nullptr);
   EXPECT_NE(kept.find("e"), nullptr);
-  EXPECT_EQ(kept.bytes(), 1200u);
+  EXPECT_EQ(kept.bytes(), kOnePlane + DecodedInputs::frameBytes(*planes(2)));
+}
+
+// An 8-pixel tile's floats are a small part of what keeping it costs: a budget counted in
+// floats alone let a worker reading millions of tiles hold three times its budget.
+TEST(DecodedInputs, TinyFramesCountWhatKeepingThemCosts) {
+  auto tile = std::make_shared<FrameImage>(1, 1);
+  for (const char* name : {"R", "G", "B"}) tile->addChannel(name);
+  tile->attributes()["pathfarm.frame"] = "12";
+  // Their floats are 12 bytes, but every frame holds at least its three vectors, their
+  // names twice, an attribute, and the entry's own nodes and digest.
+  const uint64_t atLeast = 3 * (sizeof(std::vector<float>) + 2 * sizeof(std::string)) + 2 * sizeof(std::string) +
+                           sizeof(FrameImage) + 64;
+  EXPECT_GE(DecodedInputs::frameBytes(*tile), atLeast);
+  DecodedInputs kept(1'000'000);
+  for (int i = 0; i < 10'000; ++i) kept.keep(std::to_string(i), tile);
+  EXPECT_LE(kept.size() * atLeast, 1'000'000u);
+  EXPECT_LE(kept.bytes(), 1'000'000u);
 }
 
 TEST(DecodedInputs, AFrameLargerThanTheBudgetIsNotKeptAndEvictsNothing) {
-  DecodedInputs kept(1000);
+  DecodedInputs kept(2 * kOnePlane);
   kept.keep("small", planes(1));
   kept.keep("large", planes(3));
   EXPECT_EQ(kept.find("large"), nullptr);
