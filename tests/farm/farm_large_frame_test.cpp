@@ -7,16 +7,21 @@
 namespace pathfarm::farmtest {
 namespace {
 
+// One square frame of `size` pixels in tiles of `tile`, at 1 spp.
+RenderSpec squareFrame(const std::string& name, int size, int tile, int maxDepth) {
+  RenderSpec spec;
+  spec.name = name;
+  spec.width = spec.height = size;
+  spec.tile = tile;
+  spec.spp = 1;
+  spec.maxDepth = maxDepth;
+  return spec;
+}
+
 TEST_F(FarmTest, AFrameOfManySmallTilesIsAssembledThroughRegions) {
   startScheduler();
   startWorker("w", {"--slots", "2"});
-  RenderSpec spec;
-  spec.name = "many-tiles";
-  spec.width = 520;
-  spec.height = 520;
-  spec.tile = 8;
-  spec.spp = 1;
-  spec.maxDepth = 2;
+  const RenderSpec spec = squareFrame("many-tiles", 520, 8, 2);
   const int64_t id = client().submit(shotSpec(spec));
   const farm::ShotSummary summary = waitForShot(id, 110s);
   ASSERT_EQ(summary.state(), farm::SHOT_DONE) << describe(summary);
@@ -35,14 +40,7 @@ TEST_F(FarmTest, AnOutputWhoseCheckOutlastsTheLeaseIsAccepted) {
   config.leaseSeconds = 0.5;
   startScheduler(config);
   startWorker("w");
-  RenderSpec spec;
-  spec.name = "one-large-tile";
-  spec.width = 4096;
-  spec.height = 4096;
-  spec.tile = 4096;
-  spec.spp = 1;
-  spec.maxDepth = 1;
-  const int64_t id = client().submit(shotSpec(spec));
+  const int64_t id = client().submit(shotSpec(squareFrame("one-large-tile", 4096, 4096, 1)));
   const farm::ShotSummary summary = waitForShot(id, 240s);
   ASSERT_EQ(summary.state(), farm::SHOT_DONE) << describe(summary);
   const FarmDatabase db = database();
