@@ -94,13 +94,13 @@ int main(int argc, char** argv) {
   };
 
   fs::remove_all(cache);
-  TaskRunner reused(threads, cache);
+  TaskRunner reused(threads, cache, cache / "outgoing");
   const double first = runTile(reused, leases[0]);
   std::vector<double> later, fresh;
   for (size_t i = 1; i < leases.size(); ++i) later.push_back(runTile(reused, leases[i]));
   for (const Lease& lease : leases) {
     fs::remove_all(cache);
-    TaskRunner runner(threads, cache);
+    TaskRunner runner(threads, cache, cache / "outgoing");
     fresh.push_back(runTile(runner, lease));
   }
   fs::remove_all(cache);

@@ -24,14 +24,25 @@
 
 namespace pathfarm {
 
+namespace {
+
+Imf::Header headerOf(int width, int height, const std::vector<std::string>& channels,
+                     const std::map<std::string, std::string>& attributes, ExrCompression compression) {
+  Imf::Header header(width, height);
+  header.compression() = compression == ExrCompression::Small ? Imf::ZIP_COMPRESSION : Imf::RLE_COMPRESSION;
+  for (const auto& [name, value] : attributes) header.insert(name, Imf::StringAttribute(value));
+  for (const std::string& name : channels) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+  return header;
+}
+
+}  // namespace
+
 std::string encodeExr(const FrameImage& frame, ExrCompression compression) {
   try {
-    Imf::Header header(frame.width(), frame.height());
-    header.compression() = compression == ExrCompression::Small ? Imf::ZIP_COMPRESSION : Imf::RLE_COMPRESSION;
-    for (const auto& [name, value] : frame.attributes()) header.insert(name, Imf::StringAttribute(value));
+    const Imf::Header header =
+        headerOf(frame.width(), frame.height(), frame.channelNames(), frame.attributes(), compression);
     Imf::FrameBuffer buffer;
     for (const std::string& name : frame.channelNames()) {
-      header.channels().insert(name, Imf::Channel(Imf::FLOAT));
       // OpenEXR's Slice takes a non-const pointer but only reads when writing.
       auto* base = const_cast<float*>(frame.channel(name).data());
       buffer.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(base), sizeof(float),
@@ -220,6 +231,14 @@ std::vector<std::string> channelNames(const Imf::Header& header) {
   return names;
 }
 
+std::map<std::string, std::string> stringAttributes(const Imf::Header& header) {
+  std::map<std::string, std::string> attributes;
+  for (auto it = header.begin(); it != header.end(); ++it) {
+    if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute())) attributes[it.name()] = s->value();
+  }
+  return attributes;
+}
+
 // Runs `read` on an OpenEXR reader of `stream` once its headers, the first bytes of the
 // `total` it holds, passed readHeaders' checks.
 template <class Read>
@@ -252,29 +271,40 @@ std::pair<int, int> readStrips(Imf::InputFile& in, const std::vector<std::string
   return {width, height};
 }
 
-}  // namespace
-
-FrameImage decodeExr(const std::string& bytes, const std::string& label) {
+// Runs `read` on an OpenEXR reader of `bytes`; any failure is an ExrError naming `label`.
+template <class Read>
+auto readBytes(const std::string& bytes, const std::string& label, Read read) {
   try {
     Imf::StdISStream stream;
     stream.str(bytes);
-    return readChecked(bytes, bytes.size(), stream, [](Imf::InputFile& in) {
-      const Imath::Box2i window = in.header().dataWindow();
-      FrameImage frame(window.max.x - window.min.x + 1, window.max.y - window.min.y + 1);
-      const std::vector<std::string> names = channelNames(in.header());
-      std::vector<float*> planes;
-      for (const std::string& name : names) planes.push_back(frame.addChannel(name).data());
-      for (auto it = in.header().begin(); it != in.header().end(); ++it) {
-        if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
-          frame.attributes()[it.name()] = s->value();
-      }
-      in.setFrameBuffer(frameBufferOf(window, names, planes, window.min.y));
-      in.readPixels(window.min.y, window.max.y);
-      return frame;
-    });
+    return readChecked(bytes, bytes.size(), stream, read);
   } catch (const std::exception& e) {
     throw ExrError(label + ": cannot read EXR: " + e.what());
   }
+}
+
+}  // namespace
+
+FrameImage decodeExr(const std::string& bytes, const std::string& label) {
+  return readBytes(bytes, label, [](Imf::InputFile& in) {
+    const Imath::Box2i window = in.header().dataWindow();
+    FrameImage frame(window.max.x - window.min.x + 1, window.max.y - window.min.y + 1);
+    const std::vector<std::string> names = channelNames(in.header());
+    std::vector<float*> planes;
+    for (const std::string& name : names) planes.push_back(frame.addChannel(name).data());
+    frame.attributes() = stringAttributes(in.header());
+    in.setFrameBuffer(frameBufferOf(window, names, planes, window.min.y));
+    in.readPixels(window.min.y, window.max.y);
+    return frame;
+  });
+}
+
+ExrHeader readExrHeader(const std::string& bytes, const std::string& label) {
+  return readBytes(bytes, label, [](Imf::InputFile& in) {
+    const Imath::Box2i window = in.header().dataWindow();
+    return ExrHeader{window.max.x - window.min.x + 1, window.max.y - window.min.y + 1, channelNames(in.header()),
+                     stringAttributes(in.header())};
+  });
 }
 
 std::pair<int, int> readExrStrips(const std::filesystem::path& file, const std::string& label,
@@ -317,6 +347,57 @@ ExrScan scanExrFile(const std::filesystem::path& file, const std::string& label,
 
 void writeExr(const std::filesystem::path& file, const FrameImage& frame) {
   writeFileAtomically(file, encodeExr(frame));
+}
+
+struct ExrStripWriter::Output {
+  Output(const std::filesystem::path& path, const Imf::Header& header) : file(path.c_str(), header) {}
+  Imf::OutputFile file;
+};
+
+ExrStripWriter::ExrStripWriter(const std::filesystem::path& file, int width, int height,
+                               const std::vector<std::string>& channels,
+                               const std::map<std::string, std::string>& attributes, ExrCompression compression)
+    : file_(file), width_(width), height_(height), channels_(channels) {
+  try {
+    out_ = std::make_unique<Output>(file, headerOf(width, height, channels, attributes, compression));
+  } catch (const std::exception& e) {
+    throw ExrError(file.string() + ": cannot write EXR: " + e.what());
+  }
+}
+
+ExrStripWriter::~ExrStripWriter() = default;
+
+void ExrStripWriter::write(const FrameImage& strip) {
+  const auto refuse = [&](const std::string& why) { throw ExrError(file_.string() + ": cannot write EXR: " + why); };
+  if (!out_) refuse("the file was finished");
+  if (strip.width() != width_ || strip.height() > height_ - rows_)
+    refuse("a " + std::to_string(strip.width()) + " x " + std::to_string(strip.height()) + " strip after row " +
+           std::to_string(rows_) + " of a " + std::to_string(width_) + " x " + std::to_string(height_) + " frame");
+  std::vector<float*> planes;
+  for (const std::string& name : channels_) {
+    if (!strip.hasChannel(name)) refuse("the strip lacks channel \"" + name + "\"");
+    // OpenEXR's Slice takes a non-const pointer but only reads when writing.
+    planes.push_back(const_cast<float*>(strip.channel(name).data()));
+  }
+  try {
+    out_->file.setFrameBuffer(frameBufferOf(Imath::Box2i({0, 0}, {width_ - 1, height_ - 1}), channels_, planes, rows_));
+    out_->file.writePixels(strip.height());
+  } catch (const std::exception& e) {
+    refuse(e.what());
+  }
+  rows_ += strip.height();
+}
+
+void ExrStripWriter::finish() {
+  const bool whole = rows_ == height_;
+  try {
+    out_.reset();  // OpenEXR completes the file when it closes it
+  } catch (const std::exception& e) {
+    throw ExrError(file_.string() + ": cannot write EXR: " + e.what());
+  }
+  if (!whole)
+    throw ExrError(file_.string() + ": cannot write EXR: " + std::to_string(rows_) + " of " + std::to_string(height_) +
+                   " rows written");
 }
 
 FrameImage readExr(const std::filesystem::path& file) {

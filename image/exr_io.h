@@ -6,6 +6,8 @@
 // renamed into place), so a reader never sees half a frame.
 #include <filesystem>
 #include <functional>
+#include <map>
+#include <memory>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -28,6 +30,14 @@ enum class ExrCompression { Small, Fast };
 std::string encodeExr(const FrameImage& frame, ExrCompression compression = ExrCompression::Small);
 // `label` names the bytes' origin (a file, a chunk) in error messages.
 FrameImage decodeExr(const std::string& bytes, const std::string& label);
+
+// What a frame's header says, read without decoding its pixels (decodeExr's checks).
+struct ExrHeader {
+  int width = 0, height = 0;
+  std::vector<std::string> channels;  // in the file's (alphabetical) order
+  std::map<std::string, std::string> attributes;  // its string attributes
+};
+ExrHeader readExrHeader(const std::string& bytes, const std::string& label);
 
 // What checking a chunk finds without holding it: its size, and its first non-finite
 // value ("channel C at pixel (x, y)", "" when every value is finite). The file is read in
@@ -56,6 +66,29 @@ std::pair<int, int> readExrStrips(const std::filesystem::path& file, const std::
                                   const std::function<bool(const ExrStrip&)>& strip);
 
 void writeExr(const std::filesystem::path& file, const FrameImage& frame);
+
+// Writes an EXR file a strip of rows at a time, top to bottom, so that a frame larger than
+// memory can be written from its parts. The bytes equal encodeExr's of the whole frame.
+class ExrStripWriter {
+ public:
+  // Throws ExrError when the file cannot be created.
+  ExrStripWriter(const std::filesystem::path& file, int width, int height, const std::vector<std::string>& channels,
+                 const std::map<std::string, std::string>& attributes, ExrCompression compression);
+  ~ExrStripWriter();
+  // The next strip.height() rows: `strip` has the file's width and all of its channels.
+  // Throws ExrError otherwise, or for rows past the frame's height.
+  void write(const FrameImage& strip);
+  int rowsWritten() const { return rows_; }
+  // Closes the file; throws ExrError unless every row was written.
+  void finish();
+
+ private:
+  struct Output;
+  std::unique_ptr<Output> out_;
+  std::filesystem::path file_;
+  int width_, height_, rows_ = 0;
+  std::vector<std::string> channels_;
+};
 // A missing, truncated or corrupted file throws ExrError naming the file.
 FrameImage readExr(const std::filesystem::path& file);
 

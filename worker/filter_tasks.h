@@ -10,6 +10,7 @@
 
 #include "image/frame_image.h"
 #include "pathfarm/worker_service.pb.h"
+#include "worker/scratch_file.h"
 
 namespace pathfarm::farm {
 
@@ -24,7 +25,8 @@ struct TaskInput {
 };
 
 struct TaskOutput {
-  std::string chunk;                      // the output chunk's bytes
+  std::string chunk;                          // the output chunk's bytes, or
+  std::shared_ptr<const ScratchFile> chunkFile;  // a file holding them (an assembled frame)
   std::vector<TaskParams> followUps;      // render tiles to add to the shot
   std::map<std::string, double> metrics;  // figures for the shot's report
 };

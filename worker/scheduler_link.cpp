@@ -106,18 +106,32 @@ grpc::Status SchedulerLink::fail(const FailRequest& request, ReportReply& reply)
   return stub_->FailTask(context(kCallSeconds).get(), request, &reply);
 }
 
-grpc::Status SchedulerLink::putChunk(const std::string& bytes, ChunkRef& stored) {
-  ChunkRef ref;
-  ref.set_sha256(sha256Hex(bytes));
-  ref.set_size(static_cast<int64_t>(bytes.size()));
+template <class Send>
+grpc::Status SchedulerLink::put(ChunkRef& stored, Send send) {
   const auto call = context(kTransferSeconds);
   PutChunkReply reply;
   auto writer = stub_->PutChunk(call.get(), &reply);
-  sendChunk(*writer, ref, bytes);
+  send(*writer);
   writer->WritesDone();
   const grpc::Status status = writer->Finish();
   if (status.ok()) stored = reply.ref();
   return status;
+}
+
+grpc::Status SchedulerLink::putChunk(const std::string& bytes, ChunkRef& stored) {
+  ChunkRef ref;
+  ref.set_sha256(sha256Hex(bytes));
+  ref.set_size(static_cast<int64_t>(bytes.size()));
+  return put(stored, [&](auto& writer) { sendChunk(writer, ref, bytes); });
+}
+
+grpc::Status SchedulerLink::putChunkFile(const std::filesystem::path& file, ChunkRef& stored) {
+  try {
+    const ChunkRef ref = refOfFile(file);
+    return put(stored, [&](auto& writer) { sendFileChunk(writer, ref, file); });
+  } catch (const ChunkError& e) {
+    return {grpc::StatusCode::INTERNAL, e.what()};
+  }
 }
 
 grpc::Status SchedulerLink::getChunk(const std::string& sha256, std::string& bytes) {

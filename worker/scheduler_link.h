@@ -1,6 +1,7 @@
 #pragma once
 // A worker's calls to the scheduler: the WorkerService stub with the access token and a
 // deadline on every call, and chunk transfer in bounded, verified parts.
+#include <filesystem>
 #include <memory>
 #include <mutex>
 #include <set>
@@ -38,11 +39,17 @@ class SchedulerLink {
   grpc::Status complete(const CompleteRequest& request, ReportReply& reply);
   grpc::Status fail(const FailRequest& request, ReportReply& reply);
   grpc::Status putChunk(const std::string& bytes, ChunkRef& stored);
+  // The bytes of `file`, read in parts (an output too large to hold); a file that cannot
+  // be read is an INTERNAL error.
+  grpc::Status putChunkFile(const std::filesystem::path& file, ChunkRef& stored);
   grpc::Status getChunk(const std::string& sha256, std::string& bytes);
 
  private:
   // A call's context with the token and the current session (copied to `used` if given).
   std::unique_ptr<grpc::ClientContext> context(double seconds, WorkerSession* used = nullptr) const;
+  // A PutChunk call whose parts `send` writes to the stream it is handed.
+  template <class Send>
+  grpc::Status put(ChunkRef& stored, Send send);
   std::unique_ptr<WorkerService::Stub> stub_;
   std::string token_;
   mutable std::mutex sessionMutex_;

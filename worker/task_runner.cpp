@@ -11,6 +11,7 @@
 #include "renderer/integrators/gradient_frame_renderer.h"
 #include "renderer/scene/scene_loader.h"
 #include "scheduler/planner.h"
+#include "worker/assemble_frame.h"
 #include "worker/failure_class.h"
 #include "worker/metropolis_tasks.h"
 #include "worker/scene_files.h"
@@ -70,8 +71,13 @@ TaskOutput TaskRunner::run(const Lease& lease, const ChunkFetcher& fetch, std::a
   switch (lease.kind()) {
     case TASK_RENDER_TILE:
       return renderTile(lease, fetch, progress, abandon);
-    case TASK_ASSEMBLE_FRAME:
-      return {assembleFrame(lease, fetch, progress), {}, {}};
+    case TASK_ASSEMBLE_FRAME: {
+      TaskOutput output;
+      output.chunkFile = std::make_shared<const ScratchFile>(
+          scratchPathFor(outgoingRoot_, "attempt-" + std::to_string(lease.attempt_id()) + ".exr"));
+      assembleFrame(lease, fetch, output.chunkFile->path(), progress);
+      return output;
+    }
     case TASK_GRADIENT_RENDER:
       return renderGradientFrame(lease, fetch, progress, abandon);
     case TASK_NOOP:
@@ -195,41 +201,6 @@ TaskOutput TaskRunner::runMetropolis(const Lease& lease, const ChunkFetcher& fet
   }
   progress = 1.0;
   return output;
-}
-
-std::string TaskRunner::assembleFrame(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress) {
-  const ShotSpec& spec = lease.spec();
-  // A region of a large frame (planner.cpp) is assembled where its window says.
-  PixelWindow whole;
-  whole.set_x1(spec.width());
-  whole.set_y1(spec.height());
-  const PixelWindow& area = lease.params().has_window() ? lease.params().window() : whole;
-  FrameImage frame(area.x1() - area.x0(), area.y1() - area.y0());
-  uint64_t nonFinite = 0;
-  for (int i = 0; i < lease.inputs_size(); ++i) {
-    const FrameImage tile = decodeExr(fetch(lease.inputs(i)), "tile chunk " + lease.inputs(i).sha256());
-    const auto& window = lease.input_params(i).window();
-    if (tile.width() != window.x1() - window.x0() || tile.height() != window.y1() - window.y0() ||
-        window.x0() < area.x0() || window.y0() < area.y0() || window.x1() > area.x1() || window.y1() > area.y1())
-      throw BadInput("tile chunk " + lease.inputs(i).sha256() + " does not have its window's size or place");
-    if (const std::string bad = tile.firstNonFinite(); !bad.empty())
-      throw BadInput("tile chunk " + lease.inputs(i).sha256() + " holds a non-finite value (" + bad +
-                               "): not pasted into the frame");
-    frame.paste(tile, window.x0() - area.x0(), window.y0() - area.y0());
-    // The frame carries the tiles' header; the count of dropped samples is their sum.
-    for (const auto& [key, value] : tile.attributes()) frame.attributes()[key] = value;
-    const auto count = tile.attributes().find("pathfarm.nonfinite_samples");
-    if (count == tile.attributes().end())
-      throw BadInput("tile chunk " + lease.inputs(i).sha256() + " was not made by a pathfarm renderer");
-    nonFinite += std::stoull(count->second);
-    progress = static_cast<double>(i + 1) / static_cast<double>(lease.inputs_size());
-  }
-  frame.attributes()["pathfarm.nonfinite_samples"] = std::to_string(nonFinite);
-  // A shot's frame is kept; a keyframe, a measurement's frame or a region is read by the
-  // next task.
-  const bool kept = !lease.params().has_window() &&
-                    (lease.params().role() == ROLE_OUTPUT || lease.params().role() == ROLE_UNSPECIFIED);
-  return encodeExr(frame, kept ? ExrCompression::Small : ExrCompression::Fast);
 }
 
 }  // namespace pathfarm::farm

@@ -1,6 +1,7 @@
 #pragma once
 // Runs one leased task with the renderer and postproc libraries and returns its output: a
-// tile's EXR for render_tile, the frame's EXR for assemble_frame, the filter tasks' chunks
+// tile's EXR for render_tile, the frame's EXR file for assemble_frame
+// (worker/assemble_frame.h), the filter tasks' chunks
 // (worker/filter_tasks.h), the Metropolis tasks' (worker/metropolis_tasks.h), nothing
 // for noop.
 // Scenes and their built geometry are cached per shot, so the tiles of a shot pay for
@@ -40,10 +41,15 @@ class TaskRunner {
   // Input chunks' bytes by digest (from a cache or the scheduler); throws on failure.
   using ChunkFetcher = std::function<std::string(const ChunkRef&)>;
 
-  // Uploaded scenes are rebuilt under `scenesRoot` (worker/scene_files.h); decoded inputs
+  // Uploaded scenes are rebuilt under `scenesRoot` (worker/scene_files.h); assembled
+  // frames are written to files in `outgoingRoot` (TaskOutput::chunkFile); decoded inputs
   // are kept up to `decodedInputBytes`.
-  TaskRunner(int threads, std::filesystem::path scenesRoot, uint64_t decodedInputBytes = kDefaultDecodedInputBytes)
-      : threads_(threads), scenesRoot_(std::move(scenesRoot)), decoded_(decodedInputBytes) {}
+  TaskRunner(int threads, std::filesystem::path scenesRoot, std::filesystem::path outgoingRoot,
+             uint64_t decodedInputBytes = kDefaultDecodedInputBytes)
+      : threads_(threads),
+        scenesRoot_(std::move(scenesRoot)),
+        outgoingRoot_(std::move(outgoingRoot)),
+        decoded_(decodedInputBytes) {}
   ~TaskRunner();
 
   // `progress` receives 0..1; `abandon` turning true stops the task with TaskAbandoned.
@@ -56,7 +62,6 @@ class TaskRunner {
   std::shared_ptr<ShotRenderer> rendererFor(const Lease& lease, const ChunkFetcher& fetch);
   TaskOutput renderTile(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,
                         const std::atomic<bool>& abandon);
-  std::string assembleFrame(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress);
   TaskOutput renderGradientFrame(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,
                                  const std::atomic<bool>& abandon);
   TaskOutput filter(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress);
@@ -69,6 +74,7 @@ class TaskRunner {
 
   int threads_;
   std::filesystem::path scenesRoot_;
+  std::filesystem::path outgoingRoot_;
   DecodedInputs decoded_;
   std::mutex mutex_;
   std::vector<std::pair<int64_t, std::shared_ptr<ShotRenderer>>> renderers_;  // by shot id, recent first

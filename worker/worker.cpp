@@ -14,6 +14,7 @@
 #include "worker/failure_class.h"
 #include "worker/lease_heartbeat.h"
 #include "worker/scheduler_link.h"
+#include "worker/scratch_file.h"
 #include "worker/task_log.h"
 #include "worker/task_runner.h"
 
@@ -199,12 +200,13 @@ class Slot {
   // Sends the output: while the scheduler is out of reach, until the lease is lost (after
   // a stop request, for kDeliveryGrace); a chunk it could not take, kUploadTries times;
   // a refusal, once. Returns the last answer.
-  grpc::Status upload(const std::string& bytes, ChunkRef& stored, const std::atomic<bool>& abandon,
+  grpc::Status upload(const TaskOutput& output, ChunkRef& stored, const std::atomic<bool>& abandon,
                       const std::atomic<bool>& stop) {
     Backoff backoff;
     const auto since = Clock::now();
     for (int tries = 1;; ++tries) {
-      const grpc::Status status = link_.putChunk(bytes, stored);
+      const grpc::Status status = output.chunkFile ? link_.putChunkFile(output.chunkFile->path(), stored)
+                                                   : link_.putChunk(output.chunk, stored);
       if (status.ok() || abandon) return status;
       const bool waitForScheduler = isUnreachable(status) && !(stop && Clock::now() - since > kDeliveryGrace);
       const bool sendAgain = status.error_code() == grpc::StatusCode::DATA_LOSS && tries < kUploadTries;
@@ -226,7 +228,7 @@ class Slot {
       const std::atomic<double> uploaded{1.0};
       std::atomic<bool> abandon{false};
       const grpc::Status status =
-          whileHeartbeating(lease, uploaded, abandon, [&] { return upload(output.chunk, stored, abandon, stop); });
+          whileHeartbeating(lease, uploaded, abandon, [&] { return upload(output, stored, abandon, stop); });
       if (abandon) {
         spdlog::warn("task {}: lease lost during the upload, result dropped", lease.task_id());
         return;
@@ -238,7 +240,7 @@ class Slot {
         return;
       }
       spdlog::info("task {}: output {} uploaded ({:.2f} MB)", lease.task_id(), stored.sha256().substr(0, 12),
-                   1e-6 * static_cast<double>(output.chunk.size()));
+                   1e-6 * static_cast<double>(stored.size()));
     }
     if (!sendFollowUps(lease, output.followUps, log, stop)) return;
     request.set_log_tail(log.tail());
@@ -354,7 +356,9 @@ void Worker::run(const std::atomic<bool>& stop) {
   ChunkStore cache(options_.cache, ChunkStore::Kind::Cache);
   CacheBound bound(options_.cache, options_.cacheMaxBytes);
   bound.maybeTrim();
-  TaskRunner runner(options_.threads, options_.cache / "scenes", options_.decodedInputMaxBytes);
+  removeOrphanedScratchFiles(options_.cache / "outgoing");
+  TaskRunner runner(options_.threads, options_.cache / "scenes", options_.cache / "outgoing",
+                    options_.decodedInputMaxBytes);
   std::vector<std::thread> slots;
   for (int i = 0; i < options_.slots; ++i) {
     slots.emplace_back([&] {

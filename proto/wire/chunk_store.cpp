@@ -7,6 +7,24 @@
 #include "proto/wire/sha256.h"
 
 namespace pathfarm::farm {
+namespace {
+
+// The digest and size of what is left in `in`.
+ChunkRef refOfStream(std::istream& in) {
+  Sha256 digest;
+  int64_t size = 0;
+  readStreamParts(in, size_t{1} << 20, [&](std::string_view part) {
+    digest.update(part);
+    size += static_cast<int64_t>(part.size());
+    return true;
+  });
+  ChunkRef ref;
+  ref.set_sha256(digest.hex());
+  ref.set_size(size);
+  return ref;
+}
+
+}  // namespace
 
 bool isSha256Hex(const std::string& text) {
   return text.size() == 64 &&
@@ -116,17 +134,10 @@ ChunkRef ChunkStore::Incoming::commit() {
 
 std::optional<int64_t> ChunkStore::verifiedSize(const std::string& sha256) const {
   if (!isSha256Hex(sha256)) return std::nullopt;
-  Sha256 digest;
-  int64_t size = 0;
   std::ifstream in(pathOf(sha256), std::ios::binary);
   if (!in) return std::nullopt;
-  std::string buffer(1 << 20, '\0');
-  while (in) {
-    in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
-    digest.update(std::string_view(buffer.data(), static_cast<size_t>(in.gcount())));
-    size += in.gcount();
-  }
-  if (digest.hex() == sha256) return size;
+  const ChunkRef found = refOfStream(in);
+  if (found.sha256() == sha256) return found.size();
   std::error_code ignored;
   std::filesystem::remove(pathOf(sha256), ignored);
   return std::nullopt;
@@ -135,21 +146,35 @@ std::optional<int64_t> ChunkStore::verifiedSize(const std::string& sha256) const
 bool ChunkStore::readParts(const std::string& sha256, size_t partBytes,
                            const std::function<bool(std::string_view)>& part) const {
   std::ifstream in(pathOf(sha256), std::ios::binary);
-  std::string buffer(partBytes, '\0');
-  while (in) {
-    in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
-    const auto n = static_cast<size_t>(in.gcount());
-    if (n == 0) break;
-    bytesOut_ += n;
-    if (!part(std::string_view(buffer.data(), n))) return false;
-  }
-  return true;
+  return readStreamParts(in, partBytes, [&](std::string_view data) {
+    bytesOut_ += data.size();
+    return part(data);
+  });
 }
 
 void ChunkStore::remove(const std::string& sha256) {
   if (!isSha256Hex(sha256)) return;
   std::error_code ignored;
   std::filesystem::remove(pathOf(sha256), ignored);
+}
+
+bool readStreamParts(std::istream& in, size_t partBytes, const std::function<bool(std::string_view)>& part) {
+  std::string buffer(partBytes, '\0');
+  while (in) {
+    in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+    const auto n = static_cast<size_t>(in.gcount());
+    if (n == 0) break;
+    if (!part(std::string_view(buffer.data(), n))) return false;
+  }
+  return true;
+}
+
+ChunkRef refOfFile(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw ChunkError("cannot read " + file.string());
+  ChunkRef ref = refOfStream(in);
+  if (in.bad()) throw ChunkError("cannot read " + file.string());
+  return ref;
 }
 
 }  // namespace pathfarm::farm

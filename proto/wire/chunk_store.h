@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <istream>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -85,5 +86,12 @@ class ChunkStore {
 };
 
 bool isSha256Hex(const std::string& text);
+
+// Hands the bytes of `in` to `part` in pieces of at most `partBytes`, until it returns
+// false (then false).
+bool readStreamParts(std::istream& in, size_t partBytes, const std::function<bool(std::string_view)>& part);
+// The digest and size of a file's bytes, read in parts; throws ChunkError when it cannot
+// be read.
+ChunkRef refOfFile(const std::filesystem::path& file);
 
 }  // namespace pathfarm::farm

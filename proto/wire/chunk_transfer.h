@@ -2,6 +2,9 @@
 // Moving a chunk over a gRPC stream in bounded parts: the first part carries the
 // reference (digest and size), the receiver checks both before it believes the bytes.
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -15,19 +18,42 @@ namespace pathfarm::farm {
 // Bytes per part; with the headers a part stays well under kMaxMessageBytes.
 inline constexpr size_t kChunkPartBytes = 1 << 20;
 
+// Sends a chunk whose bytes `read` hands to its argument in parts of at most
+// kChunkPartBytes, as ChunkStore::readParts does (a false from the argument stops it and
+// makes it return false). The first part carries `ref`; an empty chunk is one empty part.
 // `Writer` is any gRPC stream with Write(const ChunkPart&) -> bool.
+template <class Writer, class ReadParts>
+bool sendParts(Writer& writer, const ChunkRef& ref, ReadParts read) {
+  bool first = true;
+  const auto write = [&](std::string_view data) {
+    ChunkPart part;
+    if (first) *part.mutable_ref() = ref;
+    first = false;
+    part.set_data(data.data(), data.size());
+    return writer.Write(part);
+  };
+  if (!read(std::function<bool(std::string_view)>(write))) return false;
+  return !first || write({});
+}
+
 template <class Writer>
 bool sendChunk(Writer& writer, const ChunkRef& ref, const std::string& bytes) {
-  size_t offset = 0;
-  do {
-    ChunkPart part;
-    if (offset == 0) *part.mutable_ref() = ref;
-    const size_t n = std::min(kChunkPartBytes, bytes.size() - offset);
-    part.set_data(bytes.data() + offset, n);
-    if (!writer.Write(part)) return false;
-    offset += n;
-  } while (offset < bytes.size());
-  return true;
+  return sendParts(writer, ref, [&](const std::function<bool(std::string_view)>& part) {
+    for (size_t offset = 0; offset < bytes.size(); offset += kChunkPartBytes)
+      if (!part(std::string_view(bytes).substr(offset, kChunkPartBytes))) return false;
+    return true;
+  });
+}
+
+// Sends a file's bytes, `ref` being their digest and size (refOfFile), never holding them
+// whole. Throws ChunkError when the file cannot be read.
+template <class Writer>
+bool sendFileChunk(Writer& writer, const ChunkRef& ref, const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw ChunkError("cannot read " + file.string());
+  return sendParts(writer, ref, [&](const std::function<bool(std::string_view)>& part) {
+    return readStreamParts(in, kChunkPartBytes, part);
+  });
 }
 
 // Sends a stored chunk in parts after checking its digest, never holding it whole.
@@ -40,17 +66,10 @@ StoredSend sendStoredChunk(Writer& writer, const ChunkStore& store, const std::s
   ChunkRef ref;
   ref.set_sha256(sha256);
   ref.set_size(*size);
-  bool first = true;
-  const auto write = [&](std::string_view data) {
-    ChunkPart part;
-    if (first) *part.mutable_ref() = ref;
-    first = false;
-    part.set_data(data.data(), data.size());
-    return writer.Write(part);
-  };
-  if (!store.readParts(sha256, kChunkPartBytes, write)) return StoredSend::ReaderGone;
-  if (first && !write({})) return StoredSend::ReaderGone;  // an empty chunk is one empty part
-  return StoredSend::Sent;
+  const bool sent = sendParts(writer, ref, [&](const std::function<bool(std::string_view)>& part) {
+    return store.readParts(sha256, kChunkPartBytes, part);
+  });
+  return sent ? StoredSend::Sent : StoredSend::ReaderGone;
 }
 
 // Writes a chunk streamed in parts into the store as it arrives (never holding it whole)

@@ -145,6 +145,51 @@ TEST(ExrIo, AScanInStripsFindsTheSizeAndTheFirstNonFiniteValueThatDecodingWholeF
   EXPECT_THROW(scanExrFile(temporaryFile("absent.exr"), "chunk"), ExrError);
 }
 
+std::string fileBytes(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+TEST(ExrIo, AFrameWrittenInStripsIsTheFileEncodingItWholeMakes) {
+  const FrameImage frame = sampleFrame();
+  for (const ExrCompression compression : {ExrCompression::Small, ExrCompression::Fast}) {
+    const std::filesystem::path file = temporaryFile("strips.exr");
+    ExrStripWriter writer(file, frame.width(), frame.height(), frame.channelNames(), frame.attributes(), compression);
+    // 23 rows as 1, 16 and 6: strips across ZIP's 16-row blocks.
+    for (const auto& [top, rows] : {std::pair{0, 1}, {1, 16}, {17, 6}}) {
+      writer.write(frame.crop(0, top, frame.width(), rows));
+      EXPECT_EQ(writer.rowsWritten(), top + rows);
+    }
+    writer.finish();
+    EXPECT_EQ(fileBytes(file), encodeExr(frame, compression));
+  }
+}
+
+TEST(ExrIo, AStripWriterRefusesRowsItCannotPlaceAndAShortFrame) {
+  const FrameImage frame = sampleFrame();
+  ExrStripWriter writer(temporaryFile("refused.exr"), frame.width(), frame.height(), frame.channelNames(),
+                        frame.attributes(), ExrCompression::Fast);
+  EXPECT_THROW(writer.write(frame.crop(0, 0, 36, 2)), ExrError);  // not the frame's width
+  FrameImage lacking(frame.width(), 2);
+  lacking.addChannel("R");
+  EXPECT_THROW(writer.write(lacking), ExrError);  // not every channel
+  writer.write(frame.crop(0, 0, frame.width(), 20));
+  EXPECT_THROW(writer.write(frame.crop(0, 0, frame.width(), 4)), ExrError);  // past the last row
+  EXPECT_THROW(writer.finish(), ExrError);  // 20 of 23 rows
+  EXPECT_THROW(ExrStripWriter(temporaryFile("absent") / "frame.exr", 4, 4, {"R"}, {}, ExrCompression::Fast), ExrError);
+}
+
+TEST(ExrIo, AHeaderReadAloneSaysWhatDecodingSays) {
+  const FrameImage frame = sampleFrame();
+  const ExrHeader header = readExrHeader(encodeExr(frame), "chunk");
+  const FrameImage decoded = decodeExr(encodeExr(frame), "chunk");
+  EXPECT_EQ(header.width, 37);
+  EXPECT_EQ(header.height, 23);
+  EXPECT_EQ(header.channels, decoded.channelNames());
+  EXPECT_EQ(header.attributes, frame.attributes());
+  EXPECT_THROW(readExrHeader(encodeExr(frame).substr(0, 40), "chunk"), ExrError);
+}
+
 // The scan walks the headers before OpenEXR does, as decodeExr does: a damaged size is
 // refused before anything is allocated.
 TEST(ExrIo, AScannedFileClaimingMorePixelsThanItsBytesCanHoldIsRefused) {

@@ -4,10 +4,16 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <map>
+#include <random>
 
 #include "image/exr_io.h"
+#include "test_support.h"
+#include "worker/assemble_frame.h"
 #include "worker/task_runner.h"
 
 namespace pathfarm::farm {
@@ -42,13 +48,25 @@ struct Assembly {
     params->mutable_window()->set_y1(2);
     lease.add_input_kinds(TASK_RENDER_TILE);
   }
+  // The frame, through the worker's task runner; its file is gone once the output is.
   FrameImage run() {
-    TaskRunner runner(1, std::filesystem::temp_directory_path() / "pathfarm_assemble_scenes");  // no scene is read
+    const auto folder = test_support::processTemporaryFolder("pathfarm_assemble");
+    TaskRunner runner(1, folder / "scenes", folder / "outgoing");  // no scene is read
     std::atomic<double> progress{0};
     std::atomic<bool> abandon{false};
-    const TaskOutput output =
-        runner.run(lease, [&](const ChunkRef& ref) { return chunks.at(ref.sha256()); }, progress, abandon);
-    return decodeExr(output.chunk, "assembled frame");
+    std::filesystem::path file;
+    FrameImage frame;
+    {
+      const TaskOutput output =
+          runner.run(lease, [&](const ChunkRef& ref) { return chunks.at(ref.sha256()); }, progress, abandon);
+      EXPECT_TRUE(output.chunk.empty());
+      file = output.chunkFile->path();
+      EXPECT_EQ(file.parent_path(), folder / "outgoing");
+      frame = readExr(file);
+      EXPECT_EQ(progress, 1.0);
+    }
+    EXPECT_FALSE(std::filesystem::exists(file));
+    return frame;
   }
 };
 
@@ -103,6 +121,72 @@ TEST(AssembleFrame, ATileOfTheWrongSizeIsRefused) {
   Assembly assembly;
   assembly.add(0, tile(2, 1, 1.0f));
   EXPECT_THROW(assembly.run(), std::runtime_error);
+}
+
+// A 150 x 140 frame in 40 x 48 tiles (short at the right and bottom edges) crosses several
+// strips and tiles several of them; one tile has a channel the others lack.
+struct UnevenTiles {
+  Lease lease;
+  std::map<std::string, std::string> chunks;
+  FrameImage expected{150, 140};  // the tiles pasted into a whole frame
+  int fetches = 0;
+
+  UnevenTiles() {
+    lease.set_kind(TASK_ASSEMBLE_FRAME);
+    lease.mutable_spec()->set_width(150);
+    lease.mutable_spec()->set_height(140);
+    std::mt19937 random(7);
+    std::uniform_real_distribution<float> value(0.0f, 4.0f);
+    uint64_t dropped = 0;
+    for (int y0 = 0; y0 < 140; y0 += 48) {
+      for (int x0 = 0; x0 < 150; x0 += 40) {
+        FrameImage part = tile(std::min(40, 150 - x0), std::min(48, 140 - y0), 0.0f);
+        for (const char* c : {"R", "G", "B"})
+          for (float& v : part.channel(c)) v = value(random);
+        if (x0 == 40 && y0 == 48) part.addChannel("Z").assign(part.pixelCount(), 9.0f);
+        part.attributes()["pathfarm.nonfinite_samples"] = std::to_string(x0 + y0);
+        part.attributes()["pathfarm.tile"] = std::to_string(x0) + "," + std::to_string(y0);
+        dropped += static_cast<uint64_t>(x0 + y0);
+        const std::string name = "tile" + std::to_string(chunks.size());
+        chunks[name] = encodeExr(part, ExrCompression::Fast);
+        lease.add_inputs()->set_sha256(name);
+        PixelWindow* window = lease.add_input_params()->mutable_window();
+        window->set_x0(x0);
+        window->set_y0(y0);
+        window->set_x1(x0 + part.width());
+        window->set_y1(y0 + part.height());
+        lease.add_input_kinds(TASK_RENDER_TILE);
+        expected.paste(part, x0, y0);
+        expected.attributes() = part.attributes();
+      }
+    }
+    expected.attributes()["pathfarm.nonfinite_samples"] = std::to_string(dropped);
+  }
+  std::string assemble(uint64_t keptTileBytes) {
+    const auto file = test_support::processTemporaryFolder("pathfarm_assemble") / "uneven.exr";
+    std::atomic<double> progress{0};
+    assembleFrame(
+        lease,
+        [&](const ChunkRef& ref) {
+          ++fetches;
+          return chunks.at(ref.sha256());
+        },
+        file, progress, keptTileBytes);
+    std::ifstream in(file, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  }
+};
+
+TEST(AssembleFrame, AFrameWrittenInStripsIsTheFileOfItsTilesPastedWhole) {
+  UnevenTiles tiles;
+  EXPECT_EQ(tiles.assemble(kKeptTileBytes), encodeExr(tiles.expected, ExrCompression::Small));
+  EXPECT_EQ(tiles.fetches, static_cast<int>(tiles.chunks.size()));  // kept between the two readings
+}
+
+TEST(AssembleFrame, TilesBeyondTheKeptBytesAreFetchedAgainForTheSameFrame) {
+  UnevenTiles tiles;
+  EXPECT_EQ(tiles.assemble(0), encodeExr(tiles.expected, ExrCompression::Small));
+  EXPECT_EQ(tiles.fetches, 2 * static_cast<int>(tiles.chunks.size()));
 }
 
 TEST(FrameImageCheck, FirstNonFiniteNamesTheChannelAndPixel) {

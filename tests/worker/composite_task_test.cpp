@@ -101,7 +101,8 @@ TEST(CompositeTask, ReRenderedPixelsAreThoseOfDenoisingTheWholeSparseFrame) {
   ASSERT_NE(expected.attributes().at("pathfarm.denoise_fireflies"), "0");  // the spreads are compared too
   addDirectEmission(expected, light, &mask);
 
-  TaskRunner runner(1, test_support::processTemporaryFolder("pathfarm_composite_scenes"));
+  TaskRunner runner(1, test_support::processTemporaryFolder("pathfarm_composite_scenes"),
+                    test_support::processTemporaryFolder("pathfarm_composite_outgoing"));
   std::atomic<double> progress{0};
   std::atomic<bool> abandon{false};
   const FrameImage result = decodeExr(
@@ -136,7 +137,8 @@ TEST(CompositeTask, ATileWhosePixelMaskDoesNotFitItsWindowIsRefused) {
   params->set_frame(0);
   *params->mutable_window() = window(0, 0, 2, 2);
   params->set_pixel_mask(std::string(3, '\1'));
-  TaskRunner runner(1, test_support::processTemporaryFolder("pathfarm_composite_scenes"));
+  TaskRunner runner(1, test_support::processTemporaryFolder("pathfarm_composite_scenes"),
+                    test_support::processTemporaryFolder("pathfarm_composite_outgoing"));
   std::atomic<double> progress{0};
   std::atomic<bool> abandon{false};
   try {

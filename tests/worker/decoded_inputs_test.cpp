@@ -103,14 +103,16 @@ FrameImage runComposite(TaskRunner& runner, const std::string& chunk, int& fetch
 }
 
 TEST(DecodedInputs, AWorkerDecodesAChunkTwoTasksReadOnce) {
-  TaskRunner runner(1, std::filesystem::temp_directory_path() / "pathfarm_decoded_inputs_scenes");
+  TaskRunner runner(1, std::filesystem::temp_directory_path() / "pathfarm_decoded_inputs_scenes",
+                    std::filesystem::temp_directory_path() / "pathfarm_decoded_inputs_outgoing");
   const std::string chunk = encodeExr(keyframe(0.25f), ExrCompression::Fast);
   int fetches = 0;
   EXPECT_EQ(runComposite(runner, chunk, fetches).channel("G"), std::vector<float>(8, 0.25f));
   EXPECT_EQ(runComposite(runner, chunk, fetches).channel("G"), std::vector<float>(8, 0.25f));
   EXPECT_EQ(fetches, 1);
 
-  TaskRunner forgetful(1, std::filesystem::temp_directory_path() / "pathfarm_decoded_inputs_scenes", 0);
+  TaskRunner forgetful(1, std::filesystem::temp_directory_path() / "pathfarm_decoded_inputs_scenes",
+                    std::filesystem::temp_directory_path() / "pathfarm_decoded_inputs_outgoing", 0);
   fetches = 0;
   runComposite(forgetful, chunk, fetches);
   runComposite(forgetful, chunk, fetches);
@@ -118,7 +120,8 @@ TEST(DecodedInputs, AWorkerDecodesAChunkTwoTasksReadOnce) {
 }
 
 TEST(DecodedInputs, AChunkHoldingANanIsRefusedEveryTime) {
-  TaskRunner runner(1, std::filesystem::temp_directory_path() / "pathfarm_decoded_inputs_scenes");
+  TaskRunner runner(1, std::filesystem::temp_directory_path() / "pathfarm_decoded_inputs_scenes",
+                    std::filesystem::temp_directory_path() / "pathfarm_decoded_inputs_outgoing");
   FrameImage poisoned = keyframe(0.25f);
   poisoned.channel("B")[5] = std::numeric_limits<float>::quiet_NaN();
   const std::string chunk = encodeExr(poisoned, ExrCompression::Fast);
