@@ -172,25 +172,21 @@ std::vector<std::filesystem::path> FarmClient::fetch(int64_t id, const std::file
   auto reader = stub_->FetchOutputs(call.get(), request);
   std::filesystem::create_directories(folder);
   std::vector<std::filesystem::path> files;
-  // Each frame's chunk starts with a part that carries its reference.
-  ChunkAssembler chunk;
-  int64_t frame = 0;
-  const auto writeFrame = [&] {
-    files.push_back(folder / frameFileName(frame));
-    writeFileAtomically(files.back(), chunk.finish());  // verified first
-  };
+  // Each frame's chunk starts with a part that carries its reference; its file is written
+  // as the parts come, and appears once the whole chunk checks out.
+  std::optional<IncomingChunk> chunk;
   try {
     OutputPart part;
     while (reader->Read(&part)) {
       if (part.part().has_ref()) {
-        if (chunk.started()) writeFrame();
-        chunk.start(part.part().ref(), kMaxChunkBytes);
-        frame = part.frame();
+        if (chunk) chunk->commit();
+        files.push_back(folder / frameFileName(part.frame()));
+        chunk.emplace(part.part().ref(), kMaxChunkBytes, files.back(), AtomicFileWriter::Sync::Yes, "write frame");
       }
-      if (!chunk.started()) throw ChunkError("the output stream began without a chunk reference");
-      chunk.append(part.part().data());
+      if (!chunk) throw ChunkError("the output stream began without a chunk reference");
+      chunk->append(part.part().data());
     }
-    if (chunk.started()) writeFrame();
+    if (chunk) chunk->commit();
   } catch (const ChunkError& e) {
     call->TryCancel();
     reader->Finish();

@@ -82,25 +82,29 @@ std::optional<std::string> ChunkStore::get(const std::string& sha256) const {
   return data;
 }
 
-ChunkStore::Incoming::Incoming(ChunkStore& store, const ChunkRef& announced, size_t maxBytes)
-    : store_(store), announced_(announced), digest_(std::make_unique<Sha256>()) {
+IncomingChunk::IncomingChunk(const ChunkRef& announced, size_t maxBytes, const std::optional<std::filesystem::path>& file,
+                             AtomicFileWriter::Sync sync, std::string purpose)
+    : announced_(announced), sync_(sync), purpose_(std::move(purpose)), digest_(std::make_unique<Sha256>()) {
   if (announced.size() < 0 || static_cast<uint64_t>(announced.size()) > maxBytes)
     throw ChunkError("chunk of " + std::to_string(announced.size()) + " bytes exceeds the limit of " +
                      std::to_string(maxBytes));
   if (!isSha256Hex(announced.sha256())) throw ChunkError("a chunk must announce its SHA-256 digest");
-  if (store.has(announced.sha256())) return;  // the bytes are checked all the same
-  const auto target = store.pathOf(announced.sha256());
+  if (!file) return;
   try {
-    std::filesystem::create_directories(target.parent_path());
-    file_ = std::make_unique<AtomicFileWriter>(target);
+    std::filesystem::create_directories(file->parent_path());
+    file_ = std::make_unique<AtomicFileWriter>(*file);
   } catch (const std::exception& e) {
-    throw ChunkError(std::string("cannot store chunk: ") + e.what());
+    fail(e);
   }
 }
 
-ChunkStore::Incoming::~Incoming() = default;
+IncomingChunk::~IncomingChunk() = default;
 
-void ChunkStore::Incoming::append(std::string_view part) {
+void IncomingChunk::fail(const std::exception& e) const {
+  throw ChunkError("cannot " + purpose_ + ": " + e.what());
+}
+
+void IncomingChunk::append(std::string_view part) {
   received_ += static_cast<int64_t>(part.size());
   if (received_ > announced_.size())
     throw ChunkError("chunk longer than its announced " + std::to_string(announced_.size()) + " bytes");
@@ -110,11 +114,11 @@ void ChunkStore::Incoming::append(std::string_view part) {
     file_->append(part);
   } catch (const std::exception& e) {
     file_.reset();
-    throw ChunkError(std::string("cannot store chunk: ") + e.what());
+    fail(e);
   }
 }
 
-ChunkRef ChunkStore::Incoming::commit() {
+ChunkRef IncomingChunk::commit() {
   if (received_ != announced_.size())
     throw ChunkError("chunk truncated: " + std::to_string(received_) + " of " + std::to_string(announced_.size()) +
                      " bytes");
@@ -123,13 +127,33 @@ ChunkRef ChunkStore::Incoming::commit() {
     throw ChunkError("chunk digest mismatch: announced " + announced_.sha256() + ", received " + digest);
   if (file_) {
     try {
-      file_->commit(store_.sync_);
+      file_->commit(sync_);
     } catch (const std::exception& e) {
-      throw ChunkError(std::string("cannot store chunk: ") + e.what());
+      fail(e);
     }
   }
-  store_.bytesIn_ += static_cast<uint64_t>(received_);
   return announced_;
+}
+
+namespace {
+
+// Where an arriving chunk is written: nowhere when the store has it already (its bytes
+// are checked all the same) or its digest is no name (IncomingChunk refuses it).
+std::optional<std::filesystem::path> arrivalPath(const ChunkStore& store, const std::string& sha256) {
+  if (!isSha256Hex(sha256) || store.has(sha256)) return std::nullopt;
+  return store.pathOf(sha256);
+}
+
+}  // namespace
+
+ChunkStore::Incoming::Incoming(ChunkStore& store, const ChunkRef& announced, size_t maxBytes)
+    : store_(store),
+      chunk_(announced, maxBytes, arrivalPath(store, announced.sha256()), store.sync_, "store chunk") {}
+
+ChunkRef ChunkStore::Incoming::commit() {
+  const ChunkRef ref = chunk_.commit();
+  store_.bytesIn_ += static_cast<uint64_t>(ref.size());
+  return ref;
 }
 
 std::optional<int64_t> ChunkStore::verifiedSize(const std::string& sha256) const {

@@ -27,6 +27,32 @@ class ChunkError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A chunk arriving in parts, checked as it comes and never held whole: written to `file`
+// (or, with none, only checked), which appears under its name only when the whole matches
+// the announced digest and size. Errors are ChunkErrors, "cannot <purpose>: ..." when the
+// file cannot be written.
+class IncomingChunk {
+ public:
+  // Throws ChunkError for an announced size beyond `maxBytes` or a digest that is no
+  // SHA-256.
+  IncomingChunk(const ChunkRef& announced, size_t maxBytes, const std::optional<std::filesystem::path>& file,
+                AtomicFileWriter::Sync sync, std::string purpose);
+  ~IncomingChunk();
+  // Throws ChunkError once the bytes outgrow the announced size, or cannot be written.
+  void append(std::string_view part);
+  // Throws ChunkError for a short chunk or a digest mismatch; no file appears then.
+  ChunkRef commit();
+
+ private:
+  [[noreturn]] void fail(const std::exception& e) const;
+  ChunkRef announced_;
+  AtomicFileWriter::Sync sync_;
+  std::string purpose_;
+  int64_t received_ = 0;
+  std::unique_ptr<Sha256> digest_;
+  std::unique_ptr<AtomicFileWriter> file_;
+};
+
 class ChunkStore {
  public:
   // A cache (a worker's) skips the fsync of each chunk: it verifies what it reads, so a
@@ -50,18 +76,14 @@ class ChunkStore {
     // Throws ChunkError for an announced size beyond `maxBytes` or a digest that is no
     // SHA-256.
     Incoming(ChunkStore& store, const ChunkRef& announced, size_t maxBytes);
-    ~Incoming();
     // Throws ChunkError once the bytes outgrow the announced size, or cannot be written.
-    void append(std::string_view part);
+    void append(std::string_view part) { chunk_.append(part); }
     // Throws ChunkError for a short chunk or a digest mismatch; nothing is stored then.
     ChunkRef commit();
 
    private:
     ChunkStore& store_;
-    ChunkRef announced_;
-    int64_t received_ = 0;
-    std::unique_ptr<Sha256> digest_;
-    std::unique_ptr<AtomicFileWriter> file_;  // none when the store already has the chunk
+    IncomingChunk chunk_;
   };
 
   // The size of a stored chunk whose digest checks out, reading the file in parts; a

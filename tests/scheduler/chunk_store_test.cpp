@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <iterator>
 
 #include "proto/wire/chunk_store.h"
 #include "proto/wire/chunk_transfer.h"
@@ -157,6 +158,40 @@ TEST(ChunkTransfer, AnEmptyChunkIsOneEmptyPart) {
   EXPECT_EQ(outgoing.parts[0].ref().sha256(), ref.sha256());
   outgoing.next = 0;
   EXPECT_EQ(receiveChunkIntoStore(outgoing, store, 10).size(), 0);
+  std::filesystem::remove_all(folder);
+}
+
+// An output leaves a file on the worker (an assembled frame) and arrives in a file on the
+// client (a fetched frame): neither end holds it whole, and the client's file appears only
+// when the whole chunk checks out.
+TEST(ChunkTransfer, AFileTravelsInPartsIntoAFileThatAppearsOnlyWhenItChecksOut) {
+  const auto folder = freshFolder("files");
+  std::filesystem::create_directories(folder);
+  std::string bytes(2 * kChunkPartBytes + 77, '\0');
+  for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<char>(i * 13 % 241);
+  std::ofstream(folder / "frame.exr", std::ios::binary) << bytes;
+  const ChunkRef ref = refOfFile(folder / "frame.exr");
+  EXPECT_EQ(ref.sha256(), sha256Hex(bytes));
+  EXPECT_EQ(ref.size(), static_cast<int64_t>(bytes.size()));
+  EXPECT_THROW(refOfFile(folder / "absent.exr"), ChunkError);
+  PartStream stream;
+  ASSERT_TRUE(sendFileChunk(stream, ref, folder / "frame.exr"));
+  ASSERT_EQ(stream.parts.size(), 3u);
+  for (const ChunkPart& part : stream.parts) EXPECT_LE(part.data().size(), kChunkPartBytes);
+
+  const auto receive = [&](const PartStream& parts, const std::filesystem::path& file) {
+    IncomingChunk chunk(parts.parts[0].ref(), size_t{64 << 20}, file, AtomicFileWriter::Sync::No, "write frame");
+    for (const ChunkPart& part : parts.parts) chunk.append(part.data());
+    return chunk.commit();
+  };
+  PartStream flipped = stream;
+  flipped.parts[2].mutable_data()->at(5) ^= 1;
+  EXPECT_THROW(receive(flipped, folder / "out" / "flipped.exr"), ChunkError);
+  EXPECT_FALSE(std::filesystem::exists(folder / "out" / "flipped.exr"));
+  EXPECT_EQ(partialFiles(folder), 0u);
+  EXPECT_EQ(receive(stream, folder / "out" / "frame.exr").sha256(), ref.sha256());
+  std::ifstream in(folder / "out" / "frame.exr", std::ios::binary);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), bytes);
   std::filesystem::remove_all(folder);
 }
 
