@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "cli/command.h"
+#include "cli/shot_size_options.h"
 #include "cli/stop_signal.h"
 #include "cli/tls_options.h"
 #include "proto/wire/connection.h"
@@ -115,16 +116,7 @@ std::vector<Command> addFarmProcessCommands(CLI::App& app) {
   s->add_option("--retry-backoff", scheduler->options.farm.retryBackoffSeconds, "first retry delay in seconds")
       ->check(CLI::Range(0.0, 3600.0))
       ->capture_default_str();
-  s->add_option("--lease-inputs", scheduler->options.farm.inlineLeaseInputs,
-                "a lease names at most this many input chunks; a task with more streams them to its worker")
-      ->check(CLI::Range(int64_t{0}, int64_t{1'000'000}))
-      ->capture_default_str();
-  s->add_option("--max-tasks-per-shot", scheduler->options.limits.maxTasks, "a shot planning more tasks is refused")
-      ->check(CLI::Range(int64_t{1}, int64_t{1'000'000'000}))
-      ->capture_default_str();
-  s->add_option("--max-frames-per-shot", scheduler->options.limits.maxFrames, "a shot with more frames is refused")
-      ->check(CLI::Range(int64_t{1}, int64_t{1'000'000'000}))
-      ->capture_default_str();
+  addShotSizeOptions(s, scheduler->options.limits, scheduler->options.farm);
   s->add_option("--max-lost-workers", scheduler->options.farm.maxLostWorkers,
                 "a task whose lease expires this often (its workers vanish) fails the shot; not charged to max_attempts")
       ->check(CLI::Range(1, 1000000))

@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "cli/command.h"
+#include "cli/shot_size_options.h"
 #include "cli/shot_progress.h"
 #include "renderer/scene/json_node.h"
 #include "scheduler/local_farm.h"
@@ -25,6 +26,8 @@ struct LocalArguments {
   int threads = 0;
   bool keepFarm = false;
   std::string http;
+  farm::ShotLimits limits;
+  farm::FarmSettings farm;
 };
 
 uintmax_t folderBytes(const std::filesystem::path& folder) {
@@ -56,8 +59,8 @@ int runLocal(const LocalArguments& arguments) {
   }
   const std::filesystem::path out(arguments.out.empty() ? spec.output() : arguments.out);
   try {
-    farm::LocalFarm farm(
-        {out / "farm", arguments.workers, arguments.threads, farm::currentExecutable(), {}, arguments.http});
+    farm::LocalFarm farm({out / "farm", arguments.workers, arguments.threads, farm::currentExecutable(),
+                          arguments.farm, arguments.limits, arguments.http});
     farm::FarmClient client = farm.client();
     spec = withChosenPipeline(client, arguments.shotFile, spec, out / "probe");
     const int64_t id = client.submit(spec);
@@ -107,6 +110,7 @@ std::vector<Command> addLocalCommand(CLI::App& app) {
   local->add_option("--http", arguments->http,
                     "HOST:PORT (loopback; port 0: any) serving the dashboard while the shot runs; its link, "
                     "with the farm's token, is logged");
+  addShotSizeOptions(local, arguments->limits, arguments->farm);
   local->add_flag("--keep-farm", arguments->keepFarm,
                   "keep the farm's database, chunks and worker caches after the shot is done (default: only its logs)");
   return {{local, [arguments] { return runLocal(*arguments); }}};

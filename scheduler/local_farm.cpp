@@ -18,6 +18,7 @@ LocalFarm::LocalFarm(LocalFarmOptions options) : options_(std::move(options)), t
   scheduler.store = options_.folder / "chunks";
   scheduler.token = token_;
   scheduler.farm = options_.farm;
+  scheduler.limits = options_.limits;
   scheduler.http = options_.http;
   scheduler_ = std::make_unique<SchedulerServer>(scheduler);
   address_ = scheduler_->address();

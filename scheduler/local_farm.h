@@ -21,6 +21,7 @@ struct LocalFarmOptions {
   int threadsPerWorker = 0;      // 0: the cores shared out among the workers
   std::string executable;        // the pathfarm binary the workers run
   FarmSettings farm;
+  ShotLimits limits;             // what one submitted shot may ask for
   std::string http;              // HOST:PORT for the dashboard and /metrics; empty: none
 };
 

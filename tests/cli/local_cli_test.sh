@@ -21,6 +21,15 @@ pgrep -f "$work/farm_out/farm/cache" > /dev/null && fail "workers left running"
 for gone in chunks cache farm.db; do [ -e "$work/farm_out/farm/$gone" ] && fail "farm/$gone was kept"; done
 grep -q "removed .* MB of intermediate" "$work/log" || fail "no word of the removed data: $(cat "$work/log")"
 
+# The embedded scheduler takes the scheduler's size options: frames assembled from inputs
+# streamed two at a time are the same bytes, and a shot over the task limit is refused.
+"$pathfarm" local "$work/shot.json" --workers 2 --threads 1 --lease-inputs 2 --out "$work/streamed" > "$work/log" 2>&1 ||
+  fail "local with --lease-inputs 2 failed: $(cat "$work/log")"
+cmp -s "$work/streamed/frame_0002.exr" "$work/render/frame_0002.exr" || fail "frame assembled from streamed inputs differs"
+"$pathfarm" local "$work/shot.json" --workers 1 --max-tasks-per-shot 5 --out "$work/limited" > "$work/log" 2>&1 &&
+  fail "a shot of 14 tasks ran under --max-tasks-per-shot 5"
+grep -q "more than this scheduler takes (5, --max-tasks-per-shot)" "$work/log" || fail "task limit message: $(cat "$work/log")"
+
 # A decomposed shot: every component's buffers come back from the tiles unchanged.
 cat > "$work/decomposed.json" <<JSON
 {"name": "split", "scene": "$source_dir/scenes/cornell/scene.json", "frames": {"start": 2, "end": 2},
