@@ -283,6 +283,25 @@ auto readBytes(const std::string& bytes, const std::string& label, Read read) {
   }
 }
 
+// Runs `read` on an OpenEXR reader of the file, read in place once its headers (in its
+// first kMaxScannedHeaderBytes) passed readHeaders' checks; any failure is an ExrError
+// naming `label`.
+template <class Read>
+auto readFile(const std::filesystem::path& file, const std::string& label, Read read) {
+  try {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) throw std::runtime_error("no such file or not readable");
+    const auto total = static_cast<size_t>(std::filesystem::file_size(file));
+    std::string headers(std::min(total, kMaxScannedHeaderBytes), '\0');
+    in.read(headers.data(), static_cast<std::streamsize>(headers.size()));
+    in.seekg(0);
+    Imf::StdIFStream stream(in, file.c_str());
+    return readChecked(headers, total, stream, read);
+  } catch (const std::exception& e) {
+    throw ExrError(label + ": cannot read EXR: " + e.what());
+  }
+}
+
 }  // namespace
 
 FrameImage decodeExr(const std::string& bytes, const std::string& label) {
@@ -299,31 +318,38 @@ FrameImage decodeExr(const std::string& bytes, const std::string& label) {
   });
 }
 
-ExrHeader readExrHeader(const std::string& bytes, const std::string& label) {
-  return readBytes(bytes, label, [](Imf::InputFile& in) {
+std::pair<int, int> readExrStrips(const std::filesystem::path& file, const std::string& label,
+                                  const std::vector<std::string>& channels, int rowsPerStrip,
+                                  const std::function<bool(const ExrStrip&)>& strip) {
+  return readFile(file, label, [&](Imf::InputFile& exr) {
+    return readStrips(exr, channels.empty() ? channelNames(exr.header()) : channels, rowsPerStrip, strip);
+  });
+}
+
+ExrHeader readExrHeader(const std::filesystem::path& file, const std::string& label) {
+  return readFile(file, label, [](Imf::InputFile& in) {
     const Imath::Box2i window = in.header().dataWindow();
     return ExrHeader{window.max.x - window.min.x + 1, window.max.y - window.min.y + 1, channelNames(in.header()),
                      stringAttributes(in.header())};
   });
 }
 
-std::pair<int, int> readExrStrips(const std::filesystem::path& file, const std::string& label,
-                                  const std::vector<std::string>& channels, int rowsPerStrip,
-                                  const std::function<bool(const ExrStrip&)>& strip) {
-  try {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw std::runtime_error("no such file or not readable");
-    const auto total = static_cast<size_t>(std::filesystem::file_size(file));
-    std::string headers(std::min(total, kMaxScannedHeaderBytes), '\0');
-    in.read(headers.data(), static_cast<std::streamsize>(headers.size()));
-    in.seekg(0);
-    Imf::StdIFStream stream(in, file.c_str());
-    return readChecked(headers, total, stream, [&](Imf::InputFile& exr) {
-      return readStrips(exr, channels.empty() ? channelNames(exr.header()) : channels, rowsPerStrip, strip);
-    });
-  } catch (const std::exception& e) {
-    throw ExrError(label + ": cannot read EXR: " + e.what());
-  }
+FrameImage readExrRows(const std::filesystem::path& file, const std::string& label, int from, int to) {
+  return readFile(file, label, [&](Imf::InputFile& in) {
+    const Imath::Box2i window = in.header().dataWindow();
+    const int height = window.max.y - window.min.y + 1;
+    if (from < 0 || to > height || from >= to)
+      throw std::runtime_error("rows " + std::to_string(from) + " to " + std::to_string(to) + " of a frame of " +
+                               std::to_string(height) + " rows");
+    FrameImage rows(window.max.x - window.min.x + 1, to - from);
+    const std::vector<std::string> names = channelNames(in.header());
+    std::vector<float*> planes;
+    for (const std::string& name : names) planes.push_back(rows.addChannel(name).data());
+    rows.attributes() = stringAttributes(in.header());
+    in.setFrameBuffer(frameBufferOf(window, names, planes, window.min.y + from));
+    in.readPixels(window.min.y + from, window.min.y + to - 1);
+    return rows;
+  });
 }
 
 ExrScan scanExrFile(const std::filesystem::path& file, const std::string& label, int rowsPerStrip) {

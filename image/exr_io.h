@@ -31,13 +31,6 @@ std::string encodeExr(const FrameImage& frame, ExrCompression compression = ExrC
 // `label` names the bytes' origin (a file, a chunk) in error messages.
 FrameImage decodeExr(const std::string& bytes, const std::string& label);
 
-// What a frame's header says, read without decoding its pixels (decodeExr's checks).
-struct ExrHeader {
-  int width = 0, height = 0;
-  std::vector<std::string> channels;  // in the file's (alphabetical) order
-  std::map<std::string, std::string> attributes;  // its string attributes
-};
-ExrHeader readExrHeader(const std::string& bytes, const std::string& label);
 
 // What checking a chunk finds without holding it: its size, and its first non-finite
 // value ("channel C at pixel (x, y)", "" when every value is finite). The file is read in
@@ -64,6 +57,17 @@ struct ExrStrip {
 std::pair<int, int> readExrStrips(const std::filesystem::path& file, const std::string& label,
                                   const std::vector<std::string>& channels, int rowsPerStrip,
                                   const std::function<bool(const ExrStrip&)>& strip);
+
+// What a file's header says, read without its pixels (with scanExrFile's checks).
+struct ExrHeader {
+  int width = 0, height = 0;
+  std::vector<std::string> channels;              // in the file's (alphabetical) order
+  std::map<std::string, std::string> attributes;  // its string attributes
+};
+ExrHeader readExrHeader(const std::filesystem::path& file, const std::string& label);
+// Rows from .. to - 1 (from the top) of every channel of a file, with its attributes, read
+// in place (with scanExrFile's checks): a part of a frame too large to hold.
+FrameImage readExrRows(const std::filesystem::path& file, const std::string& label, int from, int to);
 
 void writeExr(const std::filesystem::path& file, const FrameImage& frame);
 

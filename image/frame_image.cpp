@@ -45,14 +45,15 @@ void FrameImage::paste(const FrameImage& part, int x0, int y0) {
   }
 }
 
-std::string FrameImage::firstNonFinite() const {
+std::string FrameImage::firstNonFinite(int firstRow) const {
   for (const std::string& name : names_) {
     const std::vector<float>& plane = planes_.at(name);
     const auto bad = std::find_if(plane.begin(), plane.end(), [](float v) { return !std::isfinite(v); });
     if (bad == plane.end()) continue;
     const auto p = static_cast<size_t>(bad - plane.begin());
     const auto w = static_cast<size_t>(std::max(width_, 1));
-    return "channel " + name + " at pixel (" + std::to_string(p % w) + ", " + std::to_string(p / w) + ")";
+    return "channel " + name + " at pixel (" + std::to_string(p % w) + ", " +
+           std::to_string(p / w + static_cast<size_t>(std::max(firstRow, 0))) + ")";
   }
   return {};
 }

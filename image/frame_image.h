@@ -35,7 +35,8 @@ class FrameImage {
   FrameImage crop(int x0, int y0, int width, int height) const;
   // The first NaN or infinity, as "channel C at pixel (x, y)", or empty when every value
   // is finite: what a task checks before it trusts a chunk another one made.
-  std::string firstNonFinite() const;
+  // `firstRow`: the row of a larger frame this image's first row is, for the position.
+  std::string firstNonFinite(int firstRow = 0) const;
 
   std::map<std::string, std::string>& attributes() { return attributes_; }
   const std::map<std::string, std::string>& attributes() const { return attributes_; }

@@ -1,5 +1,7 @@
 #include "worker/scheduler_link.h"
 
+#include <optional>
+
 #include "proto/wire/chunk_transfer.h"
 #include "proto/wire/connection.h"
 
@@ -163,6 +165,38 @@ grpc::Status SchedulerLink::getChunk(const std::string& sha256, std::string& byt
     return {grpc::StatusCode::DATA_LOSS, e.what()};
   }
   return status;
+}
+
+grpc::Status SchedulerLink::getChunkInto(const std::string& sha256, ChunkStore& store) {
+  GetChunkRequest request;
+  request.set_sha256(sha256);
+  const auto call = context(kTransferSeconds);
+  auto reader = stub_->GetChunk(call.get(), request);
+  ChunkPart part;
+  if (!reader->Read(&part)) {  // a refusal, or a dropped connection
+    const grpc::Status status = reader->Finish();
+    return status.ok() ? grpc::Status(grpc::StatusCode::DATA_LOSS, "empty chunk stream for " + sha256) : status;
+  }
+  std::optional<ChunkStore::Incoming> incoming;
+  try {
+    if (part.ref().sha256() != sha256) throw ChunkError("asked for chunk " + sha256 + ", received " + part.ref().sha256());
+    incoming.emplace(store, part.ref(), kMaxChunkBytes);
+    do {
+      incoming->append(part.data());
+    } while (reader->Read(&part));
+  } catch (const ChunkError& e) {
+    call->TryCancel();  // the bytes are bad: stop the stream
+    reader->Finish();
+    return {grpc::StatusCode::DATA_LOSS, e.what()};
+  }
+  // The stream ended: its status (a refusal, a dropped connection) explains a short chunk.
+  if (const grpc::Status status = reader->Finish(); !status.ok()) return status;
+  try {
+    incoming->commit();
+  } catch (const ChunkError& e) {
+    return {grpc::StatusCode::DATA_LOSS, e.what()};
+  }
+  return grpc::Status::OK;
 }
 
 }  // namespace pathfarm::farm

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "pathfarm/worker_service.grpc.pb.h"
+#include "proto/wire/chunk_store.h"
 #include "proto/wire/connection.h"
 #include "proto/wire/tls.h"
 
@@ -43,6 +44,9 @@ class SchedulerLink {
   // be read is an INTERNAL error.
   grpc::Status putChunkFile(const std::filesystem::path& file, ChunkRef& stored);
   grpc::Status getChunk(const std::string& sha256, std::string& bytes);
+  // The chunk streamed into `store` as it arrives, never held whole (an input too large to
+  // hold); DATA_LOSS when its bytes do not match its digest.
+  grpc::Status getChunkInto(const std::string& sha256, ChunkStore& store);
 
  private:
   // A call's context with the token and the current session (copied to `used` if given).

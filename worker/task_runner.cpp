@@ -5,13 +5,13 @@
 #include <algorithm>
 #include <map>
 
+#include "image/atomic_file.h"
 #include "image/exr_io.h"
 #include "renderer/decomposition/auto_decomposition.h"
 #include "renderer/integrators/frame_renderer.h"
 #include "renderer/integrators/gradient_frame_renderer.h"
 #include "renderer/scene/scene_loader.h"
 #include "scheduler/planner.h"
-#include "worker/assemble_frame.h"
 #include "worker/failure_class.h"
 #include "worker/metropolis_tasks.h"
 #include "worker/scene_files.h"
@@ -67,17 +67,12 @@ std::shared_ptr<TaskRunner::ShotRenderer> TaskRunner::rendererFor(const Lease& l
 }
 
 TaskOutput TaskRunner::run(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,
-                           const std::atomic<bool>& abandon) {
+                           const std::atomic<bool>& abandon, const ChunkFileFetcher& files) {
   switch (lease.kind()) {
     case TASK_RENDER_TILE:
       return renderTile(lease, fetch, progress, abandon);
-    case TASK_ASSEMBLE_FRAME: {
-      TaskOutput output;
-      output.chunkFile = std::make_shared<const ScratchFile>(
-          scratchPathFor(outgoingRoot_, "attempt-" + std::to_string(lease.attempt_id()) + ".exr"));
-      assembleFrame(lease, fetch, output.chunkFile->path(), progress);
-      return output;
-    }
+    case TASK_ASSEMBLE_FRAME:
+      return assemble(lease, fetch, files, progress);
     case TASK_GRADIENT_RENDER:
       return renderGradientFrame(lease, fetch, progress, abandon);
     case TASK_NOOP:
@@ -89,6 +84,22 @@ TaskOutput TaskRunner::run(const Lease& lease, const ChunkFetcher& fetch, std::a
     default:
       return filter(lease, fetch, progress);
   }
+}
+
+TaskOutput TaskRunner::assemble(const Lease& lease, const ChunkFetcher& fetch, const ChunkFileFetcher& files,
+                                std::atomic<double>& progress) {
+  const std::string attempt = "attempt-" + std::to_string(lease.attempt_id());
+  std::vector<std::unique_ptr<ScratchFile>> written;  // the tiles `fetch` gave, without `files`
+  const ChunkFileFetcher viaScratch = [&](const ChunkRef& ref) {
+    const auto& tile = written.emplace_back(std::make_unique<ScratchFile>(
+        scratchPathFor(outgoingRoot_, attempt + "-input-" + std::to_string(written.size()) + ".exr")));
+    writeFileAtomically(tile->path(), fetch(ref), AtomicFileWriter::Sync::No);
+    return tile->path();
+  };
+  TaskOutput output;
+  output.chunkFile = std::make_shared<const ScratchFile>(scratchPathFor(outgoingRoot_, attempt + ".exr"));
+  assembleFrame(lease, files ? files : viaScratch, output.chunkFile->path(), progress);
+  return output;
 }
 
 TaskOutput TaskRunner::renderTile(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,

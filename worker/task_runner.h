@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "pathfarm/worker_service.pb.h"
+#include "worker/assemble_frame.h"
 #include "worker/decoded_inputs.h"
 #include "worker/filter_tasks.h"
 
@@ -53,13 +54,17 @@ class TaskRunner {
   ~TaskRunner();
 
   // `progress` receives 0..1; `abandon` turning true stops the task with TaskAbandoned.
-  // Any other failure throws with a message for the scheduler's records.
+  // Any other failure throws with a message for the scheduler's records. Inputs read in
+  // place (an assembled frame's tiles) come from `files`; without it, from `fetch` through
+  // scratch files.
   TaskOutput run(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,
-                 const std::atomic<bool>& abandon);
+                 const std::atomic<bool>& abandon, const ChunkFileFetcher& files = {});
 
  private:
   struct ShotRenderer;
   std::shared_ptr<ShotRenderer> rendererFor(const Lease& lease, const ChunkFetcher& fetch);
+  TaskOutput assemble(const Lease& lease, const ChunkFetcher& fetch, const ChunkFileFetcher& files,
+                      std::atomic<double>& progress);
   TaskOutput renderTile(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,
                         const std::atomic<bool>& abandon);
   TaskOutput renderGradientFrame(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,

@@ -132,6 +132,35 @@ class Slot {
     }
   }
 
+  // An input chunk as a verified file of the cache, streamed into it from the scheduler
+  // unless it is there: a tile an assembly reads in place, never holding it whole.
+  std::filesystem::path fetchFile(const ChunkRef& ref, const std::atomic<bool>& abandon, InputCount& count) {
+    ++count.chunks;
+    if (const auto size = cache_.verifiedSize(ref.sha256())) {
+      ++count.cached;
+      count.bytes += *size;
+      // Touched, so the cache's trim (oldest first, nothing younger than minutes) leaves
+      // it while the task reads it.
+      std::error_code ignored;
+      std::filesystem::last_write_time(cache_.pathOf(ref.sha256()), std::filesystem::file_time_type::clock::now(),
+                                       ignored);
+      return cache_.pathOf(ref.sha256());
+    }
+    Backoff backoff;
+    for (;;) {
+      const grpc::Status status = link_.getChunkInto(ref.sha256(), cache_);
+      if (status.ok()) {
+        count.bytes += ref.size() > 0 ? ref.size() : 0;
+        bound_.maybeTrim();
+        return cache_.pathOf(ref.sha256());
+      }
+      if (abandon) throw TaskAbandoned();
+      if (!isTransient(status))
+        throw TransferFailed("cannot fetch input chunk " + ref.sha256() + ": " + status.error_message());
+      backoff.sleep();
+    }
+  }
+
   // The lease with its inputs: those it names or, leased without them
   // (Lease::inputs_streamed), those the scheduler streams. An unreachable scheduler is
   // waited for until the lease is lost.
@@ -163,7 +192,7 @@ class Slot {
         const TaskLog::Capture onRunner(log);
         return runner_.run(
             withInputs(lease, abandon), [&](const ChunkRef& ref) { return fetch(ref, abandon, inputs); }, progress,
-            abandon);
+            abandon, [&](const ChunkRef& ref) { return fetchFile(ref, abandon, inputs); });
       });
     } catch (const TaskAbandoned&) {
       spdlog::warn("task {}: lease lost, result dropped", lease.task_id());

@@ -179,15 +179,30 @@ TEST(ExrIo, AStripWriterRefusesRowsItCannotPlaceAndAShortFrame) {
   EXPECT_THROW(ExrStripWriter(temporaryFile("absent") / "frame.exr", 4, 4, {"R"}, {}, ExrCompression::Fast), ExrError);
 }
 
-TEST(ExrIo, AHeaderReadAloneSaysWhatDecodingSays) {
+TEST(ExrIo, AFilesHeaderAndRowsReadInPlaceAreWhatDecodingItWholeGives) {
   const FrameImage frame = sampleFrame();
-  const ExrHeader header = readExrHeader(encodeExr(frame), "chunk");
-  const FrameImage decoded = decodeExr(encodeExr(frame), "chunk");
+  const std::filesystem::path file = temporaryFile("rows.exr");
+  writeExr(file, frame);
+  const ExrHeader header = readExrHeader(file, "chunk");
+  const FrameImage decoded = readExr(file);
   EXPECT_EQ(header.width, 37);
   EXPECT_EQ(header.height, 23);
   EXPECT_EQ(header.channels, decoded.channelNames());
   EXPECT_EQ(header.attributes, frame.attributes());
-  EXPECT_THROW(readExrHeader(encodeExr(frame).substr(0, 40), "chunk"), ExrError);
+  // Rows across ZIP's 16-row blocks, and the last row alone.
+  for (const auto& [from, to] : {std::pair{0, 23}, {5, 19}, {22, 23}}) {
+    const FrameImage rows = readExrRows(file, "chunk", from, to);
+    const FrameImage expected = frame.crop(0, from, frame.width(), to - from);
+    ASSERT_EQ(rows.channelNames(), decoded.channelNames());
+    for (const std::string& name : expected.channelNames())
+      EXPECT_EQ(rows.channel(name), expected.channel(name)) << name << " rows " << from << " to " << to;
+  }
+  EXPECT_THROW(readExrRows(file, "chunk", 20, 24), ExrError);
+  EXPECT_THROW(readExrRows(file, "chunk", 4, 4), ExrError);
+  const std::string bytes = fileBytes(file);
+  std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes.substr(0, 40);
+  EXPECT_THROW(readExrHeader(file, "chunk"), ExrError);
+  EXPECT_THROW(readExrHeader(temporaryFile("absent.exr"), "chunk"), ExrError);
 }
 
 // The scan walks the headers before OpenEXR does, as decodeExr does: a damaged size is

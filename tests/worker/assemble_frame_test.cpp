@@ -14,6 +14,7 @@
 #include "image/exr_io.h"
 #include "test_support.h"
 #include "worker/assemble_frame.h"
+#include "worker/failure_class.h"
 #include "worker/task_runner.h"
 
 namespace pathfarm::farm {
@@ -48,7 +49,8 @@ struct Assembly {
     params->mutable_window()->set_y1(2);
     lease.add_input_kinds(TASK_RENDER_TILE);
   }
-  // The frame, through the worker's task runner; its file is gone once the output is.
+  // The frame, through the worker's task runner, the tiles given as bytes; its file is
+  // gone once the output is.
   FrameImage run() {
     const auto folder = test_support::processTemporaryFolder("pathfarm_assemble");
     TaskRunner runner(1, folder / "scenes", folder / "outgoing");  // no scene is read
@@ -66,6 +68,7 @@ struct Assembly {
       EXPECT_EQ(progress, 1.0);
     }
     EXPECT_FALSE(std::filesystem::exists(file));
+    EXPECT_TRUE(std::filesystem::is_empty(folder / "outgoing"));  // nor the tiles' scratch files
     return frame;
   }
 };
@@ -127,14 +130,16 @@ TEST(AssembleFrame, ATileOfTheWrongSizeIsRefused) {
 // strips and tiles several of them; one tile has a channel the others lack.
 struct UnevenTiles {
   Lease lease;
-  std::map<std::string, std::string> chunks;
-  FrameImage expected{150, 140};  // the tiles pasted into a whole frame
+  std::map<std::string, std::filesystem::path> files;  // the tiles' chunks, by digest
+  FrameImage expected{150, 140};                       // the tiles pasted into a whole frame
   int fetches = 0;
 
   UnevenTiles() {
     lease.set_kind(TASK_ASSEMBLE_FRAME);
     lease.mutable_spec()->set_width(150);
     lease.mutable_spec()->set_height(140);
+    const auto folder = test_support::processTemporaryFolder("pathfarm_assemble") / "uneven";
+    std::filesystem::create_directories(folder);
     std::mt19937 random(7);
     std::uniform_real_distribution<float> value(0.0f, 4.0f);
     uint64_t dropped = 0;
@@ -147,8 +152,9 @@ struct UnevenTiles {
         part.attributes()["pathfarm.nonfinite_samples"] = std::to_string(x0 + y0);
         part.attributes()["pathfarm.tile"] = std::to_string(x0) + "," + std::to_string(y0);
         dropped += static_cast<uint64_t>(x0 + y0);
-        const std::string name = "tile" + std::to_string(chunks.size());
-        chunks[name] = encodeExr(part, ExrCompression::Fast);
+        const std::string name = "tile" + std::to_string(files.size());
+        files[name] = folder / (name + ".exr");
+        std::ofstream(files[name], std::ios::binary) << encodeExr(part, ExrCompression::Fast);
         lease.add_inputs()->set_sha256(name);
         PixelWindow* window = lease.add_input_params()->mutable_window();
         window->set_x0(x0);
@@ -162,31 +168,43 @@ struct UnevenTiles {
     }
     expected.attributes()["pathfarm.nonfinite_samples"] = std::to_string(dropped);
   }
-  std::string assemble(uint64_t keptTileBytes) {
+  std::string assemble() {
     const auto file = test_support::processTemporaryFolder("pathfarm_assemble") / "uneven.exr";
     std::atomic<double> progress{0};
     assembleFrame(
         lease,
         [&](const ChunkRef& ref) {
           ++fetches;
-          return chunks.at(ref.sha256());
+          return files.at(ref.sha256());
         },
-        file, progress, keptTileBytes);
+        file, progress);
+    EXPECT_EQ(progress, 1.0);
     std::ifstream in(file, std::ios::binary);
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
   }
 };
 
-TEST(AssembleFrame, AFrameWrittenInStripsIsTheFileOfItsTilesPastedWhole) {
+TEST(AssembleFrame, AFrameWrittenInStripsFromTilesReadInPlaceIsTheFileOfTheTilesPastedWhole) {
   UnevenTiles tiles;
-  EXPECT_EQ(tiles.assemble(kKeptTileBytes), encodeExr(tiles.expected, ExrCompression::Small));
-  EXPECT_EQ(tiles.fetches, static_cast<int>(tiles.chunks.size()));  // kept between the two readings
+  EXPECT_EQ(tiles.assemble(), encodeExr(tiles.expected, ExrCompression::Small));
+  EXPECT_EQ(tiles.fetches, static_cast<int>(tiles.files.size()));  // each tile's file asked for once
 }
 
-TEST(AssembleFrame, TilesBeyondTheKeptBytesAreFetchedAgainForTheSameFrame) {
+TEST(AssembleFrame, ANanInALaterStripOfATileIsFoundWithItsRowInTheTile) {
   UnevenTiles tiles;
-  EXPECT_EQ(tiles.assemble(0), encodeExr(tiles.expected, ExrCompression::Small));
-  EXPECT_EQ(tiles.fetches, 2 * static_cast<int>(tiles.chunks.size()));
+  // tile9 lies at (40, 96), 40 x 44: its rows 0 to 31 go in the strip that ends at row 128,
+  // the rest in the next.
+  FrameImage poisoned = readExr(tiles.files.at("tile9"));
+  poisoned.channel("B")[40 * 40 + 3] = std::numeric_limits<float>::infinity();
+  std::ofstream(tiles.files.at("tile9"), std::ios::binary | std::ios::trunc) << encodeExr(poisoned);
+  try {
+    tiles.assemble();
+    FAIL() << "a tile with an infinity was pasted";
+  } catch (const BadInput& e) {
+    EXPECT_NE(std::string(e.what()).find("tile chunk tile9 holds a non-finite value (channel B at pixel (3, 40))"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(FrameImageCheck, FirstNonFiniteNamesTheChannelAndPixel) {
