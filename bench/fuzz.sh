@@ -5,7 +5,7 @@
 #   scene_json   scene JSON files                      renderer/scene/scene_loader.h parseScene
 #   shot_json    shot files                            scheduler/shot_file.h parseShotFile
 #   mesh_readers OBJ and PLY files ("ply" magic: PLY)  renderer/scene/mesh_io.h parseObj, parsePly
-#   exr_chunk    EXR chunks as workers fetch them      image/exr_io.h decodeExr
+#   exr_chunk    EXR chunks as workers fetch them      image/exr_io.h decodeExr, scanExrFile, readExrRows
 #   rpc_handlers sequences of RPC calls and requests   scheduler/*_service.cpp over gRPC in-process
 # CI (tests/CMakeLists.txt, label fuzz) runs each briefly with --quick; a long run is e.g.
 #   bench/fuzz.sh --target all --runs 1000000

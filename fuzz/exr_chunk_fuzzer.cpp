@@ -1,11 +1,12 @@
 // libFuzzer target for the EXR readers of chunks: the decoder workers run on every chunk
-// they fetch, and the strip-wise scan the scheduler's completion check runs, in place, on
-// every output file. Any bytes must decode (or scan) or be refused with an ExrError (which
+// they fetch, the strip-wise scan the scheduler's completion check runs, in place, on
+// every output file, and the header and row reads of an assembly's tiles. Any bytes must decode (or scan) or be refused with an ExrError (which
 // fails the attempt, naming the chunk); never crash, hang, leak or allocate without limit.
 // OpenEXR itself is Debian's, uninstrumented: the sanitizers watch pathfarm's side and what
 // OpenEXR writes into it. Built and run by bench/fuzz.sh (clang, ASan, UBSan).
 #include <unistd.h>
 
+#include <algorithm>
 #include <fstream>
 #include <string>
 
@@ -43,6 +44,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {
     const pathfarm::ExrScan scan = pathfarm::scanExrFile(scanFile(), "fuzz chunk", 3);
     (void)scan;
+  } catch (const pathfarm::ExrError& e) {
+    pathfarm::fuzz::noteRefusal(e);
+  }
+  // An assembly's reads of a tile in place: its header, then a strip of its rows.
+  try {
+    const pathfarm::ExrHeader header = pathfarm::readExrHeader(scanFile(), "fuzz chunk");
+    const pathfarm::FrameImage rows =
+        pathfarm::readExrRows(scanFile(), "fuzz chunk", header.height / 2, std::min(header.height, header.height / 2 + 3));
+    (void)rows;
   } catch (const pathfarm::ExrError& e) {
     pathfarm::fuzz::noteRefusal(e);
   }
