@@ -44,10 +44,12 @@ std::vector<Entry> entriesOf(const fs::path& cache) {
 }  // namespace
 
 TrimResult trimCache(const fs::path& cache, uint64_t maxBytes, std::chrono::seconds minAge) {
-  std::vector<Entry> entries = entriesOf(cache);
   TrimResult result;
-  for (const Entry& entry : entries) result.bytesBefore += entry.bytes;
+  // Summed first, without listing: a cache of millions of small tiles under its bound is
+  // not held in memory as a list every time it is checked.
+  result.bytesBefore = bytesUnder(cache / "objects") + bytesUnder(cache / "scenes");
   if (result.bytesBefore <= maxBytes) return result;
+  std::vector<Entry> entries = entriesOf(cache);
   std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) { return a.used < b.used; });
   const auto youngest = fs::file_time_type::clock::now() - minAge;
   uint64_t bytes = result.bytesBefore;
