@@ -106,8 +106,7 @@ class Slot {
     std::atomic<int64_t> bytes{0};
   };
 
-  // An input chunk from the cache or the scheduler. An unreachable scheduler is waited
-  // for (it is not the task's fault) until the lease is lost.
+  // An input chunk from the cache or the scheduler.
   std::string fetch(const ChunkRef& ref, const std::atomic<bool>& abandon, InputCount& count) {
     ++count.chunks;
     if (auto bytes = cache_.get(ref.sha256())) {
@@ -115,45 +114,43 @@ class Slot {
       count.bytes += static_cast<int64_t>(bytes->size());
       return *bytes;
     }
-    Backoff backoff;
-    for (;;) {
-      std::string bytes;
-      const grpc::Status status = link_.getChunk(ref.sha256(), bytes);
-      if (status.ok()) {
-        count.bytes += static_cast<int64_t>(bytes.size());
-        cache_.put(bytes, ref);
-        bound_.maybeTrim();
-        return bytes;
-      }
-      if (abandon) throw TaskAbandoned();
-      if (!isTransient(status))
-        throw TransferFailed("cannot fetch input chunk " + ref.sha256() + ": " + status.error_message());
-      backoff.sleep();
-    }
+    std::string bytes;
+    fromScheduler(ref, abandon, [&] { return link_.getChunk(ref.sha256(), bytes); });
+    count.bytes += static_cast<int64_t>(bytes.size());
+    cache_.put(bytes, ref);
+    bound_.maybeTrim();
+    return bytes;
   }
 
   // An input chunk as a verified file of the cache, streamed into it from the scheduler
   // unless it is there: a tile an assembly reads in place, never holding it whole.
   std::filesystem::path fetchFile(const ChunkRef& ref, const std::atomic<bool>& abandon, InputCount& count) {
     ++count.chunks;
+    if (!isSha256Hex(ref.sha256())) throw TransferFailed("an input chunk is not named by a SHA-256 digest");
+    const std::filesystem::path file = cache_.pathOf(ref.sha256());
     if (const auto size = cache_.verifiedSize(ref.sha256())) {
       ++count.cached;
       count.bytes += *size;
       // Touched, so the cache's trim (oldest first, nothing younger than minutes) leaves
       // it while the task reads it.
       std::error_code ignored;
-      std::filesystem::last_write_time(cache_.pathOf(ref.sha256()), std::filesystem::file_time_type::clock::now(),
-                                       ignored);
-      return cache_.pathOf(ref.sha256());
+      std::filesystem::last_write_time(file, std::filesystem::file_time_type::clock::now(), ignored);
+      return file;
     }
+    fromScheduler(ref, abandon, [&] { return link_.getChunkInto(ref.sha256(), cache_); });
+    count.bytes += ref.size();
+    bound_.maybeTrim();
+    return file;
+  }
+
+  // Calls `get` until the scheduler hands out the chunk. An unreachable scheduler is
+  // waited for (it is not the task's fault) until the lease is lost.
+  template <class Get>
+  void fromScheduler(const ChunkRef& ref, const std::atomic<bool>& abandon, Get get) {
     Backoff backoff;
     for (;;) {
-      const grpc::Status status = link_.getChunkInto(ref.sha256(), cache_);
-      if (status.ok()) {
-        count.bytes += ref.size() > 0 ? ref.size() : 0;
-        bound_.maybeTrim();
-        return cache_.pathOf(ref.sha256());
-      }
+      const grpc::Status status = get();
+      if (status.ok()) return;
       if (abandon) throw TaskAbandoned();
       if (!isTransient(status))
         throw TransferFailed("cannot fetch input chunk " + ref.sha256() + ": " + status.error_message());
