@@ -9,14 +9,19 @@
 #include "scheduler/pipeline_probe.h"
 
 namespace pathfarm {
+namespace {
+
+std::string workersBusy(int count) { return std::to_string(count) + (count == 1 ? " worker busy" : " workers busy"); }
+
+}  // namespace
 
 std::string describeShot(const farm::ShotSummary& s) {
   char line[512];
-  std::snprintf(line, sizeof line, "%lld %s %s: %lld/%lld tasks done, %lld running, %lld/%lld frames, %d workers busy, %.1f s",
+  std::snprintf(line, sizeof line, "%lld %s %s: %lld/%lld tasks done, %lld running, %lld/%lld frames, %s, %.1f s",
                 static_cast<long long>(s.id()), s.name().c_str(), farm::ShotState_Name(s.state()).c_str(),
                 static_cast<long long>(s.tasks_done()), static_cast<long long>(s.tasks_total()),
                 static_cast<long long>(s.tasks_running()), static_cast<long long>(s.frames_done()),
-                static_cast<long long>(s.frames_total()), s.workers_busy(), s.elapsed_seconds());
+                static_cast<long long>(s.frames_total()), workersBusy(s.workers_busy()).c_str(), s.elapsed_seconds());
   std::string text = line;
   if (s.priority() != 0) text += ", priority " + std::to_string(s.priority());
   if (!s.failure().empty()) text += "\n  failure: " + s.failure();
@@ -37,15 +42,15 @@ void ShotProgress::update(const farm::ShotSummary& s) {
   if (terminal_) {
     constexpr int kWidth = 30;
     const int filled = static_cast<int>(fraction * kWidth);
-    std::fprintf(stderr, "\rshot %lld [%-*s] %lld/%lld tasks, %d workers busy, %.0fs elapsed, %.0fs left ",
+    std::fprintf(stderr, "\rshot %lld [%-*s] %lld/%lld tasks, %s, %.0fs elapsed, %.0fs left ",
                  static_cast<long long>(s.id()), kWidth, std::string(static_cast<size_t>(filled), '#').c_str(),
-                 static_cast<long long>(s.tasks_done()), static_cast<long long>(s.tasks_total()), s.workers_busy(),
-                 s.elapsed_seconds(), remaining);
+                 static_cast<long long>(s.tasks_done()), static_cast<long long>(s.tasks_total()),
+                 workersBusy(s.workers_busy()).c_str(), s.elapsed_seconds(), remaining);
     std::fflush(stderr);
     drawn_ = true;
   } else if (s.elapsed_seconds() - lastLogged_ >= 2 || s.tasks_done() == s.tasks_total()) {
-    spdlog::info("shot {}: {}/{} tasks, {} workers busy, {:.1f} s elapsed, {:.1f} s left", s.id(), s.tasks_done(),
-                 s.tasks_total(), s.workers_busy(), s.elapsed_seconds(), remaining);
+    spdlog::info("shot {}: {}/{} tasks, {}, {:.1f} s elapsed, {:.1f} s left", s.id(), s.tasks_done(), s.tasks_total(),
+                 workersBusy(s.workers_busy()), s.elapsed_seconds(), remaining);
     lastLogged_ = s.elapsed_seconds();
   }
 }

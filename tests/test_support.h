@@ -2,6 +2,8 @@
 // Shared by the tests: scenes from inline JSON, and statistics over rendered pixels.
 #include <cmath>
 #include <filesystem>
+#include <set>
+#include <system_error>
 #include <string>
 #include <utility>
 
@@ -17,12 +19,30 @@ namespace pathfarm::test_support {
 
 inline std::filesystem::path sourceDir() { return PATHFARM_SOURCE_DIR; }
 
-// A folder under the temporary directory that no other test process uses, created.
+// The folders processTemporaryFolder made, removed when the test process ends.
+class TemporaryFolders {
+ public:
+  void add(const std::filesystem::path& folder) { folders_.insert(folder); }
+  ~TemporaryFolders() {
+    for (const auto& folder : folders_) {
+      std::error_code ignored;
+      std::filesystem::remove_all(folder, ignored);
+    }
+  }
+
+ private:
+  std::set<std::filesystem::path> folders_;
+};
+
+// A folder under the temporary directory that no other test process uses, created, and
+// removed with everything in it when the process ends.
 // ctest runs every test as a process of its own, two at a time: tests sharing a fixed
 // folder rewrite each other's files while they are being read.
 inline std::filesystem::path processTemporaryFolder(const std::string& prefix) {
+  static TemporaryFolders made;
   const std::filesystem::path folder = std::filesystem::temp_directory_path() / (prefix + "_" + std::to_string(::getpid()));
   std::filesystem::create_directories(folder);
+  made.add(folder);
   return folder;
 }
 

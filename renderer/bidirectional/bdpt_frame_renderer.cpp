@@ -63,10 +63,12 @@ FrameImage BdptFrameRenderer::render(int64_t frame, const ProgressCallback& prog
     SampleMoments moments;
     uint32_t accepted = 0;
     for (int i = 0; i < settings_.spp; ++i) {
-      SampleStream stream({scene_.seed, frame, x, y, settings_.firstSample + static_cast<uint32_t>(i)});
+      const SampleKey key{scene_.seed, frame, x, y, settings_.firstSample + static_cast<uint32_t>(i)};
+      SampleStream stream(key);
       StreamSource u(stream);
-      const Vec2f jitter = u.next2D();
-      const float time = u.next1D();
+      const StratifiedSample stratified = stratifiedCameraSample(key);
+      const Vec2f jitter = stratified.film;
+      const float time = stratified.time;
       const Vec2f lens = u.next2D();
       const Vec2f film{static_cast<float>(x) + jitter.x, static_cast<float>(y) + jitter.y};
       generateCameraSubpath(bdpt, time, film, lens, u, maxCameraVertices(bdpt), state.camera);

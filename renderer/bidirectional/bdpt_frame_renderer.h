@@ -1,8 +1,9 @@
 #pragma once
 // Renders frames by bidirectional path tracing (`pathfarm render --integrator bdpt`).
-// Each pixel sample is the path tracer's: a SampleStream keyed by (scene seed, frame,
-// pixel, sample index) giving the pixel jitter, shutter time and lens in the same order,
-// then a camera subpath, a light subpath and their connections from the same stream.
+// Each pixel sample is the path tracer's: the pixel position and shutter time stratified
+// over the pixel's samples (stratifiedCameraSample), then a SampleStream keyed by (scene
+// seed, frame, pixel, sample index) giving the lens, a camera subpath, a light subpath
+// and their connections.
 // Camera strategies (t >= 2) are averaged per pixel in a fixed order; light tracing
 // (t = 1) lands anywhere and is splatted into a SplatFilm, whose sums do not depend on
 // their order, so the frame is the same bits for any thread count and tile size.

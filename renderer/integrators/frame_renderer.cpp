@@ -149,10 +149,13 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
         std::optional<DecomposedFilm::Pixel> sums;
         if (film) sums.emplace(decomposition->size());
         for (int s = 0; s < settings_.spp; ++s) {
-          SampleStream stream({scene_.seed, frame, x, y, settings_.firstSample + static_cast<uint32_t>(s)});
-          // Fixed order of the first dimensions: pixel position, shutter time, lens.
-          const Vec2f jitter = stream.next2D();
-          const float time = stream.next1D();
+          const SampleKey key{scene_.seed, frame, x, y, settings_.firstSample + static_cast<uint32_t>(s)};
+          SampleStream stream(key);
+          // Pixel position and shutter time are stratified over the pixel's samples; the
+          // stream's first dimensions are the lens's.
+          const StratifiedSample stratified = stratifiedCameraSample(key);
+          const Vec2f jitter = stratified.film;
+          const float time = stratified.time;
           const Vec2f lens = stream.next2D();
           const Ray ray = camera.generateRay({static_cast<float>(x) + jitter.x, static_cast<float>(y) + jitter.y},
                                              lens, scene_.timeAt(frame, time));

@@ -152,9 +152,10 @@ FrameImage GradientFrameRenderer::render(int64_t frame, const ProgressCallback& 
     for (uint32_t i = 0; i < count; ++i) {
       const SampleKey key{scene_.seed, frame, x, y, s.drawn + i};
       SampleStream stream(key);
-      // Fixed order of the first dimensions, as in FrameRenderer: pixel position, time, lens.
-      const Vec2f jitter = stream.next2D();
-      const float time = stream.next1D();
+      // As in FrameRenderer: pixel position and time stratified, the lens from the stream.
+      const StratifiedSample stratified = stratifiedCameraSample(key);
+      const Vec2f jitter = stratified.film;
+      const float time = stratified.time;
       const Vec2f lens = stream.next2D();
       const double seconds = scene_.timeAt(frame, time);
       // The base ray and its offsets share their time, so the camera's motion is evaluated

@@ -1,5 +1,8 @@
 #include "renderer/sampling/sample_stream.h"
 
+#include <array>
+#include <cstddef>
+
 namespace pathfarm {
 namespace {
 
@@ -10,7 +13,53 @@ uint64_t mix(uint64_t z) {
   return z ^ (z >> 31);
 }
 
+// Sobol's sequence in one dimension: bit j of the index flips the dimension's direction
+// number v_j (32 of them, the first scaled to the top bit).
+uint32_t sobol(const std::array<uint32_t, 32>& directions, uint32_t index) {
+  uint32_t result = 0;
+  for (size_t j = 0; index != 0; index >>= 1, ++j)
+    if ((index & 1u) != 0) result ^= directions[j];
+  return result;
+}
+
+// The direction numbers of the dimension with primitive polynomial degree `degree`,
+// coefficients `a` and initial numbers `m` (Joe and Kuo's table): the first `degree` are
+// m_j scaled to the top bits, and the rest follow the polynomial's recurrence.
+constexpr std::array<uint32_t, 32> sobolDirections(int degree, uint32_t a, std::array<uint32_t, 2> m) {
+  std::array<uint32_t, 32> v{};
+  for (int j = 0; j < degree; ++j) v[static_cast<size_t>(j)] = m[static_cast<size_t>(j)] << (31 - j);
+  for (int j = degree; j < 32; ++j) {
+    uint32_t next = v[static_cast<size_t>(j - degree)] ^ (v[static_cast<size_t>(j - degree)] >> degree);
+    for (int k = 1; k < degree; ++k)
+      if (((a >> (degree - 1 - k)) & 1u) != 0) next ^= v[static_cast<size_t>(j - k)];
+    v[static_cast<size_t>(j)] = next;
+  }
+  return v;
+}
+
+constexpr std::array<uint32_t, 32> kVanDerCorput = [] {
+  std::array<uint32_t, 32> v{};
+  for (size_t j = 0; j < 32; ++j) v[j] = 1u << (31 - j);
+  return v;
+}();
+constexpr std::array<uint32_t, 32> kSobolSecond = sobolDirections(1, 0, {1, 0});  // x + 1
+constexpr std::array<uint32_t, 32> kSobolThird = sobolDirections(2, 1, {1, 3});   // x^2 + x + 1
+
+// 24 high bits, as SampleStream::next1D: exactly representable, strictly below 1.
+float unitFloat(uint32_t bits) { return static_cast<float>(bits >> 8) * 0x1p-24f; }
+
 }  // namespace
+
+StratifiedSample stratifiedCameraSample(const SampleKey& key) {
+  uint64_t h = mix(key.sceneSeed ^ 0x6a09e667f3bcc909ULL);
+  h = mix(h ^ static_cast<uint64_t>(key.frame));
+  h = mix(h ^ (static_cast<uint64_t>(static_cast<uint32_t>(key.x)) << 32 | static_cast<uint32_t>(key.y)));
+  const uint64_t timeScramble = mix(h ^ 0xbb67ae8584caa73bULL);
+  const uint32_t i = key.sampleIndex;
+  return {{unitFloat(sobol(kVanDerCorput, i) ^ static_cast<uint32_t>(h)),
+           unitFloat(sobol(kSobolSecond, i) ^ static_cast<uint32_t>(h >> 32))},
+          unitFloat(sobol(kSobolThird, i) ^ static_cast<uint32_t>(timeScramble))};
+}
 
 SampleStream::SampleStream(const SampleKey& key) {
   uint64_t h = mix(key.sceneSeed + 0x9e3779b97f4a7c15ULL);

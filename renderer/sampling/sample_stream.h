@@ -1,8 +1,10 @@
 #pragma once
 // The renderer's sampling contract: every camera sample draws its uniform numbers from
-// its own stream, seeded only by (scene seed, frame, pixel, sample index). An image is
-// therefore the same bits for any thread count or tile size, and a method can replay a
-// sample's random numbers in another frame (Manzi et al. 2016's temporal shift).
+// its own stream, seeded only by (scene seed, frame, pixel, sample index), except its
+// film position and shutter time, which are stratified over the pixel's samples by the
+// same key. An image is therefore the same bits for any thread count or tile size, and a
+// method can replay a sample's random numbers in another frame (Manzi et al. 2016's
+// temporal shift).
 #include <cstdint>
 
 #include "renderer/math/vecmath.h"
@@ -41,5 +43,20 @@ class SampleStream {
   uint64_t state_ = 0;
   uint64_t increment_ = 1;
 };
+
+// The first three dimensions of a camera sample, stratified over the pixel's samples:
+// the film position within the pixel, in [0, 1)^2, and the time within the shutter, in
+// [0, 1). They are point number `sampleIndex` of the first three dimensions of Sobol's
+// sequence, each dimension's digits scrambled by a random bit pattern of the key's pixel
+// (scene seed, frame, x, y). For every 2^k samples whose indices start at a multiple of
+// 2^k, each dimension alone puts one sample in each of 2^k equal intervals, and position
+// and time together are spread as evenly: an edge, a texture line or a thin feature
+// moving across the pixel during the shutter is covered far more evenly than by
+// independent points. The scramble keeps neighbouring pixels' patterns unrelated.
+struct StratifiedSample {
+  Vec2f film;
+  float time = 0;
+};
+StratifiedSample stratifiedCameraSample(const SampleKey& key);
 
 }  // namespace pathfarm
