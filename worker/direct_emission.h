@@ -7,9 +7,11 @@
 // no features for the upsampler or the interpolation to follow. So every component's
 // directly seen light (its `emission` buffer, renderer/decomposition/path_decomposer.h) is
 // taken out before filtering, the rest is filtered, and the light is added back at full
-// resolution; an interpolated frame gets the light of its own feature render, whose few
-// samples leave the edges of what is directly seen noisy (a pixel a lamp or the sky covers
-// in part): those edges are re-rendered at the shot's spp (directLightEdges).
+// resolution; an interpolated frame gets the light of its own feature render, and an
+// upsampled keyframe that of its quarter-spp render, whose few samples leave the edges of
+// what is directly seen noisy (a pixel a lamp or the sky covers in part; a glossy lobe
+// below the roughness threshold counts as specular and scatters a highlight at random):
+// those edges are re-rendered at the shot's spp (directLightEdges).
 #include <cstdint>
 #include <vector>
 

@@ -59,6 +59,11 @@ TaskOutput runUpsampleTask(const Lease& lease, const std::vector<TaskInput>& inp
   FrameImage high = inputOf(inputs, TASK_ASSEMBLE_FRAME, frame).image();
   // A moving caustic spread by the half-resolution filtering is rendered again at full spp.
   const std::vector<uint8_t> caustics = movingCausticPixels(high);
+  // The directly seen light is added back unfiltered from the keyframe's own render, which
+  // has a quarter of the shot's samples: where it has an edge, that render's noise shows (a
+  // pixel a lamp covers in part; a glossy highlight, whose light a rough mirror scatters at
+  // random), so those pixels are rendered again at the shot's spp, as in an interpolated frame.
+  const std::vector<uint8_t> lightEdges = directLightEdges(directEmissionOf(high), high);
   const FrameImage emission = takeDirectEmission(high);
   UpsampleSettings settings;
   settings.guided.factor = kUpsampleFactor;
@@ -66,15 +71,17 @@ TaskOutput runUpsampleTask(const Lease& lease, const std::vector<TaskInput>& inp
   addDirectEmission(high, emission);
   std::vector<float>& flagged = high.channel("rerender.Y");
   std::vector<uint8_t> mask(flagged.size());
-  size_t causticPixels = 0;
+  size_t causticPixels = 0, edgePixels = 0;
   for (size_t p = 0; p < mask.size(); ++p) {
     causticPixels += caustics[p];
-    if (caustics[p]) flagged[p] = 1.0f;
+    edgePixels += lightEdges[p];
+    if (caustics[p] || lightEdges[p]) flagged[p] = 1.0f;
     mask[p] = flagged[p] > 0.5f ? 1 : 0;
   }
   TaskOutput output;
   requestRerender(lease.spec(), frame, mask, output);
   output.metrics["rerender_moving_caustics"] = static_cast<double>(causticPixels);
+  output.metrics["rerender_light_edges"] = static_cast<double>(edgePixels);
   output.chunk = encodeExr(high, ExrCompression::Fast);
   return output;
 }
