@@ -78,10 +78,11 @@ constexpr size_t kMaxScannedHeaderBytes = size_t{16} << 20;
 
 // What decodeExr needs to know of the first header before OpenEXR reads it.
 struct HeaderSummary {
-  bool hasDataWindow = false;
-  int64_t width = 0, height = 0;
+  // A header without a data window keeps OpenEXR's default one, 64 x 64 pixels.
+  int64_t width = 64, height = 64;
   size_t channels = 0;
   int compression = 0;
+  int64_t tileWidth = 0, tileHeight = 0;  // a tiled file's tile size (0: scan lines)
 };
 
 int32_t readInt32(std::string_view bytes, size_t pos) {
@@ -182,12 +183,15 @@ HeaderSummary readHeaders(std::string_view bytes) {
       const std::string_view value = bytes.substr(pos, static_cast<size_t>(size));
       const size_t channels = checkAttributeValue(name, type, value);
       if (first && name == "dataWindow" && type == "box2i") {
-        summary.hasDataWindow = true;
         summary.width = int64_t{readInt32(value, 8)} - readInt32(value, 0) + 1;
         summary.height = int64_t{readInt32(value, 12)} - readInt32(value, 4) + 1;
       }
       if (first && name == "compression" && type == "compression") summary.compression = static_cast<unsigned char>(value[0]);
       if (first && name == "channels" && type == "chlist") summary.channels = channels;
+      if (first && name == "tiles" && type == "tiledesc") {
+        summary.tileWidth = static_cast<uint32_t>(readInt32(value, 0));
+        summary.tileHeight = static_cast<uint32_t>(readInt32(value, 4));
+      }
       pos += static_cast<size_t>(size);
     }
     if (!multipart || empty) return summary;
@@ -195,17 +199,27 @@ HeaderSummary readHeaders(std::string_view bytes) {
 }
 
 void refuseImplausibleSize(const HeaderSummary& header, size_t bytes) {
-  if (!header.hasDataWindow) return;  // OpenEXR refuses a header without one
   if (header.width < 1 || header.height < 1) throw std::length_error("empty data window");
   const bool dwa = header.compression == kDwaaCompression || header.compression == kDwabCompression;
   const uint64_t expansion = dwa ? kMaxDwaExpansion : kMaxExpansion;
   const uint64_t limit = expansion * static_cast<uint64_t>(bytes);
   const uint64_t perPixel = sizeof(float) * std::max<uint64_t>(header.channels, 1);
-  if (static_cast<uint64_t>(header.width) * static_cast<uint64_t>(header.height) > limit / perPixel)
-    throw std::length_error("a data window of " + std::to_string(header.width) + " x " + std::to_string(header.height) +
-                            " pixels and " + std::to_string(header.channels) + " channels cannot come from " +
+  const auto refuse = [&](const std::string& what) {
+    throw std::length_error(what + " and " + std::to_string(header.channels) + " channels cannot come from " +
                             std::to_string(bytes) + " bytes (its compression packs at most " + std::to_string(expansion) +
                             " times)");
+  };
+  if (static_cast<uint64_t>(header.width) * static_cast<uint64_t>(header.height) > limit / perPixel)
+    refuse("a data window of " + std::to_string(header.width) + " x " + std::to_string(header.height) + " pixels");
+  // OpenEXR buffers a whole row of tiles of the size the header declares, whatever the
+  // data window: a row of tiles must be as plausible as the window itself.
+  if (header.tileWidth > 0 && header.tileHeight > 0) {
+    const uint64_t tilesAcross = (static_cast<uint64_t>(header.width) + header.tileWidth - 1) / header.tileWidth;
+    const uint64_t rowWidth = tilesAcross * static_cast<uint64_t>(header.tileWidth);
+    if (rowWidth > limit / perPixel || static_cast<uint64_t>(header.tileHeight) > limit / perPixel / rowWidth)
+      refuse("a row of " + std::to_string(header.tileWidth) + " x " + std::to_string(header.tileHeight) +
+             " pixel tiles " + std::to_string(rowWidth) + " pixels wide");
+  }
 }
 
 // A frame buffer of `planes`, one per channel in `names`, holding rows firstRow,

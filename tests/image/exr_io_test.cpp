@@ -221,6 +221,32 @@ TEST(ExrIo, AScannedFileClaimingMorePixelsThanItsBytesCanHoldIsRefused) {
 // Also found by the fuzzer: OpenEXR allocates what a header attribute claims before it
 // reads it, 1.6 GB for a damaged size; and it reads a channel list to its end whatever
 // size it declares, so the attributes after it were read from the wrong place.
+TEST(ExrIo, ATiledChunkDeclaringTilesTallerThanItsBytesCanHoldIsRefusedBeforeDecoding) {
+  // The fuzzer's case: 483 bytes whose tile description asked for 8 x 65 million pixel
+  // tiles, for which OpenEXR allocated 3.1 GB before reading a pixel. Here a tiled seed of
+  // the fuzz corpus, decodable as it is, with its tiles made 65 million pixels tall.
+  std::ifstream in(test_support::sourceDir() / "fuzz/corpus/exr_chunk/tiled_zips.exr", std::ios::binary);
+  const std::string chunk{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  ASSERT_NO_THROW(decodeExr(chunk, "chunk"));
+  const size_t tiles = chunk.find(std::string("tiles\0tiledesc\0", 15));
+  ASSERT_NE(tiles, std::string::npos);
+  const std::string tall = withInt32(chunk, tiles + 15 + 4 + 4, 65'470'472);  // after the size and the x size
+  // Without a data window, OpenEXR reads the header with its default one, 64 x 64 pixels.
+  std::string windowless = tall;
+  const size_t window = windowless.find(std::string("dataWindow\0", 11));
+  ASSERT_NE(window, std::string::npos);
+  windowless[window + 9] = 'X';
+  for (const std::string& bytes : {tall, windowless}) {
+    try {
+      decodeExr(bytes, "chunk 9a7b");
+      FAIL() << "a chunk declaring 65470472 pixel tall tiles was decoded";
+    } catch (const ExrError& e) {
+      EXPECT_NE(std::string(e.what()).find("chunk 9a7b"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("x 65470472 pixel tiles"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(ExrIo, AHeaderAttributeLargerThanTheChunkIsRefused) {
   const std::string chunk = encodeExr(sampleFrame(), ExrCompression::Fast);
   // "pathfarm.frame" made of a type OpenEXR does not know, which it keeps as bytes.
