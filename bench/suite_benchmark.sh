@@ -5,7 +5,7 @@
 # copies each shot's contact sheet to FIGURES/suite_<scene>_<pipeline>.png. For `auto`, the
 # last columns give the probe's predictions for the shot and its cost, and the probe's
 # scores of every candidate go to standard error, as do the causes of the interpolated
-# frames' re-render.
+# frames' and the upsampled keyframes' re-render.
 #
 #   bench/suite_benchmark.sh [--build DIR] [--scenes "dolly courtyard walkthrough cornell"]
 #                            [--pipelines "dui"] [--spp 64] [--reference-spp 1024]
@@ -66,11 +66,15 @@ print("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %
     f(100 * probe / r["core_seconds"] if probe and r["core_seconds"] else -1, "%.1f%%")))
 # auto's probe table, from the report's reason.
 if probe: print("  " + r["pipeline_reason"], file=sys.stderr)
-# Why interpolated pixels were re-rendered (a pixel may have several causes).
-causes = r.get("interpolation_rerender_causes", {})
-if causes:
-    print("  %s %s re-render causes: " % (sys.argv[2], r["pipeline"]) +
-          ", ".join("%s %.1f%%" % (c, 100 * v) for c, v in sorted(causes.items(), key=lambda i: -i[1])), file=sys.stderr)
+# Why interpolated frames' and upsampled keyframes' pixels were re-rendered (a pixel may
+# have several causes).
+for field, which in (("interpolation_rerender_causes", "re-render causes"),
+                     ("upsample_rerender_causes", "keyframe re-render causes")):
+    causes = r.get(field, {})
+    if causes:
+        print("  %s %s %s: " % (sys.argv[2], r["pipeline"], which) +
+              ", ".join("%s %.1f%%" % (c, 100 * v) for c, v in sorted(causes.items(), key=lambda i: -i[1])),
+              file=sys.stderr)
 PY
   done
 done

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdio>
+#include <initializer_list>
 #include <map>
 
 #include "image/atomic_file.h"
@@ -57,6 +58,13 @@ std::string stageOf(const TaskRecord& task) {
 double metric(const TaskRecord& task, const std::string& name) {
   const auto found = task.metrics.find(name);
   return found == task.metrics.end() ? 0.0 : found->second;
+}
+
+using CauseShares = google::protobuf::Map<std::string, double>;
+
+// Adds the task's re-rendered pixels per cause (its "rerender_<cause>" metrics).
+void addRerenderCauses(CauseShares& causes, const TaskRecord& task, std::initializer_list<const char*> names) {
+  for (const char* cause : names) causes[cause] += metric(task, std::string("rerender_") + cause);
 }
 
 std::string format(const char* pattern, double value) {
@@ -157,13 +165,14 @@ ShotReport buildReport(const ShotSummary& summary, const ShotSpec& spec, const s
     }
     if (task.kind == TASK_INTERPOLATE) {
       interpolationRerender += metric(task, "rerender_pixels");
-      for (const char* cause : {"holes", "silhouettes", "untracked", "illumination", "mismatch", "light_edges", "light_mismatch",
-                                 "moving_caustics"})
-        (*report.mutable_interpolation_rerender_causes())[cause] += metric(task, std::string("rerender_") + cause);
+      addRerenderCauses(*report.mutable_interpolation_rerender_causes(), task,
+                        {"holes", "silhouettes", "untracked", "illumination", "mismatch", "light_edges", "light_mismatch",
+                         "moving_caustics"});
       ++interpolated;
     }
     if (task.kind == TASK_UPSAMPLE) {
       upsampleRerender += metric(task, "rerender_pixels");
+      addRerenderCauses(*report.mutable_upsample_rerender_causes(), task, {"moving_caustics", "light_edges"});
       ++upsampled;
     }
     if (task.kind == TASK_COMPOSITE)
@@ -208,7 +217,10 @@ ShotReport buildReport(const ShotSummary& summary, const ShotSpec& spec, const s
     report.set_interpolation_rerender_rate(interpolationRerender / (interpolated * pixels));
     for (auto& [cause, share] : *report.mutable_interpolation_rerender_causes()) share /= interpolated * pixels;
   }
-  if (upsampled > 0) report.set_upsample_rerender_rate(upsampleRerender / (upsampled * pixels));
+  if (upsampled > 0) {
+    report.set_upsample_rerender_rate(upsampleRerender / (upsampled * pixels));
+    for (auto& [cause, share] : *report.mutable_upsample_rerender_causes()) share /= upsampled * pixels;
+  }
 
   report.set_temporal_error(-1);
   report.set_baseline_temporal_error(-1);
@@ -282,6 +294,14 @@ std::string stageMeaning(const std::string& stage) {
   return found == meaning.end() ? stage : found->second;
 }
 
+// A row per re-render cause, under the rate it splits.
+std::string causeRows(const CauseShares& causes) {
+  std::string rows;
+  for (const auto& [cause, share] : causes)
+    rows += std::string("| &nbsp; of which ").append(cause) + " | " + format("%.2f%%", 100 * share) + " |\n";
+  return rows;
+}
+
 }  // namespace
 
 std::string reportMarkdown(const ShotReport& r) {
@@ -312,9 +332,9 @@ std::string reportMarkdown(const ShotReport& r) {
           format("%.3f", r.cost_at_equal_error()) + " |\n";
   md += "| re-render rate, all frames | " + format("%.2f%%", 100 * r.rerender_rate()) + " |\n";
   md += "| re-render rate, interpolated frames | " + format("%.2f%%", 100 * r.interpolation_rerender_rate()) + " |\n";
-  for (const auto& [cause, share] : r.interpolation_rerender_causes())
-    md += std::string("| &nbsp; of which ").append(cause) + " | " + format("%.2f%%", 100 * share) + " |\n";
+  md += causeRows(r.interpolation_rerender_causes());
   md += "| re-render rate, upsampled keyframes | " + format("%.2f%%", 100 * r.upsample_rerender_rate()) + " |\n";
+  md += causeRows(r.upsample_rerender_causes());
   if (r.temporal_acceptance() >= 0)
     md += "| temporal perturbations accepted | " + format("%.1f%%", 100 * r.temporal_acceptance()) + " |\n";
   md += "| measurement core-seconds (baseline, reference, evaluation; not in the cost) | " +

@@ -110,6 +110,26 @@ TEST(ShotReport, CostsRatesAndErrorsFollowFromTheTasks) {
   EXPECT_EQ(md.find("Pipeline `dui` ("), std::string::npos);
 }
 
+TEST(ShotReport, AnUpsampledKeyframesReRenderIsSplitByCause) {
+  // Two keyframes of 10x10 pixels: 30 re-rendered in all, 20 on edges of directly seen
+  // light and 6 on moving caustics (the rest flagged by the upsampler itself).
+  std::vector<TaskRecord> tasks;
+  tasks.push_back(record(TASK_UPSAMPLE, ROLE_UNSPECIFIED, 0, 1.0));
+  tasks.back().metrics = {{"rerender_pixels", 10}, {"rerender_light_edges", 8}, {"rerender_moving_caustics", 2}};
+  tasks.push_back(record(TASK_UPSAMPLE, ROLE_UNSPECIFIED, 3, 1.0));
+  tasks.back().metrics = {{"rerender_pixels", 20}, {"rerender_light_edges", 12}, {"rerender_moving_caustics", 4}};
+  ShotSummary summary;
+  summary.set_state(SHOT_DONE);
+  const ShotReport report = buildReport(summary, spec(), tasks);
+  EXPECT_DOUBLE_EQ(report.upsample_rerender_rate(), 30.0 / 200);
+  EXPECT_DOUBLE_EQ(report.upsample_rerender_causes().at("light_edges"), 20.0 / 200);
+  EXPECT_DOUBLE_EQ(report.upsample_rerender_causes().at("moving_caustics"), 6.0 / 200);
+  const std::string markdown = reportMarkdown(report);
+  const size_t rate = markdown.find("| re-render rate, upsampled keyframes | 15.00% |");
+  ASSERT_NE(rate, std::string::npos) << markdown;
+  EXPECT_NE(markdown.find("| &nbsp; of which light_edges | 10.00% |", rate), std::string::npos) << markdown;
+}
+
 TEST(ShotReport, TheVerdictSaysPlainlyWhenThePipelineLost) {
   std::vector<TaskRecord> tasks;
   tasks.push_back(record(TASK_RENDER_TILE, ROLE_KEYFRAME, 0, 16.0));  // 4 core-seconds per frame
