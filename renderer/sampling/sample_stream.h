@@ -52,7 +52,10 @@ class SampleStream {
 // 2^k, each dimension alone puts one sample in each of 2^k equal intervals, and position
 // and time together are spread as evenly: an edge, a texture line or a thin feature
 // moving across the pixel during the shutter is covered far more evenly than by
-// independent points. The scramble keeps neighbouring pixels' patterns unrelated.
+// independent points. The scramble keeps neighbouring pixels' patterns unrelated, and
+// each block of 2^kStratifiedBlockBits sample indices has a scramble of its own, so
+// renders drawing from different blocks are independent.
+inline constexpr int kStratifiedBlockBits = 24;
 struct StratifiedSample {
   Vec2f film;
   float time = 0;

@@ -106,6 +106,21 @@ TEST(StratifiedCameraSample, EveryAlignedPowerOfTwoBlockIsANetInPositionAndTime)
   }
 }
 
+TEST(StratifiedCameraSample, ABlockOfSampleIndicesFarAwayDrawsPositionsOfItsOwn) {
+  // A reference renders the same pixels from sample index 2^31 on, so that its samples
+  // are independent of the frame's: in no dimension may one of its first 64 coordinates
+  // repeat one of the frame's 64 (to the float's 24 bits; by chance, about 1 in 4000).
+  const SampleKey pixel{3, 7, 120, 45, 0};
+  const auto frame = cameraSamples(pixel, 0, 64), reference = cameraSamples(pixel, 1u << 31, 64);
+  for (size_t d = 0; d < 3; ++d) {
+    std::set<float> frames;
+    for (const auto& point : frame) frames.insert(point[d]);
+    for (const auto& point : reference) EXPECT_EQ(frames.count(point[d]), 0u) << "dimension " << d;
+  }
+  // Within a block, the pattern is one sequence: the block's later samples continue it.
+  expectEveryBoxHolds(cameraSamples(pixel, (1u << 31) + 64, 64), {3, 3, -1}, 1);
+}
+
 TEST(StratifiedCameraSample, NeighbouringPixelsAndFramesHaveUnrelatedPatterns) {
   std::set<std::array<float, 3>> firsts;
   for (const SampleKey& key : {SampleKey{1, 5, 10, 20, 0}, SampleKey{1, 5, 11, 20, 0}, SampleKey{1, 5, 10, 21, 0},
