@@ -12,9 +12,12 @@
 # A finding (crash-*, leak-*, timeout-*, oom-*) fails the run, naming the target; it is
 # kept in WORK/findings/NAME/, and `WORK/MODE/NAME_fuzzer FILE` runs it again.
 #
-# Usage: bench/fuzz.sh [--target NAME|all] [--runs N] [--seconds S] [--fork N] [--work DIR] [--quick]
-#                      [--build DIR] [--build-only]
+# Usage: bench/fuzz.sh [--target NAME|all] [--runs N] [--seconds S] [--fork N] [--seed N] [--work DIR]
+#                      [--quick] [--build DIR] [--build-only]
 #   --fork N      N fuzzing processes at once (libFuzzer -fork=N), e.g. one per core
+#   --seed N      libFuzzer's random seed (default: a new one each run). CI passes one, so
+#                 that its brief runs try the same inputs every time and a finding there
+#                 comes from the change under test; long runs explore with new seeds
 #   --quick       -O0 -g1 instead of -O1 -g (half the compile time), objects in WORK/quick
 #                 (never mixed with WORK/full's), and new inputs are not kept between runs
 #   --build DIR   the CMake build whose generated protobuf code shot_json uses (build)
@@ -27,16 +30,18 @@ target=all
 runs=-1
 seconds=0
 fork=1
+seed=0
 work=build-fuzz
 build=build
 quick=0
 build_only=0
-usage="usage: $0 [--target NAME|all] [--runs N] [--seconds S] [--fork N] [--work DIR] [--quick] [--build DIR] [--build-only]"
+usage="usage: $0 [--target NAME|all] [--runs N] [--seconds S] [--fork N] [--seed N] [--work DIR] [--quick] [--build DIR] [--build-only]"
 while (($#)); do
   case "$1" in
     --target) target=$2; shift 2 ;;
     --runs) runs=$2; shift 2 ;;
     --fork) fork=$2; shift 2 ;;
+    --seed) seed=$2; shift 2 ;;
     --seconds) seconds=$2; shift 2 ;;
     --work) work=$2; shift 2 ;;
     --build) build=$2; shift 2 ;;
@@ -191,6 +196,7 @@ options=(-rss_limit_mb=2048 -timeout=10 -print_final_stats=1)
 ((runs >= 0)) && options+=(-runs="$runs")
 ((seconds > 0)) && options+=(-max_total_time="$seconds")
 ((fork > 1)) && options+=(-fork="$fork")
+((seed > 0)) && options+=(-seed="$seed")
 failed=()
 for name in "${targets[@]}"; do
   # New inputs the fuzzer finds go to the work folder's corpus; the committed seeds stay as they are.
