@@ -62,11 +62,12 @@ FrameImage BdptFrameRenderer::render(int64_t frame, const ProgressCallback& prog
   auto renderPixel = [&](ThreadState& state, int x, int y) {
     SampleMoments moments;
     uint32_t accepted = 0;
+    const StratifiedPixel pattern(scene_.seed, frame, x, y);
     for (int i = 0; i < settings_.spp; ++i) {
       const SampleKey key{scene_.seed, frame, x, y, settings_.firstSample + static_cast<uint32_t>(i)};
       SampleStream stream(key);
       StreamSource u(stream);
-      const StratifiedSample stratified = stratifiedCameraSample(key);
+      const StratifiedSample stratified = pattern.sample(key.sampleIndex);
       const Vec2f jitter = stratified.film;
       const float time = stratified.time;
       const Vec2f lens = u.next2D();

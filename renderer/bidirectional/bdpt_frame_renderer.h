@@ -1,7 +1,7 @@
 #pragma once
 // Renders frames by bidirectional path tracing (`pathfarm render --integrator bdpt`).
 // Each pixel sample is the path tracer's: the pixel position and shutter time stratified
-// over the pixel's samples (stratifiedCameraSample), then a SampleStream keyed by (scene
+// over the pixel's samples (StratifiedPixel), then a SampleStream keyed by (scene
 // seed, frame, pixel, sample index) giving the lens, a camera subpath, a light subpath
 // and their connections.
 // Camera strategies (t >= 2) are averaged per pixel in a fixed order; light tracing

@@ -148,12 +148,13 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
         uint32_t accepted = 0;
         std::optional<DecomposedFilm::Pixel> sums;
         if (film) sums.emplace(decomposition->size());
+        const StratifiedPixel pattern(scene_.seed, frame, x, y);
         for (int s = 0; s < settings_.spp; ++s) {
           const SampleKey key{scene_.seed, frame, x, y, settings_.firstSample + static_cast<uint32_t>(s)};
           SampleStream stream(key);
           // Pixel position and shutter time are stratified over the pixel's samples; the
           // stream's first dimensions are the lens's.
-          const StratifiedSample stratified = stratifiedCameraSample(key);
+          const StratifiedSample stratified = pattern.sample(key.sampleIndex);
           const Vec2f jitter = stratified.film;
           const float time = stratified.time;
           const Vec2f lens = stream.next2D();

@@ -149,11 +149,12 @@ FrameImage GradientFrameRenderer::render(int64_t frame, const ProgressCallback& 
   auto renderPixel = [&](int x, int y, uint32_t count, SampleCounters& local) {
     const size_t p = static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
     PixelSums& s = sums[p];
+    const StratifiedPixel pattern(scene_.seed, frame, x, y);
     for (uint32_t i = 0; i < count; ++i) {
       const SampleKey key{scene_.seed, frame, x, y, s.drawn + i};
       SampleStream stream(key);
       // As in FrameRenderer: pixel position and time stratified, the lens from the stream.
-      const StratifiedSample stratified = stratifiedCameraSample(key);
+      const StratifiedSample stratified = pattern.sample(key.sampleIndex);
       const Vec2f jitter = stratified.film;
       const float time = stratified.time;
       const Vec2f lens = stream.next2D();

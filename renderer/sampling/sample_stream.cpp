@@ -50,16 +50,20 @@ float unitFloat(uint32_t bits) { return static_cast<float>(bits >> 8) * 0x1p-24f
 
 }  // namespace
 
-StratifiedSample stratifiedCameraSample(const SampleKey& key) {
+StratifiedPixel::StratifiedPixel(uint64_t sceneSeed, int64_t frame, int32_t x, int32_t y) {
+  uint64_t h = mix(sceneSeed ^ 0x6a09e667f3bcc909ULL);
+  h = mix(h ^ static_cast<uint64_t>(frame));
+  pixelHash_ = mix(h ^ (static_cast<uint64_t>(static_cast<uint32_t>(x)) << 32 | static_cast<uint32_t>(y)));
+}
+
+StratifiedSample StratifiedPixel::sample(uint32_t sampleIndex) const {
   // Each block of 2^24 sample indices is a sequence of its own, scrambled apart: the
   // high bits of an index would only flip the points' lowest digits, so a render drawing
   // from another block (a reference's kIndependentFirstSample) would reuse the positions.
-  const uint32_t block = key.sampleIndex >> kStratifiedBlockBits;
-  const uint32_t i = key.sampleIndex & ((1u << kStratifiedBlockBits) - 1);
-  uint64_t h = mix(key.sceneSeed ^ 0x6a09e667f3bcc909ULL);
-  h = mix(h ^ static_cast<uint64_t>(key.frame));
-  h = mix(h ^ (static_cast<uint64_t>(static_cast<uint32_t>(key.x)) << 32 | static_cast<uint32_t>(key.y)));
-  if (block != 0) h = mix(h ^ block);  // the first block keeps the pixel's own scramble
+  const uint32_t block = sampleIndex >> kStratifiedBlockBits;
+  const uint32_t i = sampleIndex & ((1u << kStratifiedBlockBits) - 1);
+  // The first block keeps the pixel's own scramble.
+  const uint64_t h = block != 0 ? mix(pixelHash_ ^ block) : pixelHash_;
   const uint64_t timeScramble = mix(h ^ 0xbb67ae8584caa73bULL);
   return {{unitFloat(sobol(kVanDerCorput, i) ^ static_cast<uint32_t>(h)),
            unitFloat(sobol(kSobolSecond, i) ^ static_cast<uint32_t>(h >> 32))},

@@ -1,8 +1,8 @@
 #pragma once
 // The renderer's sampling contract: every camera sample draws its uniform numbers from
 // its own stream, seeded only by (scene seed, frame, pixel, sample index), except its
-// film position and shutter time, which are stratified over the pixel's samples by the
-// same key. An image is therefore the same bits for any thread count or tile size, and a
+// film position and shutter time, which are stratified over the pixel's samples
+// (StratifiedPixel) by the same key. An image is therefore the same bits for any thread count or tile size, and a
 // method can replay a sample's random numbers in another frame (Manzi et al. 2016's
 // temporal shift).
 #include <cstdint>
@@ -46,8 +46,8 @@ class SampleStream {
 
 // The first three dimensions of a camera sample, stratified over the pixel's samples:
 // the film position within the pixel, in [0, 1)^2, and the time within the shutter, in
-// [0, 1). They are point number `sampleIndex` of the first three dimensions of Sobol's
-// sequence, each dimension's digits scrambled by a random bit pattern of the key's pixel
+// [0, 1). Sample `sampleIndex` is point number `sampleIndex` of the first three dimensions of Sobol's
+// sequence, each dimension's digits scrambled by a random bit pattern of the pixel
 // (scene seed, frame, x, y). For every 2^k samples whose indices start at a multiple of
 // 2^k, each dimension alone puts one sample in each of 2^k equal intervals, and position
 // and time together are spread as evenly: an edge, a texture line or a thin feature
@@ -60,6 +60,14 @@ struct StratifiedSample {
   Vec2f film;
   float time = 0;
 };
-StratifiedSample stratifiedCameraSample(const SampleKey& key);
+// One pixel's pattern: its scramble is hashed once, and each sample reads its point.
+class StratifiedPixel {
+ public:
+  StratifiedPixel(uint64_t sceneSeed, int64_t frame, int32_t x, int32_t y);
+  StratifiedSample sample(uint32_t sampleIndex) const;
+
+ private:
+  uint64_t pixelHash_ = 0;
+};
 
 }  // namespace pathfarm

@@ -54,10 +54,9 @@ TEST(SampleStream, UniformNumbersFillTheUnitIntervalEvenly) {
 // (film x, film y, time).
 std::vector<std::array<float, 3>> cameraSamples(const SampleKey& pixel, uint32_t first, uint32_t count) {
   std::vector<std::array<float, 3>> points;
+  const StratifiedPixel pattern(pixel.sceneSeed, pixel.frame, pixel.x, pixel.y);
   for (uint32_t i = first; i < first + count; ++i) {
-    SampleKey key = pixel;
-    key.sampleIndex = i;
-    const StratifiedSample s = stratifiedCameraSample(key);
+    const StratifiedSample s = pattern.sample(i);
     points.push_back({s.film.x, s.film.y, s.time});
   }
   return points;
@@ -86,7 +85,7 @@ void expectEveryBoxHolds(const std::vector<std::array<float, 3>>& points, std::a
   for (const auto& [box, count] : counts) EXPECT_EQ(count, each) << bits[0] << " " << bits[1] << " " << bits[2];
 }
 
-TEST(StratifiedCameraSample, EveryAlignedPowerOfTwoBlockIsANetInPositionAndTime) {
+TEST(StratifiedPixel, EveryAlignedPowerOfTwoBlockIsANetInPositionAndTime) {
   // The first three dimensions of Sobol's sequence form a (1, 3)-sequence in base 2, and
   // a digit scramble keeps that: any 2^m samples starting at a multiple of 2^m hold
   // exactly 2 points in every elementary box of volume 2^(1 - m), and the film position
@@ -106,7 +105,7 @@ TEST(StratifiedCameraSample, EveryAlignedPowerOfTwoBlockIsANetInPositionAndTime)
   }
 }
 
-TEST(StratifiedCameraSample, ABlockOfSampleIndicesFarAwayDrawsPositionsOfItsOwn) {
+TEST(StratifiedPixel, ABlockOfSampleIndicesFarAwayDrawsPositionsOfItsOwn) {
   // A reference renders the same pixels from sample index 2^31 on, so that its samples
   // are independent of the frame's: in no dimension may one of its first 64 coordinates
   // repeat one of the frame's 64 (to the float's 24 bits; by chance, about 1 in 4000).
@@ -121,11 +120,11 @@ TEST(StratifiedCameraSample, ABlockOfSampleIndicesFarAwayDrawsPositionsOfItsOwn)
   expectEveryBoxHolds(cameraSamples(pixel, (1u << 31) + 64, 64), {3, 3, -1}, 1);
 }
 
-TEST(StratifiedCameraSample, NeighbouringPixelsAndFramesHaveUnrelatedPatterns) {
+TEST(StratifiedPixel, NeighbouringPixelsAndFramesHaveUnrelatedPatterns) {
   std::set<std::array<float, 3>> firsts;
   for (const SampleKey& key : {SampleKey{1, 5, 10, 20, 0}, SampleKey{1, 5, 11, 20, 0}, SampleKey{1, 5, 10, 21, 0},
                                SampleKey{1, 6, 10, 20, 0}, SampleKey{2, 5, 10, 20, 0}}) {
-    const StratifiedSample s = stratifiedCameraSample(key);
+    const StratifiedSample s = StratifiedPixel(key.sceneSeed, key.frame, key.x, key.y).sample(key.sampleIndex);
     firsts.insert({s.film.x, s.film.y, s.time});
   }
   EXPECT_EQ(firsts.size(), 5u);
@@ -154,7 +153,7 @@ std::pair<double, double> coverageErrors(Covered covered) {
   return {std::sqrt(squaredError / kPixels), std::sqrt(truth * (1 - truth) / kSamples)};
 }
 
-TEST(StratifiedCameraSample, EdgesAreCoveredFarMoreEvenlyThanByIndependentSamples) {
+TEST(StratifiedPixel, EdgesAreCoveredFarMoreEvenlyThanByIndependentSamples) {
   // Stratified samples estimate a region bounded by an edge with an error that falls
   // faster than independent samples' N^(-1/2): about N^(-3/4) in two dimensions and
   // N^(-2/3) in three, which at N = 64 is a third and a half of the independent error.
