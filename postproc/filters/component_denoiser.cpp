@@ -59,6 +59,12 @@ void requireBuffers(const FrameImage& frame, const std::vector<Buffer>& buffers,
     for (size_t i = 0; i < buffer.channels.size(); ++i) requireChannel(frame, buffer.name(i), label);
 }
 
+// A component's "<c>.coverage.Y", or null for the beauty or a frame without it.
+const std::vector<float>* coverageOf(const FrameImage& frame, const LayerSpec& layer) {
+  if (layer.component.empty() || !frame.hasChannel(layer.component + ".coverage.Y")) return nullptr;
+  return &frame.channel(layer.component + ".coverage.Y");
+}
+
 Planes planesOf(const FrameImage& frame, const Buffer& buffer) {
   Planes planes;
   planes.width = frame.width();
@@ -87,6 +93,18 @@ LayerFrame loadLayer(const FrameImage& frame, const LayerSpec& layer, const std:
       const std::vector<float>& r = reflectance.channels[c];
       for (size_t p = 0; p < variance.size(); ++p)
         if (r[p] >= kReflectanceGuard) variance[p] /= r[p] * r[p];
+    }
+    // The light per covered area, so that a silhouette pixel reads as its neighbours do
+    // (denoiseFrame multiplies its own coverage back).
+    if (const std::vector<float>* coverage = coverageOf(frame, layer)) {
+      for (size_t c = 0; c < 3; ++c) {
+        std::vector<float>& color = out.color.channels[c];
+        std::vector<float>& variance = out.variance.channels[c];
+        for (size_t p = 0; p < color.size(); ++p) {
+          color[p] = perCoveredArea(color[p], (*coverage)[p]);
+          variance[p] = perCoveredArea(perCoveredArea(variance[p], (*coverage)[p]), (*coverage)[p]);
+        }
+      }
     }
   }
   for (const Buffer& buffer : features) {
@@ -305,9 +323,11 @@ FrameImage denoiseFrame(const FrameImage& current, const FrameImage* previous, c
       }
       std::vector<float>& color = out.addChannel(layer.component + ".color." + kRgb[c]);
       const std::vector<float>& reflectance = current.channel(layer.component + ".reflectance." + kRgb[c]);
+      const std::vector<float>* coverage = coverageOf(current, layer);
       for (size_t p = 0; p < color.size(); ++p) {
         const float r = std::isfinite(reflectance[p]) ? reflectance[p] : 0.0f;
         color[p] = modulateIrradiance(value[p], r);
+        if (coverage != nullptr) color[p] *= coverageShare((*coverage)[p]);
         beauty[p] += color[p];
       }
     }

@@ -10,7 +10,9 @@
 // Per component c of the frame's `pathfarm.decomposition` attribute:
 //   filtered:   `c.irradiance.R/G/B`, with the variance of the pixel mean carried through
 //               the division per channel: Var = `c.variance` / reflectance^2 where
-//               reflectance >= kReflectanceGuard, else `c.variance` itself;
+//               reflectance >= kReflectanceGuard, else `c.variance` itself; with
+//               `c.coverage.Y`, both per covered area (perCoveredArea: / coverage and
+//               / coverage^2), so a silhouette pixel's light reads as its neighbours';
 //   features:   `c.normal.X/Y/Z`, `c.reflectance.R/G/B` (continuous), `c.objectid.Y`
 //               (exact match), `c.depth.Z` when DenoiseSettings::useDepth. Continuous
 //               features are prefiltered with NL-means (DenoiseSettings::prefilter; their
@@ -22,7 +24,8 @@
 //               overestimate of the interpolated value's variance). A neighbour with no
 //               valid pixel is dropped, and a component that keeps no neighbour is filtered
 //               spatially with the spatial radius;
-//   output:     `c.color.R/G/B` = modulateIrradiance(filtered, `c.reflectance`), and
+//   output:     `c.color.R/G/B` = modulateIrradiance(filtered, `c.reflectance`), times
+//               the frame's own `c.coverage.Y` where it has one above 0, and
 //               R, G, B = the sum over the components.
 // A component whose irradiance and variance are zero everywhere (no glass: no
 // transmission) stays zero without being filtered.

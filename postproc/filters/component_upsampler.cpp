@@ -25,7 +25,7 @@ const std::vector<std::string>* knownChannels(const std::string& buffer) {
       {"irradiance", {"R", "G", "B"}}, {"emission", {"R", "G", "B"}},    {"normal", {"X", "Y", "Z"}},
       {"uv", {"X", "Y"}},              {"motion", {"X", "Y"}},           {"motion_back", {"X", "Y"}},
       {"depth", {"Z"}},                {"objectid", {"Y"}},              {"primid", {"Y"}},
-      {"motion_valid", {"Y"}},
+      {"motion_valid", {"Y"}},         {"coverage", {"Y"}},
   };
   const auto it = table.find(buffer);
   return it == table.end() ? nullptr : &it->second;
@@ -141,10 +141,29 @@ FrameImage upsampleFrame(const FrameImage& low, const FrameImage& highFeatures, 
     const Job& job = jobs[k];
     Planes lowIrradiance(low.width(), low.height(), 0);
     for (const std::string& name : job.irradiance) lowIrradiance.channels.push_back(low.channel(name));
+    // With coverage in both frames, the fit works on the light per covered area. The
+    // irradiance carries the component's share of each pixel; at a silhouette the
+    // full-resolution pixel's share is not the low-resolution block's, so the block's light
+    // spread over an edge pixel would be too bright where the component covers little of it.
+    const std::string coverageName = c + ".coverage.Y";
+    const bool byCoverage = low.hasChannel(coverageName) && highFeatures.hasChannel(coverageName);
+    if (byCoverage) {
+      const std::vector<float>& coverage = low.channel(coverageName);
+      for (std::vector<float>& channel : lowIrradiance.channels)
+        for (size_t i = 0; i < channel.size(); ++i) channel[i] = perCoveredArea(channel[i], coverage[i]);
+    }
     Planes guide(width, height, 0);
     for (const std::string& name : job.guide) guide.channels.push_back(highFeatures.channel(name));
 
     GuidedUpsampleResult up = guidedUpsample(lowIrradiance, guide, settings.guided);
+    if (byCoverage) {
+      const std::vector<float>& coverage = highFeatures.channel(coverageName);
+      for (size_t i = 0; i < coverage.size(); ++i) {
+        const float share = coverageShare(coverage[i]);
+        for (std::vector<float>& channel : up.image.channels) channel[i] *= share;
+        up.deficit[i] *= share;
+      }
+    }
     // Where no sample of the full-resolution render found the component (its normal is
     // zero), there is none of it: the fit must not spill its neighbours' light there.
     if (highFeatures.hasChannel(c + ".normal.X")) {
@@ -230,6 +249,30 @@ FrameImage boxDownsample(const FrameImage& high, int factor) {
         if (rule == Rule::Variance) mean *= inverseArea;
         if (rule == Rule::Motion) mean /= factor;
         value = rule == Rule::Maximum ? maximum : static_cast<float>(mean);
+      }
+  }
+
+  // A reflectance is a mean over the samples that reached the component's surface, so a
+  // block's is weighed by each pixel's coverage (a pixel the component does not cover has
+  // reflectance 0, which is no albedo).
+  for (const std::string& name : high.channelNames()) {
+    const ChannelName parts = splitChannel(name);
+    const std::string coverageName = parts.prefix + ".coverage.Y";
+    if (parts.prefix.empty() || parts.buffer != "reflectance" || !high.hasChannel(coverageName)) continue;
+    const std::vector<float>& source = high.channel(name);
+    const std::vector<float>& coverage = high.channel(coverageName);
+    std::vector<float>& target = low.channel(name);
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) {
+        const size_t corner = static_cast<size_t>(y) * factor * high.width() + static_cast<size_t>(x) * factor;
+        double weighted = 0.0, covered = 0.0;
+        for (int dy = 0; dy < factor; ++dy)
+          for (int dx = 0; dx < factor; ++dx) {
+            const size_t i = corner + static_cast<size_t>(dy) * high.width() + dx;
+            weighted += static_cast<double>(source[i]) * coverage[i];
+            covered += coverage[i];
+          }
+        if (covered > 0.0) target[static_cast<size_t>(y) * width + x] = static_cast<float>(weighted / covered);
       }
   }
 

@@ -31,6 +31,9 @@ struct UpsampleSettings {
 //   highFeatures  the full-resolution features, factor times larger: per component the
 //                 guide buffers (by default "<c>.reflectance.R/G/B", "<c>.normal.X/Y/Z",
 //                 "<c>.emission.R/G/B"); "<c>.reflectance.R/G/B" is always needed
+// With "<c>.coverage.Y" in both frames, the irradiance upsampled is the light per covered
+// area (perCoveredArea with the low frame's coverage), and the result's irradiance is that
+// times the full-resolution coverage: a silhouette pixel keeps its own share of the light.
 // The result (full resolution) holds, in this order: beauty "R","G","B" (the sum of the
 // components), per component "<c>.color.R/G/B" = modulateIrradiance(upsampled irradiance,
 // full-resolution reflectance) and "<c>.irradiance.R/G/B" (upsampled; 0 where the
@@ -46,6 +49,8 @@ FrameImage upsampleFrame(const FrameImage& low, const FrameImage& highFeatures, 
 // The evaluation protocol's low-resolution input: a target-resolution render (with 1/factor^2
 // of the samples) averaged over factor x factor blocks, so that every channel reads as a
 // render at the low resolution would have it. Every channel is the block's mean, except:
+//   "<c>.reflectance.*"      with "<c>.coverage.Y", the mean weighed by coverage (the
+//                            reflectance is a mean over the samples that reached the surface)
 //   "<c>.irradiance.*"       recomputed as effectiveIrradiance(mean color, mean reflectance),
 //                            as the renderer derives it (when "<c>.color.*" and
 //                            "<c>.reflectance.*" exist; else the mean)

@@ -50,6 +50,7 @@ DecomposedFilm::DecomposedFilm(FrameImage& image, const Decomposition& decomposi
     c.primitive = add(name + ".primid.Y");
     addXy(name + ".uv", c.uv);
     c.depth = add(name + ".depth.Z");
+    c.coverage = add(name + ".coverage.Y");
     addRgb(name + ".emission", c.direct);
     addXy(name + ".motion", c.motion);
     addXy(name + ".motion_back", c.motionBack);
@@ -153,6 +154,7 @@ void DecomposedFilm::write(size_t p, const Pixel& sums) const {
     out.primitive[p] = static_cast<float>(c.primitive);
     for (int i = 0; i < 2; ++i) out.uv[i][p] = static_cast<float>(c.uv[i] / features);
     out.depth[p] = static_cast<float>(c.depth / features);
+    out.coverage[p] = n > 0 ? static_cast<float>(c.features / n) : 0.0f;
     if (c.specular) {
       const bool valid = c.specularMotion && c.specularMotionBack;
       out.motion[0][p] = valid ? c.specularMotion->x : 0.0f;

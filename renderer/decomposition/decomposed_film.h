@@ -67,7 +67,7 @@ class DecomposedFilm {
  private:
   struct ComponentChannels {
     float *color[3], *variance[3], *reflectance[3], *irradiance[3], *normal[3], *objectId, *primitive, *uv[2],
-        *depth, *direct[3], *motion[2], *motionBack[2], *motionValid;
+        *depth, *coverage, *direct[3], *motion[2], *motionBack[2], *motionValid;
   };
   std::vector<ComponentChannels> components_;
   float *depth_, *motion_[2], *motionBack_[2], *silhouette_, *movingCaustic_;

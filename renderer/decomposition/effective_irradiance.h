@@ -15,4 +15,20 @@ inline float modulateIrradiance(float irradiance, float reflectance) {
   return reflectance < kReflectanceGuard ? irradiance : irradiance * reflectance;
 }
 
+// A component's light per unit of the pixel it covers: `coverage` is the share of the
+// pixel's samples that reached the component's first non-specular vertex. At a silhouette
+// the irradiance above carries that share; divided out, the light is as smooth across the
+// edge as the illumination itself, and multiplying by a pixel's own share puts it back.
+// The share divided out is at least kCoverageFloor: a pixel that a few samples reached
+// would otherwise multiply their noise (one sun-lit sample of 64 read as 20 times its
+// light, which the filters then spread over its neighbours). Where no sample reached the
+// component nothing is divided.
+inline constexpr float kCoverageFloor = 0.25f;
+
+inline float coverageShare(float coverage) {
+  return coverage > 0.0f ? (coverage > kCoverageFloor ? coverage : kCoverageFloor) : 1.0f;
+}
+
+inline float perCoveredArea(float value, float coverage) { return value / coverageShare(coverage); }
+
 }  // namespace pathfarm
