@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "postproc/filters/decomposed_frame.h"
 #include "postproc/interpolation/solid_regions.h"
@@ -35,6 +36,33 @@ std::vector<double> luminance(const FrameImage& frame, const std::string& prefix
   return out;
 }
 
+// `strong` and the pixels of `weak` it reaches through `weak` pixels in at most `reach`
+// steps (8-connected).
+std::vector<uint8_t> grownRegions(std::vector<uint8_t> strong, const std::vector<uint8_t>& weak, int width,
+                                  int height, int reach) {
+  std::vector<size_t> front;
+  for (size_t p = 0; p < strong.size(); ++p)
+    if (strong[p]) front.push_back(p);
+  for (int step = 0; step < reach && !front.empty(); ++step) {
+    std::vector<size_t> next;
+    for (const size_t p : front) {
+      const int x = static_cast<int>(p % static_cast<size_t>(width)), y = static_cast<int>(p / static_cast<size_t>(width));
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int nx = x + dx, ny = y + dy;
+          if (nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
+          const size_t q = static_cast<size_t>(ny) * static_cast<size_t>(width) + static_cast<size_t>(nx);
+          if (weak[q] && !strong[q]) {
+            strong[q] = 1;
+            next.push_back(q);
+          }
+        }
+    }
+    front = std::move(next);
+  }
+  return strong;
+}
+
 }  // namespace
 
 std::vector<uint8_t> radianceMismatch(const FrameImage& interpolated, const FrameImage& features,
@@ -42,7 +70,7 @@ std::vector<uint8_t> radianceMismatch(const FrameImage& interpolated, const Fram
   if (interpolated.width() != features.width() || interpolated.height() != features.height())
     throw std::invalid_argument("radiance check: the interpolated frame and the features differ in size");
   const int width = features.width(), height = features.height();
-  std::vector<uint8_t> mismatch(features.pixelCount(), 0);
+  std::vector<uint8_t> mismatch(features.pixelCount(), 0), weak(features.pixelCount(), 0);
   const WindowSums beauty(luminance(features, "", "features'"), width, height);
   for (const std::string& c : decompositionComponents(interpolated)) {
     std::vector<double> difference = luminance(interpolated, c + ".color.", "interpolated");
@@ -53,12 +81,15 @@ std::vector<uint8_t> radianceMismatch(const FrameImage& interpolated, const Fram
     for (int y = 0; y < height; ++y)
       for (int x = 0; x < width; ++x) {
         const double d = std::abs(differences.around(x, y, settings.radius));
-        if (d > settings.z * std::sqrt(variances.around(x, y, settings.radius)) &&
-            d > settings.relative * beauty.around(x, y, settings.radius))
-          mismatch[static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)] = 1;
+        const double deviation = std::sqrt(variances.around(x, y, settings.radius));
+        const double light = beauty.around(x, y, settings.radius);
+        const size_t p = static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
+        if (d > settings.z * deviation && d > settings.relative * light) mismatch[p] = 1;
+        if (d > settings.growZ * deviation && d > settings.growRelative * light) weak[p] = 1;
       }
   }
-  return solidRegions(mismatch, width, height, settings.solidRadius);
+  return grownRegions(solidRegions(mismatch, width, height, settings.solidRadius), weak, width, height,
+                      settings.growReach);
 }
 
 }  // namespace pathfarm

@@ -15,6 +15,15 @@
 // much of the light (a caustic's fireflies on a ceiling), and there the statistic grazes
 // its threshold in scattered, thin specks that a re-render at full samples, denoised among
 // themselves, would turn into blotches.
+//
+// A region grows from there into the connected pixels whose windows differ by the weaker
+// `growZ` and `growRelative` (hysteresis, as an edge detector follows an edge). The light
+// just outside a region flagged at a tenth is often still off by nearly a tenth: a moving
+// soft shadow interpolated between keyframes that both saw it elsewhere. Re-rendered
+// inside and interpolated outside, the outline showed as a step. Growth needs a strong
+// region to start from, so noise alone still flags nothing, and it stops `growReach`
+// pixels out: far enough to take in a soft shadow's edge, not so far that a light a few
+// per cent off over a whole wall is all rendered again.
 #include <cstdint>
 #include <vector>
 
@@ -27,6 +36,9 @@ struct RadianceCheckSettings {
   float z = 4.0f;
   float relative = 0.1f;
   int solidRadius = 1;  // 0: keep every flag
+  float growZ = 3.0f;          // a region grows through pixels passing these weaker bounds
+  float growRelative = 0.04f;  // (growRelative >= relative: no growth),
+  int growReach = 4;           // by at most this many pixels
 };
 
 // One byte per pixel, 1 where any component's light disagrees. Throws

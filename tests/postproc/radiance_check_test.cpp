@@ -82,12 +82,50 @@ TEST(RadianceCheck, ADifferenceThatOnlyGrazesTheThresholdLeavesNoSpecks) {
   const FrameImage grazing = brighterAtTheCentre(7.0f);
   RadianceCheckSettings everyFlag;
   everyFlag.solidRadius = 0;
+  everyFlag.growRelative = everyFlag.relative;  // no growth: the band alone
   EXPECT_EQ(flaggedCount(radianceMismatch(grazing, features, everyFlag)), 7u);
   EXPECT_EQ(flaggedCount(radianceMismatch(grazing, features)), 0u);
   const std::vector<uint8_t> flags = radianceMismatch(brighterAtTheCentre(10.0f), features);
   EXPECT_EQ(flaggedCount(flags), 49u);
   for (int y = 21; y <= 27; ++y)
     for (int x = 21; x <= 27; ++x) EXPECT_EQ(flags[static_cast<size_t>(y * kCheckSize + x)], 1) << x << ", " << y;
+}
+
+// Exact features lit at 1 and an interpolated frame off by 30 % in a 9 x 9 square, by 6 %
+// in a ring 6 pixels wide around it, and by 2 % beyond. The square alone passes the
+// check's tenth; the region grows through the ring, whose windows are off by more than
+// the weaker 4 %, and stops where the windows' difference falls below that.
+float softStep(int x, int y) {
+  const int d = std::max(std::abs(x - 24), std::abs(y - 24));
+  return d <= 4 ? 1.3f : d <= 10 ? 1.06f : 1.02f;
+}
+
+TEST(RadianceCheck, AFlaggedRegionGrowsThroughTheWeakerDifferenceAroundIt) {
+  const FrameImage features = checkFrame([](int, int) { return 1.0f; }, 1e-6f);
+  const std::vector<uint8_t> flags = radianceMismatch(checkFrame(softStep), features);
+  for (int y = 0; y < kCheckSize; ++y)
+    for (int x = 0; x < kCheckSize; ++x) {
+      const int d = std::max(std::abs(x - 24), std::abs(y - 24));
+      const uint8_t flag = flags[static_cast<size_t>(y * kCheckSize + x)];
+      // A window (7 x 7) centred 2 pixels inside the ring's outer edge still holds enough
+      // of it at the ring's corners, and one centred 4 pixels outside holds too little.
+      if (d <= 8) {
+        EXPECT_EQ(flag, 1) << x << ", " << y;
+      }
+      if (d >= 12) {
+        EXPECT_EQ(flag, 0) << x << ", " << y;
+      }
+    }
+  // Without the square nothing passes the tenth, and nothing grows.
+  const std::vector<uint8_t> ringAlone =
+      radianceMismatch(checkFrame([](int x, int y) { return std::min(softStep(x, y), 1.06f); }), features);
+  EXPECT_EQ(flaggedCount(ringAlone), 0u);
+  // With growth turned off, the flags end inside the ring.
+  RadianceCheckSettings strongOnly;
+  strongOnly.growRelative = strongOnly.relative;
+  const std::vector<uint8_t> strong = radianceMismatch(checkFrame(softStep), features, strongOnly);
+  EXPECT_EQ(strong[static_cast<size_t>(24 * kCheckSize + 24)], 1);
+  EXPECT_EQ(strong[static_cast<size_t>(24 * kCheckSize + 24 + 8)], 0);
 }
 
 TEST(RadianceCheck, RefusesFramesThatDoNotFit) {
