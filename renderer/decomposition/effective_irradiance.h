@@ -22,11 +22,13 @@ inline float modulateIrradiance(float irradiance, float reflectance) {
 // The share divided out is at least kCoverageFloor: a pixel that a few samples reached
 // would otherwise multiply their noise (one sun-lit sample of 64 read as 20 times its
 // light, which the filters then spread over its neighbours). Where no sample reached the
-// component nothing is divided.
+// component, or the value is no share at all (NaN, above 1 in a damaged file), nothing is
+// divided.
 inline constexpr float kCoverageFloor = 0.25f;
 
 inline float coverageShare(float coverage) {
-  return coverage > 0.0f ? (coverage > kCoverageFloor ? coverage : kCoverageFloor) : 1.0f;
+  if (!(coverage > 0.0f && coverage <= 1.0f)) return 1.0f;
+  return coverage > kCoverageFloor ? coverage : kCoverageFloor;
 }
 
 inline float perCoveredArea(float value, float coverage) { return value / coverageShare(coverage); }

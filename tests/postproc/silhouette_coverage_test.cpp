@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <numeric>
 #include <string>
@@ -12,6 +13,7 @@
 
 #include "postproc/filters/component_denoiser.h"
 #include "postproc/filters/component_upsampler.h"
+#include "renderer/decomposition/effective_irradiance.h"
 #include "renderer/integrators/frame_renderer.h"
 #include "test_support.h"
 
@@ -150,6 +152,21 @@ FrameImage halfCoveredEdge() {
       f.channel("wall.coverage.Y")[p] = coverage;
     }
   return f;
+}
+
+TEST(SilhouetteCoverage, ADamagedShareDividesNothing) {
+  EXPECT_EQ(coverageShare(0.5f), 0.5f);
+  EXPECT_EQ(coverageShare(0.1f), kCoverageFloor);
+  for (float damaged : {0.0f, -1.0f, 2.0f, std::numeric_limits<float>::infinity(),
+                        std::numeric_limits<float>::quiet_NaN()})
+    EXPECT_EQ(coverageShare(damaged), 1.0f) << damaged;
+  // Through the denoiser, a damaged share leaves the light finite.
+  FrameImage frame = halfCoveredEdge();
+  frame.channel("wall.coverage.Y")[5] = std::numeric_limits<float>::infinity();
+  frame.channel("wall.coverage.Y")[6] = std::numeric_limits<float>::quiet_NaN();
+  DenoiseSettings settings;
+  settings.label = "edge";
+  for (float v : denoiseFrame(frame, nullptr, nullptr, settings).channel("G")) ASSERT_TRUE(std::isfinite(v));
 }
 
 TEST(SilhouetteCoverage, DenoisingKeepsAHalfCoveredPixelsHalfOfTheLight) {
