@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <memory>
 #include <numeric>
 #include <string>
 #include <vector>
@@ -14,7 +13,6 @@
 #include "postproc/filters/component_denoiser.h"
 #include "postproc/filters/component_upsampler.h"
 #include "renderer/decomposition/effective_irradiance.h"
-#include "renderer/integrators/frame_renderer.h"
 #include "test_support.h"
 
 namespace pathfarm {
@@ -24,16 +22,7 @@ const std::string kWall = "diffuse_direct";
 
 // Cornell box frame 0, decomposed: the walls' direct light ends at the spheres' and the
 // boxes' outlines.
-FrameImage cornell(int size, int spp) {
-  const Scene scene = loadScene(test_support::sourceDir() / "scenes/cornell/scene.json");
-  RenderSettings settings;
-  settings.width = size;
-  settings.height = size;
-  settings.spp = spp;
-  settings.maxDepth = 4;
-  settings.decomposition = std::make_shared<Decomposition>(Decomposition::standard());
-  return FrameRenderer(scene, settings).render(0);
-}
+FrameImage cornell(int size, int spp) { return test_support::renderDecomposed("scenes/cornell/scene.json", size, size, spp, 0); }
 
 float luminanceOf(const FrameImage& frame, const std::string& prefix, size_t p) {
   return 0.2126f * frame.channel(prefix + "R")[p] + 0.7152f * frame.channel(prefix + "G")[p] +
