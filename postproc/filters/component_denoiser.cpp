@@ -59,10 +59,9 @@ void requireBuffers(const FrameImage& frame, const std::vector<Buffer>& buffers,
     for (size_t i = 0; i < buffer.channels.size(); ++i) requireChannel(frame, buffer.name(i), label);
 }
 
-// A component's "<c>.coverage.Y", or null for the beauty or a frame without it.
+// A component's coverage to divide out (filterCoverage), or null for the beauty.
 const std::vector<float>* coverageOf(const FrameImage& frame, const LayerSpec& layer) {
-  if (layer.component.empty() || !frame.hasChannel(layer.component + ".coverage.Y")) return nullptr;
-  return &frame.channel(layer.component + ".coverage.Y");
+  return layer.component.empty() ? nullptr : filterCoverage(frame, layer.component);
 }
 
 Planes planesOf(const FrameImage& frame, const Buffer& buffer) {

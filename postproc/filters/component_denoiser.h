@@ -10,9 +10,9 @@
 // Per component c of the frame's `pathfarm.decomposition` attribute:
 //   filtered:   `c.irradiance.R/G/B`, with the variance of the pixel mean carried through
 //               the division per channel: Var = `c.variance` / reflectance^2 where
-//               reflectance >= kReflectanceGuard, else `c.variance` itself; with
-//               `c.coverage.Y`, both per covered area (perCoveredArea: / coverage and
-//               / coverage^2), so a silhouette pixel's light reads as its neighbours';
+//               reflectance >= kReflectanceGuard, else `c.variance` itself; where
+//               filterCoverage gives `c.coverage.Y`, both per covered area (perCoveredArea:
+//               / share and / share^2), so a silhouette pixel's light reads as its neighbours';
 //   features:   `c.normal.X/Y/Z`, `c.reflectance.R/G/B` (continuous), `c.objectid.Y`
 //               (exact match), `c.depth.Z` when DenoiseSettings::useDepth. Continuous
 //               features are prefiltered with NL-means (DenoiseSettings::prefilter; their
@@ -25,7 +25,7 @@
 //               valid pixel is dropped, and a component that keeps no neighbour is filtered
 //               spatially with the spatial radius;
 //   output:     `c.color.R/G/B` = modulateIrradiance(filtered, `c.reflectance`), times
-//               the frame's own `c.coverage.Y` where it has one above 0, and
+//               the pixel's own coverageShare where the coverage was divided out, and
 //               R, G, B = the sum over the components.
 // A component whose irradiance and variance are zero everywhere (no glass: no
 // transmission) stays zero without being filtered.

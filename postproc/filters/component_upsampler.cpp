@@ -145,21 +145,19 @@ FrameImage upsampleFrame(const FrameImage& low, const FrameImage& highFeatures, 
     // irradiance carries the component's share of each pixel; at a silhouette the
     // full-resolution pixel's share is not the low-resolution block's, so the block's light
     // spread over an edge pixel would be too bright where the component covers little of it.
-    const std::string coverageName = c + ".coverage.Y";
-    const bool byCoverage = low.hasChannel(coverageName) && highFeatures.hasChannel(coverageName);
-    if (byCoverage) {
-      const std::vector<float>& coverage = low.channel(coverageName);
+    const std::vector<float>* lowCoverage = filterCoverage(low, c);
+    const std::vector<float>* highCoverage = filterCoverage(highFeatures, c);
+    const bool byCoverage = lowCoverage != nullptr && highCoverage != nullptr;
+    if (byCoverage)
       for (std::vector<float>& channel : lowIrradiance.channels)
-        for (size_t i = 0; i < channel.size(); ++i) channel[i] = perCoveredArea(channel[i], coverage[i]);
-    }
+        for (size_t i = 0; i < channel.size(); ++i) channel[i] = perCoveredArea(channel[i], (*lowCoverage)[i]);
     Planes guide(width, height, 0);
     for (const std::string& name : job.guide) guide.channels.push_back(highFeatures.channel(name));
 
     GuidedUpsampleResult up = guidedUpsample(lowIrradiance, guide, settings.guided);
     if (byCoverage) {
-      const std::vector<float>& coverage = highFeatures.channel(coverageName);
-      for (size_t i = 0; i < coverage.size(); ++i) {
-        const float share = coverageShare(coverage[i]);
+      for (size_t i = 0; i < highCoverage->size(); ++i) {
+        const float share = coverageShare((*highCoverage)[i]);
         for (std::vector<float>& channel : up.image.channels) channel[i] *= share;
         up.deficit[i] *= share;
       }

@@ -31,9 +31,10 @@ struct UpsampleSettings {
 //   highFeatures  the full-resolution features, factor times larger: per component the
 //                 guide buffers (by default "<c>.reflectance.R/G/B", "<c>.normal.X/Y/Z",
 //                 "<c>.emission.R/G/B"); "<c>.reflectance.R/G/B" is always needed
-// With "<c>.coverage.Y" in both frames, the irradiance upsampled is the light per covered
-// area (perCoveredArea with the low frame's coverage), and the result's irradiance is that
-// times the full-resolution coverage: a silhouette pixel keeps its own share of the light.
+// Where filterCoverage gives both frames' "<c>.coverage.Y", the irradiance upsampled is the
+// light per covered area (perCoveredArea with the low frame's coverage), and the result's
+// irradiance is that times the full-resolution pixel's share: a silhouette pixel keeps its
+// own share of the light.
 // The result (full resolution) holds, in this order: beauty "R","G","B" (the sum of the
 // components), per component "<c>.color.R/G/B" = modulateIrradiance(upsampled irradiance,
 // full-resolution reflectance) and "<c>.irradiance.R/G/B" (upsampled; 0 where the

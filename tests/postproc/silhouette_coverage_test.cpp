@@ -12,6 +12,7 @@
 
 #include "postproc/filters/component_denoiser.h"
 #include "postproc/filters/component_upsampler.h"
+#include "postproc/filters/decomposed_frame.h"
 #include "renderer/decomposition/effective_irradiance.h"
 #include "test_support.h"
 
@@ -141,6 +142,20 @@ FrameImage halfCoveredEdge() {
       f.channel("wall.coverage.Y")[p] = coverage;
     }
   return f;
+}
+
+TEST(SilhouetteCoverage, IsNotDividedOutOfLightSeenThroughGlass) {
+  FrameImage frame(2, 2);
+  frame.attributes()["pathfarm.decomposition"] =
+      "diffuse_direct=ED,reflection=ERD.*,transmission=ETTD.*,caustic=ED.*TL,residual";
+  for (const char* c : {"diffuse_direct", "reflection", "transmission", "caustic", "residual"})
+    frame.addChannel(std::string(c) + ".coverage.Y");
+  EXPECT_NE(filterCoverage(frame, "diffuse_direct"), nullptr);
+  EXPECT_NE(filterCoverage(frame, "reflection"), nullptr);
+  EXPECT_EQ(filterCoverage(frame, "transmission"), nullptr);
+  EXPECT_NE(filterCoverage(frame, "caustic"), nullptr);  // the glass is past its first D vertex
+  EXPECT_NE(filterCoverage(frame, "residual"), nullptr);
+  EXPECT_EQ(filterCoverage(FrameImage(2, 2), "diffuse_direct"), nullptr);  // no channel
 }
 
 TEST(SilhouetteCoverage, ADamagedShareDividesNothing) {
