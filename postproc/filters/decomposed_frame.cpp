@@ -8,50 +8,51 @@
 
 namespace pathfarm {
 
-std::vector<std::string> decompositionComponents(const FrameImage& frame) {
-  const auto found = frame.attributes().find("pathfarm.decomposition");
-  if (found == frame.attributes().end()) return {};
-  std::vector<std::string> names;
-  std::istringstream items(found->second);
-  std::string item;
-  while (std::getline(items, item, ',')) {
-    std::string name = item.substr(0, item.find('='));
-    const auto first = name.find_first_not_of(" \t"), last = name.find_last_not_of(" \t");
-    if (first == std::string::npos) continue;
-    name = name.substr(first, last - first + 1);
-    if (name != "residual" && std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
-  }
-  names.emplace_back("residual");
-  return names;
-}
-
 namespace {
 
-// Component c's expression in the frame's attribute ("" for the residual or none).
-std::string expressionOf(const FrameImage& frame, const std::string& component) {
+struct Item {
+  std::string name, expression;
+};
+
+// The attribute's "name=EXPR" items in order, names trimmed ("" when there is none).
+std::vector<Item> decompositionItems(const FrameImage& frame) {
   const auto found = frame.attributes().find("pathfarm.decomposition");
-  if (found == frame.attributes().end()) return "";
+  if (found == frame.attributes().end()) return {};
+  std::vector<Item> out;
   std::istringstream items(found->second);
   std::string item;
   while (std::getline(items, item, ',')) {
     const size_t equals = item.find('=');
-    if (equals == std::string::npos) continue;
     std::string name = item.substr(0, equals);
-    name.erase(0, name.find_first_not_of(" \t"));
-    name.erase(name.find_last_not_of(" \t") + 1);
-    if (name == component) return item.substr(equals + 1);
+    const auto first = name.find_first_not_of(" \t"), last = name.find_last_not_of(" \t");
+    if (first == std::string::npos) continue;
+    out.push_back({name.substr(first, last - first + 1), equals == std::string::npos ? "" : item.substr(equals + 1)});
   }
-  return "";
+  return out;
 }
 
 }  // namespace
 
+std::vector<std::string> decompositionComponents(const FrameImage& frame) {
+  const auto found = frame.attributes().find("pathfarm.decomposition");
+  if (found == frame.attributes().end()) return {};
+  std::vector<std::string> names;
+  for (const Item& item : decompositionItems(frame))
+    if (item.name != "residual" && std::find(names.begin(), names.end(), item.name) == names.end())
+      names.push_back(item.name);
+  names.emplace_back("residual");
+  return names;
+}
+
 const std::vector<float>* filterCoverage(const FrameImage& frame, const std::string& component) {
   const std::string name = component + ".coverage.Y";
   if (!frame.hasChannel(name)) return nullptr;
-  const std::string expression = expressionOf(frame, component);
-  const size_t transmission = expression.find('T'), diffuse = expression.find('D');
-  if (transmission != std::string::npos && transmission < diffuse) return nullptr;
+  for (const Item& item : decompositionItems(frame)) {
+    if (item.name != component) continue;
+    const size_t transmission = item.expression.find('T'), diffuse = item.expression.find('D');
+    if (transmission != std::string::npos && transmission < diffuse) return nullptr;
+    break;
+  }
   return &frame.channel(name);
 }
 
