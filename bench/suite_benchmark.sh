@@ -7,12 +7,12 @@
 # scores of every candidate go to standard error, as do the causes of the interpolated
 # frames' and the upsampled keyframes' re-render.
 #
-#   bench/suite_benchmark.sh [--build DIR] [--scenes "dolly courtyard walkthrough cornell"]
+#   bench/suite_benchmark.sh [--build DIR] [--scenes "dolly courtyard walkthrough cornell showroom"]
 #                            [--pipelines "dui"] [--spp 64] [--reference-spp 1024]
 #                            [--frames 0:23] [--res 320x180] [--figures docs/figures]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-build=build scenes="dolly courtyard walkthrough cornell" pipelines=dui spp=64 reference=1024
+build=build scenes="dolly courtyard walkthrough cornell showroom" pipelines=dui spp=64 reference=1024
 frames=0:23 res=320x180 figures=docs/figures
 while (($#)); do
   case "$1" in
