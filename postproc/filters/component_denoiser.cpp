@@ -313,6 +313,7 @@ FrameImage denoiseFrame(const FrameImage& current, const FrameImage* previous, c
     const LayerResult filtered = filterLayer(current, neighbours, layer, s);
     fireflies += filtered.fireflies;
     for (size_t p = 0; p < skipped.size(); ++p) skipped[p] |= filtered.invalid[p];
+    const std::vector<float>* coverage = coverageOf(current, layer);
     for (size_t c = 0; c < 3; ++c) {
       std::vector<float>& beauty = out.channel(kRgb[c]);
       const std::vector<float>& value = filtered.color.channels[c];
@@ -322,7 +323,6 @@ FrameImage denoiseFrame(const FrameImage& current, const FrameImage* previous, c
       }
       std::vector<float>& color = out.addChannel(layer.component + ".color." + kRgb[c]);
       const std::vector<float>& reflectance = current.channel(layer.component + ".reflectance." + kRgb[c]);
-      const std::vector<float>* coverage = coverageOf(current, layer);
       for (size_t p = 0; p < color.size(); ++p) {
         const float r = std::isfinite(reflectance[p]) ? reflectance[p] : 0.0f;
         color[p] = modulateIrradiance(value[p], r);
