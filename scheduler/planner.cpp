@@ -167,11 +167,19 @@ void planFiltering(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
 
   StageOutputs evaluated;
   std::map<int64_t, size_t> finalOf;  // frame -> the task whose frame the composite finishes
+  // d re-renders nothing, so a composite would only copy: its denoise writes the final frame.
+  const bool denoiseIsFinal = !stages.upsample && !stages.interpolate;
   for (size_t i = 0; i < keyframes.size(); ++i) {
     const int64_t frame = keyframes[i];
     PlannedTask denoise = task(TASK_DENOISE, frame, {rendered.at(frame)});
     if (i > 0) denoise.dependencies.push_back(rendered.at(keyframes[i - 1]));
     if (i + 1 < keyframes.size()) denoise.dependencies.push_back(rendered.at(keyframes[i + 1]));
+    if (denoiseIsFinal) {
+      denoise.params.set_role(ROLE_OUTPUT);
+      denoise.output = true;
+      evaluated[frame] = {rendered.at(frame), push(std::move(denoise), plan)};
+      continue;
+    }
     finalOf[frame] = push(std::move(denoise), plan);
     if (stages.upsample) finalOf[frame] = push(task(TASK_UPSAMPLE, frame, {finalOf[frame], rendered.at(frame)}), plan);
     evaluated[frame] = {rendered.at(frame), finalOf[frame]};

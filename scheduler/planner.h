@@ -6,7 +6,8 @@
 //   d, du, di, dui  the filtering pipelines (Zimmer et al. 2015): keyframes rendered (with
 //         motion vectors reaching the neighbouring keyframes) and filtered, in-between
 //         frames interpolated, a composite per frame; re-render tiles are added while the
-//         shot runs (FarmState::complete);
+//         shot runs (FarmState::complete). d re-renders nothing: its denoise task (role
+//         output) writes the final frame, without a composite;
 //   tgpt  temporal gradient-domain path tracing: a gradient render per frame, a screened
 //         Poisson reconstruction per window of frames, a blend per frame;
 //   pssmlt, mlt, tmlt  Metropolis light transport: per window of frames (one frame for mlt)

@@ -2,30 +2,21 @@
 // interpolated frame) with every re-rendered pixel replaced by its full-sample render,
 // denoised at full resolution among the other re-rendered pixels.
 #include <algorithm>
-#include <cmath>
 #include <limits>
 #include <tuple>
 
-#include "image/exr_io.h"
 #include "postproc/filters/component_denoiser.h"
 #include "postproc/filters/decomposed_frame.h"
 #include "worker/direct_emission.h"
 #include "worker/failure_class.h"
 #include "worker/filter_inputs.h"
+#include "worker/final_frame.h"
 
 namespace pathfarm::farm {
 namespace {
 
 constexpr int kRerenderSearchRadius = 5;
 constexpr int kRerenderFireflyRadius = 8;
-
-// The channels the final frame keeps: the beauty and every component's color.
-std::vector<std::string> colorChannels(const FrameImage& frame) {
-  std::vector<std::string> names = {"R", "G", "B"};
-  for (const std::string& component : decompositionComponents(frame))
-    for (const char* c : {"R", "G", "B"}) names.push_back(component + ".color." + c);
-  return names;
-}
 
 // Pixels outside `mask` carry no sample: their colors become NaN, which the denoiser reads
 // as invalid (they neither contribute nor count).
@@ -142,9 +133,7 @@ TaskOutput runCompositeTask(const Lease& lease, const std::vector<TaskInput>& in
       "the stage output of frame " + std::to_string(frame));
   const FrameImage& staged = stage.image();
   const int width = staged.width(), height = staged.height();
-  FrameImage result(width, height);
-  for (const std::string& name : colorChannels(staged)) result.addChannel(name) = staged.channel(name);
-  result.attributes() = staged.attributes();
+  FrameImage result = finalColorsOf(staged);
 
   std::vector<const TaskInput*> tiles;
   std::vector<uint8_t> mask(staged.pixelCount(), 0);
@@ -164,7 +153,6 @@ TaskOutput runCompositeTask(const Lease& lease, const std::vector<TaskInput>& in
     const PixelWindow flagged = markRendered(input.params, width, mask);
     if (flagged.x1() > flagged.x0()) windows.push_back(flagged);
   }
-  std::vector<float>& rerendered = result.addChannel("rerender.Y");
   DenoiseSettings settings;
   settings.label = "re-rendered pixels of frame " + std::to_string(frame);
   // They have the shot's full samples: a smaller search window than a keyframe's suffices.
@@ -183,7 +171,7 @@ TaskOutput runCompositeTask(const Lease& lease, const std::vector<TaskInput>& in
     settings.onlyWithin = NlMeansArea{w.x0() - region.x0(), w.y0() - region.y0(), w.x1() - region.x0(),
                                       w.y1() - region.y0()};
     FrameImage denoised = denoisedRegion(tiles, mask, width, region, settings);
-    for (const std::string& name : colorChannels(staged)) {
+    for (const std::string& name : result.channelNames()) {
       const std::vector<float>& source = denoised.channel(name);
       std::vector<float>& target = result.channel(name);
       for (int y = w.y0(); y < w.y1(); ++y)
@@ -193,14 +181,7 @@ TaskOutput runCompositeTask(const Lease& lease, const std::vector<TaskInput>& in
         }
     }
   }
-  for (size_t p = 0; p < mask.size(); ++p) rerendered[p] = mask[p];
-  const size_t count = static_cast<size_t>(std::count(mask.begin(), mask.end(), 1));
-  result.attributes()["pathfarm.rerender_pixels"] = std::to_string(count);
-  result.attributes()["pathfarm.pipeline"] = lease.spec().pipeline();
-  TaskOutput output;
-  output.chunk = encodeExr(result);
-  output.metrics["rerender_pixels"] = static_cast<double>(count);
-  return output;
+  return finishedFinalFrame(std::move(result), mask, lease.spec().pipeline());
 }
 
 }  // namespace pathfarm::farm

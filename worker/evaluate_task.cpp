@@ -35,7 +35,7 @@ std::string stageOf(const TaskInput& input) {
           return "";
       }
     case TASK_DENOISE:
-      return "denoise";
+      return input.params.role() == ROLE_OUTPUT ? "final" : "denoise";
     case TASK_UPSAMPLE:
       return "upsample";
     case TASK_INTERPOLATE:

@@ -11,6 +11,7 @@
 #include "worker/direct_emission.h"
 #include "worker/failure_class.h"
 #include "worker/filter_inputs.h"
+#include "worker/final_frame.h"
 
 namespace pathfarm::farm {
 namespace {
@@ -42,6 +43,12 @@ TaskOutput runDenoiseTask(const Lease& lease, const std::vector<TaskInput>& inpu
   DenoiseSettings settings;
   settings.label = "keyframe " + std::to_string(frame);
   const FrameImage denoised = denoiseFrame(current, previous ? &*previous : nullptr, next ? &*next : nullptr, settings);
+  // d: the denoised frame is the shot's final frame, and no later task reads its features.
+  if (lease.params().role() == ROLE_OUTPUT) {
+    FrameImage final = finalColorsOf(denoised);
+    addDirectEmission(final, emission);
+    return finishedFinalFrame(std::move(final), std::vector<uint8_t>(final.pixelCount(), 0), lease.spec().pipeline());
+  }
   // The output keeps the keyframe's features and motion; its colors are the denoised ones
   // and its effective irradiance follows from them, as the upsampler and interpolation read it.
   current.paste(denoised, 0, 0);

@@ -3,6 +3,8 @@
 // its components adding up to its beauty, and the final frames show the sky where plain
 // path tracing does.
 #include <cmath>
+#include <map>
+#include <set>
 
 #include "farm/farm_fixture.h"
 #include "image/exr_io.h"
@@ -16,7 +18,7 @@ constexpr float kSky = 0.5f;
 
 // A moving camera over a floor with a mirror sphere and a moving glass sphere, under a
 // constant sky and a small lamp; the top rows of every frame see the sky.
-fs::path writeSkyShot(const fs::path& folder) {
+fs::path writeSkyShot(const fs::path& folder, const std::string& pipeline) {
   writeFile(folder / "sky.json", R"({
     "camera": {"position": [0, 0.7, 4], "look_at": [0, 0.9, 0], "fov": 45, "shutter": [0, 0.5],
                "animation": {"translate": [{"frame": 0, "value": [-0.3, 0.7, 4]}, {"frame": 4, "value": [0.3, 0.7, 3.8]}]}},
@@ -33,11 +35,21 @@ fs::path writeSkyShot(const fs::path& folder) {
       {"type": "rectangle", "size": [0.6, 0.6], "material": "lamp", "emission": 20,
        "transform": {"translate": [0, 3, 1], "rotate": {"axis": [1, 0, 0], "angle": 90}}}]
   })");
-  const fs::path shot = folder / "sky.shot.json";
+  const fs::path shot = folder / (pipeline + ".shot.json");
   writeFile(shot, R"({"name": "sky", "scene": "sky.json", "frames": {"start": 0, "end": 4}, "resolution": [64, 48],
-    "spp": 8, "max_depth": 6, "pipeline": "dui", "keyframe_interval": 2, "tile": 32,
+    "spp": 8, "max_depth": 6, "pipeline": ")" + pipeline + R"(", "keyframe_interval": 2, "tile": 32,
     "baseline_core_seconds": 1})");
   return shot;
+}
+
+// The top rows see only the sky: exactly its radiance in every final frame.
+void expectSkyInEveryFinalFrame(const fs::path& out) {
+  for (int64_t frame = 0; frame <= 4; ++frame) {
+    const FrameImage image = readExr(out / farm::frameFileName(frame));
+    for (const char* c : {"R", "G", "B"})
+      for (size_t p = 0; p < 2 * static_cast<size_t>(image.width()); ++p)
+        ASSERT_NEAR(image.channel(c)[p], kSky, 1e-4) << "frame " << frame << ", channel " << c << ", pixel " << p;
+  }
 }
 
 // The beauty equals the sum of the components' colors at every pixel.
@@ -54,40 +66,54 @@ void expectComponentsAddUp(const FrameImage& image, const std::string& label) {
   }
 }
 
-TEST_F(FarmTest, SkyMirrorAndGlassLightSurviveEveryDuiStage) {
-  const fs::path shot = writeSkyShot(dir());
-  const fs::path out = dir() / "out";
-  const CommandResult local = runPathfarm(
-      {"local", shot.string(), "--workers", "2", "--threads", "1", "--out", out.string(), "--keep-farm"}, {}, 300s);
-  ASSERT_EQ(local.status, 0) << local.output;
-
-  const FarmDatabase db(out / "farm" / "farm.db");
-  const farm::ChunkStore store(out / "farm" / "chunks");
+// Every finished output of the given kinds that holds components (baseline and reference
+// renders are plain pt) has them adding up to its beauty; returns how many each kind had.
+std::map<int, int> expectEveryStageAddsUp(const fs::path& farmFolder, const std::set<int>& kinds) {
+  const FarmDatabase db(farmFolder / "farm.db");
+  const farm::ChunkStore store(farmFolder / "chunks");
   std::map<int, int> checked;  // task kind -> outputs checked
   for (const auto& row : db.rows("SELECT kind, output_sha FROM tasks WHERE state = 3")) {
     const int kind = std::stoi(row[0]);
-    if (kind != farm::TASK_ASSEMBLE_FRAME && kind != farm::TASK_DENOISE && kind != farm::TASK_UPSAMPLE &&
-        kind != farm::TASK_INTERPOLATE && kind != farm::TASK_RENDER_TILE && kind != farm::TASK_COMPOSITE)
-      continue;
+    if (!kinds.contains(kind)) continue;
     const auto bytes = store.get(row[1]);
-    ASSERT_TRUE(bytes) << "chunk " << row[1] << " is missing";
+    EXPECT_TRUE(bytes) << "chunk " << row[1] << " is missing";
+    if (!bytes) continue;
     const FrameImage image = decodeExr(*bytes, "chunk " + row[1]);
-    // Baseline and reference renders are plain pt: nothing to add up.
     if (decompositionComponents(image).empty()) continue;
     expectComponentsAddUp(image, farm::TaskKind_Name(static_cast<farm::TaskKind>(kind)) + " " + row[1]);
     ++checked[kind];
   }
+  return checked;
+}
+
+TEST_F(FarmTest, SkyMirrorAndGlassLightSurviveEveryDuiStage) {
+  const fs::path shot = writeSkyShot(dir(), "dui");
+  const fs::path out = dir() / "out";
+  const CommandResult local = runPathfarm(
+      {"local", shot.string(), "--workers", "2", "--threads", "1", "--out", out.string(), "--keep-farm"}, {}, 300s);
+  ASSERT_EQ(local.status, 0) << local.output;
+  const std::set<int> stages = {farm::TASK_ASSEMBLE_FRAME, farm::TASK_DENOISE,      farm::TASK_UPSAMPLE,
+                                farm::TASK_INTERPOLATE,    farm::TASK_RENDER_TILE, farm::TASK_COMPOSITE};
+  std::map<int, int> checked = expectEveryStageAddsUp(out / "farm", stages);
   for (const farm::TaskKind kind : {farm::TASK_ASSEMBLE_FRAME, farm::TASK_DENOISE, farm::TASK_UPSAMPLE,
                                     farm::TASK_INTERPOLATE, farm::TASK_COMPOSITE})
     EXPECT_GT(checked[kind], 0) << "no output of " << farm::TaskKind_Name(kind) << " was checked";
+  expectSkyInEveryFinalFrame(out);
+}
 
-  // The top rows see only the sky: exactly its radiance in every final frame.
-  for (int64_t frame = 0; frame <= 4; ++frame) {
-    const FrameImage image = readExr(out / farm::frameFileName(frame));
-    for (const char* c : {"R", "G", "B"})
-      for (size_t p = 0; p < 2 * static_cast<size_t>(image.width()); ++p)
-        ASSERT_NEAR(image.channel(c)[p], kSky, 1e-4) << "frame " << frame << ", channel " << c << ", pixel " << p;
-  }
+// d writes its frames from the denoise tasks, without a composite: the sky must be
+// there all the same.
+TEST_F(FarmTest, SkyMirrorAndGlassLightSurviveTheDPipeline) {
+  const fs::path shot = writeSkyShot(dir(), "d");
+  const fs::path out = dir() / "out";
+  const CommandResult local = runPathfarm(
+      {"local", shot.string(), "--workers", "2", "--threads", "1", "--out", out.string(), "--keep-farm"}, {}, 300s);
+  ASSERT_EQ(local.status, 0) << local.output;
+  std::map<int, int> checked = expectEveryStageAddsUp(
+      out / "farm", {farm::TASK_ASSEMBLE_FRAME, farm::TASK_DENOISE, farm::TASK_COMPOSITE});
+  EXPECT_EQ(checked[farm::TASK_DENOISE], 5);  // one final frame per frame
+  EXPECT_EQ(checked[farm::TASK_COMPOSITE], 0);
+  expectSkyInEveryFinalFrame(out);
 }
 
 }  // namespace

@@ -226,7 +226,13 @@ TEST(Planner, EachPipelinePlansOnlyItsStages) {
   const auto d = countKinds(planShot(filteringSpec("d", 4)));
   EXPECT_EQ(d.count(TASK_UPSAMPLE) + d.count(TASK_INTERPOLATE) + d.count(TASK_FLOW), 0u);
   EXPECT_EQ(d.at(TASK_DENOISE), 10);  // every frame is a keyframe
-  EXPECT_EQ(d.at(TASK_COMPOSITE), 10);
+  EXPECT_EQ(d.count(TASK_COMPOSITE), 0u);  // nothing is re-rendered: the denoise writes the frame
+  for (const PlannedTask& task : planShot(filteringSpec("d", 4))) {
+    EXPECT_EQ(task.output, task.kind == TASK_DENOISE);
+    if (task.kind == TASK_DENOISE) {
+      EXPECT_EQ(task.params.role(), ROLE_OUTPUT);
+    }
+  }
   const auto du = countKinds(planShot(filteringSpec("du", 4)));
   EXPECT_EQ(du.at(TASK_UPSAMPLE), 10);
   EXPECT_EQ(du.count(TASK_INTERPOLATE), 0u);
