@@ -86,12 +86,22 @@ std::map<int, int> expectEveryStageAddsUp(const fs::path& farmFolder, const std:
   return checked;
 }
 
-TEST_F(FarmTest, SkyMirrorAndGlassLightSurviveEveryDuiStage) {
-  const fs::path shot = writeSkyShot(dir(), "dui");
-  const fs::path out = dir() / "out";
-  const CommandResult local = runPathfarm(
-      {"local", shot.string(), "--workers", "2", "--threads", "1", "--out", out.string(), "--keep-farm"}, {}, 300s);
-  ASSERT_EQ(local.status, 0) << local.output;
+class SkyShotTest : public FarmTest {
+ protected:
+  // Runs the sky shot with `pipeline` on a local farm that is kept; returns its output folder.
+  fs::path runSkyShot(const std::string& pipeline) {
+    const fs::path out = dir() / (pipeline + "-out");
+    const CommandResult local = runPathfarm({"local", writeSkyShot(dir(), pipeline).string(), "--workers", "2",
+                                             "--threads", "1", "--out", out.string(), "--keep-farm"},
+                                            {}, 300s);
+    EXPECT_EQ(local.status, 0) << local.output;
+    return out;
+  }
+};
+
+TEST_F(SkyShotTest, SkyMirrorAndGlassLightSurviveEveryDuiStage) {
+  const fs::path out = runSkyShot("dui");
+  ASSERT_FALSE(HasFailure());
   const std::set<int> stages = {farm::TASK_ASSEMBLE_FRAME, farm::TASK_DENOISE,      farm::TASK_UPSAMPLE,
                                 farm::TASK_INTERPOLATE,    farm::TASK_RENDER_TILE, farm::TASK_COMPOSITE};
   std::map<int, int> checked = expectEveryStageAddsUp(out / "farm", stages);
@@ -103,12 +113,9 @@ TEST_F(FarmTest, SkyMirrorAndGlassLightSurviveEveryDuiStage) {
 
 // d writes its frames from the denoise tasks, without a composite: the sky must be
 // there all the same.
-TEST_F(FarmTest, SkyMirrorAndGlassLightSurviveTheDPipeline) {
-  const fs::path shot = writeSkyShot(dir(), "d");
-  const fs::path out = dir() / "out";
-  const CommandResult local = runPathfarm(
-      {"local", shot.string(), "--workers", "2", "--threads", "1", "--out", out.string(), "--keep-farm"}, {}, 300s);
-  ASSERT_EQ(local.status, 0) << local.output;
+TEST_F(SkyShotTest, SkyMirrorAndGlassLightSurviveTheDPipeline) {
+  const fs::path out = runSkyShot("d");
+  ASSERT_FALSE(HasFailure());
   std::map<int, int> checked = expectEveryStageAddsUp(
       out / "farm", {farm::TASK_ASSEMBLE_FRAME, farm::TASK_DENOISE, farm::TASK_COMPOSITE});
   EXPECT_EQ(checked[farm::TASK_DENOISE], 5);  // one final frame per frame
