@@ -79,6 +79,10 @@ std::vector<Command> addFilterCommands(CLI::App& app) {
   d->add_option("--kc", denoise->settings.kc, "color sensitivity")->capture_default_str();
   d->add_option("--kf", denoise->settings.kf, "feature sensitivity")->capture_default_str();
   d->add_option("--tau", denoise->settings.tau, "feature normalization floor (the paper's tau^2)")->capture_default_str();
+  d->add_option("--alpha", denoise->settings.alpha,
+                "variance cancellation (the farm's d and di keyframes use 1, quarter-spp keyframes 4)")
+      ->check(CLI::Range(0.0f, 16.0f))
+      ->capture_default_str();
   d->add_flag("--depth", denoise->settings.useDepth, "use depth as a feature too");
   d->add_flag("--keep-fireflies{false}", denoise->settings.spreadFireflies,
               "filter fireflies with the frame instead of spreading their light over their surface");

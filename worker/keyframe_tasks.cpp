@@ -17,6 +17,12 @@ namespace pathfarm::farm {
 namespace {
 
 constexpr int kUpsampleFactor = 2;
+// NL-means' variance cancellation for keyframes rendered at the shot's full spp (d, di):
+// 1 subtracts exactly the expected squared difference of two equal means, where the
+// paper's 4 also takes in differences of a few standard deviations. At full spp the
+// filter's bias outweighs its leftover noise: on frame 11 of the suite's d scenes, 1
+// gave 15 to 24 % less relMSE than 4 (docs/performance.md). Quarter-spp keyframes keep 4.
+constexpr float kFullSampleCancellation = 1.0f;
 
 }  // namespace
 
@@ -42,6 +48,7 @@ TaskOutput runDenoiseTask(const Lease& lease, const std::vector<TaskInput>& inpu
   }
   DenoiseSettings settings;
   settings.label = "keyframe " + std::to_string(frame);
+  if (!upsample) settings.alpha = kFullSampleCancellation;
   const FrameImage denoised = denoiseFrame(current, previous ? &*previous : nullptr, next ? &*next : nullptr, settings);
   // d: the denoised frame is the shot's final frame, and no later task reads its features.
   if (lease.params().role() == ROLE_OUTPUT) {
