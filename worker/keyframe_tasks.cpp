@@ -54,7 +54,8 @@ TaskOutput runDenoiseTask(const Lease& lease, const std::vector<TaskInput>& inpu
   if (lease.params().role() == ROLE_OUTPUT) {
     FrameImage final = finalColorsOf(denoised);
     addDirectEmission(final, emission);
-    return finishedFinalFrame(std::move(final), std::vector<uint8_t>(final.pixelCount(), 0), lease.spec().pipeline());
+    std::vector<uint8_t> nothingRerendered(final.pixelCount(), 0);
+    return finishedFinalFrame(std::move(final), nothingRerendered, lease.spec().pipeline());
   }
   // The output keeps the keyframe's features and motion; its colors are the denoised ones
   // and its effective irradiance follows from them, as the upsampler and interpolation read it.
