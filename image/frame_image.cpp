@@ -28,6 +28,11 @@ std::vector<float>& FrameImage::channel(const std::string& name) {
   return const_cast<std::vector<float>&>(std::as_const(*this).channel(name));
 }
 
+const std::vector<float>& channelOf(const FrameImage& frame, const std::string& name, const std::string& whose) {
+  if (!frame.hasChannel(name)) throw std::invalid_argument(whose + " has no channel \"" + name + "\"");
+  return frame.channel(name);
+}
+
 void FrameImage::paste(const FrameImage& part, int x0, int y0) {
   if (x0 < 0 || y0 < 0 || x0 + part.width() > width_ || y0 + part.height() > height_)
     throw std::invalid_argument("a " + std::to_string(part.width()) + "x" + std::to_string(part.height()) +

@@ -48,4 +48,10 @@ class FrameImage {
   std::map<std::string, std::string> attributes_;
 };
 
+// The channel `name` of a frame a caller was given, or std::invalid_argument
+// "<whose> has no channel \"<name>\"" when it lacks it: `whose` names the frame for the
+// reader ("radiance check: the features' frame"). A missing channel of such a frame is bad
+// input, where FrameImage::channel's std::out_of_range would read as a bug.
+const std::vector<float>& channelOf(const FrameImage& frame, const std::string& name, const std::string& whose);
+
 }  // namespace pathfarm

@@ -3,13 +3,9 @@
 #include <exception>
 
 #include "image/exr_io.h"
+#include "image/size_text.h"
 
 namespace pathfarm::farm {
-namespace {
-
-std::string sizeText(int width, int height) { return std::to_string(width) + "x" + std::to_string(height); }
-
-}  // namespace
 
 std::string refusalOfOutput(const std::filesystem::path& file, TaskKind kind, const TaskParams& params,
                             const ShotSpec& spec) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "image/luminance.h"
 #include "postproc/filters/decomposed_frame.h"
 #include "renderer/decomposition/effective_irradiance.h"
 
@@ -43,11 +44,10 @@ void apply(FrameImage& frame, const FrameImage& emission, float sign, const std:
 
 std::vector<float> luminance(const FrameImage& frame, const std::string& prefix) {
   std::vector<float> out(frame.pixelCount(), 0.0f);
-  const float weights[3] = {0.2126f, 0.7152f, 0.0722f};
   for (int c = 0; c < 3; ++c) {
     if (!frame.hasChannel(prefix + kRgb[c])) continue;
     const std::vector<float>& values = frame.channel(prefix + kRgb[c]);
-    for (size_t p = 0; p < out.size(); ++p) out[p] += weights[c] * values[p];
+    for (size_t p = 0; p < out.size(); ++p) out[p] += kLuminanceWeights<float>[c] * values[p];
   }
   return out;
 }

@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "image/luminance.h"
+#include "image/size_text.h"
 #include "postproc/filters/decomposed_frame.h"
 #include "renderer/decomposition/effective_irradiance.h"
 
@@ -15,8 +17,6 @@ namespace {
 
 constexpr const char* kDecompositionAttribute = "pathfarm.decomposition";
 constexpr const char* kRgb[] = {"R", "G", "B"};
-
-std::string sizeText(int width, int height) { return std::to_string(width) + "x" + std::to_string(height); }
 
 // The channel suffixes of the data contract's buffers (docs/decomposition.md).
 const std::vector<std::string>* knownChannels(const std::string& buffer) {
@@ -94,9 +94,8 @@ std::vector<std::string> componentsOf(const FrameImage& frame) {
   return names;
 }
 
-}  // namespace
-
-FrameImage upsampleFrame(const FrameImage& low, const FrameImage& highFeatures, const UpsampleSettings& settings) {
+// A usable factor and guide, and features the factor times larger than `low`.
+void checkSizes(const FrameImage& low, const FrameImage& highFeatures, const UpsampleSettings& settings) {
   const int factor = settings.guided.factor;
   if (factor < 1) throw std::invalid_argument("upsampleFrame: the factor must be at least 1, not " + std::to_string(factor));
   if (settings.guideBuffers.empty()) throw std::invalid_argument("upsampleFrame: no guide buffer is set");
@@ -106,102 +105,135 @@ FrameImage upsampleFrame(const FrameImage& low, const FrameImage& highFeatures, 
                                 std::to_string(factor) + " needs " +
                                 sizeText(low.width() * factor, low.height() * factor) +
                                 " features, not " + sizeText(highFeatures.width(), highFeatures.height()));
-  const std::vector<std::string> components = componentsOf(low);
+}
+
+// The features either say no decomposition or the low-resolution frame's.
+void checkSameDecomposition(const FrameImage& low, const FrameImage& highFeatures) {
   const auto highDecomposition = highFeatures.attributes().find(kDecompositionAttribute);
   if (highDecomposition != highFeatures.attributes().end() &&
       highDecomposition->second != low.attributes().at(kDecompositionAttribute))
     throw std::invalid_argument("upsampleFrame: the features' decomposition \"" + highDecomposition->second +
                                 "\" is not the low-resolution frame's \"" +
                                 low.attributes().at(kDecompositionAttribute) + "\"");
+}
 
-  // Every channel is checked before any work is done.
-  struct Job {
-    std::vector<std::string> irradiance, reflectance, guide;
-  };
-  std::vector<Job> jobs;
-  for (const std::string& c : components) {
-    Job job;
-    job.irradiance = bufferChannels(low, c, "irradiance", "low-resolution frame has");
-    job.reflectance = bufferChannels(highFeatures, c, "reflectance", "full-resolution features have");
-    for (const std::string& buffer : settings.guideBuffers) {
-      const std::vector<std::string> names = bufferChannels(highFeatures, c, buffer, "full-resolution features have");
-      job.guide.insert(job.guide.end(), names.begin(), names.end());
-    }
-    jobs.push_back(std::move(job));
+// The channels the upsampling of one component reads.
+struct ComponentChannels {
+  std::vector<std::string> irradiance, reflectance, guide;
+};
+
+ComponentChannels componentChannels(const FrameImage& low, const FrameImage& highFeatures, const std::string& c,
+                                    const UpsampleSettings& settings) {
+  ComponentChannels channels;
+  channels.irradiance = bufferChannels(low, c, "irradiance", "low-resolution frame has");
+  channels.reflectance = bufferChannels(highFeatures, c, "reflectance", "full-resolution features have");
+  for (const std::string& buffer : settings.guideBuffers) {
+    const std::vector<std::string> names = bufferChannels(highFeatures, c, buffer, "full-resolution features have");
+    channels.guide.insert(channels.guide.end(), names.begin(), names.end());
   }
+  return channels;
+}
 
-  const int width = highFeatures.width(), height = highFeatures.height();
-  FrameImage out(width, height);
-  out.attributes() = low.attributes();
-  for (const char* name : kRgb) out.addChannel(name);
-  std::vector<float> clamped(out.pixelCount(), 0.0f);  // color lost to clamping, summed over components
+// Where no sample of the full-resolution render found the component (its normal is
+// zero), there is none of it: the fit must not spill its neighbours' light there.
+void clearWhereNotFound(GuidedUpsampleResult& up, const FrameImage& highFeatures, const std::string& c) {
+  if (!highFeatures.hasChannel(c + ".normal.X")) return;
+  const std::vector<float>&nx = highFeatures.channel(c + ".normal.X"), &ny = highFeatures.channel(c + ".normal.Y"),
+  &nz = highFeatures.channel(c + ".normal.Z");
+  for (size_t i = 0; i < nx.size(); ++i) {
+    if (nx[i] != 0.0f || ny[i] != 0.0f || nz[i] != 0.0f) continue;
+    for (std::vector<float>& channel : up.image.channels) channel[i] = 0.0f;
+    up.rerender[i] = 0.0f;
+  }
+}
 
-  for (size_t k = 0; k < components.size(); ++k) {
-    const std::string& c = components[k];
-    const Job& job = jobs[k];
-    Planes lowIrradiance(low.width(), low.height(), 0);
-    for (const std::string& name : job.irradiance) lowIrradiance.channels.push_back(low.channel(name));
-    // With coverage in both frames, the fit works on the light per covered area. The
-    // irradiance carries the component's share of each pixel; at a silhouette the
-    // full-resolution pixel's share is not the low-resolution block's, so the block's light
-    // spread over an edge pixel would be too bright where the component covers little of it.
-    const std::vector<float>* lowCoverage = filterCoverage(low, c);
-    const std::vector<float>* highCoverage = filterCoverage(highFeatures, c);
-    const bool byCoverage = lowCoverage != nullptr && highCoverage != nullptr;
-    if (byCoverage)
-      for (std::vector<float>& channel : lowIrradiance.channels)
-        for (size_t i = 0; i < channel.size(); ++i) channel[i] = perCoveredArea(channel[i], (*lowCoverage)[i]);
-    Planes guide(width, height, 0);
-    for (const std::string& name : job.guide) guide.channels.push_back(highFeatures.channel(name));
+// Component c's irradiance upsampled by the guided filter under its features.
+GuidedUpsampleResult upsampledIrradiance(const FrameImage& low, const FrameImage& highFeatures, const std::string& c,
+                                         const ComponentChannels& channels, const GuidedUpsampleSettings& settings) {
+  Planes lowIrradiance(low.width(), low.height(), 0);
+  for (const std::string& name : channels.irradiance) lowIrradiance.channels.push_back(low.channel(name));
+  // With coverage in both frames, the fit works on the light per covered area. The
+  // irradiance carries the component's share of each pixel; at a silhouette the
+  // full-resolution pixel's share is not the low-resolution block's, so the block's light
+  // spread over an edge pixel would be too bright where the component covers little of it.
+  const std::vector<float>* lowCoverage = filterCoverage(low, c);
+  const std::vector<float>* highCoverage = filterCoverage(highFeatures, c);
+  const bool byCoverage = lowCoverage != nullptr && highCoverage != nullptr;
+  if (byCoverage)
+    for (std::vector<float>& channel : lowIrradiance.channels)
+      for (size_t i = 0; i < channel.size(); ++i) channel[i] = perCoveredArea(channel[i], (*lowCoverage)[i]);
+  Planes guide(highFeatures.width(), highFeatures.height(), 0);
+  for (const std::string& name : channels.guide) guide.channels.push_back(highFeatures.channel(name));
 
-    GuidedUpsampleResult up = guidedUpsample(lowIrradiance, guide, settings.guided);
-    if (byCoverage) {
-      for (size_t i = 0; i < highCoverage->size(); ++i) {
-        const float share = coverageShare((*highCoverage)[i]);
-        for (std::vector<float>& channel : up.image.channels) channel[i] *= share;
-        up.deficit[i] *= share;
-      }
-    }
-    // Where no sample of the full-resolution render found the component (its normal is
-    // zero), there is none of it: the fit must not spill its neighbours' light there.
-    if (highFeatures.hasChannel(c + ".normal.X")) {
-      const std::vector<float>&nx = highFeatures.channel(c + ".normal.X"), &ny = highFeatures.channel(c + ".normal.Y"),
-      &nz = highFeatures.channel(c + ".normal.Z");
-      for (size_t i = 0; i < nx.size(); ++i) {
-        if (nx[i] != 0.0f || ny[i] != 0.0f || nz[i] != 0.0f) continue;
-        for (std::vector<float>& channel : up.image.channels) channel[i] = 0.0f;
-        up.rerender[i] = 0.0f;
-      }
-    }
-    // Green, the channel luminance weighs most, scales the lost irradiance to color.
-    const std::vector<float>& reflectanceG = highFeatures.channel(job.reflectance[1]);
-    for (size_t i = 0; i < clamped.size(); ++i)
-      if (up.rerender[i] != 0.0f) clamped[i] += modulateIrradiance(up.deficit[i], reflectanceG[i]);
-    for (int j = 0; j < 3; ++j) {
-      const std::vector<float>& irradiance = up.image.channels[static_cast<size_t>(j)];
-      const std::vector<float>& reflectance = highFeatures.channel(job.reflectance[static_cast<size_t>(j)]);
-      std::vector<float>& color = out.addChannel(c + ".color." + kRgb[j]);
-      std::vector<float>& beauty = out.channel(kRgb[j]);
-      for (size_t i = 0; i < color.size(); ++i) {
-        color[i] = modulateIrradiance(irradiance[i], reflectance[i]);
-        beauty[i] += color[i];
-      }
-      out.addChannel(c + ".irradiance." + kRgb[j]) = irradiance;
+  GuidedUpsampleResult up = guidedUpsample(lowIrradiance, guide, settings);
+  if (byCoverage) {
+    for (size_t i = 0; i < highCoverage->size(); ++i) {
+      const float share = coverageShare((*highCoverage)[i]);
+      for (std::vector<float>& channel : up.image.channels) channel[i] *= share;
+      up.deficit[i] *= share;
     }
   }
+  clearWhereNotFound(up, highFeatures, c);
+  return up;
+}
 
+// Adds component c's color (the upsampled irradiance modulated by the full-resolution
+// reflectance) and irradiance to `out`, the color to its beauty, and the color the
+// clamping lost to `clamped`.
+void addComponent(FrameImage& out, std::vector<float>& clamped, const FrameImage& highFeatures, const std::string& c,
+                  const ComponentChannels& channels, const GuidedUpsampleResult& up) {
+  // Green, the channel luminance weighs most, scales the lost irradiance to color.
+  const std::vector<float>& reflectanceG = highFeatures.channel(channels.reflectance[1]);
+  for (size_t i = 0; i < clamped.size(); ++i)
+    if (up.rerender[i] != 0.0f) clamped[i] += modulateIrradiance(up.deficit[i], reflectanceG[i]);
+  for (int j = 0; j < 3; ++j) {
+    const std::vector<float>& irradiance = up.image.channels[static_cast<size_t>(j)];
+    const std::vector<float>& reflectance = highFeatures.channel(channels.reflectance[static_cast<size_t>(j)]);
+    std::vector<float>& color = out.addChannel(c + ".color." + kRgb[j]);
+    std::vector<float>& beauty = out.channel(kRgb[j]);
+    for (size_t i = 0; i < color.size(); ++i) {
+      color[i] = modulateIrradiance(irradiance[i], reflectance[i]);
+      beauty[i] += color[i];
+    }
+    out.addChannel(c + ".irradiance." + kRgb[j]) = irradiance;
+  }
+}
+
+// `rerender.Y`: 1 where the color lost to clamping is significant against the beauty.
+void addRerenderFlags(FrameImage& out, const std::vector<float>& clamped, float significance) {
   std::vector<float> rerender(out.pixelCount(), 0.0f);
   size_t rerenderPixels = 0;
   const std::vector<float>&r = out.channel("R"), &g = out.channel("G"), &b = out.channel("B");
   for (size_t i = 0; i < rerender.size(); ++i) {
-    const float luminance = 0.2126f * r[i] + 0.7152f * g[i] + 0.0722f * b[i];
-    if (clamped[i] > settings.significance * std::max(luminance, 1e-6f)) {
+    const float beautyLuminance = luminance(r[i], g[i], b[i]);
+    if (clamped[i] > significance * std::max(beautyLuminance, 1e-6f)) {
       rerender[i] = 1.0f;
       ++rerenderPixels;
     }
   }
   out.addChannel("rerender.Y") = std::move(rerender);
   out.attributes()["pathfarm.rerender_pixels"] = std::to_string(rerenderPixels);
+}
+
+}  // namespace
+
+FrameImage upsampleFrame(const FrameImage& low, const FrameImage& highFeatures, const UpsampleSettings& settings) {
+  checkSizes(low, highFeatures, settings);
+  const std::vector<std::string> components = componentsOf(low);
+  checkSameDecomposition(low, highFeatures);
+  // Every channel is checked before any work is done.
+  std::vector<ComponentChannels> channels;
+  for (const std::string& c : components) channels.push_back(componentChannels(low, highFeatures, c, settings));
+
+  FrameImage out(highFeatures.width(), highFeatures.height());
+  out.attributes() = low.attributes();
+  for (const char* name : kRgb) out.addChannel(name);
+  std::vector<float> clamped(out.pixelCount(), 0.0f);  // color lost to clamping, summed over components
+  for (size_t k = 0; k < components.size(); ++k) {
+    const GuidedUpsampleResult up = upsampledIrradiance(low, highFeatures, components[k], channels[k], settings.guided);
+    addComponent(out, clamped, highFeatures, components[k], channels[k], up);
+  }
+  addRerenderFlags(out, clamped, settings.significance);
   out.attributes()["pathfarm.upsample"] = describeSettings(settings);
   return out;
 }

@@ -11,6 +11,8 @@
 #include <system_error>
 #include <thread>
 
+#include "image/size_text.h"
+
 namespace pathfarm {
 namespace {
 
@@ -19,8 +21,6 @@ namespace {
 constexpr int kStripRows = 64;
 // Pixels solved together (structure of arrays).
 constexpr int kBatch = 8;
-
-std::string sizeText(int width, int height) { return std::to_string(width) + "x" + std::to_string(height); }
 
 void checkPlanes(const Planes& planes, const std::string& what) {
   if (planes.width < 0 || planes.height < 0)

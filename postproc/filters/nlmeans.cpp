@@ -9,6 +9,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 namespace pathfarm {
@@ -132,35 +133,87 @@ class BandFilter {
   // q = p + (dx, dy) inside the image, for x in [x0, x1), once the row's weights are ready.
   template <class RowFn>
   void run(int t, int dx, int dy, RowFn&& onRow) {
+    const std::optional<Reach> reached = reachOf(dx, dy);
+    if (!reached) return;
+    const Reach& reach = *reached;
+    const Prepared::Frame& pt = in_.frames[static_cast<size_t>(t)];
+    const bool center = t == 0 && dx == 0 && dy == 0;
+    computePixelDistances(pt, dx, dy, reach);
+
+    // Column sums over the patch rows, slid down the band (in double: the distances can be
+    // large, and what is subtracted must come back off exactly enough).
+    const int f = s_.patch;
+    std::fill(columnDistance_.begin(), columnDistance_.end(), 0.0);
+    std::fill(columnMask_.begin(), columnMask_.end(), 0.0f);
+    for (int y = std::max(reach.ry0, reach.oy0 - f); y < std::min(reach.ry1, reach.oy0 + f + 1); ++y)
+      addRow(reach, y, 1.0);
+
+    for (int y = reach.oy0; y < reach.oy1; ++y) {
+      if (y > reach.oy0) {
+        if (y + f < reach.ry1) addRow(reach, y + f, 1.0);
+        if (y - f - 1 >= reach.ry0) addRow(reach, y - f - 1, -1.0);
+      }
+      // The columns of this row whose weights are wanted.
+      int wx0 = reach.xa, wx1 = reach.xb;
+      if (spans_ != nullptr) {
+        wx0 = std::max(reach.xa, (*spans_)[static_cast<size_t>(y)].first);
+        wx1 = std::min(reach.xb, (*spans_)[static_cast<size_t>(y)].second);
+        if (wx0 >= wx1) continue;
+      }
+      computePatchDistances(reach);
+      const size_t rowP = static_cast<size_t>(y) * static_cast<size_t>(in_.width);
+      const ptrdiff_t rowQ = static_cast<ptrdiff_t>(y + dy) * in_.width + dx;
+      computeFeatureDistances(pt, rowP, rowQ, wx0, wx1);
+      computeWeights(pt, center, rowP, rowQ, wx0, wx1);
+      onRow(y, wx0, wx1);
+    }
+  }
+
+ private:
+  // What one offset reaches: the columns [xa, xb) and the band's rows [oy0, oy1) whose
+  // partners lie inside the image, and the rows [ry0, ry1) their patches read.
+  struct Reach {
+    int xa, xb, oy0, oy1, ry0, ry1;
+  };
+
+  // None when no pixel of the band has a partner at offset (dx, dy), or none is wanted.
+  std::optional<Reach> reachOf(int dx, int dy) const {
     const int w = in_.width, h = in_.height, f = s_.patch;
-    int xa = std::max(0, -dx), xb = std::min(w, w - dx);
-    const int oy0 = std::max(y0_, -dy), oy1 = std::min(y1_, h - dy);
-    if (xa >= xb || oy0 >= oy1) return;
+    Reach reach;
+    reach.xa = std::max(0, -dx);
+    reach.xb = std::min(w, w - dx);
+    reach.oy0 = std::max(y0_, -dy);
+    reach.oy1 = std::min(y1_, h - dy);
+    if (reach.xa >= reach.xb || reach.oy0 >= reach.oy1) return std::nullopt;
     if (spans_ != nullptr) {
       // Distances are needed only within a patch of the wanted columns.
       int lo = w, hi = 0;
-      for (int y = oy0; y < oy1; ++y) {
+      for (int y = reach.oy0; y < reach.oy1; ++y) {
         const auto [first, last] = (*spans_)[static_cast<size_t>(y)];
         if (first >= last) continue;
         lo = std::min(lo, first);
         hi = std::max(hi, last);
       }
-      xa = std::max(xa, lo - f);
-      xb = std::min(xb, hi + f);
-      if (xa >= xb) return;
+      reach.xa = std::max(reach.xa, lo - f);
+      reach.xb = std::min(reach.xb, hi + f);
+      if (reach.xa >= reach.xb) return std::nullopt;
     }
-    const Prepared::Frame& p0 = in_.frames[0];
-    const Prepared::Frame& pt = in_.frames[static_cast<size_t>(t)];
-    const bool center = t == 0 && dx == 0 && dy == 0;
-    const size_t W = static_cast<size_t>(w);
+    reach.ry0 = std::max(0, reach.oy0 - f);
+    reach.ry1 = std::min(h, reach.oy1 + f);
+    return reach;
+  }
 
-    // Per-pixel distances d(x, x + offset) on the rows the band's patches reach.
-    const int ry0 = std::max(0, oy0 - f), ry1 = std::min(h, oy1 + f);
+  // Per-pixel distances d(x, x + offset) towards frame `pt` on the rows the band's patches
+  // reach, and where both pixels are valid.
+  void computePixelDistances(const Prepared::Frame& pt, int dx, int dy, const Reach& reach) {
+    const int w = in_.width, h = in_.height;
+    const size_t W = static_cast<size_t>(w);
+    const Prepared::Frame& p0 = in_.frames[0];
     const float kc2 = s_.kc * s_.kc, alpha = s_.alpha, inverseChannels = 1.0f / static_cast<float>(in_.channels);
     const float low = -in_.distanceLow, high = in_.distanceHigh;
-    for (int y = ry0; y < ry1; ++y) {
-      float* d = distance_.data() + static_cast<size_t>(y - ry0) * W;
-      float* m = mask_.data() + static_cast<size_t>(y - ry0) * W;
+    for (int y = reach.ry0; y < reach.ry1; ++y) {
+      float* d = distance_.data() + static_cast<size_t>(y - reach.ry0) * W;
+      float* m = mask_.data() + static_cast<size_t>(y - reach.ry0) * W;
       std::fill(d, d + W, 0.0f);
       std::fill(m, m + W, 0.0f);
       if (y + dy < 0 || y + dy >= h) continue;
@@ -171,7 +224,7 @@ class BandFilter {
         const float* vp = p0.variance[static_cast<size_t>(c)] + rowP;
         const float* uq = pt.color[static_cast<size_t>(c)] + rowQ;
         const float* vq = pt.variance[static_cast<size_t>(c)] + rowQ;
-        for (int x = xa; x < xb; ++x) {
+        for (int x = reach.xa; x < reach.xb; ++x) {
           const float diff = up[x] - uq[x];
           const float a = vp[x], b = vq[x];
           d[x] += (diff * diff - alpha * (a + std::min(a, b))) / (kEpsilon + kc2 * (a + b));
@@ -179,126 +232,120 @@ class BandFilter {
       }
       const float* validP = p0.valid + rowP;
       const float* validQ = pt.valid + rowQ;
-      for (int x = xa; x < xb; ++x) {
+      for (int x = reach.xa; x < reach.xb; ++x) {
         const float both = validP[x] * validQ[x];
         d[x] = std::min(std::max(d[x] * inverseChannels, low), high) * both;
         m[x] = both;
       }
     }
+  }
 
-    // Column sums over the patch rows, slid down the band (in double: the distances can be
-    // large, and what is subtracted must come back off exactly enough).
-    std::fill(columnDistance_.begin(), columnDistance_.end(), 0.0);
-    std::fill(columnMask_.begin(), columnMask_.end(), 0.0f);
-    const auto addRow = [&](int y, double sign) {
-      const float* d = distance_.data() + static_cast<size_t>(y - ry0) * W;
-      const float* m = mask_.data() + static_cast<size_t>(y - ry0) * W;
-      double* cd = columnDistance_.data();
-      float* cm = columnMask_.data();
-      const float signF = static_cast<float>(sign);
-      for (int x = xa; x < xb; ++x) {
-        cd[x] += sign * static_cast<double>(d[x]);
-        cm[x] += signF * m[x];
-      }
-    };
-    for (int y = std::max(ry0, oy0 - f); y < std::min(ry1, oy0 + f + 1); ++y) addRow(y, 1.0);
-
-    for (int y = oy0; y < oy1; ++y) {
-      if (y > oy0) {
-        if (y + f < ry1) addRow(y + f, 1.0);
-        if (y - f - 1 >= ry0) addRow(y - f - 1, -1.0);
-      }
-      // The columns of this row whose weights are wanted.
-      int wx0 = xa, wx1 = xb;
-      if (spans_ != nullptr) {
-        wx0 = std::max(xa, (*spans_)[static_cast<size_t>(y)].first);
-        wx1 = std::min(xb, (*spans_)[static_cast<size_t>(y)].second);
-        if (wx0 >= wx1) continue;
-      }
-      // Row box filter through prefix sums over [xa, xb) (everything outside is zero).
-      const int n = xb - xa;
-      const double* pd = prefixDistance_.data();
-      const double* pm = prefixMask_.data();
-      prefixSums(columnDistance_.data() + xa, prefixDistance_.data(), n);
-      prefixSums(columnMask_.data() + xa, prefixMask_.data(), n);
-      float* patch = patch_.data() + xa;  // indexed from xa
-      // The masses are whole numbers, and where one is 0 so is the sum of distances.
-      const auto boxAt = [&](int i, int lo, int hi) {
-        patch[i] = static_cast<float>((pd[hi] - pd[lo]) / std::max(pm[hi] - pm[lo], 1.0));
-      };
-      const int interiorBegin = std::min(n, f), interiorEnd = std::max(interiorBegin, n - f - 1);
-      for (int i = 0; i < interiorBegin; ++i) boxAt(i, std::max(0, i - f), std::min(n, i + f + 1));
-      for (int i = interiorBegin; i < interiorEnd; ++i) {
-        const double mass = std::max(pm[i + f + 1] - pm[i - f], 1.0);
-        patch[i] = static_cast<float>((pd[i + f + 1] - pd[i - f]) / mass);
-      }
-      for (int i = interiorEnd; i < n; ++i) boxAt(i, std::max(0, i - f), std::min(n, i + f + 1));
-      patch = patch_.data();
-
-      // Feature distances, the largest distance, and the weight.
-      const size_t rowP = static_cast<size_t>(y) * W;
-      const ptrdiff_t rowQ = static_cast<ptrdiff_t>(y + dy) * w + dx;
-      float* largest = largest_.data();
-      float* equal = equal_.data();
-      for (int x = wx0; x < wx1; ++x) {
-        largest[x] = std::max(0.0f, patch[x]);
-        equal[x] = 1.0f;
-      }
-      for (size_t g = 0; g < in_.kinds.size(); ++g) {
-        const size_t count = static_cast<size_t>(in_.featureChannels[g]);
-        if (in_.kinds[g] == FeatureKind::ExactMatch) {
-          float* eq = keep_ ? sum_.data() : equal;
-          if (keep_) std::fill(sum_.begin() + wx0, sum_.begin() + wx1, 1.0f);
-          for (size_t j = 0; j < count; ++j) {
-            const float* a = p0.feature[g][j] + rowP;
-            const float* b = pt.feature[g][j] + rowQ;
-            for (int x = wx0; x < wx1; ++x) eq[x] = a[x] == b[x] ? eq[x] : 0.0f;
-          }
-          if (keep_) {
-            float* out = featureDistance_[g].data();
-            for (int x = wx0; x < wx1; ++x) {
-              out[x] = eq[x] != 0.0f ? 0.0f : std::numeric_limits<float>::infinity();
-              equal[x] *= eq[x];
-            }
-          }
-          continue;
-        }
-        float* sum = sum_.data();
-        std::fill(sum + wx0, sum + wx1, 0.0f);
-        for (size_t j = 0; j < count; ++j) {
-          const float* a = p0.feature[g][j] + rowP;
-          const float* b = pt.feature[g][j] + rowQ;
-          for (int x = wx0; x < wx1; ++x) {
-            const float diff = a[x] - b[x];
-            sum[x] += diff * diff;
-          }
-          if (!p0.featureVariance[g].empty()) {
-            const float* va = p0.featureVariance[g][j] + rowP;
-            const float* vb = pt.featureVariance[g][j] + rowQ;
-            for (int x = wx0; x < wx1; ++x) sum[x] -= va[x] + std::min(va[x], vb[x]);
-          }
-        }
-        const float* scale = in_.featureScale[g].data() + rowP;
-        float* out = keep_ ? featureDistance_[g].data() : sum;
-        for (int x = wx0; x < wx1; ++x) {
-          const float distance = sum[x] * scale[x];
-          out[x] = distance;
-          largest[x] = std::max(largest[x], distance);
-        }
-      }
-      float* weight = weight_.data();
-      const float* validQ = pt.valid + rowQ;
-      if (center) {
-        for (int x = wx0; x < wx1; ++x) weight[x] = p0.valid[rowP + static_cast<size_t>(x)];
-      } else {
-        for (int x = wx0; x < wx1; ++x) largest[x] = std::min(kExpClamp, largest[x]);  // NaN: the clamp
-        for (int x = wx0; x < wx1; ++x) weight[x] = expNegative(largest[x]) * equal[x] * validQ[x];
-      }
-      onRow(y, wx0, wx1);
+  // Adds (sign 1) or takes off (sign -1) row y's distances and masses to the column sums.
+  void addRow(const Reach& reach, int y, double sign) {
+    const size_t W = static_cast<size_t>(in_.width);
+    const float* d = distance_.data() + static_cast<size_t>(y - reach.ry0) * W;
+    const float* m = mask_.data() + static_cast<size_t>(y - reach.ry0) * W;
+    double* cd = columnDistance_.data();
+    float* cm = columnMask_.data();
+    const float signF = static_cast<float>(sign);
+    for (int x = reach.xa; x < reach.xb; ++x) {
+      cd[x] += sign * static_cast<double>(d[x]);
+      cm[x] += signF * m[x];
     }
   }
 
- private:
+  // The patch distances of the current row into patch_: the row box filter of the column
+  // sums, through prefix sums over [xa, xb) (everything outside is zero).
+  void computePatchDistances(const Reach& reach) {
+    const int f = s_.patch, n = reach.xb - reach.xa;
+    const double* pd = prefixDistance_.data();
+    const double* pm = prefixMask_.data();
+    prefixSums(columnDistance_.data() + reach.xa, prefixDistance_.data(), n);
+    prefixSums(columnMask_.data() + reach.xa, prefixMask_.data(), n);
+    float* patch = patch_.data() + reach.xa;  // indexed from xa
+    // The masses are whole numbers, and where one is 0 so is the sum of distances.
+    const auto boxAt = [&](int i, int lo, int hi) {
+      patch[i] = static_cast<float>((pd[hi] - pd[lo]) / std::max(pm[hi] - pm[lo], 1.0));
+    };
+    const int interiorBegin = std::min(n, f), interiorEnd = std::max(interiorBegin, n - f - 1);
+    for (int i = 0; i < interiorBegin; ++i) boxAt(i, std::max(0, i - f), std::min(n, i + f + 1));
+    for (int i = interiorBegin; i < interiorEnd; ++i) {
+      const double mass = std::max(pm[i + f + 1] - pm[i - f], 1.0);
+      patch[i] = static_cast<float>((pd[i + f + 1] - pd[i - f]) / mass);
+    }
+    for (int i = interiorEnd; i < n; ++i) boxAt(i, std::max(0, i - f), std::min(n, i + f + 1));
+  }
+
+  // The feature distances of row rowP's columns [wx0, wx1) towards frame `pt`, into
+  // largest_ (with the patch distance: the largest of them) and equal_ (0 where an
+  // ExactMatch feature differs); kept per feature in featureDistance_ when asked.
+  void computeFeatureDistances(const Prepared::Frame& pt, size_t rowP, ptrdiff_t rowQ, int wx0, int wx1) {
+    const Prepared::Frame& p0 = in_.frames[0];
+    const float* patch = patch_.data();
+    float* largest = largest_.data();
+    float* equal = equal_.data();
+    for (int x = wx0; x < wx1; ++x) {
+      largest[x] = std::max(0.0f, patch[x]);
+      equal[x] = 1.0f;
+    }
+    for (size_t g = 0; g < in_.kinds.size(); ++g) {
+      const size_t count = static_cast<size_t>(in_.featureChannels[g]);
+      if (in_.kinds[g] == FeatureKind::ExactMatch) {
+        float* eq = keep_ ? sum_.data() : equal;
+        if (keep_) std::fill(sum_.begin() + wx0, sum_.begin() + wx1, 1.0f);
+        for (size_t j = 0; j < count; ++j) {
+          const float* a = p0.feature[g][j] + rowP;
+          const float* b = pt.feature[g][j] + rowQ;
+          for (int x = wx0; x < wx1; ++x) eq[x] = a[x] == b[x] ? eq[x] : 0.0f;
+        }
+        if (keep_) {
+          float* out = featureDistance_[g].data();
+          for (int x = wx0; x < wx1; ++x) {
+            out[x] = eq[x] != 0.0f ? 0.0f : std::numeric_limits<float>::infinity();
+            equal[x] *= eq[x];
+          }
+        }
+        continue;
+      }
+      float* sum = sum_.data();
+      std::fill(sum + wx0, sum + wx1, 0.0f);
+      for (size_t j = 0; j < count; ++j) {
+        const float* a = p0.feature[g][j] + rowP;
+        const float* b = pt.feature[g][j] + rowQ;
+        for (int x = wx0; x < wx1; ++x) {
+          const float diff = a[x] - b[x];
+          sum[x] += diff * diff;
+        }
+        if (!p0.featureVariance[g].empty()) {
+          const float* va = p0.featureVariance[g][j] + rowP;
+          const float* vb = pt.featureVariance[g][j] + rowQ;
+          for (int x = wx0; x < wx1; ++x) sum[x] -= va[x] + std::min(va[x], vb[x]);
+        }
+      }
+      const float* scale = in_.featureScale[g].data() + rowP;
+      float* out = keep_ ? featureDistance_[g].data() : sum;
+      for (int x = wx0; x < wx1; ++x) {
+        const float distance = sum[x] * scale[x];
+        out[x] = distance;
+        largest[x] = std::max(largest[x], distance);
+      }
+    }
+  }
+
+  // The weights of row rowP's columns [wx0, wx1) into weight_; the center pixel's is its validity.
+  void computeWeights(const Prepared::Frame& pt, bool center, size_t rowP, ptrdiff_t rowQ, int wx0, int wx1) {
+    float* weight = weight_.data();
+    float* largest = largest_.data();
+    const float* equal = equal_.data();
+    const float* validQ = pt.valid + rowQ;
+    if (center) {
+      for (int x = wx0; x < wx1; ++x) weight[x] = in_.frames[0].valid[rowP + static_cast<size_t>(x)];
+    } else {
+      for (int x = wx0; x < wx1; ++x) largest[x] = std::min(kExpClamp, largest[x]);  // NaN: the clamp
+      for (int x = wx0; x < wx1; ++x) weight[x] = expNegative(largest[x]) * equal[x] * validQ[x];
+    }
+  }
+
   const Prepared& in_;
   const NlMeansSettings& s_;
   int y0_, y1_;

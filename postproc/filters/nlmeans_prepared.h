@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "image/size_text.h"
 #include "postproc/filters/nlmeans.h"
 
 namespace pathfarm::nlmeans_detail {
@@ -19,8 +20,6 @@ inline constexpr float kMaxVariance = 1e30f;
 // The largest exponent a weight e^-x is computed for (nlmeans.cpp, expNegative): beyond it
 // the weight is 0.
 inline constexpr float kExpClamp = 88.0f;
-
-inline std::string sizeText(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
 
 inline void validate(const NlMeansInput& input, const NlMeansSettings& s) {
   if (s.radius < 0 || s.patch < 0)

@@ -8,14 +8,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "image/size_text.h"
 #include "postproc/filters/warp.h"
 
 namespace pathfarm {
 namespace {
 
 using Plane = std::vector<float>;
-
-std::string sizeText(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
 
 template <typename F>
 void forRows(int h, F&& body) {

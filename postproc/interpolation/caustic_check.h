@@ -18,10 +18,10 @@
 namespace pathfarm {
 
 struct CausticCheckSettings {
-  int radius = 2;
-  float share = 0.1f;
-  int minPixels = 3;
-  int margin = 2;
+  int radius = 2;      // the window: (2 radius + 1)^2 pixels
+  float share = 0.1f;  // of the beauty's luminance over the window
+  int minPixels = 3;   // pixels of the window that saw some of the caustic
+  int margin = 2;      // pixels the flags grow by
 };
 
 // One byte per pixel, 1 where a moving caustic should be re-rendered. A frame without

@@ -8,45 +8,14 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "image/luminance.h"
 #include "postproc/filters/decomposed_frame.h"
 #include "postproc/interpolation/forward_splat.h"
+#include "postproc/interpolation/interpolation_input.h"
 #include "renderer/decomposition/effective_irradiance.h"
 
 namespace pathfarm {
 namespace {
-
-float luminance(float r, float g, float b) { return 0.2126f * r + 0.7152f * g + 0.0722f * b; }
-
-const std::vector<float>& finiteChannel(const FrameImage& frame, const std::string& name, const std::string& label) {
-  if (!frame.hasChannel(name)) throw std::invalid_argument(label + ": missing channel \"" + name + "\"");
-  const std::vector<float>& plane = frame.channel(name);
-  for (size_t p = 0; p < plane.size(); ++p)
-    if (!std::isfinite(plane[p]))
-      throw std::invalid_argument(label + ": channel \"" + name + "\" has a non-finite value at pixel (" +
-                                  std::to_string(p % static_cast<size_t>(std::max(1, frame.width()))) + ", " +
-                                  std::to_string(p / static_cast<size_t>(std::max(1, frame.width()))) + ")");
-  return plane;
-}
-
-void checkFinite(const std::vector<float>& plane, const std::string& what) {
-  for (float v : plane)
-    if (!std::isfinite(v)) throw std::invalid_argument(what + " has a non-finite value");
-}
-
-void checkField(const MotionField& field, int width, int height, const std::string& what) {
-  const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
-  if (field.width != width || field.height != height || field.x.size() != pixels || field.y.size() != pixels ||
-      (!field.valid.empty() && field.valid.size() != pixels))
-    throw std::invalid_argument(what + " is " + std::to_string(field.width) + "x" + std::to_string(field.height) +
-                                " (planes " + std::to_string(field.x.size()) + "/" + std::to_string(field.y.size()) +
-                                "), the keyframes " + std::to_string(width) + "x" + std::to_string(height));
-  for (size_t p = 0; p < pixels; ++p) {
-    const bool valid = field.valid.empty() || field.valid[p] >= 0.5f;
-    if ((valid && (!std::isfinite(field.x[p]) || !std::isfinite(field.y[p]))) ||
-        (!field.valid.empty() && !std::isfinite(field.valid[p])))
-      throw std::invalid_argument(what + " has a non-finite value at pixel " + std::to_string(p));
-  }
-}
 
 // One layer interpolated on its own: a component, or the beauty for the baseline.
 struct Layer {
@@ -211,14 +180,6 @@ void markChanged(LayerOutcome& out, const InterpolationSettings& settings, int w
     }
 }
 
-void checkSameLayout(const FrameImage& a, const FrameImage& b, const std::string& labelA, const std::string& labelB) {
-  if (a.width() != b.width() || a.height() != b.height())
-    throw std::invalid_argument(labelB + " is " + std::to_string(b.width()) + "x" + std::to_string(b.height()) + ", " +
-                                labelA + " " + std::to_string(a.width()) + "x" + std::to_string(a.height()));
-  if (decompositionComponents(a) != decompositionComponents(b))
-    throw std::invalid_argument(labelB + " has another decomposition (pathfarm.decomposition) than " + labelA);
-}
-
 // `motion` where it is valid, else `primary` (with its validity).
 MotionField withPrimary(const MotionField& motion, const MotionField& primary) {
   MotionField out = primary;
@@ -231,135 +192,208 @@ MotionField withPrimary(const MotionField& motion, const MotionField& primary) {
   return out;
 }
 
-}  // namespace
-
-void addIrradianceFlow(ComponentMotions& motions, const FrameImage& k0, const FrameImage& k1,
-                       const FlowSettings& settings) {
-  const int width = k0.width(), height = k0.height();
-  if (width <= 0 || height <= 0) throw std::invalid_argument("irradiance flow: keyframe 0 is empty");
-  checkSameLayout(k0, k1, "keyframe 0", "keyframe 1");
+// The layers interpolated on their own: every component, or the beauty alone (colorOnly).
+std::vector<Layer> layersOf(const FrameImage& k0, const InterpolationSettings& settings) {
+  std::vector<Layer> layers;
   const std::vector<std::string> components = decompositionComponents(k0);
-  FlowSettings logSettings = settings;
-  logSettings.logDomain = true;
-  const size_t pixels = k0.pixelCount();
-  auto irradiance = [&](const FrameImage& frame, const std::string& c, const std::string& label) {
-    Planes planes(width, height, 3);
-    const char* rgb[3] = {"R", "G", "B"};
-    for (size_t i = 0; i < 3; ++i) planes.channels[i] = finiteChannel(frame, c + ".irradiance." + rgb[i], label);
-    return planes;
-  };
-  // The primary motion as the initial guess: 0 where it is invalid.
-  auto guess = [&](const MotionField& motion, const std::string& what) {
-    checkField(motion, width, height, what);
-    FlowField flow(width, height);
-    for (size_t p = 0; p < pixels; ++p)
-      if (motion.valid.empty() || motion.valid[p] >= 0.5f) {
-        flow.dx[p] = motion.x[p];
-        flow.dy[p] = motion.y[p];
-      }
-    return flow;
-  };
-  auto toMotion = [&](const FlowField& flow) {
-    MotionField motion;
-    motion.width = width;
-    motion.height = height;
-    motion.x = flow.dx;
-    motion.y = flow.dy;
-    motion.valid.assign(pixels, 0.0f);
-    for (size_t p = 0; p < pixels; ++p) {
-      const float tx = static_cast<float>(p % static_cast<size_t>(width)) + flow.dx[p];
-      const float ty = static_cast<float>(p / static_cast<size_t>(width)) + flow.dy[p];
-      if (std::isfinite(tx) && std::isfinite(ty) && tx > -0.5f && tx < static_cast<float>(width) - 0.5f &&
-          ty > -0.5f && ty < static_cast<float>(height) - 0.5f)
-        motion.valid[p] = 1.0f;
-    }
-    return motion;
-  };
-  std::vector<std::pair<const std::string, ComponentMotion>*> flowing;
-  for (auto& entry : motions.components) {
-    if (entry.first.empty()) continue;
-    if (std::find(components.begin(), components.end(), entry.first) == components.end())
-      throw std::invalid_argument("irradiance flow: the keyframes have no component \"" + entry.first + "\"");
-    flowing.push_back(&entry);
+  if (settings.colorOnly) {
+    layers.push_back(Layer{"", {"R", "G", "B"}, {"R", "G", "B"}, "depth.Z", {"", "", ""}, false});
+    return layers;
   }
-  tbb::parallel_for(size_t(0), flowing.size(), [&](size_t i) {
-    const std::string& c = flowing[i]->first;
-    ComponentMotion& motion = flowing[i]->second;
-    const std::string what = "irradiance flow: component \"" + c + "\"";
-    const Planes e0 = irradiance(k0, c, "keyframe 0"), e1 = irradiance(k1, c, "keyframe 1");
-    const FlowField forward = bootstrappedFlow(e0, e1, guess(motion.forward, what + " forward motion"), logSettings);
-    const FlowField backward = bootstrappedFlow(e1, e0, guess(motion.backward, what + " backward motion"), logSettings);
-    motion.irradianceForward = toMotion(forward);
-    motion.irradianceBackward = toMotion(backward);
-    motion.hasIrradianceMotion = true;
-  });
+  if (components.empty())
+    throw std::invalid_argument(
+        "interpolation: keyframe 0 has no decomposition (attribute pathfarm.decomposition); use the color-only mode");
+  for (const std::string& c : components)
+    layers.push_back(Layer{c,
+                           {c + ".color.R", c + ".color.G", c + ".color.B"},
+                           {c + ".irradiance.R", c + ".irradiance.G", c + ".irradiance.B"},
+                           c + ".depth.Z",
+                           {c + ".reflectance.R", c + ".reflectance.G", c + ".reflectance.B"},
+                           false});
+  return layers;
 }
 
-ComponentMotions concatenatePrimaryMotion(const std::vector<FrameImage>& frames) {
-  if (frames.size() < 2)
-    throw std::invalid_argument("motion concatenation: needs at least two frames, got " + std::to_string(frames.size()));
-  const int width = frames[0].width(), height = frames[0].height();
-  if (width <= 0 || height <= 0) throw std::invalid_argument("motion concatenation: frame 0 is empty");
-  for (size_t k = 1; k < frames.size(); ++k)
-    checkSameLayout(frames[0], frames[k], "frame 0", "frame " + std::to_string(k));
-  const size_t pixels = frames[0].pixelCount();
-  std::vector<std::string> names = {""};
-  for (const std::string& c : decompositionComponents(frames[0])) names.push_back(c);
+using BeautyPlanes = std::array<const std::vector<float>*, 3>;  // R, G, B
 
-  auto chain = [&](const std::string& prefix, bool forward) {
-    MotionField result;
-    result.width = width;
-    result.height = height;
-    result.x.assign(pixels, 0.0f);
-    result.y.assign(pixels, 0.0f);
-    result.valid.assign(pixels, 1.0f);
-    const size_t n = frames.size();
-    for (size_t step = 0; step + 1 < n; ++step) {
-      const size_t k = forward ? step : n - 1 - step;
-      const std::string label = "motion concatenation: frame " + std::to_string(k);
-      const MotionField link =
-          motionTowards(frames[k], forward ? NeighbourFrame::Next : NeighbourFrame::Previous, prefix, label);
-      const std::string what = label + " layer \"" + prefix + (forward ? "motion" : "motion_back") + "\"";
-      checkFinite(link.x, what);
-      checkFinite(link.y, what);
-      checkFinite(link.valid, label + " channel \"" + prefix + "motion_valid.Y\"");
-      MotionField reached;  // frame `front` -> frame k so far
-      reached.width = width;
-      reached.height = height;
-      reached.x = result.x;
-      reached.y = result.y;
-      const std::vector<float> inside = warpValidity(reached);
-      Planes motion(width, height, 2);
-      motion.channels[0] = link.x;
-      motion.channels[1] = link.y;
-      const Planes looked = warpPlanes(motion, reached);
-      std::vector<float> linkValid(pixels, 1.0f);
-      if (!link.valid.empty()) {
-        Planes valid(width, height, 1);
-        valid.channels[0] = link.valid;
-        linkValid = warpPlanes(valid, reached, WarpLookup::Nearest).channels[0];
-      }
-      for (size_t p = 0; p < pixels; ++p) {
-        if (inside[p] < 0.5f || linkValid[p] < 0.5f) result.valid[p] = 0.0f;
-        result.x[p] += looked.channels[0][p];
-        result.y[p] += looked.channels[1][p];
-      }
-    }
-    MotionField end = result;
-    end.valid.clear();
-    const std::vector<float> inside = warpValidity(end);
-    for (size_t p = 0; p < pixels; ++p)
-      if (inside[p] < 0.5f) result.valid[p] = 0.0f;
-    return result;
-  };
-
-  ComponentMotions motions;
-  for (const std::string& name : names) {
-    const std::string prefix = name.empty() ? "" : name + ".";
-    motions.components[name] = ComponentMotion{chain(prefix, true), chain(prefix, false)};
-  }
-  return motions;
+BeautyPlanes finiteBeauty(const FrameImage& frame, const std::string& label) {
+  return {&finiteChannel(frame, "R", label), &finiteChannel(frame, "G", label), &finiteChannel(frame, "B", label)};
 }
+
+// One layer as the keyframes carry it towards each other, [0] from K0 and [1] from K1.
+struct LayerKeyframes {
+  std::array<KeyframeLayer, 2> primary;     // along the layer's motion
+  std::array<KeyframeLayer, 2> irradiance;  // the irradiance along its own motion (Layer::irradianceMotion)
+};
+
+// Checks the layer's motions and reads it from both keyframes; sets layer.irradianceMotion.
+LayerKeyframes readKeyframes(const FrameImage& k0, const FrameImage& k1, Layer& layer,
+                             const ComponentMotions& motions, const InterpolationSettings& settings) {
+  const int width = k0.width(), height = k0.height();
+  const std::string& name = layer.name;
+  const std::string what = name.empty() ? "the frame-wide motion (\"\")" : "component \"" + name + "\"";
+  const auto found = motions.components.find(name);
+  if (found == motions.components.end()) throw std::invalid_argument("interpolation: no motion for " + what);
+  checkField(found->second.forward, width, height, "interpolation: forward motion of " + what);
+  checkField(found->second.backward, width, height, "interpolation: backward motion of " + what);
+  // Untracked components fall back on the frame-wide motion where the caller gave one.
+  const auto primary = motions.components.find("");
+  const bool fallback = settings.untrackedFollowPrimary && !name.empty() && primary != motions.components.end();
+  if (fallback) {
+    checkField(primary->second.forward, width, height, "interpolation: forward frame-wide motion");
+    checkField(primary->second.backward, width, height, "interpolation: backward frame-wide motion");
+  }
+  const ComponentMotion& motion = found->second;
+  layer.irradianceMotion = !name.empty() && motion.hasIrradianceMotion;
+  const Carry carry = layer.irradianceMotion ? Carry::ColorReflectance : Carry::Color;
+  LayerKeyframes keys;
+  keys.primary[0] =
+      readLayer(k0, layer, motion.forward, fallback ? &primary->second.forward : nullptr, "keyframe 0", carry);
+  keys.primary[1] =
+      readLayer(k1, layer, motion.backward, fallback ? &primary->second.backward : nullptr, "keyframe 1", carry);
+  if (layer.irradianceMotion) {
+    checkField(motion.irradianceForward, width, height, "interpolation: forward irradiance motion of " + what);
+    checkField(motion.irradianceBackward, width, height, "interpolation: backward irradiance motion of " + what);
+    keys.irradiance[0] = readLayer(k0, layer, withPrimary(motion.irradianceForward, motion.forward),
+                                   fallback ? &primary->second.forward : nullptr, "keyframe 0", Carry::Irradiance);
+    keys.irradiance[1] = readLayer(k1, layer, withPrimary(motion.irradianceBackward, motion.backward),
+                                   fallback ? &primary->second.backward : nullptr, "keyframe 1", Carry::Irradiance);
+  }
+  return keys;
+}
+
+// The layer at fraction s: both keyframes splatted towards it and combined.
+LayerOutcome interpolateLayer(const Layer& layer, const LayerKeyframes& keys, float s,
+                              const InterpolationSettings& settings, int width, int height) {
+  const SplatSettings splat{settings.depthTolerance, settings.minCoverage, 0.25f};
+  const SplatResult a = splatLayer(keys.primary[0], s, splat);
+  const SplatResult b = splatLayer(keys.primary[1], 1.0f - s, splat);
+  LayerOutcome out = combine(keys.primary[0], keys.primary[1], a, b, s, settings, width, height);
+  if (!layer.irradianceMotion) return out;
+  // The paper's scheme: irradiance along its own motion times reflectance along the primary.
+  const SplatResult ea = splatLayer(keys.irradiance[0], s, splat);
+  const SplatResult eb = splatLayer(keys.irradiance[1], 1.0f - s, splat);
+  const LayerOutcome e = combine(keys.irradiance[0], keys.irradiance[1], ea, eb, s, settings, width, height);
+  const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
+  for (size_t t = 0; t < pixels; ++t) {
+    for (size_t c = 0; c < 3; ++c) out.color[c][t] = modulateIrradiance(e.color[c][t], out.color[6 + c][t]);
+    out.hole[t] = out.hole[t] || e.hole[t];
+    out.oneSided[t] = out.oneSided[t] || e.oneSided[t];
+  }
+  out.change = e.change;
+  markChanged(out, settings, width, height);
+  return out;
+}
+
+// The interpolated beauty R, G, B: the sum of the layers' colors.
+std::array<std::vector<float>, 3> summedBeauty(const std::vector<LayerOutcome>& outcomes, size_t pixels) {
+  std::array<std::vector<float>, 3> beauty;
+  for (auto& plane : beauty) plane.assign(pixels, 0.0f);
+  for (const LayerOutcome& o : outcomes)
+    for (size_t c = 0; c < 3; ++c)
+      for (size_t t = 0; t < pixels; ++t) beauty[c][t] += o.color[c][t];
+  return beauty;
+}
+
+// The parts of the re-render mask (frame_interpolation.h), a byte per pixel each.
+struct RerenderCauses {
+  explicit RerenderCauses(size_t pixels)
+      : hole(pixels, 0), silhouette(pixels, 0), untracked(pixels, 0), illumination(pixels, 0) {}
+
+  std::vector<uint8_t> hole, silhouette, untracked, illumination;
+};
+
+bool significant(float r, float g, float b, float br, float bg, float bb, const InterpolationSettings& settings) {
+  return luminance(r, g, b) > std::max(settings.significance * luminance(br, bg, bb), 1e-6f);
+}
+
+// Holes and illumination changes: a layer's hole or one-sided pixels where it is significant.
+void markHolesAndIllumination(const LayerOutcome& o, const std::array<std::vector<float>, 3>& beauty,
+                              const InterpolationSettings& settings, RerenderCauses& causes) {
+  for (size_t t = 0; t < o.hole.size(); ++t) {
+    if (!o.hole[t] && !o.oneSided[t]) continue;
+    if (!significant(o.color[0][t], o.color[1][t], o.color[2][t], beauty[0][t], beauty[1][t], beauty[2][t], settings))
+      continue;
+    if (o.hole[t]) causes.hole[t] = 1;
+    if (o.oneSided[t] && o.changed[t]) causes.illumination[t] = 1;
+  }
+}
+
+// Untracked: a keyframe's layer significant (against that keyframe's beauty) where its
+// motion is invalid.
+void markUntracked(const KeyframeLayer& key, const BeautyPlanes& beauty, const InterpolationSettings& settings,
+                   RerenderCauses& causes) {
+  const auto& v = key.values.channels;
+  for (size_t p = 0; p < key.active.size(); ++p) {
+    if (key.active[p]) continue;
+    if (significant(v[0][p], v[1][p], v[2][p], (*beauty[0])[p], (*beauty[1])[p], (*beauty[2])[p], settings))
+      causes.untracked[p] = 1;
+  }
+}
+
+// Silhouettes: where the silhouette pixels of keyframe k land at `fraction` of the way
+// along each layer's valid motion (the pixel itself where none is valid).
+void markSilhouettes(const std::vector<float>& silhouette, const std::vector<LayerKeyframes>& keys, int k,
+                     float fraction, int width, int height, RerenderCauses& causes) {
+  for (size_t p = 0; p < silhouette.size(); ++p) {
+    if (silhouette[p] <= 0.5f) continue;
+    const int px = static_cast<int>(p % static_cast<size_t>(width)), py = static_cast<int>(p / static_cast<size_t>(width));
+    bool landed = false;
+    for (const LayerKeyframes& key : keys) {
+      const KeyframeLayer& l = key.primary[static_cast<size_t>(k)];
+      if (!l.active[p]) continue;
+      const int tx = static_cast<int>(std::lround(static_cast<float>(px) + fraction * l.dx[p]));
+      const int ty = static_cast<int>(std::lround(static_cast<float>(py) + fraction * l.dy[p]));
+      if (tx < 0 || tx >= width || ty < 0 || ty >= height) continue;
+      causes.silhouette[static_cast<size_t>(ty) * static_cast<size_t>(width) + static_cast<size_t>(tx)] = 1;
+      landed = true;
+    }
+    if (!landed) causes.silhouette[p] = 1;
+  }
+}
+
+// The mask, its counts per cause and rate, and its channel `rerender.Y`.
+void addRerenderMask(InterpolationResult& result, const RerenderCauses& causes) {
+  const size_t pixels = causes.hole.size();
+  result.mask.assign(pixels, 0);
+  result.holes = causes.hole;
+  std::vector<float>& rerender = result.frame.addChannel("rerender.Y");
+  size_t masked = 0;
+  for (size_t t = 0; t < pixels; ++t) {
+    result.holePixels += causes.hole[t];
+    result.silhouettePixels += causes.silhouette[t];
+    result.untrackedPixels += causes.untracked[t];
+    result.illuminationPixels += causes.illumination[t];
+    result.mask[t] = causes.hole[t] || causes.silhouette[t] || causes.untracked[t] || causes.illumination[t];
+    rerender[t] = result.mask[t];
+    masked += result.mask[t];
+  }
+  result.rerenderRate = static_cast<double>(masked) / static_cast<double>(pixels);
+}
+
+// The beauty, the layers' colors and depths (not in the color-only mode) and the attributes.
+void addInterpolatedFrame(FrameImage& frame, const std::array<std::vector<float>, 3>& beauty,
+                          const std::vector<Layer>& layers, const std::vector<LayerOutcome>& outcomes, float s,
+                          double rerenderRate, const InterpolationSettings& settings) {
+  const char* rgb[3] = {"R", "G", "B"};
+  for (size_t c = 0; c < 3; ++c) frame.addChannel(rgb[c]) = beauty[c];
+  if (!settings.colorOnly) {
+    for (size_t i = 0; i < layers.size(); ++i) {
+      for (size_t c = 0; c < 3; ++c) frame.addChannel(layers[i].color[c]) = outcomes[i].color[c];
+      frame.addChannel(layers[i].depth) = outcomes[i].depth;
+    }
+  }
+  char rate[32];
+  std::snprintf(rate, sizeof rate, "%.6f", rerenderRate);
+  frame.attributes()["pathfarm.rerender_rate"] = rate;
+  frame.attributes()["pathfarm.interpolation_fraction"] = std::to_string(s);
+  if (settings.colorOnly) {
+    frame.attributes().erase("pathfarm.decomposition");
+    frame.attributes()["pathfarm.interpolation_mode"] = "color-only";
+  }
+  if (!settings.colorOnly) frame.attributes()["pathfarm.interpolation_mode"] = "per-component";
+}
+
+}  // namespace
 
 InterpolationResult interpolateFrameDetailed(const FrameImage& k0, const FrameImage& k1,
                                              const ComponentMotions& motions, float s,
@@ -371,167 +405,34 @@ InterpolationResult interpolateFrameDetailed(const FrameImage& k0, const FrameIm
   checkSameLayout(k0, k1, "keyframe 0", "keyframe 1");
   const size_t pixels = k0.pixelCount();
 
-  std::vector<Layer> layers;
-  const std::vector<std::string> components = decompositionComponents(k0);
-  if (settings.colorOnly) {
-    layers.push_back(Layer{"", {"R", "G", "B"}, {"R", "G", "B"}, "depth.Z", {"", "", ""}, false});
-  } else {
-    if (components.empty())
-      throw std::invalid_argument(
-          "interpolation: keyframe 0 has no decomposition (attribute pathfarm.decomposition); use the color-only mode");
-    for (const std::string& c : components)
-      layers.push_back(Layer{c,
-                             {c + ".color.R", c + ".color.G", c + ".color.B"},
-                             {c + ".irradiance.R", c + ".irradiance.G", c + ".irradiance.B"},
-                             c + ".depth.Z",
-                             {c + ".reflectance.R", c + ".reflectance.G", c + ".reflectance.B"},
-                             false});
-  }
-  const std::vector<float>* beauty0[3] = {&finiteChannel(k0, "R", "keyframe 0"), &finiteChannel(k0, "G", "keyframe 0"),
-                                          &finiteChannel(k0, "B", "keyframe 0")};
-  const std::vector<float>* beauty1[3] = {&finiteChannel(k1, "R", "keyframe 1"), &finiteChannel(k1, "G", "keyframe 1"),
-                                          &finiteChannel(k1, "B", "keyframe 1")};
+  std::vector<Layer> layers = layersOf(k0, settings);
+  const BeautyPlanes keyBeauty[2] = {finiteBeauty(k0, "keyframe 0"), finiteBeauty(k1, "keyframe 1")};
   const std::vector<float>* silhouette[2] = {
       k0.hasChannel("silhouette.Y") ? &finiteChannel(k0, "silhouette.Y", "keyframe 0") : nullptr,
       k1.hasChannel("silhouette.Y") ? &finiteChannel(k1, "silhouette.Y", "keyframe 1") : nullptr};
+  std::vector<LayerKeyframes> keys(layers.size());
+  for (size_t i = 0; i < layers.size(); ++i) keys[i] = readKeyframes(k0, k1, layers[i], motions, settings);
 
-  std::vector<KeyframeLayer> at0(layers.size()), at1(layers.size());
-  std::vector<KeyframeLayer> irr0(layers.size()), irr1(layers.size());  // irradiance along its own motion
-  for (size_t i = 0; i < layers.size(); ++i) {
-    const std::string& name = layers[i].name;
-    const std::string what = name.empty() ? "the frame-wide motion (\"\")" : "component \"" + name + "\"";
-    const auto found = motions.components.find(name);
-    if (found == motions.components.end()) throw std::invalid_argument("interpolation: no motion for " + what);
-    checkField(found->second.forward, width, height, "interpolation: forward motion of " + what);
-    checkField(found->second.backward, width, height, "interpolation: backward motion of " + what);
-    // Untracked components fall back on the frame-wide motion where the caller gave one.
-    const auto primary = motions.components.find("");
-    const bool fallback = settings.untrackedFollowPrimary && !name.empty() && primary != motions.components.end();
-    if (fallback) {
-      checkField(primary->second.forward, width, height, "interpolation: forward frame-wide motion");
-      checkField(primary->second.backward, width, height, "interpolation: backward frame-wide motion");
-    }
-    const ComponentMotion& motion = found->second;
-    layers[i].irradianceMotion = !name.empty() && motion.hasIrradianceMotion;
-    const Carry carry = layers[i].irradianceMotion ? Carry::ColorReflectance : Carry::Color;
-    at0[i] = readLayer(k0, layers[i], motion.forward, fallback ? &primary->second.forward : nullptr, "keyframe 0", carry);
-    at1[i] = readLayer(k1, layers[i], motion.backward, fallback ? &primary->second.backward : nullptr, "keyframe 1",
-                       carry);
-    if (layers[i].irradianceMotion) {
-      checkField(motion.irradianceForward, width, height, "interpolation: forward irradiance motion of " + what);
-      checkField(motion.irradianceBackward, width, height, "interpolation: backward irradiance motion of " + what);
-      irr0[i] = readLayer(k0, layers[i], withPrimary(motion.irradianceForward, motion.forward),
-                          fallback ? &primary->second.forward : nullptr, "keyframe 0", Carry::Irradiance);
-      irr1[i] = readLayer(k1, layers[i], withPrimary(motion.irradianceBackward, motion.backward),
-                          fallback ? &primary->second.backward : nullptr, "keyframe 1", Carry::Irradiance);
-    }
-  }
-
-  const SplatSettings splat{settings.depthTolerance, settings.minCoverage, 0.25f};
   std::vector<LayerOutcome> outcomes(layers.size());
   tbb::parallel_for(size_t(0), layers.size(), [&](size_t i) {
-    const SplatResult a = splatLayer(at0[i], s, splat);
-    const SplatResult b = splatLayer(at1[i], 1.0f - s, splat);
-    outcomes[i] = combine(at0[i], at1[i], a, b, s, settings, width, height);
-    if (!layers[i].irradianceMotion) return;
-    // The paper's scheme: irradiance along its own motion times reflectance along the primary.
-    const SplatResult ea = splatLayer(irr0[i], s, splat);
-    const SplatResult eb = splatLayer(irr1[i], 1.0f - s, splat);
-    const LayerOutcome e = combine(irr0[i], irr1[i], ea, eb, s, settings, width, height);
-    LayerOutcome& o = outcomes[i];
-    for (size_t t = 0; t < pixels; ++t) {
-      for (size_t c = 0; c < 3; ++c) o.color[c][t] = modulateIrradiance(e.color[c][t], o.color[6 + c][t]);
-      o.hole[t] = o.hole[t] || e.hole[t];
-      o.oneSided[t] = o.oneSided[t] || e.oneSided[t];
-    }
-    o.change = e.change;
-    markChanged(o, settings, width, height);
+    outcomes[i] = interpolateLayer(layers[i], keys[i], s, settings, width, height);
   });
+  const std::array<std::vector<float>, 3> beauty = summedBeauty(outcomes, pixels);
+
+  RerenderCauses causes(pixels);
+  for (size_t i = 0; i < layers.size(); ++i) {
+    markHolesAndIllumination(outcomes[i], beauty, settings, causes);
+    for (size_t k = 0; k < 2; ++k) markUntracked(keys[i].primary[k], keyBeauty[k], settings, causes);
+  }
+  for (int k = 0; k < 2; ++k)
+    if (silhouette[k] != nullptr)
+      markSilhouettes(*silhouette[k], keys, k, k == 0 ? s : 1.0f - s, width, height, causes);
 
   InterpolationResult result;
   result.frame = FrameImage(width, height);
   result.frame.attributes() = k0.attributes();
-  std::array<std::vector<float>, 3> beauty;
-  for (auto& plane : beauty) plane.assign(pixels, 0.0f);
-  for (const LayerOutcome& o : outcomes)
-    for (size_t c = 0; c < 3; ++c)
-      for (size_t t = 0; t < pixels; ++t) beauty[c][t] += o.color[c][t];
-
-  auto significant = [&](float r, float g, float b, float br, float bg, float bb) {
-    return luminance(r, g, b) > std::max(settings.significance * luminance(br, bg, bb), 1e-6f);
-  };
-  std::vector<uint8_t> hole(pixels, 0), sil(pixels, 0), untracked(pixels, 0), illumination(pixels, 0);
-  for (size_t i = 0; i < layers.size(); ++i) {
-    const LayerOutcome& o = outcomes[i];
-    for (size_t t = 0; t < pixels; ++t) {
-      if (!o.hole[t] && !o.oneSided[t]) continue;
-      if (!significant(o.color[0][t], o.color[1][t], o.color[2][t], beauty[0][t], beauty[1][t], beauty[2][t])) continue;
-      if (o.hole[t]) hole[t] = 1;
-      if (o.oneSided[t] && o.changed[t]) illumination[t] = 1;
-    }
-    // Untracked: significant where the motion is invalid.
-    const KeyframeLayer* keys[2] = {&at0[i], &at1[i]};
-    const std::vector<float>* const* beauties[2] = {beauty0, beauty1};
-    for (int k = 0; k < 2; ++k)
-      for (size_t p = 0; p < pixels; ++p) {
-        if (keys[k]->active[p]) continue;
-        const auto& v = keys[k]->values.channels;
-        const auto* const* bt = beauties[k];
-        if (significant(v[0][p], v[1][p], v[2][p], (*bt[0])[p], (*bt[1])[p], (*bt[2])[p])) untracked[p] = 1;
-      }
-  }
-  // Silhouettes: where the silhouette pixels of each keyframe land.
-  for (int k = 0; k < 2; ++k) {
-    if (silhouette[k] == nullptr) continue;
-    const float fraction = k == 0 ? s : 1.0f - s;
-    for (size_t p = 0; p < pixels; ++p) {
-      if ((*silhouette[k])[p] <= 0.5f) continue;
-      const int px = static_cast<int>(p % static_cast<size_t>(width)), py = static_cast<int>(p / static_cast<size_t>(width));
-      bool landed = false;
-      for (size_t i = 0; i < layers.size(); ++i) {
-        const KeyframeLayer& l = k == 0 ? at0[i] : at1[i];
-        if (!l.active[p]) continue;
-        const int tx = static_cast<int>(std::lround(static_cast<float>(px) + fraction * l.dx[p]));
-        const int ty = static_cast<int>(std::lround(static_cast<float>(py) + fraction * l.dy[p]));
-        if (tx < 0 || tx >= width || ty < 0 || ty >= height) continue;
-        sil[static_cast<size_t>(ty) * static_cast<size_t>(width) + static_cast<size_t>(tx)] = 1;
-        landed = true;
-      }
-      if (!landed) sil[p] = 1;
-    }
-  }
-
-  result.mask.assign(pixels, 0);
-  result.holes = hole;
-  std::vector<float>& rerender = result.frame.addChannel("rerender.Y");
-  size_t masked = 0;
-  for (size_t t = 0; t < pixels; ++t) {
-    result.holePixels += hole[t];
-    result.silhouettePixels += sil[t];
-    result.untrackedPixels += untracked[t];
-    result.illuminationPixels += illumination[t];
-    result.mask[t] = hole[t] || sil[t] || untracked[t] || illumination[t];
-    rerender[t] = result.mask[t];
-    masked += result.mask[t];
-  }
-  result.rerenderRate = static_cast<double>(masked) / static_cast<double>(pixels);
-  const char* rgb[3] = {"R", "G", "B"};
-  for (size_t c = 0; c < 3; ++c) result.frame.addChannel(rgb[c]) = beauty[c];
-  if (!settings.colorOnly) {
-    for (size_t i = 0; i < layers.size(); ++i) {
-      for (size_t c = 0; c < 3; ++c) result.frame.addChannel(layers[i].color[c]) = outcomes[i].color[c];
-      result.frame.addChannel(layers[i].depth) = outcomes[i].depth;
-    }
-  }
-  char rate[32];
-  std::snprintf(rate, sizeof rate, "%.6f", result.rerenderRate);
-  result.frame.attributes()["pathfarm.rerender_rate"] = rate;
-  result.frame.attributes()["pathfarm.interpolation_fraction"] = std::to_string(s);
-  if (settings.colorOnly) {
-    result.frame.attributes().erase("pathfarm.decomposition");
-    result.frame.attributes()["pathfarm.interpolation_mode"] = "color-only";
-  }
-  if (!settings.colorOnly) result.frame.attributes()["pathfarm.interpolation_mode"] = "per-component";
+  addRerenderMask(result, causes);
+  addInterpolatedFrame(result.frame, beauty, layers, outcomes, s, result.rerenderRate, settings);
   return result;
 }
 

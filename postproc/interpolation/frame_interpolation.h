@@ -57,59 +57,12 @@
 // R, G, B, frame-wide `depth.Z` and the frame-wide motion (ComponentMotions key ""); its
 // output has no component channels and no `pathfarm.decomposition` attribute.
 #include <cstdint>
-#include <map>
-#include <string>
-#include <utility>
 #include <vector>
 
 #include "image/frame_image.h"
-#include "postproc/flow/optical_flow.h"
-#include "postproc/filters/warp.h"
+#include "postproc/interpolation/component_motion.h"
 
 namespace pathfarm {
-
-// One layer's motion between the keyframes. forward: pixel p of K0 is at p + forward(p) in
-// K1; backward: pixel p of K1 is at p + backward(p) in K0. `valid` (empty: everywhere)
-// marks where the motion holds.
-// irradianceForward/irradianceBackward: the same for the component's irradiance (its optical
-// flow between the keyframes, addIrradianceFlow), used when hasIrradianceMotion; their
-// `valid` (empty: everywhere) marks where the flow holds, elsewhere the primary motion is used.
-struct ComponentMotion {
-  ComponentMotion() = default;
-  ComponentMotion(MotionField primaryForward, MotionField primaryBackward)
-      : forward(std::move(primaryForward)), backward(std::move(primaryBackward)) {}
-
-  MotionField forward;
-  MotionField backward;
-  MotionField irradianceForward;
-  MotionField irradianceBackward;
-  bool hasIrradianceMotion = false;
-};
-
-// Per component name; "" is the frame-wide primary motion (the color-only baseline).
-struct ComponentMotions {
-  std::map<std::string, ComponentMotion> components;
-};
-
-// Chains the per-frame motions of consecutive rendered frames K0 = frames.front() ..
-// K1 = frames.back(): forward p -> p + m_0(p) -> q + m_1(q) -> ... along `<c>.motion`,
-// backward along `<c>.motion_back` from K1, with bilinear lookups of the motion (nearest for
-// `<c>.motion_valid.Y`). Valid where every link is valid and every position is inside the
-// image. Produces every component of the frames' decomposition and "" from the frame-wide
-// `motion`/`motion_back`. Throws std::invalid_argument for fewer than two frames,
-// mismatched sizes or decompositions, missing motion channels or non-finite motion.
-ComponentMotions concatenatePrimaryMotion(const std::vector<FrameImage>& frames);
-
-// Adds the irradiance motion of every component of `motions` but "" (the frame-wide motion):
-// the optical flow of `<c>.irradiance.R/G/B` from k0 to k1 and from k1 to k0 with
-// bootstrappedFlow (postproc/flow/optical_flow.h) in the log domain (settings.logDomain is
-// forced on), bootstrapped by the component's primary motion forward/backward (0 where that
-// is invalid). The flow is valid where p + flow(p) is inside the image. Sets
-// hasIrradianceMotion. Throws std::invalid_argument for mismatched sizes or decompositions,
-// missing irradiance channels, non-finite values or a component of `motions` the keyframes
-// do not have.
-void addIrradianceFlow(ComponentMotions& motions, const FrameImage& k0, const FrameImage& k1,
-                       const FlowSettings& settings);
 
 struct InterpolationSettings {
   bool colorOnly = false;         // the baseline: beauty along the frame-wide motion

@@ -7,17 +7,16 @@
 // a real difference, and such a region is left exactly as it was; a statistic that only
 // grazes its threshold flags thin and scattered pixels, which vanish.
 #include <algorithm>
-#include <cstddef>
 #include <cstdint>
 #include <vector>
 
+#include "postproc/interpolation/flag_regions.h"
 #include "postproc/interpolation/window_sums.h"
 
 namespace pathfarm {
 
 inline std::vector<uint8_t> solidRegions(const std::vector<uint8_t>& mask, int width, int height, int radius) {
   if (radius <= 0) return mask;
-  const auto pixel = [&](int x, int y) { return static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x); };
   // Window sums count the flagged pixels of each square inside the frame; the square is
   // flagged throughout when the count equals its area inside the frame.
   const auto inside = [&](int x, int y) {
@@ -26,14 +25,9 @@ inline std::vector<uint8_t> solidRegions(const std::vector<uint8_t>& mask, int w
     return static_cast<double>((x1 - x0) * (y1 - y0));
   };
   const WindowSums flagged(std::vector<double>(mask.begin(), mask.end()), width, height);
-  std::vector<double> centres(mask.size(), 0.0);
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) centres[pixel(x, y)] = flagged.around(x, y, radius) == inside(x, y) ? 1.0 : 0.0;
-  const WindowSums solid(centres, width, height);
-  std::vector<uint8_t> kept(mask.size(), 0);
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) kept[pixel(x, y)] = solid.around(x, y, radius) > 0 ? 1 : 0;
-  return kept;
+  const std::vector<uint8_t> centres =
+      pixelsWhere(width, height, [&](int x, int y) { return flagged.around(x, y, radius) == inside(x, y); });
+  return dilated(centres, width, height, radius);
 }
 
 }  // namespace pathfarm

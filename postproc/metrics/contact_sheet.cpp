@@ -14,11 +14,6 @@ constexpr int kPanels = 5;
 
 float srgbToLinear(float v) { return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f); }
 
-const std::vector<float>& channelOf(const FrameImage& frame, const char* name) {
-  if (!frame.hasChannel(name)) throw std::invalid_argument(std::string("contact sheet: a frame has no channel ") + name);
-  return frame.channel(name);
-}
-
 // One panel: value(c, x, y) for the panel's pixel (x, y) at full resolution, box-averaged
 // over factor x factor pixels, written at (left, top) of the sheet.
 template <class Value>
@@ -55,7 +50,7 @@ FrameImage contactSheet(const std::vector<ContactSheetRow>& rows, const ContactS
       if (frame == nullptr || frame->width() != width || frame->height() != height)
         throw std::invalid_argument("contact sheet: every frame must exist and be " + std::to_string(width) + "x" +
                                     std::to_string(height));
-      for (const char* c : kRgb) channelOf(*frame, c);
+      for (const char* c : kRgb) channelOf(*frame, c, "contact sheet: a frame");
     }
   const int factor = std::max(1, (width + settings.maxPanelWidth - 1) / settings.maxPanelWidth);
   const int panelWidth = width / factor, panelHeight = height / factor;

@@ -61,11 +61,6 @@ void checkSameSize(const FrameImage& a, const FrameImage& b) {
                                 std::to_string(b.height()));
 }
 
-const std::vector<float>& channelOf(const FrameImage& frame, const std::string& name) {
-  if (!frame.hasChannel(name)) throw std::invalid_argument("missing channel \"" + name + "\"");
-  return frame.channel(name);
-}
-
 // Calls visit(p) for every pixel index p inside the crop.
 template <class Visit>
 void forEachPixel(const Crop& crop, int width, Visit visit) {
@@ -126,7 +121,7 @@ std::vector<std::string> layerChannels(const FrameImage& frame, const std::strin
     for (const std::string& name : frame.channelNames())
       if (name.compare(0, prefix.size(), prefix) == 0) names.push_back(name);
   }
-  for (const std::string& name : names) channelOf(frame, name);
+  for (const std::string& name : names) channelOf(frame, name, "the frame");
   if (names.empty()) throw std::invalid_argument("the frame has no layer \"" + layer + "\"");
   return names;
 }
@@ -142,8 +137,8 @@ ImageMetrics compareImages(const FrameImage& image, const FrameImage& reference,
   Sums sums;
   PixelErrors pixels{std::vector<double>(image.pixelCount(), 0.0), std::vector<int>(image.pixelCount(), 0)};
   for (const std::string& name : channels) {
-    const auto& x = channelOf(image, name);
-    const auto& r = channelOf(reference, name);
+    const auto& x = channelOf(image, name, "the image");
+    const auto& r = channelOf(reference, name, "the reference");
     forEachPixel(c, image.width(), [&](size_t p) {
       if (only && !(*only)[p]) return;
       const size_t before = sums.compared;
@@ -170,10 +165,10 @@ SequenceMetrics compareSequences(const std::vector<FrameImage>& images, const st
     checkSameSize(images[i], images[i - 1]);
     const Crop c = checkedCrop(images[i], crop);
     for (const std::string& name : channels) {
-      const auto& x = channelOf(images[i], name);
-      const auto& xBefore = channelOf(images[i - 1], name);
-      const auto& r = channelOf(references[i], name);
-      const auto& rBefore = channelOf(references[i - 1], name);
+      const auto& x = channelOf(images[i], name, "the image");
+      const auto& xBefore = channelOf(images[i - 1], name, "the image");
+      const auto& r = channelOf(references[i], name, "the reference");
+      const auto& rBefore = channelOf(references[i - 1], name, "the reference");
       forEachPixel(c, images[i].width(), [&](size_t p) {
         temporal.add(static_cast<double>(x[p]) - xBefore[p], static_cast<double>(r[p]) - rBefore[p]);
       });

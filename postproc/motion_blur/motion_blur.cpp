@@ -6,12 +6,11 @@
 #include <climits>
 #include <cmath>
 #include <cstdint>
-#include <queue>
-#include <utility>
 #include <limits>
 #include <queue>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "postproc/filters/decomposed_frame.h"
@@ -105,120 +104,128 @@ void inpaintMotion(std::vector<float>* planes[4], const std::vector<float>& vali
   }
 }
 
-}  // namespace
-
-FrameImage motionBlur(const FrameImage& frame, float exposure, const MotionBlurSettings& settings) {
-  if (!std::isfinite(exposure) || exposure < 0.0f)
-    throw std::invalid_argument("motion blur: the exposure must be finite and >= 0, got " + std::to_string(exposure));
-  if (settings.steps < 1) throw std::invalid_argument("motion blur: steps must be >= 1");
-  const int width = frame.width(), height = frame.height();
-  if (width <= 0 || height <= 0) throw std::invalid_argument("motion blur: the frame is empty");
-  const size_t pixels = frame.pixelCount();
-
+// The layers blurred on their own: every component, or the beauty without a decomposition.
+std::vector<BlurLayer> blurLayersOf(const std::vector<std::string>& components) {
   std::vector<BlurLayer> layers;
-  const std::vector<std::string> components = decompositionComponents(frame);
   if (components.empty()) layers.push_back(BlurLayer{{"R", "G", "B"}, "", "depth.Z"});
   for (const std::string& c : components)
     layers.push_back(BlurLayer{{c + ".color.R", c + ".color.G", c + ".color.B"}, c + ".", c + ".depth.Z"});
+  return layers;
+}
 
-  // Read and check everything before any work.
-  struct Input {
-    Planes values;
-    const std::vector<float>* depth = nullptr;
-    std::vector<float> fx, fy, bx, by;  // forward and backward motion, 0 where invalid
-  };
-  std::vector<Input> inputs(layers.size());
-  const bool centered = settings.shutter == Shutter::Centered;
-  for (size_t i = 0; i < layers.size(); ++i) {
-    Input& in = inputs[i];
-    in.values = Planes(width, height, 3);
-    for (size_t c = 0; c < 3; ++c) in.values.channels[c] = finiteChannel(frame, layers[i].color[c]);
-    in.depth = &finiteChannel(frame, layers[i].depth);
-    const std::string& pre = layers[i].prefix;
-    in.fx = finiteChannel(frame, pre + "motion.X");
-    in.fy = finiteChannel(frame, pre + "motion.Y");
-    if (centered) {
-      in.bx = finiteChannel(frame, pre + "motion_back.X");
-      in.by = finiteChannel(frame, pre + "motion_back.Y");
-    }
-    if (frame.hasChannel(pre + "motion_valid.Y")) {
-      // Undefined (specular) motion is inpainted from the component's own valid motion,
-      // or from the frame-wide primary motion where the component has none.
-      std::vector<float>* planes[4] = {&in.fx, &in.fy, &in.bx, &in.by};
-      const char* names[4] = {"motion.X", "motion.Y", "motion_back.X", "motion_back.Y"};
-      const std::vector<float>* fallback[4] = {};
-      for (int k = 0; k < 4; ++k)
-        if (!pre.empty() && frame.hasChannel(names[k])) fallback[k] = &finiteChannel(frame, names[k]);
-      inpaintMotion(planes, finiteChannel(frame, pre + "motion_valid.Y"), width, height, fallback);
+// A layer as the blur reads it.
+struct BlurInput {
+  Planes values;
+  const std::vector<float>* depth = nullptr;
+  std::vector<float> fx, fy, bx, by;  // forward and backward motion, 0 where invalid
+};
+
+// Reads and checks the layer's channels; the backward motion only for a centered shutter.
+BlurInput readBlurInput(const FrameImage& frame, const BlurLayer& layer, bool centered) {
+  const int width = frame.width(), height = frame.height();
+  BlurInput in;
+  in.values = Planes(width, height, 3);
+  for (size_t c = 0; c < 3; ++c) in.values.channels[c] = finiteChannel(frame, layer.color[c]);
+  in.depth = &finiteChannel(frame, layer.depth);
+  const std::string& pre = layer.prefix;
+  in.fx = finiteChannel(frame, pre + "motion.X");
+  in.fy = finiteChannel(frame, pre + "motion.Y");
+  if (centered) {
+    in.bx = finiteChannel(frame, pre + "motion_back.X");
+    in.by = finiteChannel(frame, pre + "motion_back.Y");
+  }
+  if (frame.hasChannel(pre + "motion_valid.Y")) {
+    // Undefined (specular) motion is inpainted from the component's own valid motion,
+    // or from the frame-wide primary motion where the component has none.
+    std::vector<float>* planes[4] = {&in.fx, &in.fy, &in.bx, &in.by};
+    const char* names[4] = {"motion.X", "motion.Y", "motion_back.X", "motion_back.Y"};
+    const std::vector<float>* fallback[4] = {};
+    for (int k = 0; k < 4; ++k)
+      if (!pre.empty() && frame.hasChannel(names[k])) fallback[k] = &finiteChannel(frame, names[k]);
+    inpaintMotion(planes, finiteChannel(frame, pre + "motion_valid.Y"), width, height, fallback);
+  }
+  return in;
+}
+
+// The background of every partly covered pixel of splat `r`: its own unmoved value where
+// that surface stays in place and was hidden by the depth test, else the fully covered
+// pixels, with the rest filled deepest surface first (what a moving surface uncovers).
+// `known` is 0 where no background was found.
+void findBackground(const BlurInput& in, const SplatSource& source, const SplatResult& r, float depthTolerance,
+                    Planes& background, std::vector<float>& backgroundDepth, std::vector<uint8_t>& known) {
+  for (size_t p = 0; p < known.size(); ++p) {
+    known[p] = 0;
+    const float own = (*in.depth)[p] > 0.0f ? (*in.depth)[p] : std::numeric_limits<float>::infinity();
+    if (source.dx[p] == 0.0f && source.dy[p] == 0.0f && r.covered[p] &&
+        !(own <= r.depth[p] * (1.0f + depthTolerance) + 1e-6f)) {
+      known[p] = 1;
+      backgroundDepth[p] = own;
+      for (size_t c = 0; c < 3; ++c) background.channels[c][p] = in.values.channels[c][p];
+    } else if (r.covered[p] && r.weight[p] >= 0.999f) {
+      known[p] = 1;
+      backgroundDepth[p] = r.depth[p];
+      for (size_t c = 0; c < 3; ++c) background.channels[c][p] = r.values.channels[c][p];
     }
   }
+  fillDeepestFirst(background, backgroundDepth, known);
+}
 
+// One layer splatted at each of the exposure's times and averaged.
+Planes blurLayer(const BlurInput& in, float exposure, const MotionBlurSettings& settings) {
+  const int width = in.values.width, height = in.values.height;
+  const size_t pixels = in.values.pixelCount();
+  const bool centered = settings.shutter == Shutter::Centered;
+  const int steps = settings.steps;
   // Every contribution counts (strongFootprint 0): the nearest surface at a pixel keeps its
   // footprint weight w and the rest, 1 - w, is composited from the background below, so
   // a splat of weight w is never renormalized to 1 (which gains energy) nor averaged with
   // the background it partly covers (which loses it). minCoverage only guards the division.
   const SplatSettings splat{settings.depthTolerance, 1e-6f, 0.0f};
-  const int steps = settings.steps;
-  std::vector<Planes> blurred(layers.size());
-  tbb::parallel_for(size_t(0), layers.size(), [&](size_t i) {
-    const Input& in = inputs[i];
-    std::vector<double> sum(3 * pixels, 0.0);
-    SplatSource source;
-    source.values = &in.values;
-    source.depth = in.depth;
-    source.dx.resize(pixels);
-    source.dy.resize(pixels);
-    Planes background(width, height, 3);
-    std::vector<float> backgroundDepth(pixels);
-    std::vector<uint8_t> known(pixels);
-    for (int k = 0; k < steps; ++k) {
-      const float u = (static_cast<float>(k) + 0.5f) / static_cast<float>(steps);
-      const float tau = centered ? exposure * (u - 0.5f) : exposure * u;
-      const bool back = tau < 0.0f;
-      const float scale = std::fabs(tau);
-      for (size_t p = 0; p < pixels; ++p) {
-        source.dx[p] = scale * (back ? in.bx[p] : in.fx[p]);
-        source.dy[p] = scale * (back ? in.by[p] : in.fy[p]);
-      }
-      const SplatResult r = forwardSplat(source, splat);
-      // The background of every partly covered pixel: its own unmoved value where that
-      // surface stays in place and was hidden by the depth test, else the fully covered
-      // pixels, with the rest filled deepest surface first (what a moving surface uncovers).
-      for (size_t p = 0; p < pixels; ++p) {
-        known[p] = 0;
-        const float own = (*in.depth)[p] > 0.0f ? (*in.depth)[p] : std::numeric_limits<float>::infinity();
-        if (source.dx[p] == 0.0f && source.dy[p] == 0.0f && r.covered[p] &&
-            !(own <= r.depth[p] * (1.0f + settings.depthTolerance) + 1e-6f)) {
-          known[p] = 1;
-          backgroundDepth[p] = own;
-          for (size_t c = 0; c < 3; ++c) background.channels[c][p] = in.values.channels[c][p];
-        } else if (r.covered[p] && r.weight[p] >= 0.999f) {
-          known[p] = 1;
-          backgroundDepth[p] = r.depth[p];
-          for (size_t c = 0; c < 3; ++c) background.channels[c][p] = r.values.channels[c][p];
-        }
-      }
-      fillDeepestFirst(background, backgroundDepth, known);
-      for (size_t c = 0; c < 3; ++c)
-        for (size_t p = 0; p < pixels; ++p) {
-          const float bg = known[p] ? background.channels[c][p] : in.values.channels[c][p];
-          const float w = r.covered[p] ? r.weight[p] : 0.0f;
-          // w >= 1: the normalized splat; w < 1: the kept contributions (w * normalized
-          // value = their weighted sum) plus (1 - w) of the background.
-          sum[c * pixels + p] += w >= 1.0f ? r.values.channels[c][p] : w * r.values.channels[c][p] + (1.0f - w) * bg;
-        }
+  std::vector<double> sum(3 * pixels, 0.0);
+  SplatSource source;
+  source.values = &in.values;
+  source.depth = in.depth;
+  source.dx.resize(pixels);
+  source.dy.resize(pixels);
+  Planes background(width, height, 3);
+  std::vector<float> backgroundDepth(pixels);
+  std::vector<uint8_t> known(pixels);
+  for (int k = 0; k < steps; ++k) {
+    const float u = (static_cast<float>(k) + 0.5f) / static_cast<float>(steps);
+    const float tau = centered ? exposure * (u - 0.5f) : exposure * u;
+    const bool back = tau < 0.0f;
+    const float scale = std::fabs(tau);
+    for (size_t p = 0; p < pixels; ++p) {
+      source.dx[p] = scale * (back ? in.bx[p] : in.fx[p]);
+      source.dy[p] = scale * (back ? in.by[p] : in.fy[p]);
     }
-    blurred[i] = Planes(width, height, 3);
+    const SplatResult r = forwardSplat(source, splat);
+    findBackground(in, source, r, settings.depthTolerance, background, backgroundDepth, known);
     for (size_t c = 0; c < 3; ++c)
-      for (size_t p = 0; p < pixels; ++p)
-        blurred[i].channels[c][p] = static_cast<float>(sum[c * pixels + p] / static_cast<double>(steps));
-  });
+      for (size_t p = 0; p < pixels; ++p) {
+        const float bg = known[p] ? background.channels[c][p] : in.values.channels[c][p];
+        const float w = r.covered[p] ? r.weight[p] : 0.0f;
+        // w >= 1: the normalized splat; w < 1: the kept contributions (w * normalized
+        // value = their weighted sum) plus (1 - w) of the background.
+        sum[c * pixels + p] += w >= 1.0f ? r.values.channels[c][p] : w * r.values.channels[c][p] + (1.0f - w) * bg;
+      }
+  }
+  Planes blurred(width, height, 3);
+  for (size_t c = 0; c < 3; ++c)
+    for (size_t p = 0; p < pixels; ++p)
+      blurred.channels[c][p] = static_cast<float>(sum[c * pixels + p] / static_cast<double>(steps));
+  return blurred;
+}
 
+// `frame` with the blurred layers' colors and their sum as the beauty R, G, B.
+FrameImage withBlurredLayers(const FrameImage& frame, const std::vector<BlurLayer>& layers,
+                             const std::vector<Planes>& blurred, bool decomposed) {
+  const size_t pixels = frame.pixelCount();
   FrameImage out = frame;
   const char* rgb[3] = {"R", "G", "B"};
   for (size_t c = 0; c < 3; ++c) {
     std::vector<float>& beauty = out.addChannel(rgb[c]);
-    if (components.empty()) {
+    if (!decomposed) {
       beauty = blurred[0].channels[c];
       continue;
     }
@@ -228,6 +235,28 @@ FrameImage motionBlur(const FrameImage& frame, float exposure, const MotionBlurS
       for (size_t p = 0; p < pixels; ++p) beauty[p] += blurred[i].channels[c][p];
     }
   }
+  return out;
+}
+
+}  // namespace
+
+FrameImage motionBlur(const FrameImage& frame, float exposure, const MotionBlurSettings& settings) {
+  if (!std::isfinite(exposure) || exposure < 0.0f)
+    throw std::invalid_argument("motion blur: the exposure must be finite and >= 0, got " + std::to_string(exposure));
+  if (settings.steps < 1) throw std::invalid_argument("motion blur: steps must be >= 1");
+  if (frame.width() <= 0 || frame.height() <= 0) throw std::invalid_argument("motion blur: the frame is empty");
+
+  const std::vector<std::string> components = decompositionComponents(frame);
+  const std::vector<BlurLayer> layers = blurLayersOf(components);
+  // Read and check everything before any work.
+  std::vector<BlurInput> inputs(layers.size());
+  for (size_t i = 0; i < layers.size(); ++i)
+    inputs[i] = readBlurInput(frame, layers[i], settings.shutter == Shutter::Centered);
+
+  std::vector<Planes> blurred(layers.size());
+  tbb::parallel_for(size_t(0), layers.size(), [&](size_t i) { blurred[i] = blurLayer(inputs[i], exposure, settings); });
+
+  FrameImage out = withBlurredLayers(frame, layers, blurred, !components.empty());
   out.attributes()["pathfarm.motion_blur"] = std::to_string(exposure);
   return out;
 }
