@@ -17,8 +17,8 @@
 #include <vector>
 
 #include "bench/median.h"
-#include "scheduler/farm_client.h"
-#include "scheduler/local_farm.h"
+#include "client/farm_client.h"
+#include "client/local_farm.h"
 #include "scheduler/scheduler_server.h"
 #include "worker/worker.h"
 
@@ -78,7 +78,7 @@ int main(int argc, char** argv) {
     FarmClient client(scheduler.address(), options.token);
     ShotSpec spec;
     spec.set_name("dispatch");
-    spec.set_pipeline("noop");
+    spec.set_pipeline(farm::PIPELINE_NOOP);
     spec.set_noop_tasks(tasks);
     const auto start = std::chrono::steady_clock::now();
     const int64_t id = client.submit(spec);

@@ -3,7 +3,7 @@
 # UndefinedBehaviorSanitizer, and runs each from its committed seed corpus (fuzz/corpus/NAME):
 #   gltf_loader  .gltf/.glb files                      renderer/scene/gltf
 #   scene_json   scene JSON files                      renderer/scene/scene_loader.h parseScene
-#   shot_json    shot files                            scheduler/shot_file.h parseShotFile
+#   shot_json    shot files                            client/shot_preparation.h preparedShot
 #   mesh_readers OBJ and PLY files ("ply" magic: PLY)  renderer/scene/mesh_io.h parseObj, parsePly
 #   exr_chunk    EXR chunks as workers fetch them      image/exr_io.h decodeExr, scanExrFile, readExrRows
 #   rpc_handlers sequences of RPC calls and requests   scheduler/*_service.cpp over gRPC in-process
@@ -78,7 +78,7 @@ scene=("${gltf[@]}" "${meshes[@]}" "${exr[@]}"
        renderer/scene/scene_loader.cpp renderer/scene/environment_parser.cpp renderer/scene/light_parser.cpp
        renderer/scene/material_parser.cpp renderer/scene/transform_parser.cpp renderer/scene/mesh.cpp
        renderer/lights/environment_light.cpp renderer/sampling/piecewise_constant.cpp)
-shot=("${scene[@]}" scheduler/shot_file.cpp scheduler/planner.cpp scheduler/quoted_text.cpp
+shot=("${scene[@]}" client/shot_file.cpp client/shot_preparation.cpp contract/pipeline.cpp scheduler/planner.cpp scheduler/quoted_text.cpp
       postproc/poisson/window_blend.cpp
       renderer/decomposition/decomposition.cpp renderer/decomposition/lpe_automaton.cpp
       "$generated/pathfarm/shot.pb.cc" "$generated/pathfarm/chunk.pb.cc")
@@ -89,7 +89,7 @@ rpc=(fuzz/rpc_handlers_fuzzer.cpp fuzz/rpc_fuzz_calls.cpp
      scheduler/service_chunks.cpp scheduler/worker_sessions.cpp scheduler/farm_state.cpp
      scheduler/farm_state_follow_ups.cpp scheduler/farm_state_queries.cpp scheduler/farm_state_requeue.cpp
      scheduler/farm_state_retention.cpp scheduler/farm_state_sessions.cpp scheduler/farm_state_submit.cpp scheduler/schema.cpp scheduler/sqlite_db.cpp
-     scheduler/planner.cpp scheduler/quoted_text.cpp scheduler/farm_names.cpp scheduler/output_check.cpp
+     contract/pipeline.cpp scheduler/planner.cpp scheduler/quoted_text.cpp scheduler/farm_names.cpp scheduler/output_check.cpp
      scheduler/shot_report.cpp proto/wire/chunk_store.cpp proto/wire/chunk_transfer.cpp proto/wire/connection.cpp proto/wire/input_files.cpp
      proto/wire/sha256.cpp proto/wire/tls.cpp)
 sources_of() {

@@ -16,7 +16,7 @@
 #include "bench/embree_rays.h"
 #include "bench/median.h"
 #include "renderer/accel/frame_geometry.h"
-#include "renderer/decomposition/auto_decomposition.h"
+#include "renderer/setup/auto_decomposition.h"
 #include "renderer/integrators/frame_renderer.h"
 #include "renderer/scene/scene_loader.h"
 

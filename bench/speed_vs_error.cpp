@@ -22,9 +22,9 @@
 #include "image/exr_io.h"
 #include "postproc/metrics/image_metrics.h"
 #include "renderer/scene/scene_loader.h"
-#include "scheduler/child_process.h"
-#include "scheduler/local_farm.h"
-#include "scheduler/shot_file.h"
+#include "client/child_process.h"
+#include "client/local_farm.h"
+#include "client/shot_preparation.h"
 
 namespace pathfarm::bench {
 namespace {
@@ -62,7 +62,7 @@ Result runShot(farm::LocalFarm& farm, const farm::ShotSpec& spec, const std::fil
   std::vector<FrameImage> frames;
   for (const int64_t frame : spec.evaluation_frames()) frames.push_back(readExr(folder / farm::frameFileName(frame)));
   const SequenceMetrics metrics = compareSequences(frames, references, {"R", "G", "B"});
-  Result result{spec.pipeline(), spec.spp(), report.core_seconds_per_frame(), metrics.meanRelMse,
+  Result result{std::string(farm::pipelineName(spec.pipeline())), spec.spp(), report.core_seconds_per_frame(), metrics.meanRelMse,
                 metrics.temporalRelMse, report.rerender_rate(), report.keyframe_interval()};
   std::fprintf(stderr, "%-4s %4d spp: %.3f core-s/frame, relMSE %.5f, temporal %.5f, re-render %.1f%%\n",
                result.method.c_str(), result.spp, result.coreSecondsPerFrame, result.relMse, result.temporal,
@@ -158,7 +158,7 @@ int run(const Options& options) {
   for (const int spp : options.ptSpp) {
     farm::ShotSpec spec = base;
     spec.set_name("pt-" + std::to_string(spp));
-    spec.set_pipeline("pt");
+    spec.set_pipeline(farm::PIPELINE_PT);
     spec.set_decompose("none");
     spec.set_spp(spp);
     spec.set_frame_start(evaluation.front());
@@ -169,18 +169,19 @@ int run(const Options& options) {
   const auto baseline = std::find_if(pt.begin(), pt.end(), [&](const Result& r) { return r.spp == options.spp; });
   if (baseline == pt.end()) throw std::runtime_error("--pt-spp must include the baseline --spp");
 
-  std::vector<std::pair<std::string, int>> runs = {{"d", options.spp}, {"du", options.spp}, {"di", options.spp},
-                                                   {"dui", options.spp}};
-  for (const int spp : options.duiSpp) runs.emplace_back("dui", spp);
+  std::vector<std::pair<farm::Pipeline, int>> runs = {
+      {farm::PIPELINE_D, options.spp}, {farm::PIPELINE_DU, options.spp}, {farm::PIPELINE_DI, options.spp},
+      {farm::PIPELINE_DUI, options.spp}};
+  for (const int spp : options.duiSpp) runs.emplace_back(farm::PIPELINE_DUI, spp);
   std::vector<Result> filtered;
   for (const auto& [pipeline, spp] : runs) {
     farm::ShotSpec spec = base;
-    spec.set_name(pipeline + "-" + std::to_string(spp));
+    spec.set_name(std::string(farm::pipelineName(pipeline)) + "-" + std::to_string(spp));
     spec.set_pipeline(pipeline);
     spec.set_spp(spp);
     spec.set_reference_spp(0);
     spec.set_baseline_core_seconds(baseline->coreSecondsPerFrame);  // measured above; not again
-    if (pipeline == "d" || pipeline == "du") spec.set_keyframe_interval(1);
+    if (!farm::stagesOf(pipeline).interpolate) spec.set_keyframe_interval(1);
     filtered.push_back(runShot(farm, spec, out / spec.name(), references));
   }
   farm.stop();

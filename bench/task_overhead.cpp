@@ -16,7 +16,7 @@
 
 #include "bench/bench_support.h"
 #include "bench/median.h"
-#include "scheduler/scene_upload.h"
+#include "client/scene_upload.h"
 #include "worker/task_runner.h"
 
 namespace {
@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
   spec.set_height(height);
   spec.set_spp(spp);
   spec.set_max_depth(8);
-  spec.set_pipeline("pt");
+  spec.set_pipeline(farm::PIPELINE_PT);
   const UploadedScene files = uploaded ? upload(spec) : UploadedScene{};
   const fs::path cache = fs::temp_directory_path() / "pathfarm_task_overhead";
 

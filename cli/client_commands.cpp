@@ -11,9 +11,9 @@
 #include "cli/tls_options.h"
 #include "proto/wire/connection.h"
 #include "renderer/scene/json_node.h"
-#include "scheduler/farm_client.h"
-#include "scheduler/scene_upload.h"
-#include "scheduler/shot_file.h"
+#include "client/farm_client.h"
+#include "client/scene_upload.h"
+#include "client/shot_preparation.h"
 #include "scheduler/shot_report.h"
 
 namespace pathfarm {
@@ -92,13 +92,14 @@ std::vector<Command> addClientCommands(CLI::App& app) {
                     "upload nothing: workers read the scene at its absolute path on storage they share with you");
       },
       [](farm::FarmClient& client, const ClientArguments& a) {
-        farm::ShotSpec spec = farm::loadShotFile(a.shotFile);  // validated before anything is queued
+        const farm::ShotFile file = farm::ShotFile::load(a.shotFile);
+        farm::ShotSpec spec = farm::preparedShot(file);  // validated before anything is queued
         if (!a.sharedPaths) {
           const farm::UploadSummary sent = farm::uploadSceneInputs(client, spec);
           spdlog::info("scene: {} files, {:.1f} MB; sent {} ({:.1f} MB), the farm had the rest", sent.files,
                        static_cast<double>(sent.bytes) / 1e6, sent.filesSent, static_cast<double>(sent.bytesSent) / 1e6);
         }
-        spec = withChosenPipeline(client, a.shotFile, spec, std::filesystem::path(spec.output()) / "probe", a.submitKey);
+        spec = withChosenPipeline(client, file, spec, std::filesystem::path(spec.output()) / "probe", a.submitKey);
         std::printf("%lld\n", static_cast<long long>(client.submit(spec, a.submitKey)));
         return kExitOk;
       });

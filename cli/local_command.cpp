@@ -7,13 +7,14 @@
 #include <spdlog/spdlog.h>
 
 #include <memory>
+#include <optional>
 
 #include "cli/command.h"
 #include "cli/shot_size_options.h"
 #include "cli/shot_progress.h"
 #include "renderer/scene/json_node.h"
-#include "scheduler/local_farm.h"
-#include "scheduler/shot_file.h"
+#include "client/local_farm.h"
+#include "client/shot_preparation.h"
 #include "scheduler/shot_report.h"
 
 namespace pathfarm {
@@ -50,9 +51,11 @@ void removeIntermediateData(const std::filesystem::path& farmFolder) {
 }
 
 int runLocal(const LocalArguments& arguments) {
+  std::optional<farm::ShotFile> file;
   farm::ShotSpec spec;
   try {
-    spec = farm::loadShotFile(arguments.shotFile);
+    file = farm::ShotFile::load(arguments.shotFile);
+    spec = farm::preparedShot(*file);
   } catch (const SceneError& e) {
     spdlog::error("{}", e.what());
     return kExitBadInput;
@@ -62,7 +65,7 @@ int runLocal(const LocalArguments& arguments) {
     farm::LocalFarm farm({out / "farm", arguments.workers, arguments.threads, farm::currentExecutable(),
                           arguments.farm, arguments.limits, arguments.http});
     farm::FarmClient client = farm.client();
-    spec = withChosenPipeline(client, arguments.shotFile, spec, out / "probe");
+    spec = withChosenPipeline(client, *file, spec, out / "probe");
     const int64_t id = client.submit(spec);
     spdlog::info("shot {} submitted: {} frames {}..{} at {}x{}, {} spp, {}-pixel tiles", id, spec.name(),
                  spec.frame_start(), spec.frame_end(), spec.width(), spec.height(), spec.spp(), spec.tile());

@@ -11,12 +11,10 @@
 #include "cli/progress_bar.h"
 #include "image/exr_io.h"
 #include "image/png_preview.h"
-#include "renderer/bidirectional/bdpt_frame_renderer.h"
-#include "renderer/decomposition/auto_decomposition.h"
-#include "renderer/integrators/frame_renderer.h"
-#include "renderer/integrators/gradient_frame_renderer.h"
 #include "renderer/metropolis/metropolis_renderer.h"
 #include "renderer/scene/scene_loader.h"
+#include "renderer/setup/auto_decomposition.h"
+#include "renderer/setup/integrator_factory.h"
 
 namespace pathfarm {
 namespace {
@@ -44,8 +42,6 @@ struct RenderOptions {
   std::optional<double> delta;
   bool tuneDelta = false;
 };
-
-bool isMetropolis(const std::string& integrator) { return integrator == "pssmlt" || integrator == "mlt" || integrator == "tmlt"; }
 
 class UsageError : public std::runtime_error {
  public:
@@ -139,77 +135,96 @@ void renderMetropolisWindows(const RenderOptions& options, const Scene& scene, c
   }
 }
 
-int runRender(const RenderOptions& options) {
+// What the options ask to render: the scene, its frames and the settings.
+struct RenderJob {
   Scene scene;
   RenderSettings settings;
   std::pair<int64_t, int64_t> frames;
+};
+
+// Throws SceneError, UsageError, or std::invalid_argument for a decomposition.
+RenderJob renderJobOf(const RenderOptions& options) {
+  RenderJob job;
+  job.scene = loadScene(options.scene);
+  job.settings = RenderSettings::defaultsOf(job.scene);
+  job.frames = options.frames.empty()
+                   ? std::pair<int64_t, int64_t>{job.scene.defaults.frameStart, job.scene.defaults.frameEnd}
+                   : parseFrames(options.frames);
+  if (!options.resolution.empty()) std::tie(job.settings.width, job.settings.height) = parseResolution(options.resolution);
   try {
-    scene = loadScene(options.scene);
-    settings = RenderSettings::defaultsOf(scene);
-    frames = options.frames.empty() ? std::pair<int64_t, int64_t>{scene.defaults.frameStart, scene.defaults.frameEnd}
-                                    : parseFrames(options.frames);
-    if (!options.resolution.empty()) std::tie(settings.width, settings.height) = parseResolution(options.resolution);
-  } catch (const SceneError& e) {
-    spdlog::error("{}", e.what());
-    return kExitBadInput;
-  } catch (const UsageError& e) {
-    spdlog::error("{}", e.what());
-    return kExitBadInput;
-  }
-  try {
-    settings.decomposition = decompositionFor(scene, options.decompose);
+    job.settings.decomposition = decompositionFor(job.scene, options.decompose);
   } catch (const std::invalid_argument& e) {
-    spdlog::error("--decompose: {}", e.what());
-    return kExitBadInput;
+    throw UsageError(std::string("--decompose: ") + e.what());
   }
-  const bool metropolis = isMetropolis(options.integrator);
-  const bool gradient = options.integrator == "gpt" || options.integrator == "tgpt";
-  const bool bidirectional = options.integrator == "bdpt";
-  if (options.integrator != "pt" && options.decompose != "none") {
-    spdlog::error("--integrator {} renders no path-space components: leave out --decompose", options.integrator);
-    return kExitBadInput;
-  }
-  if (!gradient && (options.batches != 1 || options.noMotion)) {
-    spdlog::error("--batches and --no-motion apply to --integrator gpt and tgpt only");
-    return kExitBadInput;
-  }
-  if (options.integrator != "tgpt" && options.mixedEvery != GradientSettings{}.mixedEvery) {
-    spdlog::error("--mixed-every applies to --integrator tgpt only");
-    return kExitBadInput;
-  }
+  if (options.spp) job.settings.spp = *options.spp;
+  if (options.maxDepth) job.settings.maxDepth = *options.maxDepth;
+  job.settings.threads = options.threads;
+  job.settings.tileSize = options.tileSize;
+  return job;
+}
+
+// Options that only some integrators take, refused for the others with UsageError.
+void checkIntegratorOptions(const RenderOptions& options, const IntegratorTraits& integrator) {
+  const std::string name(integrator.name);
+  if (!integrator.decomposes && options.decompose != "none")
+    throw UsageError("--integrator " + name + " renders no path-space components: leave out --decompose");
+  if (!integrator.gradient && (options.batches != 1 || options.noMotion))
+    throw UsageError("--batches and --no-motion apply to --integrator gpt and tgpt only");
+  if (!(integrator.gradient && integrator.temporal) && options.mixedEvery != GradientSettings{}.mixedEvery)
+    throw UsageError("--mixed-every applies to --integrator tgpt only");
   const bool metropolisOptions = options.window != 0 || options.mutationsPerPixel || options.chains ||
                                  options.chainsPerBlock || options.bootstrap || options.delta || options.tuneDelta;
-  if (!metropolis && metropolisOptions) {
-    spdlog::error("--window, --mutations-per-pixel, --chains, --chains-per-block, --bootstrap, --delta and "
-                  "--tune-delta apply to --integrator pssmlt, mlt and tmlt only");
-    return kExitBadInput;
-  }
-  if (options.integrator == "mlt" && options.window > 1) {
-    spdlog::error("--integrator mlt renders frame by frame (windows of one frame); tmlt and pssmlt take --window");
-    return kExitBadInput;
-  }
-  if (metropolis && options.spp) {
-    spdlog::error("--integrator {} takes --mutations-per-pixel (and --bootstrap), not --spp", options.integrator);
-    return kExitBadInput;
-  }
-  const GradientSettings gradientSettings{options.integrator == "tgpt", !options.noMotion, options.batches,
-                                          options.mixedEvery};
-  if (options.spp) settings.spp = *options.spp;
-  if (options.maxDepth) settings.maxDepth = *options.maxDepth;
-  settings.threads = options.threads;
-  settings.tileSize = options.tileSize;
-  MetropolisSettings metropolisSettings;
-  if (metropolis) {
-    try {
-      metropolisSettings = metropolisSettingsOf(options, scene, settings);
-      metropolisSettings.validate();
-      WindowTime::of(scene, {frames.first, 1});  // a zero-length shutter is bad input, refused before any work
-    } catch (const std::invalid_argument& e) {
-      spdlog::error("{}", e.what());
-      return kExitBadInput;
-    }
-  }
+  if (!integrator.rendersWindows && metropolisOptions)
+    throw UsageError("--window, --mutations-per-pixel, --chains, --chains-per-block, --bootstrap, --delta and "
+                     "--tune-delta apply to --integrator pssmlt, mlt and tmlt only");
+  if (integrator.rendersWindows && options.spp)
+    throw UsageError("--integrator " + name + " takes --mutations-per-pixel (and --bootstrap), not --spp");
+}
 
+// The Metropolis integrators' settings; throws std::invalid_argument for bad ones.
+MetropolisSettings checkedMetropolisSettings(const RenderOptions& options, const RenderJob& job) {
+  MetropolisSettings settings = metropolisSettingsOf(options, job.scene, job.settings);
+  if (settings.method == MetropolisMethod::PathSpace && options.window > 1)
+    throw std::invalid_argument("--integrator mlt renders frame by frame (windows of one frame); tmlt and pssmlt take "
+                                "--window");
+  settings.validate();
+  WindowTime::of(job.scene, {job.frames.first, 1});  // a zero-length shutter is bad input, refused before any work
+  return settings;
+}
+
+void renderFrames(const RenderOptions& options, const RenderJob& job) {
+  const GradientSettings gradient{false, !options.noMotion, options.batches, options.mixedEvery};
+  const std::unique_ptr<FrameIntegrator> integrator =
+      makeFrameIntegrator(options.integrator, job.scene, job.settings, gradient);
+  const std::filesystem::path out(options.out);
+  for (int64_t frame = job.frames.first; frame <= job.frames.second; ++frame) {
+    RenderStats stats;
+    FrameImage image;
+    {
+      ProgressBar bar("frame " + std::to_string(frame));
+      image = integrator->render(frame, [&](size_t done, size_t total) { bar.update(done, total); }, &stats);
+    }
+    writeFrame(options, frame, image);
+    spdlog::info("frame {}: {:.2f} s, {:.2f} M samples/s, {:.2f} M rays/s -> {}", frame, stats.seconds,
+                 stats.samples / stats.seconds * 1e-6, (stats.rays.closestHit + stats.rays.shadow) / stats.seconds * 1e-6,
+                 (out / frameName(frame, "exr")).string());
+    if (stats.nonFiniteSamples > 0)
+      spdlog::warn("frame {}: dropped {} non-finite samples of {}", frame, stats.nonFiniteSamples, stats.samples);
+  }
+}
+
+int runRender(const RenderOptions& options) {
+  RenderJob job;
+  MetropolisSettings metropolis;
+  const IntegratorTraits& integrator = integratorNamed(options.integrator);  // CLI11 checked the name
+  try {
+    job = renderJobOf(options);
+    checkIntegratorOptions(options, integrator);
+    if (integrator.rendersWindows) metropolis = checkedMetropolisSettings(options, job);
+  } catch (const std::exception& e) {  // SceneError, UsageError, std::invalid_argument: all the user's input
+    spdlog::error("{}", e.what());
+    return kExitBadInput;
+  }
   const std::filesystem::path out(options.out);
   std::error_code error;
   std::filesystem::create_directories(out, error);
@@ -217,48 +232,16 @@ int runRender(const RenderOptions& options) {
     spdlog::error("{}: cannot create the output folder: {}", out.string(), error.message());
     return kExitFailure;
   }
-  if (metropolis) {
-    spdlog::info("rendering {} frames {}..{} at {}x{} with {}, {} mutations per pixel, {} chains, max depth {}",
-                 options.scene, frames.first, frames.second, settings.width, settings.height, options.integrator,
-                 metropolisSettings.mutationsPerPixel, metropolisSettings.chains, settings.maxDepth);
-    try {
-      renderMetropolisWindows(options, scene, metropolisSettings, frames);
-    } catch (const std::exception& e) {
-      spdlog::error("{}", e.what());
-      return kExitFailure;
-    }
-    spdlog::info("EXR frames{} in {}", options.png ? " and PNG previews" : "", out.string());
-    return kExitOk;
-  }
-  spdlog::info("rendering {} frames {}..{} at {}x{}, {} spp, max depth {}", options.scene, frames.first,
-               frames.second, settings.width, settings.height, settings.spp, settings.maxDepth);
   try {
-    std::optional<FrameRenderer> renderer;
-    std::optional<GradientFrameRenderer> gradientRenderer;
-    std::optional<BdptFrameRenderer> bidirectionalRenderer;
-    if (gradient)
-      gradientRenderer.emplace(scene, settings, gradientSettings);
-    else if (bidirectional)
-      bidirectionalRenderer.emplace(scene, settings);
-    else
-      renderer.emplace(scene, settings);
-    for (int64_t frame = frames.first; frame <= frames.second; ++frame) {
-      RenderStats stats;
-      FrameImage image;
-      {
-        ProgressBar bar("frame " + std::to_string(frame));
-        const ProgressCallback update = [&](size_t done, size_t total) { bar.update(done, total); };
-        image = gradient        ? gradientRenderer->render(frame, update, &stats)
-                : bidirectional ? bidirectionalRenderer->render(frame, update, &stats)
-                                : renderer->render(frame, update, &stats);
-      }
-      const auto exr = out / frameName(frame, "exr");
-      writeFrame(options, frame, image);
-      spdlog::info("frame {}: {:.2f} s, {:.2f} M samples/s, {:.2f} M rays/s -> {}", frame, stats.seconds,
-                   stats.samples / stats.seconds * 1e-6,
-                   (stats.rays.closestHit + stats.rays.shadow) / stats.seconds * 1e-6, exr.string());
-      if (stats.nonFiniteSamples > 0)
-        spdlog::warn("frame {}: dropped {} non-finite samples of {}", frame, stats.nonFiniteSamples, stats.samples);
+    if (integrator.rendersWindows) {
+      spdlog::info("rendering {} frames {}..{} at {}x{} with {}, {} mutations per pixel, {} chains, max depth {}",
+                   options.scene, job.frames.first, job.frames.second, job.settings.width, job.settings.height,
+                   options.integrator, metropolis.mutationsPerPixel, metropolis.chains, job.settings.maxDepth);
+      renderMetropolisWindows(options, job.scene, metropolis, job.frames);
+    } else {
+      spdlog::info("rendering {} frames {}..{} at {}x{}, {} spp, max depth {}", options.scene, job.frames.first,
+                   job.frames.second, job.settings.width, job.settings.height, job.settings.spp, job.settings.maxDepth);
+      renderFrames(options, job);
     }
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
@@ -291,7 +274,7 @@ std::vector<Command> addRenderCommand(CLI::App& app) {
                      "(temporal gradient-domain); gpt and tgpt frames are reconstructed by `pathfarm poisson` "
                      "(docs/gradient-domain.md); pssmlt (primary-sample-space Metropolis over windows of frames, "
                      "docs/metropolis.md)")
-      ->check(CLI::IsMember({"pt", "bdpt", "gpt", "tgpt", "pssmlt", "mlt", "tmlt"}))
+      ->check(CLI::IsMember(integratorNames()))
       ->capture_default_str();
   render->add_option("--batches", options->batches,
                      "gpt/tgpt: sampling batches; after a uniform first batch the others follow the relative variance "

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <string>
 
-#include "scheduler/pipeline_probe.h"
+#include "client/pipeline_probe.h"
 
 namespace pathfarm {
 namespace {
@@ -55,11 +55,11 @@ void ShotProgress::update(const farm::ShotSummary& s) {
   }
 }
 
-farm::ShotSpec withChosenPipeline(farm::FarmClient& client, const std::filesystem::path& shotFile, farm::ShotSpec spec,
+farm::ShotSpec withChosenPipeline(farm::FarmClient& client, const farm::ShotFile& file, farm::ShotSpec spec,
                                   const std::filesystem::path& probeFolder, const std::string& submitKey) {
-  if (spec.pipeline() != "auto") return spec;
+  if (spec.pipeline() != farm::PIPELINE_AUTO) return spec;
   ShotProgress progress;
-  return farm::choosePipeline(client, shotFile, spec, probeFolder,
+  return farm::choosePipeline(client, file, spec, probeFolder,
                               [&](const farm::ShotSummary& summary) { progress.update(summary); }, submitKey);
 }
 

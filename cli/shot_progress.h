@@ -4,7 +4,8 @@
 #include <filesystem>
 
 #include "pathfarm/shot.pb.h"
-#include "scheduler/farm_client.h"
+#include "client/farm_client.h"
+#include "client/shot_file.h"
 
 namespace pathfarm {
 
@@ -21,9 +22,9 @@ class ShotProgress {
 // One line for listings: "12 cornell RUNNING 40/96 tasks ...".
 std::string describeShot(const farm::ShotSummary& summary);
 
-// `spec` with the pipeline its probe chose when it is "auto" (each probe shot's progress
-// shown, its frames written under probeFolder), else `spec` itself.
-farm::ShotSpec withChosenPipeline(farm::FarmClient& client, const std::filesystem::path& shotFile, farm::ShotSpec spec,
+// `spec` (of `file`) with the pipeline its probe chose when it is auto (each probe shot's
+// progress shown, its frames written under probeFolder), else `spec` itself.
+farm::ShotSpec withChosenPipeline(farm::FarmClient& client, const farm::ShotFile& file, farm::ShotSpec spec,
                                   const std::filesystem::path& probeFolder, const std::string& submitKey = "");
 
 }  // namespace pathfarm

@@ -342,7 +342,7 @@ void writeRpcSeeds(const std::filesystem::path& folder) {
 
   farm::SubmitRequest noop;
   noop.mutable_spec()->set_name("noop");
-  noop.mutable_spec()->set_pipeline("noop");
+  noop.mutable_spec()->set_pipeline(farm::PIPELINE_NOOP);
   noop.mutable_spec()->set_noop_tasks(3);
   noop.mutable_spec()->set_max_attempts(2);
   noop.set_submit_key("seed-noop");
@@ -372,7 +372,7 @@ void writeRpcSeeds(const std::filesystem::path& folder) {
   farm::SubmitRequest pt;
   farm::ShotSpec& spec = *pt.mutable_spec();
   spec.set_name("pt");
-  spec.set_pipeline("pt");
+  spec.set_pipeline(farm::PIPELINE_PT);
   spec.set_scene("scene.json");
   spec.set_frame_end(1);
   spec.set_width(16);

@@ -10,13 +10,13 @@
 
 #include "fuzz/fuzz_support.h"
 #include "postproc/poisson/screened_poisson.h"
-#include "renderer/decomposition/auto_decomposition.h"
+#include "renderer/setup/auto_decomposition.h"
 #include "renderer/scene/json_node.h"
-#include "scheduler/keyframe_probe.h"
-#include "scheduler/shot_file.h"
+#include "client/keyframe_probe.h"
+#include "client/shot_preparation.h"
 
-// Two steps of reading a shot render probes: "decompose": "auto" on a scene with glass,
-// and "keyframe_interval": "auto". Rendering is not reading, and the renderer (Embree,
+// Two steps of reading and preparing a shot render probes: "decompose": "auto" on a scene
+// with glass, and "keyframe_interval": "auto". Rendering is not reading, and the renderer (Embree,
 // TBB) compiled with sanitizers would cost minutes per CI run; these stand-ins keep
 // everything else, and choose what a probe could.
 namespace pathfarm {
@@ -49,8 +49,8 @@ KeyframeChoice chooseKeyframeInterval(const Scene&, const ShotSpec& spec, double
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   pathfarm::fuzz::silenceLogs();
   try {
-    const pathfarm::farm::ShotSpec spec = pathfarm::farm::parseShotFile(
-        pathfarm::fuzz::asText(data, size), pathfarm::fuzz::assetFolder() / "fuzz-input.shot.json");
+    const pathfarm::farm::ShotSpec spec = pathfarm::farm::preparedShot(pathfarm::farm::ShotFile::parse(
+        pathfarm::fuzz::asText(data, size), pathfarm::fuzz::assetFolder() / "fuzz-input.shot.json"));
     (void)spec;
   } catch (const pathfarm::SceneError& e) {
     pathfarm::fuzz::noteRefusal(e);

@@ -15,6 +15,14 @@
 namespace pathfarm::farm {
 namespace {
 
+PipelineFamily familyOf(Pipeline pipeline) {
+  try {
+    return traitsOf(pipeline).family;
+  } catch (const std::invalid_argument&) {
+    throw PlanError("pipeline " + std::to_string(pipeline) + " is not available (this farm runs: " + pipelineNames() + ")");
+  }
+}
+
 void checkRenderSpec(const ShotSpec& spec) {
   if (spec.frame_end() < spec.frame_start() || spec.frame_start() < 0)
     throw PlanError("frames: the range must satisfy 0 <= start <= end");
@@ -132,9 +140,9 @@ size_t push(PlannedTask planned, std::vector<PlannedTask>& plan) {
 
 void planFiltering(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
   checkRenderSpec(spec);
-  const PipelineStages stages = stagesOf(spec.pipeline());
+  const FilteringStages stages = stagesOf(spec.pipeline());
   if (spec.decompose().empty() || spec.decompose() == "none")
-    throw PlanError("pipeline \"" + spec.pipeline() + "\" filters path-space components: decompose must not be none");
+    throw PlanError("pipeline \"" + std::string(pipelineName(spec.pipeline())) + "\" filters path-space components: decompose must not be none");
   if (stages.upsample && (spec.width() % 2 != 0 || spec.height() % 2 != 0))
     throw PlanError("resolution: upsampling pipelines need an even width and height");
   if (spec.keyframe_interval() < 1) throw PlanError("keyframe_interval: must be at least 1");
@@ -273,9 +281,9 @@ void planMetropolis(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
   if (spec.mlt_chains() < 1 || spec.chains_per_block() < 1 || spec.chain_tasks() < 1)
     throw PlanError("mlt_chains, chains_per_block, chain_tasks: must be at least 1");
   if (spec.bootstrap_samples() < 1) throw PlanError("bootstrap_samples: must be at least 1");
-  if (spec.pipeline() == "tmlt" && !(spec.temporal_delta() > 0)) throw PlanError("temporal_delta: must be positive");
+  if (spec.pipeline() == PIPELINE_TMLT && !(spec.temporal_delta() > 0)) throw PlanError("temporal_delta: must be positive");
   const int blocks = (spec.mlt_chains() + spec.chains_per_block() - 1) / spec.chains_per_block();
-  const int64_t length = spec.pipeline() == "mlt" ? 1 : spec.mlt_window();
+  const int64_t length = spec.pipeline() == PIPELINE_MLT ? 1 : spec.mlt_window();
   StageOutputs evaluated;
   for (int64_t first = spec.frame_start(); first <= spec.frame_end(); first += length) {
     const int64_t count = std::min(length, spec.frame_end() - first + 1);
@@ -304,47 +312,29 @@ void planMetropolis(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
 
 }  // namespace
 
-bool isMetropolisPipeline(const std::string& pipeline) {
-  return pipeline == "pssmlt" || pipeline == "mlt" || pipeline == "tmlt";
-}
-
-bool isFilteringPipeline(const std::string& pipeline) {
-  return pipeline == "d" || pipeline == "du" || pipeline == "di" || pipeline == "dui";
-}
-
-PipelineStages stagesOf(const std::string& pipeline) {
-  if (!isFilteringPipeline(pipeline)) throw PlanError(quotedInput(pipeline) + " is not a filtering pipeline");
-  return {pipeline.find('u') != std::string::npos, pipeline.find('i') != std::string::npos};
-}
-
-std::vector<int64_t> keyframesOf(const ShotSpec& spec) {
-  const int64_t step = stagesOf(spec.pipeline()).interpolate ? std::max(1, spec.keyframe_interval()) : 1;
-  std::vector<int64_t> keyframes;
-  for (int64_t frame = spec.frame_start(); frame <= spec.frame_end(); frame += step) keyframes.push_back(frame);
-  if (keyframes.back() != spec.frame_end()) keyframes.push_back(spec.frame_end());
-  return keyframes;
-}
-
 std::vector<PlannedTask> planShot(const ShotSpec& spec) {
   std::vector<PlannedTask> plan;
-  if (spec.pipeline() == "pt") {
-    checkRenderSpec(spec);
-    planPathTracing(spec, plan);
-  } else if (isFilteringPipeline(spec.pipeline())) {
-    planFiltering(spec, plan);
-  } else if (spec.pipeline() == "tgpt") {
-    planGradientDomain(spec, plan);
-  } else if (isMetropolisPipeline(spec.pipeline())) {
-    planMetropolis(spec, plan);
-  } else if (spec.pipeline() == "noop") {
-    if (spec.noop_tasks() < 1) throw PlanError("noop_tasks: must be at least 1");
-    plan.assign(static_cast<size_t>(spec.noop_tasks()), PlannedTask{TASK_NOOP, {}, {}});
-  } else if (spec.pipeline() == "auto") {
-    throw PlanError("pipeline \"auto\" is chosen by a probe before the shot is submitted (pathfarm submit and "
-                    "pathfarm local do it); submit the pipeline it chose");
-  } else {
-    throw PlanError("pipeline " + quotedInput(spec.pipeline()) +
-                    " is not available (this farm runs: pt, d, du, di, dui, tgpt, pssmlt, mlt, tmlt, noop)");
+  switch (familyOf(spec.pipeline())) {
+    case PipelineFamily::Plain:
+      checkRenderSpec(spec);
+      planPathTracing(spec, plan);
+      break;
+    case PipelineFamily::Filtering:
+      planFiltering(spec, plan);
+      break;
+    case PipelineFamily::Gradient:
+      planGradientDomain(spec, plan);
+      break;
+    case PipelineFamily::Metropolis:
+      planMetropolis(spec, plan);
+      break;
+    case PipelineFamily::Noop:
+      if (spec.noop_tasks() < 1) throw PlanError("noop_tasks: must be at least 1");
+      plan.assign(static_cast<size_t>(spec.noop_tasks()), PlannedTask{TASK_NOOP, {}, {}});
+      break;
+    case PipelineFamily::Choice:
+      throw PlanError("pipeline \"auto\" is chosen by a probe before the shot is submitted (pathfarm submit and "
+                      "pathfarm local do it); submit the pipeline it chose");
   }
   return plan;
 }
@@ -356,10 +346,10 @@ bool isValidTag(const std::string& tag) {
 }
 
 int64_t plannedTasksAtLeast(const ShotSpec& spec) {
-  if (spec.pipeline() == "noop") return std::max<int64_t>(spec.noop_tasks(), 0);
+  if (spec.pipeline() == PIPELINE_NOOP) return std::max<int64_t>(spec.noop_tasks(), 0);
   const double frames = std::max<double>(static_cast<double>(spec.frame_end()) - static_cast<double>(spec.frame_start()) + 1, 0);
   double perFrame = 1;  // every pipeline's output task
-  if ((spec.pipeline() == "pt" || isFilteringPipeline(spec.pipeline())) && spec.tile() > 0) {
+  if ((spec.pipeline() == PIPELINE_PT || isFilteringPipeline(spec.pipeline())) && spec.tile() > 0) {
     const auto tilesAlong = [&](int pixels) { return std::ceil(std::max(pixels, 0) / static_cast<double>(spec.tile())); };
     perFrame = tilesAlong(spec.width()) * tilesAlong(spec.height()) + 1;
   }

@@ -20,6 +20,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "contract/pipeline.h"
 #include "pathfarm/shot.pb.h"
 
 namespace pathfarm::farm {
@@ -39,20 +40,6 @@ class PlanError : public std::invalid_argument {
  public:
   using std::invalid_argument::invalid_argument;
 };
-
-// What a filtering pipeline does besides rendering keyframes.
-struct PipelineStages {
-  bool upsample = false;     // keyframes at 1/4 of the samples, filtered at half resolution
-  bool interpolate = false;  // only every k-th frame is a keyframe
-};
-
-bool isFilteringPipeline(const std::string& pipeline);
-bool isMetropolisPipeline(const std::string& pipeline);
-// Throws PlanError for a pipeline that is not a filtering one.
-PipelineStages stagesOf(const std::string& pipeline);
-// The rendered frames of a shot: every frame, or with interpolation every k-th from the
-// first, and the last.
-std::vector<int64_t> keyframesOf(const ShotSpec& spec);
 
 // Throws PlanError for a spec the farm cannot run (unknown pipeline, empty frame range...).
 std::vector<PlannedTask> planShot(const ShotSpec& spec);

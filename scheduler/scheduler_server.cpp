@@ -6,7 +6,7 @@
 #include <spdlog/spdlog.h>
 
 #include "proto/wire/connection.h"
-#include "scheduler/dashboard_api.h"
+#include "scheduler/http/dashboard_api.h"
 #include "scheduler/exclusive_database.h"
 #include "scheduler/scheduler_services.h"
 

@@ -11,7 +11,7 @@
 
 #include "scheduler/farm_state.h"
 #include "proto/wire/tls.h"
-#include "scheduler/http_server.h"
+#include "scheduler/http/http_server.h"
 
 namespace grpc {
 class Server;

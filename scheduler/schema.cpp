@@ -3,6 +3,9 @@
 #include <string>
 #include <vector>
 
+#include "contract/pipeline.h"
+#include "pathfarm/shot.pb.h"
+
 namespace pathfarm::farm {
 namespace {
 
@@ -143,9 +146,36 @@ const std::vector<const char*>& migrations() {
       );
       CREATE INDEX follow_ups_by_attempt ON follow_ups(attempt_id);
       )sql",
+      // 12: a shot's pipeline is a Pipeline, no longer a name (moveLegacyPipelineNames).
+      "",
   };
   return list;
 }
+
+// Schema 12: every stored spec's pipeline name becomes its Pipeline value. A name no
+// pipeline has (none could be submitted) stays PIPELINE_UNSPECIFIED, which the planner
+// and workers refuse with a message.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wdeprecated-declarations"  // the legacy field is read here and only here
+void moveLegacyPipelineNames(Database& db) {
+  std::vector<std::pair<int64_t, std::string>> rewritten;
+  Statement& shots = db.query("SELECT id, spec FROM shots");
+  while (shots.step()) {
+    ShotSpec spec;
+    spec.ParseFromString(shots.blob(1));
+    if (spec.legacy_pipeline_name().empty()) continue;
+    spec.set_pipeline(pipelineNamed(spec.legacy_pipeline_name()).value_or(PIPELINE_UNSPECIFIED));
+    spec.clear_legacy_pipeline_name();
+    rewritten.emplace_back(shots.integer(0), spec.SerializeAsString());
+  }
+  shots.reset();
+  for (const auto& [id, blob] : rewritten) {
+    Statement& update = db.query("UPDATE shots SET spec = ?1 WHERE id = ?2");
+    update.bindBlob(1, blob).bind(2, id).step();
+    update.reset();
+  }
+}
+#pragma GCC diagnostic pop
 
 }  // namespace
 
@@ -157,8 +187,8 @@ int schemaVersion(Database& db) {
   return version;
 }
 
-void migrate(Database& db) {
-  const int newest = static_cast<int>(migrations().size());
+void migrate(Database& db, int upTo) {
+  const int newest = upTo > 0 ? upTo : static_cast<int>(migrations().size());
   const int current = schemaVersion(db);
   if (current > newest)
     throw DatabaseError("the database has schema version " + std::to_string(current) +
@@ -166,6 +196,7 @@ void migrate(Database& db) {
   for (int version = current; version < newest; ++version) {
     Transaction transaction(db);
     db.execute(migrations()[static_cast<size_t>(version)]);
+    if (version + 1 == 12) moveLegacyPipelineNames(db);
     db.execute("PRAGMA user_version = " + std::to_string(version + 1));
     transaction.commit();
   }

@@ -4,8 +4,9 @@
 namespace pathfarm::farm {
 
 // Brings the database to the newest schema, one numbered migration at a time, each in
-// its own transaction. A database from a newer pathfarm is refused.
-void migrate(Database& db);
+// its own transaction. A database from a newer pathfarm is refused. `upTo` (tests of a
+// migration) stops at that version instead.
+void migrate(Database& db, int upTo = 0);
 int schemaVersion(Database& db);
 
 // Task states in the tasks table.

@@ -74,14 +74,14 @@ std::string format(const char* pattern, double value) {
 }
 
 // The pipeline against plain pt at equal error, and the verdict a user reads first.
-void judge(ShotReport& report, const std::map<std::string, double>& errors) {
+void judge(ShotReport& report, Pipeline pipeline, const std::map<std::string, double>& errors) {
   report.set_cost_at_equal_error(-1);
   const auto figure = [&](const std::string& name) {
     const auto it = errors.find(name);
     return it == errors.end() ? 0.0 : it->second;
   };
   const double final = figure("relmse.final"), baseline = figure("relmse.baseline");
-  if (report.pipeline() == "pt" || !(report.relative_cost() > 0) || !(final > 0) || !(baseline > 0)) return;
+  if (pipeline == PIPELINE_PT || !(report.relative_cost() > 0) || !(final > 0) || !(baseline > 0)) return;
   // Each relMSE includes the independent reference's own noise; the errors compared are
   // what is left of them.
   const double noise = figure("reference_noise");
@@ -114,36 +114,19 @@ void judge(ShotReport& report, const std::map<std::string, double>& errors) {
   report.set_verdict(verdict);
 }
 
-}  // namespace
-
-ShotReport buildReport(const ShotSummary& summary, const ShotSpec& spec, const std::vector<TaskRecord>& tasks) {
-  ShotReport report;
-  report.set_shot_id(summary.id());
-  report.set_name(spec.name());
-  report.set_state(summary.state());
-  report.set_pipeline(spec.pipeline());
-  report.set_pipeline_reason(spec.pipeline_reason());
-  report.set_predicted_core_seconds_per_frame(spec.predicted_core_seconds_per_frame());
-  report.set_predicted_relmse(spec.predicted_relmse());
-  report.set_probe_core_seconds(spec.probe_core_seconds());
-  report.set_frames(spec.frame_end() - spec.frame_start() + 1);
-  report.set_width(spec.width());
-  report.set_height(spec.height());
-  report.set_spp(spec.spp());
-  const bool filtering = isFilteringPipeline(spec.pipeline());
-  report.set_keyframes(filtering ? static_cast<int64_t>(keyframesOf(spec).size()) : report.frames());
-  report.set_keyframe_interval(filtering ? spec.keyframe_interval() : 1);
-  report.set_keyframe_reason(filtering ? spec.keyframe_reason() : "every frame is rendered");
-  report.set_tasks_total(static_cast<int64_t>(tasks.size()));
-  report.set_reference_spp(spec.reference_spp());
-  for (const int64_t frame : spec.evaluation_frames()) report.add_evaluation_frames(frame);
-
+// What a shot's finished tasks add up to.
+struct TaskTotals {
   std::map<std::string, StageCost> stages;
   double baselineSeconds = 0, interpolationRerender = 0, upsampleRerender = 0;
   double temporalProposed = 0, temporalAccepted = 0;
   int64_t interpolated = 0, upsampled = 0;
   std::map<int64_t, bool> baselineFrames;
-  std::map<std::string, double> errors;
+  std::map<std::string, double> errors;  // the evaluation task's figures
+};
+
+// Adds every done task's cost, samples and re-render counts to `report` and the totals.
+TaskTotals addUpTasks(ShotReport& report, const std::vector<TaskRecord>& tasks) {
+  TaskTotals totals;
   for (const TaskRecord& task : tasks) {
     if (!task.done) continue;
     report.set_tasks_done(report.tasks_done() + 1);
@@ -151,7 +134,7 @@ ShotReport buildReport(const ShotSummary& summary, const ShotSpec& spec, const s
     if (stage == kMeasurement) {
       report.set_measurement_core_seconds(report.measurement_core_seconds() + task.coreSeconds);
     } else {
-      StageCost& cost = stages[stage];
+      StageCost& cost = totals.stages[stage];
       cost.set_tasks(cost.tasks() + 1);
       cost.set_core_seconds(cost.core_seconds() + task.coreSeconds);
       report.set_core_seconds(report.core_seconds() + task.coreSeconds);
@@ -160,49 +143,52 @@ ShotReport buildReport(const ShotSummary& summary, const ShotSpec& spec, const s
         stage != kMeasurement)
       report.set_samples_traced(report.samples_traced() + metric(task, "samples"));
     if (task.params.role() == ROLE_BASELINE) {
-      baselineSeconds += task.coreSeconds;
-      if (task.kind == TASK_ASSEMBLE_FRAME) baselineFrames[task.params.frame()] = true;
+      totals.baselineSeconds += task.coreSeconds;
+      if (task.kind == TASK_ASSEMBLE_FRAME) totals.baselineFrames[task.params.frame()] = true;
     }
     if (task.kind == TASK_INTERPOLATE) {
-      interpolationRerender += metric(task, "rerender_pixels");
+      totals.interpolationRerender += metric(task, "rerender_pixels");
       addRerenderCauses(*report.mutable_interpolation_rerender_causes(), task,
                         {"holes", "silhouettes", "untracked", "illumination", "mismatch", "light_edges", "light_mismatch",
                          "moving_caustics"});
-      ++interpolated;
+      ++totals.interpolated;
     }
     if (task.kind == TASK_UPSAMPLE) {
-      upsampleRerender += metric(task, "rerender_pixels");
+      totals.upsampleRerender += metric(task, "rerender_pixels");
       addRerenderCauses(*report.mutable_upsample_rerender_causes(), task, {"moving_caustics", "light_edges"});
-      ++upsampled;
+      ++totals.upsampled;
     }
     if (task.kind == TASK_COMPOSITE)
       report.set_rerender_pixels(report.rerender_pixels() + static_cast<int64_t>(metric(task, "rerender_pixels")));
-    if (task.kind == TASK_EVALUATE) errors = task.metrics;
-    temporalProposed += metric(task, "temporal_proposed");
-    temporalAccepted += metric(task, "temporal_accepted");
+    if (task.kind == TASK_EVALUATE) totals.errors = task.metrics;
+    totals.temporalProposed += metric(task, "temporal_proposed");
+    totals.temporalAccepted += metric(task, "temporal_accepted");
   }
-  report.set_temporal_acceptance(temporalProposed > 0 ? temporalAccepted / temporalProposed : -1);
+  return totals;
+}
 
+// Core-seconds per stage and frame, the baseline's, and what follows from them.
+void setCosts(ShotReport& report, const ShotSpec& spec, const TaskTotals& totals) {
   const double frames = static_cast<double>(report.frames());
   const double pixels = static_cast<double>(spec.width()) * spec.height();
   for (const char* name : kStages) {
-    if (!stages.count(name)) continue;
-    StageCost cost = stages.at(name);
+    if (!totals.stages.count(name)) continue;
+    StageCost cost = totals.stages.at(name);
     cost.set_stage(name);
     cost.set_core_seconds_per_frame(cost.core_seconds() / frames);
     *report.add_stages() = cost;
   }
   report.set_core_seconds_per_frame(report.core_seconds() / frames);
-  if (spec.pipeline() == "pt") {
+  if (spec.pipeline() == PIPELINE_PT) {
     report.set_baseline_core_seconds_per_frame(report.core_seconds_per_frame());
     report.set_baseline_source("the shot itself: plain path tracing");
   } else if (spec.baseline_core_seconds() > 0) {
     report.set_baseline_core_seconds_per_frame(spec.baseline_core_seconds());
     report.set_baseline_source("given in the shot");
-  } else if (!baselineFrames.empty()) {
-    report.set_baseline_core_seconds_per_frame(baselineSeconds / static_cast<double>(baselineFrames.size()));
+  } else if (!totals.baselineFrames.empty()) {
+    report.set_baseline_core_seconds_per_frame(totals.baselineSeconds / static_cast<double>(totals.baselineFrames.size()));
     report.set_baseline_source("measured: pt at " + std::to_string(spec.spp()) + " spp on " +
-                               std::to_string(baselineFrames.size()) + " frame(s)");
+                               std::to_string(totals.baselineFrames.size()) + " frame(s)");
   } else {
     report.set_baseline_source("not measured yet");
   }
@@ -212,16 +198,24 @@ ShotReport buildReport(const ShotSummary& summary, const ShotSpec& spec, const s
     report.set_relative_cost(report.core_seconds_per_frame() / report.baseline_core_seconds_per_frame());
     report.set_overhead(report.relative_cost() * report.resolution_gain());
   }
-  report.set_rerender_rate(static_cast<double>(report.rerender_pixels()) / (frames * pixels));
-  if (interpolated > 0) {
-    report.set_interpolation_rerender_rate(interpolationRerender / (interpolated * pixels));
-    for (auto& [cause, share] : *report.mutable_interpolation_rerender_causes()) share /= interpolated * pixels;
-  }
-  if (upsampled > 0) {
-    report.set_upsample_rerender_rate(upsampleRerender / (upsampled * pixels));
-    for (auto& [cause, share] : *report.mutable_upsample_rerender_causes()) share /= upsampled * pixels;
-  }
+}
 
+void setRerenderRates(ShotReport& report, const ShotSpec& spec, const TaskTotals& totals) {
+  const double frames = static_cast<double>(report.frames());
+  const double pixels = static_cast<double>(spec.width()) * spec.height();
+  report.set_rerender_rate(static_cast<double>(report.rerender_pixels()) / (frames * pixels));
+  if (totals.interpolated > 0) {
+    report.set_interpolation_rerender_rate(totals.interpolationRerender / (totals.interpolated * pixels));
+    for (auto& [cause, share] : *report.mutable_interpolation_rerender_causes()) share /= totals.interpolated * pixels;
+  }
+  if (totals.upsampled > 0) {
+    report.set_upsample_rerender_rate(totals.upsampleRerender / (totals.upsampled * pixels));
+    for (auto& [cause, share] : *report.mutable_upsample_rerender_causes()) share /= totals.upsampled * pixels;
+  }
+}
+
+// The evaluation task's figures per stage, and the temporal errors.
+void setErrors(ShotReport& report, const std::map<std::string, double>& errors) {
   report.set_temporal_error(-1);
   report.set_baseline_temporal_error(-1);
   for (const char* stage : {"render", "denoise", "upsample", "interpolate", "final", "baseline"}) {
@@ -241,7 +235,38 @@ ShotReport buildReport(const ShotSummary& summary, const ShotSpec& spec, const s
   report.set_reference_noise(errors.count("reference_noise") ? errors.at("reference_noise") : -1);
   if (errors.count("temporal.final")) report.set_temporal_error(errors.at("temporal.final"));
   if (errors.count("temporal.baseline")) report.set_baseline_temporal_error(errors.at("temporal.baseline"));
-  judge(report, errors);
+}
+
+}  // namespace
+
+ShotReport buildReport(const ShotSummary& summary, const ShotSpec& spec, const std::vector<TaskRecord>& tasks) {
+  ShotReport report;
+  report.set_shot_id(summary.id());
+  report.set_name(spec.name());
+  report.set_state(summary.state());
+  report.set_pipeline(std::string(pipelineName(spec.pipeline())));
+  report.set_pipeline_reason(spec.pipeline_reason());
+  report.set_predicted_core_seconds_per_frame(spec.predicted_core_seconds_per_frame());
+  report.set_predicted_relmse(spec.predicted_relmse());
+  report.set_probe_core_seconds(spec.probe_core_seconds());
+  report.set_frames(spec.frame_end() - spec.frame_start() + 1);
+  report.set_width(spec.width());
+  report.set_height(spec.height());
+  report.set_spp(spec.spp());
+  const bool filtering = isFilteringPipeline(spec.pipeline());
+  report.set_keyframes(filtering ? static_cast<int64_t>(keyframesOf(spec).size()) : report.frames());
+  report.set_keyframe_interval(filtering ? spec.keyframe_interval() : 1);
+  report.set_keyframe_reason(filtering ? spec.keyframe_reason() : "every frame is rendered");
+  report.set_tasks_total(static_cast<int64_t>(tasks.size()));
+  report.set_reference_spp(spec.reference_spp());
+  for (const int64_t frame : spec.evaluation_frames()) report.add_evaluation_frames(frame);
+
+  const TaskTotals totals = addUpTasks(report, tasks);
+  report.set_temporal_acceptance(totals.temporalProposed > 0 ? totals.temporalAccepted / totals.temporalProposed : -1);
+  setCosts(report, spec, totals);
+  setRerenderRates(report, spec, totals);
+  setErrors(report, totals.errors);
+  judge(report, spec.pipeline(), totals.errors);
   return report;
 }
 

@@ -20,14 +20,14 @@ FrameImage finalColorsOf(const FrameImage& staged) {
   return final;
 }
 
-TaskOutput finishedFinalFrame(FrameImage final, const std::vector<uint8_t>& rerendered, const std::string& pipeline) {
+TaskOutput finishedFinalFrame(FrameImage final, const std::vector<uint8_t>& rerendered, Pipeline pipeline) {
   if (rerendered.size() != final.pixelCount())
     throw std::logic_error("finishedFinalFrame: the re-render mask does not have the frame's size");
   std::vector<float>& flagged = final.addChannel("rerender.Y");
   std::copy(rerendered.begin(), rerendered.end(), flagged.begin());
   const auto count = static_cast<size_t>(std::count(rerendered.begin(), rerendered.end(), 1));
   final.attributes()["pathfarm.rerender_pixels"] = std::to_string(count);
-  final.attributes()["pathfarm.pipeline"] = pipeline;
+  final.attributes()["pathfarm.pipeline"] = pipelineName(pipeline);
   TaskOutput output;
   output.chunk = encodeExr(final);
   output.metrics["rerender_pixels"] = static_cast<double>(count);

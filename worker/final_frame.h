@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "contract/pipeline.h"
 #include "image/frame_image.h"
 #include "worker/filter_tasks.h"
 
@@ -17,6 +18,6 @@ FrameImage finalColorsOf(const FrameImage& staged);
 
 // `final` with `rerendered` (a byte per pixel, 1 = re-rendered) added as `rerender.Y`,
 // encoded for the shot's output, with its "rerender_pixels" metric.
-TaskOutput finishedFinalFrame(FrameImage final, const std::vector<uint8_t>& rerendered, const std::string& pipeline);
+TaskOutput finishedFinalFrame(FrameImage final, const std::vector<uint8_t>& rerendered, Pipeline pipeline);
 
 }  // namespace pathfarm::farm

@@ -2,12 +2,12 @@
 #include <algorithm>
 #include <optional>
 
+#include "contract/pipeline.h"
 #include "image/exr_io.h"
 #include "postproc/filters/component_denoiser.h"
 #include "postproc/filters/component_upsampler.h"
 #include "postproc/filters/decomposed_frame.h"
 #include "postproc/interpolation/caustic_check.h"
-#include "scheduler/planner.h"
 #include "worker/direct_emission.h"
 #include "worker/failure_class.h"
 #include "worker/filter_inputs.h"

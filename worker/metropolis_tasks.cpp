@@ -1,5 +1,6 @@
 #include "worker/metropolis_tasks.h"
 
+#include "contract/pipeline.h"
 #include "image/exr_io.h"
 #include "worker/failure_class.h"
 #include "worker/filter_inputs.h"
@@ -51,7 +52,7 @@ void readBlocks(const TaskInput& input, FrameWindow window, std::vector<BlockRes
 
 MetropolisSettings metropolisSettingsOf(const ShotSpec& spec, int threads) {
   MetropolisSettings settings;
-  settings.method = parseMetropolisMethod(spec.pipeline());
+  settings.method = parseMetropolisMethod(std::string(traitsOf(spec.pipeline()).integrator));
   settings.width = spec.width();
   settings.height = spec.height();
   settings.maxDepth = spec.max_depth();

@@ -5,13 +5,13 @@
 #include <algorithm>
 #include <map>
 
+#include "contract/pipeline.h"
 #include "image/atomic_file.h"
 #include "image/exr_io.h"
-#include "renderer/decomposition/auto_decomposition.h"
 #include "renderer/integrators/frame_renderer.h"
-#include "renderer/integrators/gradient_frame_renderer.h"
 #include "renderer/scene/scene_loader.h"
-#include "scheduler/planner.h"
+#include "renderer/setup/auto_decomposition.h"
+#include "renderer/setup/integrator_factory.h"
 #include "worker/failure_class.h"
 #include "worker/metropolis_tasks.h"
 #include "worker/scene_files.h"
@@ -136,9 +136,9 @@ TaskOutput TaskRunner::renderGradientFrame(const Lease& lease, const ChunkFetche
   const auto shot = rendererFor(lease, fetch);
   RenderSettings settings = shot->renderer->settings();
   settings.decomposition = nullptr;
-  const GradientFrameRenderer renderer(shot->scene, settings, GradientSettings{.temporal = true});
+  const auto renderer = makeFrameIntegrator(traitsOf(lease.spec().pipeline()).integrator, shot->scene, settings);
   RenderStats stats;
-  const FrameImage frame = renderer.render(
+  const FrameImage frame = renderer->render(
       lease.params().frame(),
       [&](size_t done, size_t total) {
         if (abandon) throw TaskAbandoned();
@@ -195,7 +195,7 @@ TaskOutput TaskRunner::runMetropolis(const Lease& lease, const ChunkFetcher& fet
                                      const std::atomic<bool>& abandon) {
   const auto shot = rendererFor(lease, fetch);
   if (!shot->metropolis)
-    throw BadInput("a Metropolis task in a shot of pipeline \"" + lease.spec().pipeline() + "\"");
+    throw BadInput("a Metropolis task in a shot of pipeline " + std::to_string(lease.spec().pipeline()));
   const MetropolisRenderer& renderer = *shot->metropolis;
   TaskOutput output;
   if (lease.kind() == TASK_MLT_SEED_POOL) {

@@ -12,18 +12,18 @@
 // its camera strategies only (light-tracing splats come from other pixels' samples and
 // are not in it), so it is a lower bound on the beauty's variance.
 #include "image/frame_image.h"
-#include "renderer/integrators/frame_renderer.h"
+#include "renderer/integrators/frame_integrator.h"
 
 namespace pathfarm {
 
-class BdptFrameRenderer {
+class BdptFrameRenderer : public FrameIntegrator {
  public:
   // Throws std::invalid_argument for settings bidirectional tracing does not support
   // (a decomposition).
   BdptFrameRenderer(const Scene& scene, RenderSettings settings);
-  ~BdptFrameRenderer();
+  ~BdptFrameRenderer() override;
 
-  FrameImage render(int64_t frame, const ProgressCallback& progress = {}, RenderStats* stats = nullptr) const;
+  FrameImage render(int64_t frame, const ProgressCallback& progress = {}, RenderStats* stats = nullptr) const override;
 
  private:
   struct Shot;

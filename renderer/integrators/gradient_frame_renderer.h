@@ -10,7 +10,7 @@
 // tile size. Frames are rendered whole: differences need both pixels of a pair.
 #include <memory>
 
-#include "renderer/integrators/frame_renderer.h"
+#include "renderer/integrators/frame_integrator.h"
 
 namespace pathfarm {
 
@@ -25,12 +25,12 @@ struct GradientSettings {
   int mixedEvery = 1;
 };
 
-class GradientFrameRenderer {
+class GradientFrameRenderer : public FrameIntegrator {
  public:
   GradientFrameRenderer(const Scene& scene, RenderSettings settings, GradientSettings gradient);
-  ~GradientFrameRenderer();
+  ~GradientFrameRenderer() override;
 
-  FrameImage render(int64_t frame, const ProgressCallback& progress = {}, RenderStats* stats = nullptr) const;
+  FrameImage render(int64_t frame, const ProgressCallback& progress = {}, RenderStats* stats = nullptr) const override;
 
  private:
   struct Shot;

@@ -2,7 +2,7 @@
 // The files a scene is made of: the scene file, its glTF include with buffers and images,
 // meshes, textures and environment maps. Every reader of the scene loader notes the file
 // it reads; a recorder collects them while it is alive, so that a client can ship a scene
-// to workers that do not share its filesystem (scheduler/scene_upload.h).
+// to workers that do not share its filesystem (client/scene_upload.h).
 #include <filesystem>
 #include <mutex>
 #include <set>

@@ -24,8 +24,8 @@
 #include <thread>
 #include <vector>
 
-#include "scheduler/child_process.h"
-#include "scheduler/farm_client.h"
+#include "client/child_process.h"
+#include "client/farm_client.h"
 
 namespace pathfarm::farmtest {
 
@@ -356,7 +356,7 @@ class FarmTest : public ::testing::Test {
     s.set_height(spec.height);
     s.set_spp(spec.spp);
     s.set_max_depth(spec.maxDepth);
-    s.set_pipeline("pt");
+    s.set_pipeline(farm::PIPELINE_PT);
     s.set_tile(spec.tile);
     s.set_output((dir_ / "shot-output" / spec.name).string());
     s.set_priority(0);

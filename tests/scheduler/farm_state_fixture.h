@@ -35,7 +35,7 @@ class FarmStateTest : public ::testing::Test {
   int64_t submitFrame(int priority = 0, int maxAttempts = 3) {
     ShotSpec spec;
     spec.set_name("shot");
-    spec.set_pipeline("pt");
+    spec.set_pipeline(PIPELINE_PT);
     spec.set_width(64);
     spec.set_height(32);
     spec.set_spp(1);
@@ -48,7 +48,7 @@ class FarmStateTest : public ::testing::Test {
   static ShotSpec filteredSpec() {
     ShotSpec spec;
     spec.set_name("filtered");
-    spec.set_pipeline("di");
+    spec.set_pipeline(PIPELINE_DI);
     spec.set_width(16);
     spec.set_height(8);
     spec.set_tile(8);

@@ -29,7 +29,7 @@ TEST_F(FarmStateTest, RetentionDeletesOldFinishedShotsAndTheChunksOnlyTheyNamed)
   // uploaded scene file as its input.
   ShotSpec spec;
   spec.set_name("running");
-  spec.set_pipeline("pt");
+  spec.set_pipeline(PIPELINE_PT);
   spec.set_width(64);
   spec.set_height(32);
   spec.set_spp(1);

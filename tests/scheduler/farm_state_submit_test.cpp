@@ -16,7 +16,7 @@ std::vector<PlannedTask> noopPlan(size_t count) {
 ShotSpec noopSpec() {
   ShotSpec spec;
   spec.set_name("many");
-  spec.set_pipeline("noop");
+  spec.set_pipeline(PIPELINE_NOOP);
   return spec;
 }
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <map>
 
 #include "scheduler/farm_state_fixture.h"
 #include "scheduler/schema.h"
@@ -199,7 +200,7 @@ TEST_F(FarmStateTest, ASubmitRetriedWithItsKeyMakesOneShot) {
   spec.set_height(16);
   spec.set_spp(1);
   spec.set_tile(16);
-  spec.set_pipeline("pt");
+  spec.set_pipeline(PIPELINE_PT);
   const auto plan = planShot(spec);
   const int64_t first = state_->submit(spec, plan, now_, "key-1");
   EXPECT_EQ(state_->submit(spec, plan, now_ + 1, "key-1"), first);
@@ -264,7 +265,7 @@ TEST_F(FarmStateTest, PriorityCanChangeAfterSubmission) {
 TEST_F(FarmStateTest, PoolsAndCapsDecideWhoMayLease) {
   ShotSpec spec;
   spec.set_name("pooled");
-  spec.set_pipeline("pt");
+  spec.set_pipeline(PIPELINE_PT);
   spec.set_width(64);
   spec.set_height(64);
   spec.set_spp(1);
@@ -432,7 +433,7 @@ TEST(Schema, MigratesOnceAndRefusesANewerDatabase) {
   {
     Database db(file.string());
     migrate(db);
-    EXPECT_EQ(schemaVersion(db), 11);
+    EXPECT_EQ(schemaVersion(db), 12);
     EXPECT_NO_THROW(db.execute("SELECT lost FROM tasks"));  // migration 3's column
     EXPECT_NO_THROW(db.execute("SELECT attempt_id, params FROM follow_ups"));  // migration 11's table
     migrate(db);  // nothing to do the second time
@@ -441,6 +442,44 @@ TEST(Schema, MigratesOnceAndRefusesANewerDatabase) {
   }
   std::filesystem::remove(file);
 }
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wdeprecated-declarations"  // a spec as schema 11 stored it
+TEST(Schema, ShotsStoredWithAPipelineNameGetItsValue) {
+  const auto file = test_support::processTemporaryFolder("pathfarm_schema") / "legacy.db";
+  std::filesystem::remove(file);
+  {
+    Database db(file.string());
+    migrate(db, 11);
+    const auto insert = [&](int64_t id, const std::string& pipeline) {
+      ShotSpec legacy;
+      legacy.set_name("shot");
+      legacy.set_legacy_pipeline_name(pipeline);
+      db.query("INSERT INTO shots (id, name, spec, state, priority, tasks_left, submitted_at) "
+               "VALUES (?1, 'shot', ?2, 1, 0, 0, 0)")
+          .bind(1, id)
+          .bindBlob(2, legacy.SerializeAsString())
+          .step();
+    };
+    insert(1, "dui");
+    insert(2, "tmlt");
+    insert(3, "no such pipeline");
+    migrate(db);
+    std::map<int64_t, ShotSpec> specs;
+    Statement& read = db.query("SELECT id, spec FROM shots");
+    while (read.step()) specs[read.integer(0)].ParseFromString(read.blob(1));
+    read.reset();
+    EXPECT_EQ(specs[1].pipeline(), PIPELINE_DUI);
+    EXPECT_EQ(specs[2].pipeline(), PIPELINE_TMLT);
+    EXPECT_EQ(specs[3].pipeline(), PIPELINE_UNSPECIFIED);
+    for (const auto& [id, spec] : specs) {
+      EXPECT_TRUE(spec.legacy_pipeline_name().empty()) << id;
+      EXPECT_EQ(spec.name(), "shot");
+    }
+  }
+  std::filesystem::remove(file);
+}
+#pragma GCC diagnostic pop
 
 }  // namespace
 }  // namespace pathfarm::farm

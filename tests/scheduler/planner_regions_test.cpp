@@ -13,7 +13,7 @@ namespace {
 
 ShotSpec bigFrame(int width, int height, int tile) {
   ShotSpec spec;
-  spec.set_pipeline("pt");
+  spec.set_pipeline(PIPELINE_PT);
   spec.set_width(width);
   spec.set_height(height);
   spec.set_spp(1);

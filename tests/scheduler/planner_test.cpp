@@ -10,7 +10,7 @@ namespace {
 
 ShotSpec renderSpec() {
   ShotSpec spec;
-  spec.set_pipeline("pt");
+  spec.set_pipeline(PIPELINE_PT);
   spec.set_frame_start(3);
   spec.set_frame_end(4);
   spec.set_width(100);
@@ -109,15 +109,23 @@ TEST(Planner, AShotOfTooManyTilesIsRefusedBeforeAnyIsPlanned) {
   spec.set_height(1000);  // 10^12 pixel-frames, the default limit: 1.6e10 tiles
   EXPECT_EQ(plannedTasksAtLeast(spec), int64_t{1'000'000} * (125 * 125 + 1));
   EXPECT_THROW(planShotWithin(spec, ShotLimits{}), PlanError);
-  spec.set_pipeline("tmlt");  // no tiles: a window's tasks and a merge per frame
+  spec.set_pipeline(PIPELINE_TMLT);  // no tiles: a window's tasks and a merge per frame
   EXPECT_EQ(plannedTasksAtLeast(spec), 1'000'000);
 }
 
 TEST(Planner, RefusesWhatItCannotRun) {
   ShotSpec spec = renderSpec();
-  spec.set_pipeline("tgpt-not-yet");
+  spec.set_pipeline(static_cast<Pipeline>(99));  // a value from a newer client
+  try {
+    planShot(spec);
+    FAIL() << "an unknown pipeline was planned";
+  } catch (const PlanError& e) {
+    EXPECT_NE(std::string(e.what()).find("pipeline 99 is not available (this farm runs: auto, pt, d,"), std::string::npos)
+        << e.what();
+  }
+  spec.set_pipeline(PIPELINE_UNSPECIFIED);
   EXPECT_THROW(planShot(spec), PlanError);
-  spec.set_pipeline("dui");  // without a decomposition
+  spec.set_pipeline(PIPELINE_DUI);  // without a decomposition
   EXPECT_THROW(planShot(spec), PlanError);
   spec = renderSpec();
   spec.set_frame_end(2);
@@ -125,7 +133,7 @@ TEST(Planner, RefusesWhatItCannotRun) {
   spec = renderSpec();
   spec.set_tile(0);
   EXPECT_THROW(planShot(spec), PlanError);
-  spec.set_pipeline("noop");
+  spec.set_pipeline(PIPELINE_NOOP);
   spec.set_noop_tasks(5);
   EXPECT_EQ(planShot(spec).size(), 5u);
 }
@@ -133,7 +141,7 @@ TEST(Planner, RefusesWhatItCannotRun) {
 // A filtering shot: frames 10..19 (10 frames) at 64x32 in 32-pixel tiles (2 per frame).
 ShotSpec filteringSpec(const std::string& pipeline, int interval) {
   ShotSpec spec = renderSpec();
-  spec.set_pipeline(pipeline);
+  spec.set_pipeline(*pipelineNamed(pipeline));
   spec.set_frame_start(10);
   spec.set_frame_end(19);
   spec.set_width(64);
@@ -247,7 +255,7 @@ TEST(Planner, EachPipelinePlansOnlyItsStages) {
   ShotSpec odd = filteringSpec("du", 4);
   odd.set_width(63);
   EXPECT_THROW(planShot(odd), PlanError);
-  odd.set_pipeline("di");
+  odd.set_pipeline(PIPELINE_DI);
   EXPECT_NO_THROW(planShot(odd));
 }
 
@@ -317,7 +325,7 @@ TEST(Planner, EvaluationAddsBaselineReferenceAndOneEvaluateTask) {
 
 TEST(Planner, TgptRendersEveryFrameSolvesWindowsAndBlendsEachFrameFromItsWindows) {
   ShotSpec spec = renderSpec();  // frames 3..4
-  spec.set_pipeline("tgpt");
+  spec.set_pipeline(PIPELINE_TGPT);
   spec.set_frame_start(0);
   spec.set_frame_end(11);  // 12 frames, windows of 5 overlapping by 2: [0,5) [3,8) [6,11) [7,12)
   spec.set_poisson_window(5);
@@ -364,7 +372,7 @@ TEST(Planner, TgptRendersEveryFrameSolvesWindowsAndBlendsEachFrameFromItsWindows
 
 ShotSpec metropolisSpec(const std::string& pipeline) {
   ShotSpec spec = renderSpec();
-  spec.set_pipeline(pipeline);
+  spec.set_pipeline(*pipelineNamed(pipeline));
   spec.set_frame_start(0);
   spec.set_frame_end(9);  // 10 frames, windows of 4: [0,4) [4,8) [8,10)
   spec.set_mlt_window(4);

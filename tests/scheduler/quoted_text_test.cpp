@@ -3,8 +3,6 @@
 
 #include <gtest/gtest.h>
 
-#include "scheduler/planner.h"
-
 namespace pathfarm::farm {
 namespace {
 
@@ -19,22 +17,6 @@ TEST(QuotedText, PrintableTextStaysAndTheRestIsEscaped) {
 TEST(QuotedText, LongTextIsCutAndCounted) {
   const std::string text(kQuotedBytes + 1000, 'x');
   EXPECT_EQ(quotedInput(text), "\"" + std::string(kQuotedBytes, 'x') + "\" (1000 more bytes)");
-}
-
-TEST(QuotedText, APlanErrorQuotesThePipelineItWasSent) {
-  ShotSpec spec;
-  spec.set_pipeline("evil\n[00:00:00] info shot 1 done" + std::string(200, '!'));
-  spec.set_frame_end(0);
-  try {
-    planShot(spec);
-    FAIL() << "an unknown pipeline was planned";
-  } catch (const PlanError& e) {
-    const std::string message = e.what();
-    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-    EXPECT_NE(message.find("\"evil\\x0a[00:00:00] info shot 1 done"), std::string::npos) << message;
-    EXPECT_NE(message.find("more bytes)"), std::string::npos) << message;
-    EXPECT_LT(message.size(), 300u);
-  }
 }
 
 }  // namespace

@@ -18,7 +18,7 @@ TaskRecord record(TaskKind kind, TaskRole role, int64_t frame, double coreSecond
 ShotSpec spec() {
   ShotSpec s;
   s.set_name("shot");
-  s.set_pipeline("dui");
+  s.set_pipeline(PIPELINE_DUI);
   s.set_frame_start(0);
   s.set_frame_end(3);
   s.set_width(10);
@@ -174,7 +174,7 @@ TEST(ShotReport, TheVerdictSaysPlainlyWhenThePipelineLost) {
 
 TEST(ShotReport, APtShotIsItsOwnBaselineAndAGivenCostIsUsed) {
   ShotSpec pt = spec();
-  pt.set_pipeline("pt");
+  pt.set_pipeline(PIPELINE_PT);
   std::vector<TaskRecord> tasks = {record(TASK_RENDER_TILE, ROLE_OUTPUT, 0, 6.0),
                                    record(TASK_ASSEMBLE_FRAME, ROLE_OUTPUT, 0, 2.0)};
   tasks[0].metrics["samples"] = 3200;

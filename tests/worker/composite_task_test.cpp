@@ -54,7 +54,7 @@ TEST(CompositeTask, ReRenderedPixelsAreThoseOfDenoisingTheWholeSparseFrame) {
   std::map<std::string, std::string> chunks = {{"stage", encodeExr(staged, ExrCompression::Fast)}};
   Lease lease;
   lease.set_kind(TASK_COMPOSITE);
-  lease.mutable_spec()->set_pipeline("dui");
+  lease.mutable_spec()->set_pipeline(PIPELINE_DUI);
   lease.mutable_params()->set_frame(0);
   lease.add_inputs()->set_sha256("stage");
   lease.add_input_kinds(TASK_INTERPOLATE);

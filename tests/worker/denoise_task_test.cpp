@@ -40,7 +40,7 @@ FrameImage runTask(const Lease& lease, const std::map<std::string, std::string>&
 Lease denoiseLease(TaskRole role) {
   Lease lease;
   lease.set_kind(TASK_DENOISE);
-  lease.mutable_spec()->set_pipeline("d");
+  lease.mutable_spec()->set_pipeline(PIPELINE_D);
   lease.mutable_spec()->set_frame_start(0);
   lease.mutable_spec()->set_frame_end(2);
   lease.mutable_params()->set_frame(1);
@@ -61,7 +61,7 @@ TEST(DenoiseTask, DsFinalFrameIsTheOneACompositeOfItsDenoisedFrameWrites) {
   chunks["denoised"] = encodeExr(runTask(denoiseLease(ROLE_UNSPECIFIED), chunks), ExrCompression::Fast);
   Lease composite;
   composite.set_kind(TASK_COMPOSITE);
-  composite.mutable_spec()->set_pipeline("d");
+  composite.mutable_spec()->set_pipeline(PIPELINE_D);
   composite.mutable_params()->set_frame(1);
   composite.add_inputs()->set_sha256("denoised");
   composite.add_input_kinds(TASK_DENOISE);

@@ -44,7 +44,7 @@ double stripFlagged(const std::shared_ptr<const FrameImage>& k0, const std::shar
   spec.set_height(kHeight);
   spec.set_spp(16);
   spec.set_tile(16);
-  spec.set_pipeline("dui");
+  spec.set_pipeline(PIPELINE_DUI);
   lease.mutable_params()->set_frame(kFrame);
   lease.mutable_params()->set_keyframe_before(kBefore);
   lease.mutable_params()->set_keyframe_after(kAfter);

@@ -45,7 +45,7 @@ TEST(UpsampleTask, DirectlySeenLightThatTheKeyframesFewSamplesGetWrongIsReRender
   spec.set_height(kUpsampleHeight);
   spec.set_spp(kUpsampleShotSpp);
   spec.set_tile(16);
-  spec.set_pipeline("dui");
+  spec.set_pipeline(PIPELINE_DUI);
   lease.mutable_params()->set_frame(kUpsampleFrame);
   TaskParams params;
   params.set_frame(kUpsampleFrame);

@@ -2,7 +2,7 @@
 // land in the component their expression names, and primary motion is exact.
 #include <gtest/gtest.h>
 
-#include "renderer/decomposition/auto_decomposition.h"
+#include "renderer/setup/auto_decomposition.h"
 #include "renderer/decomposition/effective_irradiance.h"
 #include "renderer/integrators/frame_renderer.h"
 #include "test_support.h"

@@ -4,7 +4,7 @@
 // and the automatic decomposition plans the components its lobes call for.
 #include <gtest/gtest.h>
 
-#include "renderer/decomposition/auto_decomposition.h"
+#include "renderer/setup/auto_decomposition.h"
 #include "renderer/integrators/frame_renderer.h"
 #include "test_support.h"
 

@@ -1,0 +1,76 @@
+#include "client/keyframe_probe.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <memory>
+
+#include "postproc/interpolation/frame_interpolation.h"
+#include "renderer/decomposition/decomposition.h"
+#include "renderer/integrators/frame_renderer.h"
+
+namespace pathfarm::farm {
+namespace {
+
+constexpr int kProbeScale = 4;   // the probe's resolution is 1/4 of the shot's per axis
+constexpr int kProbeSpp = 8;
+constexpr int kMinProbeSize = 16;
+
+std::string percent(double rate) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f%%", 100.0 * rate);
+  return text;
+}
+
+}  // namespace
+
+KeyframeChoice chooseKeyframeInterval(const Scene& scene, const ShotSpec& spec, double rerenderBound,
+                                      int maxInterval) {
+  const int64_t frames = spec.frame_end() - spec.frame_start() + 1;
+  const int longest = static_cast<int>(std::min<int64_t>(maxInterval, frames - 1));
+  if (longest < 2) return {1, "k = 1: the shot is too short to interpolate any frame"};
+
+  const auto start = std::chrono::steady_clock::now();
+  RenderSettings settings;
+  settings.width = std::max(kMinProbeSize, spec.width() / kProbeScale);
+  settings.height = std::max(kMinProbeSize, spec.height() / kProbeScale);
+  settings.spp = kProbeSpp;
+  settings.maxDepth = spec.max_depth();
+  settings.decomposition = std::make_shared<Decomposition>(Decomposition::parse(spec.decompose()));
+  const FrameRenderer renderer(scene, settings);
+  std::vector<FrameImage> rendered;
+  for (int i = 0; i <= longest; ++i) rendered.push_back(renderer.render(spec.frame_start() + i));
+
+  std::string predictions;
+  int chosen = 1;
+  for (int k = longest; k >= 2; --k) {
+    const std::vector<FrameImage> span(rendered.begin(), rendered.begin() + k + 1);
+    const float fraction = static_cast<float>(k / 2) / static_cast<float>(k);
+    // The interpolate task's rule (worker/interpolation_tasks.cpp): light with no change
+    // known nearby is left to its radiance check, which the probe does not run.
+    InterpolationSettings interpolation;
+    interpolation.unknownChangeMasks = false;
+    const double rate =
+        interpolateFrameDetailed(span.front(), span.back(), concatenatePrimaryMotion(span), fraction, interpolation)
+            .rerenderRate;
+    predictions += (predictions.empty() ? "" : ", ") + std::string("k = ") + std::to_string(k) + ": " + percent(rate);
+    if (rate <= rerenderBound) {
+      chosen = k;
+      break;
+    }
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  char probe[160];
+  std::snprintf(probe, sizeof probe, " (probe: frames %lld..%lld at %dx%d, %d spp, %.2f s)",
+                static_cast<long long>(spec.frame_start()), static_cast<long long>(spec.frame_start() + longest),
+                settings.width, settings.height, kProbeSpp, seconds);
+  const std::string bound = percent(rerenderBound);
+  const std::string reason =
+      chosen > 1 ? "k = " + std::to_string(chosen) + ": the largest interval whose predicted re-render rate stays under " +
+                       bound + "; predicted " + predictions + probe
+                 : "k = 1: every interval tried predicts a re-render rate above " + bound + " (" + predictions + ")" +
+                       probe;
+  return {chosen, reason};
+}
+
+}  // namespace pathfarm::farm

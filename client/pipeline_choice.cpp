@@ -1,0 +1,125 @@
+#include "client/pipeline_choice.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "renderer/integrators/frame_renderer.h"
+
+namespace pathfarm::farm {
+namespace {
+
+constexpr int64_t kMinProbeFrames = 5;
+constexpr int kMaxProbeScale = 4;
+constexpr int kMinProbeEdge = 32;
+// The probe's cost, in plain pt frames of its size per probe frame: pt (the stand-in) 1,
+// d 1.1, di 0.6, dui 0.4 and tgpt about 6 (docs/performance.md), plain pt's at
+// kStandInSppFactor times the spp.
+constexpr double kProbeCostInPtFrames = 9 + kStandInSppFactor;
+constexpr double kProbeBudget = 0.05;  // of a plain pt shot
+// An estimate within this many standard errors of zero is within the probe's noise: it
+// counts as that bound, so that noise cannot pick a winner. Below kNegligibleError no
+// error counts apart.
+constexpr double kResolvableStandardErrors = 2;
+constexpr double kNegligibleError = 1e-8;
+
+std::string printed(const char* pattern, double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, pattern, value);
+  return text;
+}
+
+int probeEdge(int shotEdge, int scale) {
+  const int edge = shotEdge / scale;
+  return std::min(shotEdge + shotEdge % 2, edge + edge % 2);
+}
+
+}  // namespace
+
+const std::vector<Pipeline>& autoCandidates() {
+  static const std::vector<Pipeline> candidates = {PIPELINE_PT, PIPELINE_D, PIPELINE_DI, PIPELINE_DUI, PIPELINE_TGPT};
+  return candidates;
+}
+
+ProbeGeometry probeGeometry(const ShotSpec& shot, int longestInterval) {
+  const int64_t shotFrames = shot.frame_end() - shot.frame_start() + 1;
+  const int64_t frames = std::min(shotFrames, std::max<int64_t>(kMinProbeFrames, longestInterval + 1));
+  ProbeGeometry geometry;
+  geometry.frameStart = shot.frame_start() + (shotFrames - frames) / 2;
+  geometry.frameEnd = geometry.frameStart + frames - 1;
+  // The probe costs kProbeCostInPtFrames x frames / scale^2 plain pt frames of the shot's size.
+  const double scale = std::sqrt(kProbeCostInPtFrames * static_cast<double>(frames) /
+                                 (kProbeBudget * static_cast<double>(shotFrames)));
+  const int largestScale = std::max(1, std::min(shot.width(), shot.height()) / kMinProbeEdge);
+  geometry.scale = std::clamp(static_cast<int>(std::ceil(scale)), 1, std::min(kMaxProbeScale, largestScale));
+  geometry.width = probeEdge(shot.width(), geometry.scale);
+  geometry.height = probeEdge(shot.height(), geometry.scale);
+  geometry.zoom = static_cast<double>(shot.height()) / geometry.height;
+  return geometry;
+}
+
+ShotSpec probeSpecOf(const ShotSpec& candidate, const ProbeGeometry& geometry, const std::filesystem::path& folder) {
+  ShotSpec probe = candidate;
+  const std::string name(pipelineName(candidate.pipeline()));
+  probe.set_name(candidate.name() + ".probe." + name);
+  probe.set_frame_start(geometry.frameStart);
+  probe.set_frame_end(geometry.frameEnd);
+  probe.set_width(geometry.width);
+  probe.set_height(geometry.height);
+  probe.set_output((folder / name).string());
+  probe.set_reference_spp(0);
+  probe.clear_evaluation_frames();
+  probe.clear_baseline_core_seconds();
+  if (candidate.pipeline() == PIPELINE_TGPT) {
+    probe.set_poisson_window(static_cast<int>(std::min<int64_t>(candidate.poisson_window(), geometry.frames())));
+    probe.set_poisson_overlap(std::min(candidate.poisson_overlap(), probe.poisson_window() - 1));
+  }
+  if (geometry.zoom > 1) probe.set_camera_zoom(geometry.zoom);
+  if (candidate.pipeline() == PIPELINE_PT) {
+    probe.set_first_sample(kIndependentFirstSample);
+    probe.set_spp(candidate.spp() * kStandInSppFactor);
+  }
+  return probe;
+}
+
+PipelineChoice decidePipeline(const std::vector<CandidateMeasure>& measures, const ProbeGeometry& geometry,
+                              const ShotSpec& shot) {
+  const auto pt = std::find_if(measures.begin(), measures.end(), [](const auto& m) { return m.pipeline == PIPELINE_PT; });
+  if (pt == measures.end() || !pt->failure.empty() || !(pt->coreSeconds > 0))
+    throw std::invalid_argument("the probe needs plain pt's render to measure the others against" +
+                                (pt == measures.end() || pt->failure.empty() ? std::string() : ": " + pt->failure));
+  PipelineChoice choice;
+  const double pixelRatio = static_cast<double>(shot.width()) * shot.height() /
+                            (static_cast<double>(geometry.width) * geometry.height);
+  const double ptError = std::max(pt->relMse, kNegligibleError);
+  double best = 0;
+  std::string table;
+  for (const CandidateMeasure& m : measures) {
+    choice.probeCoreSeconds += m.probeCoreSeconds;
+    if (!table.empty()) table += ", ";
+    const std::string name(pipelineName(m.pipeline));
+    if (!m.failure.empty()) {
+      table += name + " failed (" + m.failure + ")";
+      continue;
+    }
+    const double floor = std::max(kResolvableStandardErrors * m.relMseStandardError, kNegligibleError);
+    const double error = std::max(m.relMse, floor);
+    const double cost = m.coreSeconds / pt->coreSeconds * error / ptError;
+    table += name + " " + printed("%.2f", cost) + (m.relMse < floor ? " (its error within the probe's noise)" : "");
+    if (choice.pipeline != PIPELINE_UNSPECIFIED && cost >= best) continue;
+    best = cost;
+    choice.pipeline = m.pipeline;
+    choice.predictedRelMse = error;
+    choice.predictedCoreSecondsPerFrame = m.coreSeconds / static_cast<double>(geometry.frames()) * pixelRatio;
+  }
+  const std::string probe = "probe: frames " + std::to_string(geometry.frameStart) + ".." +
+                            std::to_string(geometry.frameEnd) + ", the centre " + std::to_string(geometry.width) +
+                            "x" + std::to_string(geometry.height) + " pixels, " + std::to_string(shot.spp()) + " spp, " +
+                            printed("%.1f", choice.probeCoreSeconds) + " core-seconds";
+  choice.reason = "auto chose " + std::string(pipelineName(choice.pipeline)) + ", the lowest predicted cost at equal error against plain pt: " +
+                  table + " (" + probe + ")";
+  return choice;
+}
+
+}  // namespace pathfarm::farm

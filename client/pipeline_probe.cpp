@@ -1,0 +1,140 @@
+#include "client/pipeline_probe.h"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <map>
+
+#include "image/exr_io.h"
+#include "postproc/metrics/relmse.h"
+#include "client/pipeline_choice.h"
+#include "client/shot_preparation.h"
+
+namespace pathfarm::farm {
+namespace {
+
+// The shot read as each candidate, its scene as uploaded. A dui shot whose keyframe probe
+// chose k = 1 reads as d, and di with k = 1 interpolates nothing: both are d, probed once.
+std::vector<ShotSpec> candidateSpecs(const ShotFile& file, const ShotSpec& autoSpec) {
+  std::vector<ShotSpec> specs;
+  for (const Pipeline pipeline : autoCandidates()) {
+    ShotSpec spec = preparedShot(file, pipeline);
+    spec.set_scene(autoSpec.scene());
+    *spec.mutable_inputs() = autoSpec.inputs();
+    if (spec.pipeline() == PIPELINE_DI && spec.keyframe_interval() == 1) continue;
+    const bool probed = std::any_of(specs.begin(), specs.end(), [&](const ShotSpec& s) {
+      return s.pipeline() == spec.pipeline();
+    });
+    if (!probed) specs.push_back(std::move(spec));
+  }
+  return specs;
+}
+
+// The frames a finished probe shot wrote, by file name.
+std::map<std::string, FrameImage> fetchFrames(FarmClient& client, int64_t id, const std::filesystem::path& folder) {
+  std::map<std::string, FrameImage> frames;
+  for (const auto& file : client.fetch(id, folder)) frames.emplace(file.filename().string(), readExr(file));
+  return frames;
+}
+
+// The candidate's relMSE against the truth over the probe's frames, estimated against
+// plain pt's independent frames; for pt itself, their own noise.
+MeanEstimate estimatedRelMse(const std::map<std::string, FrameImage>& frames,
+                             const std::map<std::string, FrameImage>& truthStandIn, bool isStandIn) {
+  MeanEstimate estimate;
+  for (const auto& [name, standIn] : truthStandIn) {
+    if (isStandIn) {
+      estimate += ownRelMseFromVariance(standIn);
+      continue;
+    }
+    const auto frame = frames.find(name);
+    if (frame == frames.end()) throw std::runtime_error("the probe has no " + name);
+    estimate += relMseLessReferenceNoise(frame->second, standIn);
+  }
+  return estimate;
+}
+
+// Submits every candidate's probe shot; returns their ids, in the candidates' order.
+std::vector<int64_t> submitProbes(FarmClient& client, const std::vector<ShotSpec>& candidates,
+                                  const ProbeGeometry& geometry, const std::filesystem::path& probeFolder,
+                                  const std::string& submitKey) {
+  std::vector<int64_t> ids;
+  std::string names;
+  for (const ShotSpec& candidate : candidates) {
+    const std::string name(pipelineName(candidate.pipeline()));
+    const std::string key = submitKey.empty() ? "" : submitKey + ".probe." + name;
+    ids.push_back(client.submit(probeSpecOf(candidate, geometry, probeFolder), key));
+    names += (names.empty() ? "" : ", ") + name;
+  }
+  spdlog::info("pipeline auto: probing {} on frames {}..{}, the centre {}x{} pixels, {} spp (shots {}..{})", names,
+               geometry.frameStart, geometry.frameEnd, geometry.width, geometry.height, candidates.front().spp(),
+               ids.front(), ids.back());
+  return ids;
+}
+
+// What probe shot `id` of `pipeline` cost and erred, once it ends. pt's probe comes first:
+// its frames become `truthStandIn`, which the others are measured against.
+CandidateMeasure measureProbe(FarmClient& client, int64_t id, Pipeline pipeline,
+                              const std::filesystem::path& probeFolder,
+                              const std::function<void(const ShotSummary&)>& progress,
+                              std::map<std::string, FrameImage>& truthStandIn) {
+  const std::string name(pipelineName(pipeline));
+  const ShotSummary summary = client.watch(id, progress);
+  CandidateMeasure measure;
+  measure.pipeline = pipeline;
+  if (summary.state() != SHOT_DONE) {
+    measure.failure = "shot " + std::to_string(id) + " " + ShotState_Name(summary.state()) +
+                      (summary.failure().empty() ? "" : ": " + summary.failure());
+    if (pipeline == PIPELINE_PT) throw std::runtime_error("pipeline auto: plain pt's probe, which the others are "
+                                                          "measured against, did not finish: " + measure.failure);
+    spdlog::warn("pipeline auto: the {} probe did not finish ({}); it is left out", name, measure.failure);
+    return measure;
+  }
+  const auto frames = fetchFrames(client, id, probeFolder / name);
+  if (pipeline == PIPELINE_PT) truthStandIn = frames;
+  // Plain pt's probe renders kStandInSppFactor times the spp: at the shot's, it would
+  // cost that much less and err that much more.
+  const double sppScale = pipeline == PIPELINE_PT ? kStandInSppFactor : 1;
+  measure.probeCoreSeconds = client.report(id).core_seconds();
+  measure.coreSeconds = measure.probeCoreSeconds / sppScale;
+  const MeanEstimate error = estimatedRelMse(frames, truthStandIn, pipeline == PIPELINE_PT);
+  measure.relMse = error.mean() * sppScale;
+  measure.relMseStandardError = error.standardError() * sppScale;
+  spdlog::info("pipeline auto: {} probe: {:.2f} core-seconds, estimated relMSE {:.5f} ± {:.5f}", name,
+               measure.coreSeconds, measure.relMse, measure.relMseStandardError);
+  return measure;
+}
+
+}  // namespace
+
+ShotSpec choosePipeline(FarmClient& client, const ShotFile& file, const ShotSpec& autoSpec,
+                        const std::filesystem::path& probeFolder,
+                        const std::function<void(const ShotSummary&)>& progress, const std::string& submitKey) {
+  const std::vector<ShotSpec> candidates = candidateSpecs(file, autoSpec);
+  int longestInterval = 1;
+  for (const ShotSpec& c : candidates) longestInterval = std::max(longestInterval, c.keyframe_interval());
+  const ProbeGeometry geometry = probeGeometry(autoSpec, longestInterval);
+  const std::vector<int64_t> ids = submitProbes(client, candidates, geometry, probeFolder, submitKey);
+  std::vector<CandidateMeasure> measures;
+  std::map<std::string, FrameImage> truthStandIn;
+  for (size_t i = 0; i < candidates.size(); ++i)
+    measures.push_back(measureProbe(client, ids[i], candidates[i].pipeline(), probeFolder, progress, truthStandIn));
+
+  PipelineChoice choice;
+  try {
+    choice = decidePipeline(measures, geometry, autoSpec);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(std::string("pipeline auto: ") + e.what());
+  }
+  spdlog::info("{}", choice.reason);
+  const auto winner = std::find_if(candidates.begin(), candidates.end(),
+                                   [&](const ShotSpec& c) { return c.pipeline() == choice.pipeline; });
+  ShotSpec spec = *winner;
+  spec.set_pipeline_reason(choice.reason + (spec.pipeline_reason().empty() ? "" : "; " + spec.pipeline_reason()));
+  spec.set_predicted_core_seconds_per_frame(choice.predictedCoreSecondsPerFrame);
+  spec.set_predicted_relmse(choice.predictedRelMse);
+  spec.set_probe_core_seconds(choice.probeCoreSeconds);
+  return spec;
+}
+
+}  // namespace pathfarm::farm

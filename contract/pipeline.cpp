@@ -1,0 +1,74 @@
+#include "contract/pipeline.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace pathfarm::farm {
+
+const std::vector<PipelineTraits>& allPipelines() {
+  using F = PipelineFamily;
+  static const std::vector<std::string_view> filteringKeys = {"keyframe_interval", "rerender_bound", "feature_spp"};
+  static const std::vector<std::string_view> gradientKeys = {"poisson_window", "poisson_overlap", "poisson_norm"};
+  static const std::vector<std::string_view> metropolisKeys = {"mlt_window",       "mutations_per_pixel", "mlt_chains",
+                                                               "chains_per_block", "chain_tasks",         "temporal_delta",
+                                                               "tune_delta",       "bootstrap_samples"};
+  static const std::vector<PipelineTraits> pipelines = {
+      {PIPELINE_AUTO, "auto", F::Choice, "", {}, {}},
+      {PIPELINE_PT, "pt", F::Plain, "pt", {}, {}},
+      {PIPELINE_D, "d", F::Filtering, "pt", {false, false}, filteringKeys},
+      {PIPELINE_DU, "du", F::Filtering, "pt", {true, false}, filteringKeys},
+      {PIPELINE_DI, "di", F::Filtering, "pt", {false, true}, filteringKeys},
+      {PIPELINE_DUI, "dui", F::Filtering, "pt", {true, true}, filteringKeys},
+      {PIPELINE_TGPT, "tgpt", F::Gradient, "tgpt", {}, gradientKeys},
+      {PIPELINE_PSSMLT, "pssmlt", F::Metropolis, "pssmlt", {}, metropolisKeys},
+      {PIPELINE_MLT, "mlt", F::Metropolis, "mlt", {}, metropolisKeys},
+      {PIPELINE_TMLT, "tmlt", F::Metropolis, "tmlt", {}, metropolisKeys},
+      {PIPELINE_NOOP, "noop", F::Noop, "", {}, {"noop_tasks"}},
+  };
+  return pipelines;
+}
+
+const PipelineTraits& traitsOf(Pipeline pipeline) {
+  const auto& pipelines = allPipelines();
+  const auto found = std::find_if(pipelines.begin(), pipelines.end(), [&](const auto& p) { return p.pipeline == pipeline; });
+  if (found == pipelines.end()) throw std::invalid_argument("no pipeline has the value " + std::to_string(pipeline));
+  return *found;
+}
+
+std::string_view pipelineName(Pipeline pipeline) { return traitsOf(pipeline).name; }
+
+std::optional<Pipeline> pipelineNamed(std::string_view name) {
+  for (const PipelineTraits& traits : allPipelines())
+    if (traits.name == name) return traits.pipeline;
+  return std::nullopt;
+}
+
+std::string pipelineNames() {
+  std::string names;
+  for (const PipelineTraits& traits : allPipelines()) names += (names.empty() ? "" : ", ") + std::string(traits.name);
+  return names;
+}
+
+bool isFilteringPipeline(Pipeline pipeline) {
+  return pipeline != PIPELINE_UNSPECIFIED && traitsOf(pipeline).family == PipelineFamily::Filtering;
+}
+
+bool isMetropolisPipeline(Pipeline pipeline) {
+  return pipeline != PIPELINE_UNSPECIFIED && traitsOf(pipeline).family == PipelineFamily::Metropolis;
+}
+
+FilteringStages stagesOf(Pipeline pipeline) {
+  if (!isFilteringPipeline(pipeline))
+    throw std::invalid_argument("pipeline " + std::to_string(pipeline) + " is not a filtering pipeline");
+  return traitsOf(pipeline).stages;
+}
+
+std::vector<int64_t> keyframesOf(const ShotSpec& spec) {
+  const int64_t step = stagesOf(spec.pipeline()).interpolate ? std::max(1, spec.keyframe_interval()) : 1;
+  std::vector<int64_t> keyframes;
+  for (int64_t frame = spec.frame_start(); frame <= spec.frame_end(); frame += step) keyframes.push_back(frame);
+  if (keyframes.back() != spec.frame_end()) keyframes.push_back(spec.frame_end());
+  return keyframes;
+}
+
+}  // namespace pathfarm::farm

@@ -1,0 +1,60 @@
+#pragma once
+// The pipelines a shot can run, in one place for every side of the farm: the client reads
+// them from shot files and probes among them, the scheduler plans them, the worker runs
+// their stages. The wire carries a Pipeline (pathfarm/shot.proto); this module says what
+// each one is: its name, its family, its filtering stages, its keyframes and the shot-file
+// keys that belong to it. Adding a pipeline touches this module, the planner and the
+// worker's stage code.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "pathfarm/shot.pb.h"
+
+namespace pathfarm::farm {
+
+enum class PipelineFamily {
+  Choice,      // auto: the client's probe chooses one of the others before submitting
+  Plain,       // pt: tiles of plain path tracing
+  Filtering,   // d, du, di, dui: Zimmer et al. 2015
+  Gradient,    // tgpt: Manzi et al. 2016
+  Metropolis,  // pssmlt, mlt, tmlt: Van de Woestijne et al. 2017 and its baselines
+  Noop,        // tasks that do nothing, for measuring the farm itself
+};
+
+// What a filtering pipeline does besides rendering keyframes.
+struct FilteringStages {
+  bool upsample = false;     // keyframes at 1/4 of the samples, filtered at half resolution
+  bool interpolate = false;  // only every k-th frame is a keyframe
+};
+
+struct PipelineTraits {
+  Pipeline pipeline;
+  std::string_view name;  // as shot files, reports and frames' attributes spell it
+  PipelineFamily family;
+  std::string_view integrator;            // what renders its frames (renderer/setup/integrator_factory.h)
+  FilteringStages stages;                 // Filtering only
+  std::vector<std::string_view> keys;     // shot-file keys only this family reads
+};
+
+// Every pipeline, in the order messages list them.
+const std::vector<PipelineTraits>& allPipelines();
+// Throws std::invalid_argument for PIPELINE_UNSPECIFIED or a value no traits describe.
+const PipelineTraits& traitsOf(Pipeline pipeline);
+std::string_view pipelineName(Pipeline pipeline);
+// The pipeline a name spells, or nothing.
+std::optional<Pipeline> pipelineNamed(std::string_view name);
+// "auto, pt, d, ...": every name, for messages.
+std::string pipelineNames();
+
+bool isFilteringPipeline(Pipeline pipeline);
+bool isMetropolisPipeline(Pipeline pipeline);
+// Throws std::invalid_argument for a pipeline that is not a filtering one.
+FilteringStages stagesOf(Pipeline pipeline);
+// The rendered frames of a filtering shot: every frame, or with interpolation every k-th
+// from the first, and the last.
+std::vector<int64_t> keyframesOf(const ShotSpec& spec);
+
+}  // namespace pathfarm::farm

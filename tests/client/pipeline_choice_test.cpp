@@ -1,0 +1,162 @@
+#include <gtest/gtest.h>
+
+#include "renderer/integrators/frame_renderer.h"
+#include "client/pipeline_choice.h"
+#include "scheduler/planner.h"
+
+namespace pathfarm::farm {
+namespace {
+
+ShotSpec probedShot(int64_t frames, int width, int height) {
+  ShotSpec spec;
+  spec.set_name("shot");
+  spec.set_frame_start(100);
+  spec.set_frame_end(100 + frames - 1);
+  spec.set_width(width);
+  spec.set_height(height);
+  spec.set_spp(64);
+  spec.set_tile(64);
+  return spec;
+}
+
+ShotSpec candidateSpec(const std::string& pipeline, int keyframeInterval = 1) {
+  ShotSpec spec = probedShot(24, 320, 180);
+  spec.set_pipeline(*pipelineNamed(pipeline));
+  spec.set_reference_spp(1024);
+  spec.add_evaluation_frames(111);
+  if (isFilteringPipeline(spec.pipeline())) {
+    spec.set_decompose("diffuse=ED,residual");
+    spec.set_keyframe_interval(keyframeInterval);
+    spec.set_feature_spp(4);
+  }
+  if (pipeline == "tgpt") {
+    spec.set_poisson_window(10);
+    spec.set_poisson_overlap(5);
+    spec.set_poisson_norm("l1");
+  }
+  return spec;
+}
+
+CandidateMeasure measured(const std::string& pipeline, double coreSeconds, double relMse,
+                          double standardError = 0) {
+  CandidateMeasure m;
+  m.pipeline = *pipelineNamed(pipeline);
+  m.coreSeconds = coreSeconds;
+  m.probeCoreSeconds = coreSeconds;
+  m.relMse = relMse;
+  m.relMseStandardError = standardError;
+  return m;
+}
+
+TEST(PipelineChoice, TheProbeCoversTheLongestIntervalInTheMiddleOfTheShot) {
+  const ProbeGeometry g = probeGeometry(probedShot(24, 320, 180), 8);
+  EXPECT_EQ(g.frames(), 9);
+  EXPECT_EQ(g.frameStart, 100 + (24 - 9) / 2);
+  EXPECT_EQ(probeGeometry(probedShot(24, 320, 180), 2).frames(), 5);  // never fewer than 5
+  EXPECT_EQ(probeGeometry(probedShot(3, 320, 180), 8).frames(), 3);   // nor more than the shot
+}
+
+TEST(PipelineChoice, TheProbeIsSmallerTheShorterTheShotAndAlwaysEven) {
+  // A short shot: the probe is its centre quarter per axis, rounded up to even, and the
+  // camera zooms in by exactly the ratio of the heights.
+  const ProbeGeometry short_ = probeGeometry(probedShot(24, 321, 181), 4);
+  EXPECT_EQ(short_.scale, 4);
+  EXPECT_EQ(short_.width, 80);
+  EXPECT_EQ(short_.height, 46);
+  EXPECT_DOUBLE_EQ(short_.zoom, 181.0 / 46.0);
+  // A long one: the same frames are a small share of it, so the probe renders them larger.
+  const ProbeGeometry long_ = probeGeometry(probedShot(2400, 1920, 1080), 4);
+  EXPECT_LT(long_.scale, short_.scale);
+  EXPECT_EQ(long_.width % 2, 0);
+  EXPECT_EQ(long_.height % 2, 0);
+  // No edge of the crop is under 32 pixels, unless the shot's is: then it is the whole frame.
+  const ProbeGeometry small = probeGeometry(probedShot(24, 128, 72), 4);
+  EXPECT_EQ(small.scale, 2);
+  EXPECT_EQ(small.height, 36);
+  const ProbeGeometry tiny = probeGeometry(probedShot(24, 40, 12), 4);
+  EXPECT_EQ(tiny.width, 40);
+  EXPECT_EQ(tiny.height, 12);
+  EXPECT_DOUBLE_EQ(tiny.zoom, 1.0);
+}
+
+TEST(PipelineChoice, EveryProbePlansAndOnlyPlainPtSamplesApart) {
+  const ProbeGeometry g = probeGeometry(probedShot(24, 320, 180), 4);
+  for (const auto& [pipeline, k] : std::vector<std::pair<std::string, int>>{{"pt", 1}, {"d", 1}, {"di", 4},
+                                                                            {"dui", 4}, {"tgpt", 1}}) {
+    const ShotSpec probe = probeSpecOf(candidateSpec(pipeline, k), g, "/tmp/probes");
+    EXPECT_EQ(pipelineName(probe.pipeline()), pipeline);
+    EXPECT_EQ(probe.output(), "/tmp/probes/" + pipeline);
+    EXPECT_EQ(probe.width(), g.width);
+    EXPECT_EQ(probe.frame_start(), g.frameStart);
+    EXPECT_EQ(probe.reference_spp(), 0) << "a probe measures nothing itself";
+    EXPECT_TRUE(probe.evaluation_frames().empty());
+    EXPECT_EQ(probe.first_sample(), pipeline == "pt" ? kIndependentFirstSample : 0u) << pipeline;
+    EXPECT_EQ(probe.spp(), pipeline == "pt" ? 64 * kStandInSppFactor : 64) << pipeline;
+    EXPECT_DOUBLE_EQ(probe.camera_zoom(), 180.0 / g.height);
+    EXPECT_NO_THROW(planShot(probe)) << pipeline;
+    if (pipeline == "tgpt") {
+      EXPECT_LE(probe.poisson_window(), g.frames());
+    }
+  }
+}
+
+TEST(PipelineChoice, TheLowestCostAtEqualErrorWins) {
+  const ShotSpec shot = probedShot(24, 320, 180);
+  const ProbeGeometry g = probeGeometry(shot, 4);
+  // pt: 10 core-seconds at relMSE 0.01. d: 11 at 0.002, 0.22 of pt at equal error. dui:
+  // 4 at 0.004, 0.16. tgpt: 60 at 0.001, 0.6.
+  const PipelineChoice choice = decidePipeline(
+      {measured("pt", 10, 0.01), measured("d", 11, 0.002), measured("dui", 4, 0.004), measured("tgpt", 60, 0.001)}, g, shot);
+  EXPECT_EQ(pipelineName(choice.pipeline), "dui");
+  EXPECT_DOUBLE_EQ(choice.predictedRelMse, 0.004);
+  const double pixelRatio = 320.0 * 180 / (g.width * g.height);
+  EXPECT_NEAR(choice.predictedCoreSecondsPerFrame, 4.0 / static_cast<double>(g.frames()) * pixelRatio, 1e-9);
+  EXPECT_DOUBLE_EQ(choice.probeCoreSeconds, 85);
+  EXPECT_NE(choice.reason.find("dui 0.16"), std::string::npos) << choice.reason;
+  EXPECT_NE(choice.reason.find("tgpt 0.60"), std::string::npos) << choice.reason;
+}
+
+TEST(PipelineChoice, PlainPtWinsWhenNothingBeatsIt) {
+  const ShotSpec shot = probedShot(24, 320, 180);
+  const PipelineChoice choice =
+      decidePipeline({measured("pt", 10, 0.01), measured("d", 11, 0.0095), measured("tgpt", 60, 0.002)}, probeGeometry(shot, 1), shot);
+  EXPECT_EQ(pipelineName(choice.pipeline), "pt");
+}
+
+TEST(PipelineChoice, AnErrorWithinTheProbesNoiseCannotWinByItself) {
+  // An estimate within two standard errors of zero (here below it) counts as two standard
+  // errors, so a cheaper pipeline with a real error still beats a costlier one that
+  // measured nothing.
+  const ShotSpec shot = probedShot(24, 320, 180);
+  const PipelineChoice choice = decidePipeline(
+      {measured("pt", 10, 0.01), measured("tgpt", 60, -0.001, 0.0005), measured("dui", 2, 0.002, 0.0005)},
+      probeGeometry(shot, 4), shot);
+  EXPECT_EQ(pipelineName(choice.pipeline), "dui");  // 0.2 x 0.2 = 0.04 against 6 x 0.1 = 0.6
+  EXPECT_NE(choice.reason.find("tgpt 0.60 (its error within the probe's noise)"), std::string::npos) << choice.reason;
+  // Resolved estimates are taken as they are: the same tgpt with a smaller error bar wins.
+  EXPECT_EQ(decidePipeline({measured("pt", 10, 0.01), measured("tgpt", 60, 0.00005, 0.00001),
+                            measured("dui", 2, 0.002, 0.0005)},
+                           probeGeometry(shot, 4), shot)
+                .pipeline,
+            PIPELINE_TGPT);  // 6 x 0.005 = 0.03
+  // When plain pt has no error at all, a pipeline with any error cannot beat it.
+  EXPECT_EQ(decidePipeline({measured("pt", 10, 0.0), measured("dui", 2, 1e-4)}, probeGeometry(shot, 4), shot).pipeline,
+            PIPELINE_PT);
+}
+
+TEST(PipelineChoice, AFailedProbeIsLeftOutAndNamed) {
+  const ShotSpec shot = probedShot(24, 320, 180);
+  CandidateMeasure failed = measured("dui", 0, 0);
+  failed.failure = "shot 3 SHOT_FAILED: out of memory";
+  const PipelineChoice choice =
+      decidePipeline({measured("pt", 10, 0.01), failed, measured("d", 11, 0.002)}, probeGeometry(shot, 4), shot);
+  EXPECT_EQ(pipelineName(choice.pipeline), "d");
+  EXPECT_NE(choice.reason.find("dui failed (shot 3 SHOT_FAILED: out of memory)"), std::string::npos);
+  EXPECT_THROW(decidePipeline({measured("d", 11, 0.002)}, probeGeometry(shot, 4), shot), std::invalid_argument);
+  CandidateMeasure ptFailed = measured("pt", 10, 0.01);
+  ptFailed.failure = "cancelled";
+  EXPECT_THROW(decidePipeline({ptFailed, measured("d", 11, 0.002)}, probeGeometry(shot, 4), shot), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace pathfarm::farm
