@@ -78,7 +78,7 @@ int main(int argc, char** argv) {
     FarmClient client(scheduler.address(), options.token);
     ShotSpec spec;
     spec.set_name("dispatch");
-    spec.set_pipeline(farm::PIPELINE_NOOP);
+    spec.set_pipeline(PIPELINE_NOOP);
     spec.set_noop_tasks(tasks);
     const auto start = std::chrono::steady_clock::now();
     const int64_t id = client.submit(spec);

@@ -69,7 +69,7 @@ math=(renderer/math/quaternion.cpp renderer/math/transform.cpp)
 gltf=(renderer/scene/gltf/gltf_document.cpp renderer/scene/gltf/gltf_animation.cpp
       renderer/scene/gltf/gltf_materials.cpp renderer/scene/gltf/gltf_mesh.cpp renderer/scene/gltf/gltf_scene.cpp
       renderer/scene/gltf/gltf_lights.cpp
-      renderer/scene/animation.cpp renderer/scene/texture.cpp renderer/scene/json_node.cpp
+      renderer/math/animation.cpp renderer/scene/texture.cpp renderer/scene/json_node.cpp
       renderer/scene/alpha_coverage.cpp renderer/scene/scene_inputs.cpp "${math[@]}" "${tinygltf[@]}")
 meshes=(renderer/scene/mesh_io.cpp renderer/scene/obj_reader.cpp renderer/scene/ply_reader.cpp
         renderer/scene/scene_inputs.cpp fuzz/tinyobj_implementation.cpp)

@@ -40,8 +40,8 @@
 #include "postproc/metrics/relmse.h"
 #include "postproc/poisson/poisson_system.h"
 #include "postproc/poisson/window_blend.h"
-#include "renderer/integrators/gradient_frame_renderer.h"
 #include "renderer/scene/scene_loader.h"
+#include "renderer/setup/integrator_factory.h"
 
 namespace {
 
@@ -238,13 +238,8 @@ Sequence renderSequence(const Scene& scene, RenderSettings settings, const Metho
                         double* seconds) {
   Sequence frames;
   *seconds = bench::seconds([&] {
-    if (m.integrator == "pt") {
-      const FrameRenderer renderer(scene, settings);
-      for (int64_t f = first; f <= last; ++f) frames.push_back(renderer.render(f));
-    } else {
-      const GradientFrameRenderer renderer(scene, settings, {m.integrator == "tgpt", m.motion, m.batches});
-      for (int64_t f = first; f <= last; ++f) frames.push_back(renderer.render(f));
-    }
+    const auto renderer = makeFrameIntegrator(m.integrator, scene, settings, {.motionVectors = m.motion, .batches = m.batches});
+    for (int64_t f = first; f <= last; ++f) frames.push_back(renderer->render(f));
   });
   return frames;
 }

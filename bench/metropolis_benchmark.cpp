@@ -20,9 +20,9 @@
 #include "bench/bench_support.h"
 #include "image/exr_io.h"
 #include "postproc/metrics/image_metrics.h"
-#include "renderer/bidirectional/bdpt_frame_renderer.h"
 #include "renderer/metropolis/metropolis_renderer.h"
 #include "renderer/scene/scene_loader.h"
+#include "renderer/setup/integrator_factory.h"
 
 namespace pathfarm {
 namespace {
@@ -52,15 +52,10 @@ struct Outcome {
 Sequence renderWith(const Scene& scene, const std::string& integrator, double budget, Frames frames,
                     RenderSettings settings) {
   Sequence out;
-  if (integrator == "pt" || integrator == "bdpt") {
+  if (!integratorNamed(integrator).rendersWindows) {
     settings.spp = std::max(1, static_cast<int>(std::lround(budget)));
-    if (integrator == "pt") {
-      const FrameRenderer renderer(scene, settings);
-      for (int64_t f = frames.first; f <= frames.last; ++f) out.push_back(renderer.render(f));
-    } else {
-      const BdptFrameRenderer renderer(scene, settings);
-      for (int64_t f = frames.first; f <= frames.last; ++f) out.push_back(renderer.render(f));
-    }
+    const auto renderer = makeFrameIntegrator(integrator, scene, settings);
+    for (int64_t f = frames.first; f <= frames.last; ++f) out.push_back(renderer->render(f));
     return out;
   }
   MetropolisSettings mlt = MetropolisSettings::defaultsOf(scene);

@@ -66,24 +66,37 @@ int withClient(const ClientArguments& arguments, Body body) {
 
 int exitFor(const farm::ShotSummary& summary) { return summary.state() == farm::SHOT_DONE ? kExitOk : kExitFailure; }
 
-}  // namespace
+// Adds client subcommands to an app, each with the connection options, run through
+// withClient.
+class ClientCommands {
+ public:
+  explicit ClientCommands(CLI::App& app) : app_(app) {}
 
-std::vector<Command> addClientCommands(CLI::App& app) {
-  std::vector<Command> commands;
-  const auto add = [&](const char* name, const char* description, auto configure, auto run) {
+  // `configure(command, arguments)` adds the command's own options; `run(client, arguments)`
+  // returns its exit status.
+  template <class Configure, class Run>
+  void command(const char* name, const char* description, Configure configure, Run run) {
     auto arguments = std::make_shared<ClientArguments>();
-    CLI::App* command = app.add_subcommand(name, description);
+    CLI::App* command = app_.add_subcommand(name, description);
     addConnectionOptions(command, *arguments);
     configure(command, *arguments);
-    commands.push_back({command, [arguments, run] { return withClient(*arguments, [&](farm::FarmClient& c) {
-                                                      return run(c, *arguments);
-                                                    }); }});
-  };
-  const auto shotIdOption = [](CLI::App* command, ClientArguments& a) {
-    command->add_option("id", a.shotId, "shot id")->required();
-  };
+    commands_.push_back({command, [arguments, run] {
+                           return withClient(*arguments, [&](farm::FarmClient& c) { return run(c, *arguments); });
+                         }});
+  }
+  std::vector<Command> commands() && { return std::move(commands_); }
 
-  add("submit", "queue a shot file; prints the shot id",
+ private:
+  CLI::App& app_;
+  std::vector<Command> commands_;
+};
+
+void shotIdOption(CLI::App* command, ClientArguments& a) { command->add_option("id", a.shotId, "shot id")->required(); }
+
+// Submitting a shot, and following it to its frames and report.
+void addShotCommands(ClientCommands& add) {
+  add.command(
+      "submit", "queue a shot file; prints the shot id",
       [](CLI::App* c, ClientArguments& a) {
         c->add_option("shot", a.shotFile, "shot file (JSON)")->required();
         c->add_option("--submit-key", a.submitKey,
@@ -97,13 +110,15 @@ std::vector<Command> addClientCommands(CLI::App& app) {
         if (!a.sharedPaths) {
           const farm::UploadSummary sent = farm::uploadSceneInputs(client, spec);
           spdlog::info("scene: {} files, {:.1f} MB; sent {} ({:.1f} MB), the farm had the rest", sent.files,
-                       static_cast<double>(sent.bytes) / 1e6, sent.filesSent, static_cast<double>(sent.bytesSent) / 1e6);
+                       static_cast<double>(sent.bytes) / 1e6, sent.filesSent,
+                       static_cast<double>(sent.bytesSent) / 1e6);
         }
         spec = withChosenPipeline(client, file, spec, std::filesystem::path(spec.output()) / "probe", a.submitKey);
         std::printf("%lld\n", static_cast<long long>(client.submit(spec, a.submitKey)));
         return kExitOk;
       });
-  add("status", "list every shot, or show one with its events",
+  add.command(
+      "status", "list every shot, or show one with its events",
       [](CLI::App* c, ClientArguments& a) { c->add_option("id", a.shotId, "shot id"); },
       [](farm::FarmClient& client, const ClientArguments& a) {
         if (a.shotId == 0) {
@@ -115,13 +130,15 @@ std::vector<Command> addClientCommands(CLI::App& app) {
         for (const auto& event : reply.events()) std::printf("  %.3f  %s\n", event.time(), event.message().c_str());
         return kExitOk;
       });
-  add("watch", "follow a shot until it ends", shotIdOption, [](farm::FarmClient& client, const ClientArguments& a) {
-    ShotProgress progress;
-    const auto summary = client.watch(a.shotId, [&](const farm::ShotSummary& s) { progress.update(s); });
-    std::printf("%s\n", describeShot(summary).c_str());
-    return exitFor(summary);
-  });
-  add("fetch", "write a shot's finished frames as EXR files",
+  add.command("watch", "follow a shot until it ends", shotIdOption,
+              [](farm::FarmClient& client, const ClientArguments& a) {
+                ShotProgress progress;
+                const auto summary = client.watch(a.shotId, [&](const farm::ShotSummary& s) { progress.update(s); });
+                std::printf("%s\n", describeShot(summary).c_str());
+                return exitFor(summary);
+              });
+  add.command(
+      "fetch", "write a shot's finished frames as EXR files",
       [](CLI::App* c, ClientArguments& a) {
         c->add_option("id", a.shotId, "shot id")->required();
         c->add_option("--out", a.out, "output folder")->required();
@@ -135,7 +152,8 @@ std::vector<Command> addClientCommands(CLI::App& app) {
                        farm::ShotState_Name(summary.state()), files.size());
         return kExitOk;
       });
-  add("report", "a shot's speed against error: core-seconds per stage, re-render rates, errors",
+  add.command(
+      "report", "a shot's speed against error: core-seconds per stage, re-render rates, errors",
       [](CLI::App* c, ClientArguments& a) {
         c->add_option("id", a.shotId, "shot id")->required();
         c->add_option("--out", a.out, "also write report.json and report.md into this folder");
@@ -147,8 +165,12 @@ std::vector<Command> addClientCommands(CLI::App& app) {
         if (!a.out.empty()) farm::writeReportFiles(report, a.out);
         return kExitOk;
       });
+}
+
+// Changing what the farm does with a shot, and what it knows of its workers.
+void addControlCommands(ClientCommands& add) {
   const auto control = [&](const char* name, const char* description, auto call) {
-    add(name, description, shotIdOption, [call](farm::FarmClient& client, const ClientArguments& a) {
+    add.command(name, description, shotIdOption, [call](farm::FarmClient& client, const ClientArguments& a) {
       std::printf("%s\n", describeShot(call(client, a.shotId)).c_str());
       return kExitOk;
     });
@@ -156,8 +178,10 @@ std::vector<Command> addClientCommands(CLI::App& app) {
   control("cancel", "cancel a shot", [](farm::FarmClient& c, int64_t id) { return c.cancel(id); });
   control("pause", "stop leasing a shot's tasks", [](farm::FarmClient& c, int64_t id) { return c.pause(id); });
   control("resume", "lease a paused shot's tasks again", [](farm::FarmClient& c, int64_t id) { return c.resume(id); });
-  control("retry", "run a failed shot again from what is done", [](farm::FarmClient& c, int64_t id) { return c.retry(id); });
-  add("priority", "change a shot's priority (higher runs first)",
+  control("retry", "run a failed shot again from what is done",
+          [](farm::FarmClient& c, int64_t id) { return c.retry(id); });
+  add.command(
+      "priority", "change a shot's priority (higher runs first)",
       [](CLI::App* c, ClientArguments& a) {
         c->add_option("id", a.shotId, "shot id")->required();
         c->add_option("priority", a.priority, "the new priority")->required();
@@ -166,7 +190,8 @@ std::vector<Command> addClientCommands(CLI::App& app) {
         std::printf("%s\n", describeShot(client.setPriority(a.shotId, a.priority)).c_str());
         return kExitOk;
       });
-  add("requeue", "run a task or a frame again, with every task that used it (a done shot runs again)",
+  add.command(
+      "requeue", "run a task or a frame again, with every task that used it (a done shot runs again)",
       [](CLI::App* c, ClientArguments& a) {
         c->add_option("id", a.shotId, "shot id")->required();
         auto* task = c->add_option("--task", a.taskId, "the task id (as the shot's events and the dashboard name it)");
@@ -179,7 +204,8 @@ std::vector<Command> addClientCommands(CLI::App& app) {
         std::printf("%s\n", describeShot(summary).c_str());
         return kExitOk;
       });
-  add("blocklist", "list the workers kept away from a shot (every shot without an id), or --clear them",
+  add.command(
+      "blocklist", "list the workers kept away from a shot (every shot without an id), or --clear them",
       [](CLI::App* c, ClientArguments& a) {
         c->add_option("id", a.shotId, "shot id");
         c->add_flag("--clear", a.clear, "let the shot's blocklisted workers (or --worker W) lease its tasks again");
@@ -194,14 +220,23 @@ std::vector<Command> addClientCommands(CLI::App& app) {
         if (entries.empty()) std::printf("no worker is blocklisted\n");
         return kExitOk;
       });
-  add("workers", "list the workers the scheduler knows", [](CLI::App*, ClientArguments&) {},
+  add.command(
+      "workers", "list the workers the scheduler knows", [](CLI::App*, ClientArguments&) {},
       [](farm::FarmClient& client, const ClientArguments&) {
         for (const auto& w : client.workers())
           std::printf("%lld %s: %d/%d slots busy, seen %.1f s ago\n", static_cast<long long>(w.id()), w.name().c_str(),
                       w.busy(), w.slots(), w.seconds_since_seen());
         return kExitOk;
       });
-  return commands;
+}
+
+}  // namespace
+
+std::vector<Command> addClientCommands(CLI::App& app) {
+  ClientCommands commands(app);
+  addShotCommands(commands);
+  addControlCommands(commands);
+  return std::move(commands).commands();
 }
 
 }  // namespace pathfarm

@@ -56,26 +56,25 @@ FarmState::TaskPage FarmState::taskDetails(int64_t shotId, std::optional<int> st
 }
 
 std::vector<FarmState::RunningTask> FarmState::runningTasks() {
-  return transact([&]() -> std::vector<RunningTask> {
-    std::vector<RunningTask> running;
-    Statement& q = db_.query(
-        "SELECT a.worker_id, t.shot_id, t.id, a.id, t.kind, t.params, a.leased_at, a.progress "
-        "FROM attempts a JOIN tasks t ON t.id = a.task_id WHERE a.state = ?1 ORDER BY a.worker_id, a.id");
-    q.bind(1, int64_t{kRunning});
-    while (q.step()) {
-      RunningTask& task = running.emplace_back();
-      task.workerId = q.integer(0);
-      task.shotId = q.integer(1);
-      task.taskId = q.integer(2);
-      task.attemptId = q.integer(3);
-      task.kind = static_cast<TaskKind>(q.integer(4));
-      TaskParams params;
-      params.ParseFromString(q.blob(5));
-      task.frame = params.frame();
-      task.leasedAt = q.real(6);
-      task.progress = q.real(7);
-    }
-    return running;
+  return transact([&] {
+    return db_
+        .query("SELECT a.worker_id, t.shot_id, t.id, a.id, t.kind, t.params, a.leased_at, a.progress "
+               "FROM attempts a JOIN tasks t ON t.id = a.task_id WHERE a.state = ?1 ORDER BY a.worker_id, a.id")
+        .bind(1, int64_t{kRunning})
+        .rows([](const Statement& q) {
+          RunningTask task;
+          task.workerId = q.integer(0);
+          task.shotId = q.integer(1);
+          task.taskId = q.integer(2);
+          task.attemptId = q.integer(3);
+          task.kind = static_cast<TaskKind>(q.integer(4));
+          TaskParams params;
+          params.ParseFromString(q.blob(5));
+          task.frame = params.frame();
+          task.leasedAt = q.real(6);
+          task.progress = q.real(7);
+          return task;
+        });
   });
 }
 

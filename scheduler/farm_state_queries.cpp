@@ -186,22 +186,20 @@ std::pair<ShotSpec, std::vector<TaskRecord>> FarmState::taskRecords(int64_t shot
 }
 
 std::vector<WorkerInfo> FarmState::workers(double now) {
-  return transact([&]() -> std::vector<WorkerInfo> {
-    std::vector<WorkerInfo> out;
-    Statement& q = db_.query(
-        "SELECT w.id, w.name, w.slots, w.last_seen, "
-        "(SELECT COUNT(*) FROM attempts a WHERE a.worker_id = w.id AND a.state = ?1) FROM workers w ORDER BY w.id");
-    q.bind(1, int64_t{kRunning});
-    while (q.step()) {
-      WorkerInfo info;
-      info.set_id(q.integer(0));
-      info.set_name(q.text(1));
-      info.set_slots(static_cast<int32_t>(q.integer(2)));
-      info.set_seconds_since_seen(now - q.real(3));
-      info.set_busy(static_cast<int32_t>(q.integer(4)));
-      out.push_back(std::move(info));
-    }
-    return out;
+  return transact([&] {
+    return db_
+        .query("SELECT w.id, w.name, w.slots, w.last_seen, (SELECT COUNT(*) FROM attempts a WHERE a.worker_id = w.id "
+               "AND a.state = ?1) FROM workers w ORDER BY w.id")
+        .bind(1, int64_t{kRunning})
+        .rows([&](const Statement& q) {
+          WorkerInfo info;
+          info.set_id(q.integer(0));
+          info.set_name(q.text(1));
+          info.set_slots(static_cast<int32_t>(q.integer(2)));
+          info.set_seconds_since_seen(now - q.real(3));
+          info.set_busy(static_cast<int32_t>(q.integer(4)));
+          return info;
+        });
   });
 }
 

@@ -10,6 +10,7 @@
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <vector>
 #include <memory>
 
 namespace pathfarm::farm {
@@ -46,6 +47,14 @@ class Statement {
   std::string text(int column) const;
   std::string blob(int column) const;
   bool isNull(int column) const;
+
+  // Every row still to come, each read by `read(*this)`.
+  template <class Read>
+  auto rows(Read read) -> std::vector<decltype(read(*this))> {
+    std::vector<decltype(read(*this))> all;
+    while (step()) all.push_back(read(*this));
+    return all;
+  }
 
  private:
   sqlite3* db_;

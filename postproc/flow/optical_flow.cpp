@@ -214,142 +214,184 @@ struct Tensor {
   }
 };
 
-// Refines (u, v) at one pyramid level of size w x h.
-void solveLevel(const LevelImage& A, const LevelImage& B, const Plane& mask, int w, int h, const FlowSettings& s,
-                Plane& u, Plane& v) {
-  const size_t n = static_cast<size_t>(w) * static_cast<size_t>(h);
-  const size_t W = static_cast<size_t>(w);
-  const size_t C = A.value.size();
-  const bool gradient = s.gradientWeight > 0.0f;
-  const float zeta2 = s.zeta * s.zeta, eps2 = s.epsilon * s.epsilon;
-  const float invC = 1.0f / static_cast<float>(C);
-  std::vector<Tensor> brightness(n), gradientTensor(gradient ? n : 0);
-  Plane dataOn(n), du(n), dv(n), psiS(n), wRight(n), wDown(n), diagU(n), diagV(n), offD(n), rhsU(n), rhsV(n);
+// The flow of one pyramid level of size w x h, refined warp by warp (Brox et al.'s outer
+// fixed point): each warp linearizes the data terms about the current flow and solves for
+// an increment (du, dv), with Psi' lagged (the inner fixed point) and every linear system
+// solved by red-black SOR.
+class LevelSolver {
+ public:
+  LevelSolver(const LevelImage& A, const LevelImage& B, const Plane& mask, int w, int h, const FlowSettings& s,
+              Plane& u, Plane& v)
+      : A_(A), B_(B), mask_(mask), w_(w), h_(h), s_(s), u_(u), v_(v) {}
 
-  for (int warp = 0; warp < s.warps; ++warp) {
-    // Linearize about the current flow: B and its derivatives looked up at p + w(p).
-    forRows(h, [&](int y) {
-      for (int x = 0; x < w; ++x) {
-        const size_t p = static_cast<size_t>(y) * W + static_cast<size_t>(x);
-        const float qx = static_cast<float>(x) + u[p], qy = static_cast<float>(y) + v[p];
-        const bool inside = qx >= -0.5f && qx < static_cast<float>(w) - 0.5f && qy >= -0.5f &&
-                            qy < static_cast<float>(h) - 0.5f;
-        dataOn[p] = inside ? std::clamp(1.0f - mask[p], 0.0f, 1.0f) : 0.0f;
-        Tensor t;
-        Tensor g;
-        for (size_t c = 0; c < C; ++c) {
-          const float ix = 0.5f * (A.dx[c][p] + sample(B.dx[c], w, h, qx, qy));
-          const float iy = 0.5f * (A.dy[c][p] + sample(B.dy[c], w, h, qx, qy));
-          const float iz = sample(B.value[c], w, h, qx, qy) - A.value[c][p];
-          t.add(invC / (ix * ix + iy * iy + zeta2), ix, iy, iz);
-          if (gradient) {
-            const float ixx = 0.5f * (A.dxx[c][p] + sample(B.dxx[c], w, h, qx, qy));
-            const float ixy = 0.5f * (A.dxy[c][p] + sample(B.dxy[c], w, h, qx, qy));
-            const float iyy = 0.5f * (A.dyy[c][p] + sample(B.dyy[c], w, h, qx, qy));
-            const float ixz = sample(B.dx[c], w, h, qx, qy) - A.dx[c][p];
-            const float iyz = sample(B.dy[c], w, h, qx, qy) - A.dy[c][p];
-            g.add(invC / (ixx * ixx + ixy * ixy + zeta2), ixx, ixy, ixz);
-            g.add(invC / (ixy * ixy + iyy * iyy + zeta2), ixy, iyy, iyz);
-          }
-        }
-        brightness[p] = t;
-        if (gradient) gradientTensor[p] = g;
-        du[p] = 0.0f;
-        dv[p] = 0.0f;
+  void solve() {
+    for (int warp = 0; warp < s_.warps; ++warp) {
+      linearize();
+      for (int fixedPoint = 0; fixedPoint < s_.fixedPointIterations; ++fixedPoint) {
+        lagNonlinearity();
+        weighSmoothness();
+        for (int sweep = 0; sweep < s_.sorIterations; ++sweep)
+          for (int colour = 0; colour < 2; ++colour) relax(colour);
       }
-    });
-
-    for (int fixedPoint = 0; fixedPoint < s.fixedPointIterations; ++fixedPoint) {
-      // Lagged nonlinearity: Psi' of the data terms and of the smoothness term.
-      forRows(h, [&](int y) {
-        const int ym = std::max(y - 1, 0), yp = std::min(y + 1, h - 1);
-        for (int x = 0; x < w; ++x) {
-          const size_t p = static_cast<size_t>(y) * W + static_cast<size_t>(x);
-          const int xm = std::max(x - 1, 0), xp = std::min(x + 1, w - 1);
-          auto full = [&](const Plane& f, const Plane& d, int xx, int yy) {
-            const size_t q = static_cast<size_t>(yy) * W + static_cast<size_t>(xx);
-            return f[q] + d[q];
-          };
-          const float ux = 0.5f * (full(u, du, xp, y) - full(u, du, xm, y));
-          const float uy = 0.5f * (full(u, du, x, yp) - full(u, du, x, ym));
-          const float vx = 0.5f * (full(v, dv, xp, y) - full(v, dv, xm, y));
-          const float vy = 0.5f * (full(v, dv, x, yp) - full(v, dv, x, ym));
-          psiS[p] = 1.0f / std::sqrt(ux * ux + uy * uy + vx * vx + vy * vy + eps2);
-
-          float d11 = 0, d12 = 0, d22 = 0, b1 = 0, b2 = 0;
-          if (dataOn[p] > 0.0f) {
-            const Tensor& t = brightness[p];
-            const float psiB = dataOn[p] / std::sqrt(std::max(t.energy(du[p], dv[p]), 0.0f) + eps2);
-            d11 = psiB * t.j11;
-            d12 = psiB * t.j12;
-            d22 = psiB * t.j22;
-            b1 = psiB * t.j13;
-            b2 = psiB * t.j23;
-            if (gradient) {
-              const Tensor& g = gradientTensor[p];
-              const float psiG =
-                  s.gradientWeight * dataOn[p] / std::sqrt(std::max(g.energy(du[p], dv[p]), 0.0f) + eps2);
-              d11 += psiG * g.j11;
-              d12 += psiG * g.j12;
-              d22 += psiG * g.j22;
-              b1 += psiG * g.j13;
-              b2 += psiG * g.j23;
-            }
-          }
-          diagU[p] = d11;
-          diagV[p] = d22;
-          offD[p] = d12;
-          rhsU[p] = b1;
-          rhsV[p] = b2;
-        }
-      });
-      // Smoothness weights between neighbours: lambda times the mean of their Psi'.
-      forRows(h, [&](int y) {
-        for (int x = 0; x < w; ++x) {
-          const size_t p = static_cast<size_t>(y) * W + static_cast<size_t>(x);
-          wRight[p] = x + 1 < w ? 0.5f * s.lambda * (psiS[p] + psiS[p + 1]) : 0.0f;
-          wDown[p] = y + 1 < h ? 0.5f * s.lambda * (psiS[p] + psiS[p + W]) : 0.0f;
-        }
-      });
-
-      // Red-black SOR on the linear system for (du, dv).
-      const float omega = s.sorOmega;
-      for (int sweep = 0; sweep < s.sorIterations; ++sweep) {
-        for (int colour = 0; colour < 2; ++colour) {
-          forRows(h, [&](int y) {
-            for (int x = (y + colour) & 1; x < w; x += 2) {
-              const size_t p = static_cast<size_t>(y) * W + static_cast<size_t>(x);
-              float sumW = 0.0f, sumU = 0.0f, sumV = 0.0f;
-              auto neighbour = [&](size_t q, float weight) {
-                sumW += weight;
-                sumU += weight * (u[q] + du[q]);
-                sumV += weight * (v[q] + dv[q]);
-              };
-              if (x > 0) neighbour(p - 1, wRight[p - 1]);
-              if (x + 1 < w) neighbour(p + 1, wRight[p]);
-              if (y > 0) neighbour(p - W, wDown[p - W]);
-              if (y + 1 < h) neighbour(p + W, wDown[p]);
-              const float smoothU = sumU - sumW * u[p], smoothV = sumV - sumW * v[p];
-              // A 1x1 image with no data has no equation at all: its flow stays as it is.
-              if (diagU[p] + sumW > 0.0f) {
-                const float newU = (smoothU - rhsU[p] - offD[p] * dv[p]) / (diagU[p] + sumW);
-                du[p] += omega * (newU - du[p]);
-              }
-              if (diagV[p] + sumW > 0.0f) {
-                const float newV = (smoothV - rhsV[p] - offD[p] * du[p]) / (diagV[p] + sumW);
-                dv[p] += omega * (newV - dv[p]);
-              }
-            }
-          });
-        }
+      for (size_t p = 0; p < n_; ++p) {
+        u_[p] += du_[p];
+        v_[p] += dv_[p];
       }
-    }
-    for (size_t p = 0; p < n; ++p) {
-      u[p] += du[p];
-      v[p] += dv[p];
     }
   }
-}
+
+ private:
+  // Linearize about the current flow: B and its derivatives looked up at p + w(p), the data
+  // terms' motion tensors, and a zero increment.
+  void linearize() {
+    forRows(h_, [&](int y) {
+      for (int x = 0; x < w_; ++x) {
+        const size_t p = static_cast<size_t>(y) * W_ + static_cast<size_t>(x);
+        const float qx = static_cast<float>(x) + u_[p], qy = static_cast<float>(y) + v_[p];
+        const bool inside = qx >= -0.5f && qx < static_cast<float>(w_) - 0.5f && qy >= -0.5f &&
+                            qy < static_cast<float>(h_) - 0.5f;
+        dataOn_[p] = inside ? std::clamp(1.0f - mask_[p], 0.0f, 1.0f) : 0.0f;
+        motionTensors(p, qx, qy);
+        du_[p] = 0.0f;
+        dv_[p] = 0.0f;
+      }
+    });
+  }
+
+  // The normalized brightness and gradient constancy tensors of pixel p, B read at (qx, qy).
+  void motionTensors(size_t p, float qx, float qy) {
+    Tensor t;
+    Tensor g;
+    for (size_t c = 0; c < C_; ++c) {
+      const float ix = 0.5f * (A_.dx[c][p] + sample(B_.dx[c], w_, h_, qx, qy));
+      const float iy = 0.5f * (A_.dy[c][p] + sample(B_.dy[c], w_, h_, qx, qy));
+      const float iz = sample(B_.value[c], w_, h_, qx, qy) - A_.value[c][p];
+      t.add(invC_ / (ix * ix + iy * iy + zeta2_), ix, iy, iz);
+      if (gradient_) {
+        const float ixx = 0.5f * (A_.dxx[c][p] + sample(B_.dxx[c], w_, h_, qx, qy));
+        const float ixy = 0.5f * (A_.dxy[c][p] + sample(B_.dxy[c], w_, h_, qx, qy));
+        const float iyy = 0.5f * (A_.dyy[c][p] + sample(B_.dyy[c], w_, h_, qx, qy));
+        const float ixz = sample(B_.dx[c], w_, h_, qx, qy) - A_.dx[c][p];
+        const float iyz = sample(B_.dy[c], w_, h_, qx, qy) - A_.dy[c][p];
+        g.add(invC_ / (ixx * ixx + ixy * ixy + zeta2_), ixx, ixy, ixz);
+        g.add(invC_ / (ixy * ixy + iyy * iyy + zeta2_), ixy, iyy, iyz);
+      }
+    }
+    brightness_[p] = t;
+    if (gradient_) gradientTensor_[p] = g;
+  }
+
+  // Lagged nonlinearity: Psi' of the data terms and of the smoothness term.
+  void lagNonlinearity() {
+    forRows(h_, [&](int y) {
+      const int ym = std::max(y - 1, 0), yp = std::min(y + 1, h_ - 1);
+      for (int x = 0; x < w_; ++x) {
+        const size_t p = static_cast<size_t>(y) * W_ + static_cast<size_t>(x);
+        const int xm = std::max(x - 1, 0), xp = std::min(x + 1, w_ - 1);
+        auto full = [&](const Plane& f, const Plane& d, int xx, int yy) {
+          const size_t q = static_cast<size_t>(yy) * W_ + static_cast<size_t>(xx);
+          return f[q] + d[q];
+        };
+        const float ux = 0.5f * (full(u_, du_, xp, y) - full(u_, du_, xm, y));
+        const float uy = 0.5f * (full(u_, du_, x, yp) - full(u_, du_, x, ym));
+        const float vx = 0.5f * (full(v_, dv_, xp, y) - full(v_, dv_, xm, y));
+        const float vy = 0.5f * (full(v_, dv_, x, yp) - full(v_, dv_, x, ym));
+        psiS_[p] = 1.0f / std::sqrt(ux * ux + uy * uy + vx * vx + vy * vy + eps2_);
+        lagDataTerms(p);
+      }
+    });
+  }
+
+  // Pixel p's data terms in the linear system: their tensors weighed by Psi'.
+  void lagDataTerms(size_t p) {
+    float d11 = 0, d12 = 0, d22 = 0, b1 = 0, b2 = 0;
+    if (dataOn_[p] > 0.0f) {
+      const Tensor& t = brightness_[p];
+      const float psiB = dataOn_[p] / std::sqrt(std::max(t.energy(du_[p], dv_[p]), 0.0f) + eps2_);
+      d11 = psiB * t.j11;
+      d12 = psiB * t.j12;
+      d22 = psiB * t.j22;
+      b1 = psiB * t.j13;
+      b2 = psiB * t.j23;
+      if (gradient_) {
+        const Tensor& g = gradientTensor_[p];
+        const float psiG =
+            s_.gradientWeight * dataOn_[p] / std::sqrt(std::max(g.energy(du_[p], dv_[p]), 0.0f) + eps2_);
+        d11 += psiG * g.j11;
+        d12 += psiG * g.j12;
+        d22 += psiG * g.j22;
+        b1 += psiG * g.j13;
+        b2 += psiG * g.j23;
+      }
+    }
+    diagU_[p] = d11;
+    diagV_[p] = d22;
+    offD_[p] = d12;
+    rhsU_[p] = b1;
+    rhsV_[p] = b2;
+  }
+
+  // Smoothness weights between neighbours: lambda times the mean of their Psi'.
+  void weighSmoothness() {
+    forRows(h_, [&](int y) {
+      for (int x = 0; x < w_; ++x) {
+        const size_t p = static_cast<size_t>(y) * W_ + static_cast<size_t>(x);
+        wRight_[p] = x + 1 < w_ ? 0.5f * s_.lambda * (psiS_[p] + psiS_[p + 1]) : 0.0f;
+        wDown_[p] = y + 1 < h_ ? 0.5f * s_.lambda * (psiS_[p] + psiS_[p + W_]) : 0.0f;
+      }
+    });
+  }
+
+  // Red-black SOR on the linear system for (du, dv): one sweep over the pixels of one colour.
+  void relax(int colour) {
+    const float omega = s_.sorOmega;
+    forRows(h_, [&](int y) {
+      for (int x = (y + colour) & 1; x < w_; x += 2) {
+        const size_t p = static_cast<size_t>(y) * W_ + static_cast<size_t>(x);
+        float sumW = 0.0f, sumU = 0.0f, sumV = 0.0f;
+        auto neighbour = [&](size_t q, float weight) {
+          sumW += weight;
+          sumU += weight * (u_[q] + du_[q]);
+          sumV += weight * (v_[q] + dv_[q]);
+        };
+        if (x > 0) neighbour(p - 1, wRight_[p - 1]);
+        if (x + 1 < w_) neighbour(p + 1, wRight_[p]);
+        if (y > 0) neighbour(p - W_, wDown_[p - W_]);
+        if (y + 1 < h_) neighbour(p + W_, wDown_[p]);
+        const float smoothU = sumU - sumW * u_[p], smoothV = sumV - sumW * v_[p];
+        // A 1x1 image with no data has no equation at all: its flow stays as it is.
+        if (diagU_[p] + sumW > 0.0f) {
+          const float newU = (smoothU - rhsU_[p] - offD_[p] * dv_[p]) / (diagU_[p] + sumW);
+          du_[p] += omega * (newU - du_[p]);
+        }
+        if (diagV_[p] + sumW > 0.0f) {
+          const float newV = (smoothV - rhsV_[p] - offD_[p] * du_[p]) / (diagV_[p] + sumW);
+          dv_[p] += omega * (newV - dv_[p]);
+        }
+      }
+    });
+  }
+
+  const LevelImage& A_;
+  const LevelImage& B_;
+  const Plane& mask_;
+  const int w_, h_;
+  const FlowSettings& s_;
+  Plane& u_;
+  Plane& v_;
+  const size_t n_ = static_cast<size_t>(w_) * static_cast<size_t>(h_);
+  const size_t W_ = static_cast<size_t>(w_);
+  const size_t C_ = A_.value.size();
+  const bool gradient_ = s_.gradientWeight > 0.0f;
+  const float zeta2_ = s_.zeta * s_.zeta, eps2_ = s_.epsilon * s_.epsilon;
+  const float invC_ = 1.0f / static_cast<float>(C_);
+  // The data terms linearized about the current flow.
+  std::vector<Tensor> brightness_ = std::vector<Tensor>(n_), gradientTensor_ = std::vector<Tensor>(gradient_ ? n_ : 0);
+  Plane dataOn_ = Plane(n_);
+  // The increment, Psi' of the smoothness term and the linear system's coefficients.
+  Plane du_ = Plane(n_), dv_ = Plane(n_), psiS_ = Plane(n_), wRight_ = Plane(n_), wDown_ = Plane(n_);
+  Plane diagU_ = Plane(n_), diagV_ = Plane(n_), offD_ = Plane(n_), rhsU_ = Plane(n_), rhsV_ = Plane(n_);
+};
 
 struct Level {
   int w, h;
@@ -407,7 +449,7 @@ FlowField solve(const Planes& a, const Planes& b, const FlowSettings& s, const s
     }
     const LevelImage A = prepare(level.a, level.w, level.h, second);
     const LevelImage B = prepare(level.b, level.w, level.h, second);
-    solveLevel(A, B, level.mask, level.w, level.h, s, u, v);
+    LevelSolver(A, B, level.mask, level.w, level.h, s, u, v).solve();
   }
   FlowField flow;
   flow.width = w0;

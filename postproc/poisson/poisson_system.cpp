@@ -151,140 +151,178 @@ float PoissonSystem::temporalResidual(const std::vector<float>& x, size_t g, siz
 // the last line of a frame are absent and never computed, so no buffer reaches past the
 // window.
 template <bool kWithTargets>
-ChannelSums PoissonSystem::gather(const std::vector<float>& x, std::vector<float>& out,
-                                  const Reweighting* reweighting) const {
-  const size_t w = static_cast<size_t>(width_), h = static_cast<size_t>(height_), lineSize = 3 * w;
-  const size_t lines = frames_ * h;
-  // The targets' part of a row, read only when asked for.
-  const auto target = [&](const std::vector<float>& targets, size_t i) {
-    if constexpr (kWithTargets) return targets[i];
-    return 0.0f;
-  };
-  // result[j] = weight * residual(j) for the values j of `line` of one row block; 0 for the
-  // `lastColumns` values of the line's last pixel (rows towards x + 1) and over the whole
-  // line when it is its frame's last and the rows reach y + 1. When reweighting, the
-  // weights come from the residuals instead, and the chunk that owns the line writes them.
-  const auto rowsOfLine = [&](Block block, size_t line, size_t lastColumns, bool towardsNextLine, float* result,
-                              auto residual, bool ownsLine = true) {
-    const size_t end = towardsNextLine && line % h == h - 1 ? 0 : lineSize - lastColumns;
-    const float base = block == Data ? alphaSquared_ : 1.0f;
-    const size_t first = line * lineSize;
-    if (reweighting) {
-      // Branch-free, so that it vectorizes: absent rows have confidence 0, and a line
-      // another chunk owns goes to scratch.
-      thread_local std::vector<float> confidence;
-      thread_local std::vector<uint16_t> scratch;
-      confidence.resize(lineSize);
-      scratch.resize(lineSize);
-      for (size_t j = 0; j < lineSize; j += 3)
-        confidence[j] = confidence[j + 1] = confidence[j + 2] = fromBfloat16(confidence_[block][(first + j) / 3]);
-      uint16_t* factor = ownsLine ? &reweighting->factors[block][first] : scratch.data();
-      const float scale = block == Data ? alpha_ : 1.0f;
-      for (size_t j = 0; j < end; ++j) {
-        const float r = residual(j);
-        factor[j] = toBfloat16(confidence[j] / std::max(scale * std::abs(r), reweighting->epsilon));
-        result[j] = base * fromBfloat16(factor[j]) * r;
-      }
-    } else {
-      const uint16_t* factor = &factors_[block][first];
-      for (size_t j = 0; j < end; ++j) result[j] = base * fromBfloat16(factor[j]) * residual(j);
-    }
-    std::fill(result + end, result + lineSize, 0.0f);
-  };
-  // The temporal rows' A x - b over a line, 0 where absent (where their targets are 0).
-  const auto temporalOfLine = [&](size_t line, float* t) {
-    for (size_t g = line * w, j = 0; g < (line + 1) * w; ++g, j += 3) {
-      const int32_t next = next_[g];
-      for (size_t c = 0; c < 3; ++c)
-        t[j + c] = next < 0 ? 0.0f
-                            : x[3 * static_cast<size_t>(next) + c] - x[3 * g + c] - target(targets_[Temporal], 3 * g + c);
-    }
-  };
+class PoissonSystem::LinePass {
+ public:
+  LinePass(const PoissonSystem& system, const std::vector<float>& x, std::vector<float>& out,
+           const Reweighting* reweighting)
+      : system_(system),
+        x_(x),
+        out_(out),
+        reweighting_(reweighting),
+        w_(static_cast<size_t>(system.width_)),
+        h_(static_cast<size_t>(system.height_)),
+        lineSize_(3 * w_),
+        lines_(system.frames_ * h_) {}
 
-  // z: the temporal rows' weighted residuals plus what the mixed rows add to them. A
-  // mixed row differences neighbouring temporal rows, mixed_x(i) = t(i + x) - t(i) +
-  // (its target shift), with t the temporal residuals. Frame f's gather reads its own z
-  // and, through m^-1, frame f - 1's: the window is gathered frame by frame, each
-  // chunk of lines computing its z just before it is read (still in cache), and z is
-  // kept for two frames, frame f's at slot f mod 2.
-  z_.resize(2 * 3 * pixels_);
-  const auto zOfLine = [&](size_t line) { return &z_[(line / h % 2) * 3 * pixels_ + (line % h) * lineSize]; };
-  const auto zOfLines = [&](size_t begin, size_t end) {
+  // z over lines [begin, end) of one frame: the temporal rows' weighted residuals plus what
+  // the mixed rows add to them. A mixed row differences neighbouring temporal rows,
+  // mixed_x(i) = t(i + x) - t(i) + (its target shift), with t the temporal residuals.
+  void temporalAndMixedRows(size_t begin, size_t end) const {
     // mixedX has 3 leading zeros: a value's left neighbour is always there.
-    std::vector<float> t(lineSize), tBelow(lineSize), temporal(lineSize), mixedX(3 + lineSize, 0.0f),
-        mixedY(lineSize), mixedYAbove(lineSize, 0.0f);
-    const auto mixedYOf = [&](size_t line, const float* above, const float* below, float* result, bool ownsLine) {
-      rowsOfLine(
-          MixedY, line, 0, true, result,
-          [&](size_t j) { return below[j] - above[j] + target(mixedShift_[1], line * lineSize + j); }, ownsLine);
-    };
-    temporalOfLine(begin, t.data());
-    if (begin % h > 0) {
-      temporalOfLine(begin - 1, tBelow.data());  // the line above, for now
-      mixedYOf(begin - 1, tBelow.data(), t.data(), mixedYAbove.data(), false);
+    std::vector<float> t(lineSize_), tBelow(lineSize_), temporal(lineSize_), mixedX(3 + lineSize_, 0.0f),
+        mixedY(lineSize_), mixedYAbove(lineSize_, 0.0f);
+    temporalResiduals(begin, t.data());
+    if (begin % h_ > 0) {
+      temporalResiduals(begin - 1, tBelow.data());  // the line above, for now
+      mixedYRows(begin - 1, tBelow.data(), t.data(), mixedYAbove.data(), false);
     }
     for (size_t line = begin; line < end; ++line) {
-      const size_t first = line * lineSize;
-      if (line + 1 < lines) temporalOfLine(line + 1, tBelow.data());
-      rowsOfLine(Temporal, line, 0, false, temporal.data(), [&](size_t j) { return t[j]; });
-      rowsOfLine(MixedX, line, 3, false, mixedX.data() + 3,
-                 [&](size_t j) { return t[j + 3] - t[j] + target(mixedShift_[0], first + j); });
-      mixedYOf(line, t.data(), tBelow.data(), mixedY.data(), true);
+      const size_t first = line * lineSize_;
+      if (line + 1 < lines_) temporalResiduals(line + 1, tBelow.data());
+      weightedRows(Temporal, line, 0, false, temporal.data(), [&](size_t j) { return t[j]; });
+      weightedRows(MixedX, line, 3, false, mixedX.data() + 3,
+                   [&](size_t j) { return t[j + 3] - t[j] + target(system_.mixedShift_[0], first + j); });
+      mixedYRows(line, t.data(), tBelow.data(), mixedY.data(), true);
       float* z = zOfLine(line);
-      for (size_t j = 0; j < lineSize; ++j)
+      for (size_t j = 0; j < lineSize_; ++j)
         z[j] = temporal[j] - mixedX[j + 3] + mixedX[j] - mixedY[j] + mixedYAbove[j];
       std::swap(t, tBelow);
       std::swap(mixedY, mixedYAbove);
     }
-  };
-  // out over lines of one frame, and <x, out> per channel.
-  const auto outOfLines = [&](size_t begin, size_t end) {
+  }
+
+  // out over lines [begin, end) of one frame: the data and spatial rows, minus z, plus
+  // the previous frame's z gathered through m^-1; returns <x, out> per channel.
+  ChannelSums dataAndSpatialRows(size_t begin, size_t end) const {
     // spatialX has 3 leading zeros like mixedX above.
-    std::vector<float> data(lineSize), spatialX(3 + lineSize, 0.0f), spatialY(lineSize), spatialYAbove(lineSize, 0.0f),
-        fromPrevious(lineSize);
-    const auto spatialYOf = [&](size_t line, float* result, bool ownsLine) {
-      const size_t first = line * lineSize;
-      rowsOfLine(
-          SpatialY, line, 0, true, result,
-          [&](size_t j) { return x[first + lineSize + j] - x[first + j] - target(targets_[SpatialY], first + j); },
-          ownsLine);
-    };
-    if (begin % h > 0) spatialYOf(begin - 1, spatialYAbove.data(), false);
+    std::vector<float> data(lineSize_), spatialX(3 + lineSize_, 0.0f), spatialY(lineSize_),
+        spatialYAbove(lineSize_, 0.0f);
+    if (begin % h_ > 0) spatialYRows(begin - 1, spatialYAbove.data(), false);
     // The previous frame's z, indexed by its window pixel (there is none for frame 0).
-    const size_t frame = begin / h, previousFirst = frame > 0 ? (frame - 1) * pixels_ : 0;
-    const float* zPrevious = &z_[(frame + 1) % 2 * 3 * pixels_];
+    const size_t frame = begin / h_, previousFirst = frame > 0 ? (frame - 1) * system_.pixels_ : 0;
+    const float* zPrevious = &system_.z_[(frame + 1) % 2 * 3 * system_.pixels_];
     ChannelSums partial{};
     for (size_t line = begin; line < end; ++line) {
-      const size_t first = line * lineSize;
-      rowsOfLine(Data, line, 0, false, data.data(),
-                 [&](size_t j) { return x[first + j] - target(targets_[Data], first + j); });
-      rowsOfLine(SpatialX, line, 3, false, spatialX.data() + 3, [&](size_t j) {
-        return x[first + j + 3] - x[first + j] - target(targets_[SpatialX], first + j);
+      const size_t first = line * lineSize_;
+      weightedRows(Data, line, 0, false, data.data(),
+                   [&](size_t j) { return x_[first + j] - target(system_.targets_[Data], first + j); });
+      weightedRows(SpatialX, line, 3, false, spatialX.data() + 3, [&](size_t j) {
+        return x_[first + j + 3] - x_[first + j] - target(system_.targets_[SpatialX], first + j);
       });
-      spatialYOf(line, spatialY.data(), true);
-      float* o = &out[first];
+      spatialYRows(line, spatialY.data(), true);
+      float* o = &out_[first];
       const float* z = zOfLine(line);
-      for (size_t j = 0; j < lineSize; ++j)
+      for (size_t j = 0; j < lineSize_; ++j)
         o[j] = data[j] - spatialX[j + 3] + spatialX[j] - spatialY[j] + spatialYAbove[j] - z[j];
       // The line's pixels are the far end of the previous frame's temporal and mixed rows.
-      for (size_t g = line * w; g < (line + 1) * w; ++g) {
-        const int32_t previous = previous_[g];
+      for (size_t g = line * w_; g < (line + 1) * w_; ++g) {
+        const int32_t previous = system_.previous_[g];
         for (size_t c = 0; c < 3; ++c) {
-          if (previous >= 0) out[3 * g + c] += zPrevious[3 * (static_cast<size_t>(previous) - previousFirst) + c];
-          partial[c] += static_cast<double>(x[3 * g + c]) * out[3 * g + c];
+          if (previous >= 0) out_[3 * g + c] += zPrevious[3 * (static_cast<size_t>(previous) - previousFirst) + c];
+          partial[c] += static_cast<double>(x_[3 * g + c]) * out_[3 * g + c];
         }
       }
       std::swap(spatialY, spatialYAbove);
     }
     return partial;
-  };
+  }
 
+ private:
+  // The targets' part of a row, read only when asked for.
+  static float target(const std::vector<float>& targets, size_t i) {
+    if constexpr (kWithTargets) return targets[i];
+    return 0.0f;
+  }
+
+  // result[j] = weight * residual(j) for the values j of `line` of one row block; 0 for the
+  // `lastColumns` values of the line's last pixel (rows towards x + 1) and over the whole
+  // line when it is its frame's last and the rows reach y + 1. When reweighting, the
+  // weights come from the residuals instead, and the chunk that owns the line writes them.
+  template <class Residual>
+  void weightedRows(Block block, size_t line, size_t lastColumns, bool towardsNextLine, float* result,
+                    Residual residual, bool ownsLine = true) const {
+    const size_t end = towardsNextLine && line % h_ == h_ - 1 ? 0 : lineSize_ - lastColumns;
+    const float base = block == Data ? system_.alphaSquared_ : 1.0f;
+    const size_t first = line * lineSize_;
+    if (reweighting_) {
+      // Branch-free, so that it vectorizes: absent rows have confidence 0, and a line
+      // another chunk owns goes to scratch.
+      thread_local std::vector<float> confidence;
+      thread_local std::vector<uint16_t> scratch;
+      confidence.resize(lineSize_);
+      scratch.resize(lineSize_);
+      for (size_t j = 0; j < lineSize_; j += 3)
+        confidence[j] = confidence[j + 1] = confidence[j + 2] =
+            fromBfloat16(system_.confidence_[block][(first + j) / 3]);
+      uint16_t* factor = ownsLine ? &reweighting_->factors[block][first] : scratch.data();
+      const float scale = block == Data ? system_.alpha_ : 1.0f;
+      for (size_t j = 0; j < end; ++j) {
+        const float r = residual(j);
+        factor[j] = toBfloat16(confidence[j] / std::max(scale * std::abs(r), reweighting_->epsilon));
+        result[j] = base * fromBfloat16(factor[j]) * r;
+      }
+    } else {
+      const uint16_t* factor = &system_.factors_[block][first];
+      for (size_t j = 0; j < end; ++j) result[j] = base * fromBfloat16(factor[j]) * residual(j);
+    }
+    std::fill(result + end, result + lineSize_, 0.0f);
+  }
+
+  // The mixed y rows of `line`, from the temporal residuals of it and of the line below.
+  void mixedYRows(size_t line, const float* above, const float* below, float* result, bool ownsLine) const {
+    weightedRows(
+        MixedY, line, 0, true, result,
+        [&](size_t j) { return below[j] - above[j] + target(system_.mixedShift_[1], line * lineSize_ + j); },
+        ownsLine);
+  }
+
+  void spatialYRows(size_t line, float* result, bool ownsLine) const {
+    const size_t first = line * lineSize_;
+    weightedRows(
+        SpatialY, line, 0, true, result,
+        [&](size_t j) {
+          return x_[first + lineSize_ + j] - x_[first + j] - target(system_.targets_[SpatialY], first + j);
+        },
+        ownsLine);
+  }
+
+  // The temporal rows' A x - b over a line, 0 where absent (where their targets are 0).
+  void temporalResiduals(size_t line, float* t) const {
+    for (size_t g = line * w_, j = 0; g < (line + 1) * w_; ++g, j += 3) {
+      const int32_t next = system_.next_[g];
+      for (size_t c = 0; c < 3; ++c)
+        t[j + c] = next < 0 ? 0.0f
+                            : x_[3 * static_cast<size_t>(next) + c] - x_[3 * g + c] -
+                                  target(system_.targets_[Temporal], 3 * g + c);
+    }
+  }
+
+  float* zOfLine(size_t line) const {
+    return &system_.z_[(line / h_ % 2) * 3 * system_.pixels_ + (line % h_) * lineSize_];
+  }
+
+  const PoissonSystem& system_;
+  const std::vector<float>& x_;
+  std::vector<float>& out_;
+  const Reweighting* reweighting_;
+  size_t w_, h_, lineSize_, lines_;
+};
+
+template <bool kWithTargets>
+ChannelSums PoissonSystem::gather(const std::vector<float>& x, std::vector<float>& out,
+                                  const Reweighting* reweighting) const {
+  const size_t h = static_cast<size_t>(height_);
+  // Frame f's gather reads its own z and, through m^-1, frame f - 1's: the window is
+  // gathered frame by frame, each chunk of lines computing its z just before it is read
+  // (still in cache), and z is kept for two frames, frame f's at slot f mod 2.
+  z_.resize(2 * 3 * pixels_);
   out.resize(size());
+  const LinePass<kWithTargets> pass(*this, x, out, reweighting);
   ChannelSums total{};
   for (size_t f = 0; f < frames_; ++f) {
     const ChannelSums sums = chunkedSum<3>(h, kLinesPerChunk, [&](size_t begin, size_t end) {
-      zOfLines(f * h + begin, f * h + end);
-      return outOfLines(f * h + begin, f * h + end);
+      pass.temporalAndMixedRows(f * h + begin, f * h + end);
+      return pass.dataAndSpatialRows(f * h + begin, f * h + end);
     });
     for (size_t c = 0; c < 3; ++c) total[c] += sums[c];
   }

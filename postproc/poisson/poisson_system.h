@@ -82,6 +82,9 @@ class PoissonSystem {
   template <bool kWithTargets>
   ChannelSums gather(const std::vector<float>& x, std::vector<float>& out,
                      const Reweighting* reweighting = nullptr) const;
+  // One gather() pass over the window's lines (poisson_system.cpp).
+  template <bool kWithTargets>
+  class LinePass;
   // Sets confidence_ from the frames' variance layers (present rows only).
   void weighByVariance(const std::vector<const GradientFrame*>& frames);
   // The temporal row g's A x - b in channel c, 0 where it is absent.

@@ -5,7 +5,7 @@
 // [0, 1]: one path lives at one time.
 #include "renderer/accel/frame_geometry.h"
 #include "renderer/bidirectional/camera_importance.h"
-#include "renderer/lights/light_sampler.h"
+#include "renderer/integrators/light_sampler.h"
 
 namespace pathfarm {
 

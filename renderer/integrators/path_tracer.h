@@ -5,7 +5,7 @@
 
 #include "renderer/accel/frame_geometry.h"
 #include "renderer/decomposition/path_decomposer.h"
-#include "renderer/lights/light_sampler.h"
+#include "renderer/integrators/light_sampler.h"
 #include "renderer/sampling/sample_stream.h"
 
 namespace pathfarm {

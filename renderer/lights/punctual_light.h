@@ -14,7 +14,7 @@
 #include <string>
 
 #include "renderer/math/vecmath.h"
-#include "renderer/scene/animation.h"
+#include "renderer/math/animation.h"
 
 namespace pathfarm {
 

@@ -5,7 +5,7 @@
 
 #include "renderer/accel/shot_geometry.h"
 #include "renderer/bidirectional/camera_importance.h"
-#include "renderer/lights/light_sampler.h"
+#include "renderer/integrators/light_sampler.h"
 #include "renderer/metropolis/path_space/path_space_target.h"
 #include "renderer/metropolis/pssmlt/pssmlt_target.h"
 #include "renderer/metropolis/window_scene.h"

@@ -3,7 +3,7 @@
 // along -z of its own frame with +y up; the vertical field of view is given.
 #include <optional>
 
-#include "renderer/scene/animation.h"
+#include "renderer/math/animation.h"
 
 namespace pathfarm {
 

@@ -37,6 +37,16 @@ struct ObjCornerHash {
   }
 };
 
+// Element `index` (0-based) of a flat x, y, z array; refused, named 1-based as OBJ counts,
+// when not finite.
+Vec3f finiteVec3(const std::vector<tinyobj::real_t>& values, int index, const std::filesystem::path& file,
+                 const char* what, const char* notFinite) {
+  const auto i = static_cast<size_t>(index) * 3;
+  const Vec3f v{values[i], values[i + 1], values[i + 2]};
+  if (!isFinite(v)) fail(file, std::string(what) + " " + std::to_string(index + 1) + " " + notFinite);
+  return v;
+}
+
 std::string firstLine(const std::string& text) {
   std::string line = text.substr(0, text.find('\n'));
   while (!line.empty() && (line.back() == '\r' || line.back() == '.' || line.back() == ' '))
@@ -152,18 +162,8 @@ TriangleMesh parseObj(std::string_view data, const fs::path& file) {
       const auto [it, inserted] =
           vertexOf.try_emplace(key, static_cast<uint32_t>(mesh.positions.size()));
       if (inserted) {
-        const auto v = static_cast<size_t>(key.v) * 3;
-        const Vec3f p{attrib.vertices[v], attrib.vertices[v + 1], attrib.vertices[v + 2]};
-        if (!isFinite(p))
-          fail(file, "vertex " + std::to_string(key.v + 1) + " has a non-finite position");
-        mesh.positions.push_back(p);
-        if (allNormals) {
-          const auto n = static_cast<size_t>(key.n) * 3;
-          const Vec3f normal{attrib.normals[n], attrib.normals[n + 1], attrib.normals[n + 2]};
-          if (!isFinite(normal))
-            fail(file, "normal " + std::to_string(key.n + 1) + " is not finite");
-          mesh.normals.push_back(normal);
-        }
+        mesh.positions.push_back(finiteVec3(attrib.vertices, key.v, file, "vertex", "has a non-finite position"));
+        if (allNormals) mesh.normals.push_back(finiteVec3(attrib.normals, key.n, file, "normal", "is not finite"));
         if (allUvs) {
           const auto t = static_cast<size_t>(key.t) * 2;
           const Vec2f uv{attrib.texcoords[t], attrib.texcoords[t + 1]};

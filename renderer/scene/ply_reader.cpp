@@ -406,11 +406,138 @@ uint64_t readListCount(Reader& reader, const PlyProperty& property, const PlyEle
   return static_cast<uint64_t>(count);
 }
 
+// One vertex's values by role (0 for a role it lacks); list properties are skipped.
+template <typename Reader>
+std::array<double, kRoleCount> readVertexRoles(const fs::path& file, const PlyElement& element,
+                                               const PlyLayout& layout, Reader& reader, uint64_t instance) {
+  std::array<double, kRoleCount> values{};
+  for (size_t p = 0; p < element.properties.size(); ++p) {
+    const PlyProperty& property = element.properties[p];
+    if (property.isList) {
+      reader.skip(readListCount(reader, property, element, instance, file), property.type);
+      continue;
+    }
+    const double value = reader.read(property.type);
+    if (layout.vertexRoles[p] != kIgnored) {
+      values[static_cast<size_t>(layout.vertexRoles[p])] = value;
+    }
+  }
+  return values;
+}
+
+// Stores vertex `instance` in the mesh: its position, and its normal and uv where the
+// layout has them, each of which must be finite.
+void storeVertex(const fs::path& file, const PlyLayout& layout, const std::array<double, kRoleCount>& values,
+                 uint64_t instance, TriangleMesh& mesh) {
+  const Vec3f position{static_cast<float>(values[kX]), static_cast<float>(values[kY]),
+                       static_cast<float>(values[kZ])};
+  if (!isFinite(position)) {
+    fail(file, "vertex " + std::to_string(instance) + " has a non-finite position");
+  }
+  mesh.positions[instance] = position;
+  if (layout.hasNormals) {
+    const Vec3f n{static_cast<float>(values[kNx]), static_cast<float>(values[kNy]),
+                  static_cast<float>(values[kNz])};
+    if (!isFinite(n)) {
+      fail(file, "vertex " + std::to_string(instance) + " has a non-finite normal");
+    }
+    mesh.normals[instance] = n;
+  }
+  if (layout.hasUvs) {
+    const Vec2f uv{static_cast<float>(values[kU]), static_cast<float>(values[kV])};
+    if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) {
+      fail(file, "vertex " + std::to_string(instance) + " has a non-finite uv");
+    }
+    mesh.uvs[instance] = uv;
+  }
+}
+
+// The vertex element. `instance` follows the entry being read, for the caller's messages;
+// so in the readers below.
+template <typename Reader>
+void readVertices(const fs::path& file, const PlyElement& element, const PlyLayout& layout, Reader& reader,
+                  uint64_t& instance, TriangleMesh& mesh) {
+  mesh.positions.resize(element.count);
+  if (layout.hasNormals) mesh.normals.resize(element.count);
+  if (layout.hasUvs) mesh.uvs.resize(element.count);
+  for (; instance < element.count; ++instance) {
+    storeVertex(file, layout, readVertexRoles(file, element, layout, reader, instance), instance, mesh);
+  }
+}
+
+// The `count` vertex indices of face `instance`, each an integer naming one of the
+// `vertexCount` vertices.
+template <typename Reader>
+void readPolygon(const fs::path& file, const PlyProperty& property, uint64_t count, uint32_t vertexCount,
+                 uint64_t instance, Reader& reader, std::vector<uint32_t>& polygon) {
+  polygon.clear();
+  for (uint64_t k = 0; k < count; ++k) {
+    const double index = reader.read(property.type);
+    if (index != std::floor(index)) {
+      fail(file, "face " + std::to_string(instance) + " has a non-integer vertex index");
+    }
+    if (!(index >= 0 && index < static_cast<double>(vertexCount))) {
+      const std::string shown = std::abs(index) < 1e18
+                                    ? std::to_string(static_cast<long long>(index))
+                                    : std::string("(out of any range)");
+      fail(file, "face " + std::to_string(instance) + " refers to vertex " + shown +
+                     " of " + std::to_string(vertexCount));
+    }
+    polygon.push_back(static_cast<uint32_t>(index));
+  }
+}
+
+// Fan triangulation; polygons with fewer than three corners add nothing.
+void addFan(const std::vector<uint32_t>& polygon, std::vector<uint32_t>& indices) {
+  for (size_t k = 1; k + 1 < polygon.size(); ++k) {
+    indices.push_back(polygon[0]);
+    indices.push_back(polygon[k]);
+    indices.push_back(polygon[k + 1]);
+  }
+}
+
+// The face element: its index list triangulated, every other property read past.
+template <typename Reader>
+void readFaces(const fs::path& file, const PlyElement& element, const PlyLayout& layout, uint32_t vertexCount,
+               Reader& reader, uint64_t& instance, TriangleMesh& mesh) {
+  std::vector<uint32_t> polygon;
+  for (; instance < element.count; ++instance) {
+    for (size_t p = 0; p < element.properties.size(); ++p) {
+      const PlyProperty& property = element.properties[p];
+      if (!property.isList) {
+        reader.read(property.type);
+        continue;
+      }
+      const uint64_t count = readListCount(reader, property, element, instance, file);
+      if (p != layout.indexProperty) {
+        reader.skip(count, property.type);
+        continue;
+      }
+      readPolygon(file, property, count, vertexCount, instance, reader, polygon);
+      addFan(polygon, mesh.indices);
+    }
+  }
+}
+
+// An element the mesh does not use, read past.
+template <typename Reader>
+void skipElement(const fs::path& file, const PlyElement& element, Reader& reader, uint64_t& instance) {
+  if (reader.trySkipFixed(element)) return;
+  for (; instance < element.count; ++instance) {
+    for (const PlyProperty& property : element.properties) {
+      if (property.isList) {
+        reader.skip(readListCount(reader, property, element, instance, file), property.type);
+      } else {
+        reader.read(property.type);
+      }
+    }
+  }
+}
+
 template <typename Reader>
 void readPlyBody(const fs::path& file, const PlyHeader& header, const PlyLayout& layout,
                  Reader& reader, TriangleMesh& mesh) {
   const auto vertexCount = static_cast<uint32_t>(header.elements[layout.vertexElement].count);
-  std::vector<uint32_t> polygon;
 
   for (size_t e = 0; e < header.elements.size(); ++e) {
     const PlyElement& element = header.elements[e];
@@ -419,90 +546,11 @@ void readPlyBody(const fs::path& file, const PlyHeader& header, const PlyLayout&
     uint64_t instance = 0;
     try {
       if (e == layout.vertexElement) {
-        mesh.positions.resize(element.count);
-        if (layout.hasNormals) mesh.normals.resize(element.count);
-        if (layout.hasUvs) mesh.uvs.resize(element.count);
-        for (; instance < element.count; ++instance) {
-          std::array<double, kRoleCount> values{};
-          for (size_t p = 0; p < element.properties.size(); ++p) {
-            const PlyProperty& property = element.properties[p];
-            if (property.isList) {
-              reader.skip(readListCount(reader, property, element, instance, file), property.type);
-              continue;
-            }
-            const double value = reader.read(property.type);
-            if (layout.vertexRoles[p] != kIgnored) {
-              values[static_cast<size_t>(layout.vertexRoles[p])] = value;
-            }
-          }
-          const Vec3f position{static_cast<float>(values[kX]), static_cast<float>(values[kY]),
-                               static_cast<float>(values[kZ])};
-          if (!isFinite(position)) {
-            fail(file, "vertex " + std::to_string(instance) + " has a non-finite position");
-          }
-          mesh.positions[instance] = position;
-          if (layout.hasNormals) {
-            const Vec3f n{static_cast<float>(values[kNx]), static_cast<float>(values[kNy]),
-                          static_cast<float>(values[kNz])};
-            if (!isFinite(n)) {
-              fail(file, "vertex " + std::to_string(instance) + " has a non-finite normal");
-            }
-            mesh.normals[instance] = n;
-          }
-          if (layout.hasUvs) {
-            const Vec2f uv{static_cast<float>(values[kU]), static_cast<float>(values[kV])};
-            if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) {
-              fail(file, "vertex " + std::to_string(instance) + " has a non-finite uv");
-            }
-            mesh.uvs[instance] = uv;
-          }
-        }
+        readVertices(file, element, layout, reader, instance, mesh);
       } else if (e == layout.faceElement) {
-        for (; instance < element.count; ++instance) {
-          for (size_t p = 0; p < element.properties.size(); ++p) {
-            const PlyProperty& property = element.properties[p];
-            if (!property.isList) {
-              reader.read(property.type);
-              continue;
-            }
-            const uint64_t count = readListCount(reader, property, element, instance, file);
-            if (p != layout.indexProperty) {
-              reader.skip(count, property.type);
-              continue;
-            }
-            polygon.clear();
-            for (uint64_t k = 0; k < count; ++k) {
-              const double index = reader.read(property.type);
-              if (index != std::floor(index)) {
-                fail(file, "face " + std::to_string(instance) + " has a non-integer vertex index");
-              }
-              if (!(index >= 0 && index < static_cast<double>(vertexCount))) {
-                const std::string shown = std::abs(index) < 1e18
-                                              ? std::to_string(static_cast<long long>(index))
-                                              : std::string("(out of any range)");
-                fail(file, "face " + std::to_string(instance) + " refers to vertex " + shown +
-                               " of " + std::to_string(vertexCount));
-              }
-              polygon.push_back(static_cast<uint32_t>(index));
-            }
-            // Fan triangulation; polygons with fewer than three corners add nothing.
-            for (size_t k = 1; k + 1 < polygon.size(); ++k) {
-              mesh.indices.push_back(polygon[0]);
-              mesh.indices.push_back(polygon[k]);
-              mesh.indices.push_back(polygon[k + 1]);
-            }
-          }
-        }
-      } else if (!reader.trySkipFixed(element)) {
-        for (; instance < element.count; ++instance) {
-          for (const PlyProperty& property : element.properties) {
-            if (property.isList) {
-              reader.skip(readListCount(reader, property, element, instance, file), property.type);
-            } else {
-              reader.read(property.type);
-            }
-          }
-        }
+        readFaces(file, element, layout, vertexCount, reader, instance, mesh);
+      } else {
+        skipElement(file, element, reader, instance);
       }
     } catch (const PlyTruncated&) {
       fail(file, "truncated data: file ends inside element '" + element.name + "' (entry " +

@@ -11,7 +11,7 @@
 #include "renderer/lights/punctual_light.h"
 #include "renderer/materials/material.h"
 #include "renderer/scene/alpha_coverage.h"
-#include "renderer/scene/animation.h"
+#include "renderer/math/animation.h"
 #include "renderer/scene/camera.h"
 #include "renderer/scene/mesh.h"
 #include "renderer/scene/texture.h"

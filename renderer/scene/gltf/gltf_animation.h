@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "renderer/math/vec3d.h"
-#include "renderer/scene/animation.h"
+#include "renderer/math/animation.h"
 #include "renderer/scene/gltf/gltf_document.h"
 
 namespace pathfarm {

@@ -2,7 +2,7 @@
 // A scene placed for one frame with everything bidirectional sampling needs.
 #include "renderer/accel/embree_device.h"
 #include "renderer/bidirectional/bdpt_scene.h"
-#include "renderer/lights/light_sampler.h"
+#include "renderer/integrators/light_sampler.h"
 #include "test_support.h"
 
 namespace pathfarm::test_support {

@@ -6,7 +6,7 @@
 
 #include "renderer/accel/frame_geometry.h"
 #include "renderer/integrators/path_tracer.h"
-#include "renderer/lights/light_sampler.h"
+#include "renderer/integrators/light_sampler.h"
 #include "test_support.h"
 
 namespace pathfarm {

@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "renderer/accel/frame_geometry.h"
-#include "renderer/lights/light_sampler.h"
+#include "renderer/integrators/light_sampler.h"
 #include "renderer/scene/scene_loader.h"
 #include "test_support.h"
 

@@ -6,7 +6,7 @@
 #include "renderer/accel/embree_device.h"
 #include "renderer/accel/shot_geometry.h"
 #include "renderer/bidirectional/subpath.h"
-#include "renderer/lights/light_sampler.h"
+#include "renderer/integrators/light_sampler.h"
 #include "renderer/metropolis/path_space/path_state.h"
 #include "renderer/metropolis/path_space/specular_chain.h"
 #include "test_support.h"

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "renderer/accel/frame_geometry.h"
-#include "renderer/scene/animation.h"
+#include "renderer/math/animation.h"
 #include "test_support.h"
 
 namespace pathfarm {

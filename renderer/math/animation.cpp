@@ -1,4 +1,4 @@
-#include "renderer/scene/animation.h"
+#include "renderer/math/animation.h"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "renderer/lights/light_sampler.h"
+#include "renderer/integrators/light_sampler.h"
 
 #include <algorithm>
 #include <limits>
