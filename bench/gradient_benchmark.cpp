@@ -338,6 +338,7 @@ int equalTime(const std::string& scenePath, const std::string& frames, int width
   } else {
     RenderSettings reference = settings;
     reference.spp = referenceSpp;
+    reference.firstSample = kIndependentFirstSample;  // shares no sample with the renders it judges
     double referenceSeconds = 0;
     truth = renderSequence(scene, reference, methods[0], first, last, &referenceSeconds);
     std::printf("reference: %d spp, %.1f s\n", referenceSpp, referenceSeconds);

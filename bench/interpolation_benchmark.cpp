@@ -92,7 +92,7 @@ int main(int argc, char** argv) {
       colorOnly.colorOnly = true;
       const InterpolationResult split = interpolateFrameDetailed(chain.front(), chain.back(), motions, s, {});
       const InterpolationResult plain = interpolateFrameDetailed(chain.front(), chain.back(), primary, s, colorOnly);
-      const FrameImage reference = render(scene, size, size, referenceSpp, k + f, false);
+      const FrameImage reference = render(scene, size, size, referenceSpp, k + f, false, kIndependentFirstSample);
       const FrameImage& rendered = frames[static_cast<size_t>(k + f)];
       std::printf("%5d  %20.5f  %17.5f  %21.2f %%  %18.2f %%\n", k + f,
                   compareImages(withRerender(split, rendered), reference, {"R", "G", "B"}).relMse,

@@ -128,16 +128,19 @@ int run(const Options& options) {
                static_cast<long long>(base.frame_end()), base.width(), base.height(),
                static_cast<long long>(evaluation.front()), static_cast<long long>(evaluation.back()),
                base.keyframe_reason().c_str());
-  // The reference is kept next to the results and reused while its settings hold.
+  // The reference is kept next to the results and reused while its settings hold. Its
+  // samples are independent of the shots' ("-independent": one kept by an older version
+  // drew the shots' own samples and is not reused).
   const std::filesystem::path out(options.out);
-  const std::filesystem::path referenceFolder = out / ("reference-" + std::to_string(options.referenceSpp));
+  const std::filesystem::path referenceFolder =
+      out / ("reference-" + std::to_string(options.referenceSpp) + "-independent");
   std::filesystem::create_directories(referenceFolder);
   std::vector<FrameImage> references;
   const double referenceSeconds = seconds([&] {
     for (const int64_t frame : evaluation) {
       const std::filesystem::path file = referenceFolder / farm::frameFileName(frame);
       if (!std::filesystem::exists(file))
-        writeExr(file, render(scene, base.width(), base.height(), options.referenceSpp, frame, false));
+        writeExr(file, render(scene, base.width(), base.height(), options.referenceSpp, frame, false, kIndependentFirstSample));
       references.push_back(readExr(file));
     }
   });

@@ -4,4 +4,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 ./deploy/setup.sh
 BUILD_DIR=${PATHFARM_BUILD_DIR:-build}
+# The benchmark programs are compiled, not run, so that the figures in docs/ keep a
+# program that builds.
+cmake --build "$BUILD_DIR" --target benchmarks --parallel "$(nproc)"
 ctest --test-dir "$BUILD_DIR" --output-on-failure --parallel "$(nproc)" --timeout 600
