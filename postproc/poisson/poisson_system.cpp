@@ -272,8 +272,7 @@ class PoissonSystem::LinePass {
   void mixedYRows(size_t line, const float* above, const float* below, float* result, bool ownsLine) const {
     weightedRows(
         MixedY, line, 0, true, result,
-        [&](size_t j) { return below[j] - above[j] + target(system_.mixedShift_[1], line * lineSize_ + j); },
-        ownsLine);
+        [&](size_t j) { return below[j] - above[j] + target(system_.mixedShift_[1], line * lineSize_ + j); }, ownsLine);
   }
 
   void spatialYRows(size_t line, float* result, bool ownsLine) const {

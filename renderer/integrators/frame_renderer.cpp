@@ -4,6 +4,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <array>
+#include <atomic>
 #include <chrono>
 #include <stdexcept>
 
@@ -82,6 +84,136 @@ std::optional<Vec2f> toFloat(const std::optional<Vec2d>& v) {
   return Vec2f{static_cast<float>(v->x), static_cast<float>(v->y)};
 }
 
+void checkWindow(const PixelWindow& window, const RenderSettings& settings, const std::vector<uint8_t>* only) {
+  if (window.x0 < 0 || window.y0 < 0 || window.x1 > settings.width || window.y1 > settings.height ||
+      window.width() <= 0 || window.height() <= 0)
+    throw std::invalid_argument("the pixel window lies outside the frame or is empty");
+  if (only && only->size() != static_cast<size_t>(window.width()) * static_cast<size_t>(window.height()))
+    throw std::invalid_argument("the pixel mask does not have the window's size");
+}
+
+// R, G, B and variance.R, variance.G, variance.B, added to `image`.
+std::array<float*, 6> addBeautyChannels(FrameImage& image) {
+  std::array<float*, 6> channels;
+  const char* names[6] = {"R", "G", "B", "variance.R", "variance.G", "variance.B"};
+  for (size_t c = 0; c < 6; ++c) channels[c] = image.addChannel(names[c]).data();
+  return channels;
+}
+
+// A tile's path decomposer (with a decomposition): it splits each sample's radiance into
+// `components`, and `record` keeps where the sample's camera ray hit.
+struct TileDecomposer {
+  SampleComponents components;
+  std::optional<PathDecomposer> decomposer;
+  PathRecord record;
+};
+
+// Renders the pixels of a window into its image, tile by tile: each pixel's beauty (the
+// mean of its finite samples and the variance of that mean) and, with a decomposition,
+// its components' buffers.
+struct WindowPixels {
+  const Scene& scene;
+  const RenderSettings& settings;
+  int64_t frame;
+  const PixelWindow& window;
+  const std::vector<uint8_t>* only;  // null: every pixel
+  const Camera& camera;
+  const PathTracer& tracer;
+  const PrimaryMotion& motion;
+  const Decomposition* decomposition;  // null: beauty only; else film and specular are there too
+  const DecomposedFilm* film;
+  const SpecularMotion* specular;
+  std::array<float*, 6> channels;  // addBeautyChannels'
+
+  void renderTile(int x0, int y0, int tile, SampleCounters& local) const {
+    const int width = window.width(), height = window.height();
+    TileDecomposer paths;
+    if (film) paths.decomposer.emplace(*decomposition, paths.components);
+    for (int iy = y0; iy < std::min(y0 + tile, height); ++iy) {
+      for (int ix = x0; ix < std::min(x0 + tile, width); ++ix) {
+        const size_t pixel = static_cast<size_t>(iy) * static_cast<size_t>(width) + static_cast<size_t>(ix);
+        if (only && (*only)[pixel] == 0) continue;
+        renderPixel(ix, iy, pixel, paths, local);
+      }
+    }
+  }
+
+  void renderPixel(int ix, int iy, size_t pixel, TileDecomposer& paths, SampleCounters& local) const {
+    const int x = window.x0 + ix, y = window.y0 + iy;  // frame pixel coordinates
+    SampleMoments moments;
+    uint32_t accepted = 0;
+    std::optional<DecomposedFilm::Pixel> sums;
+    if (film) sums.emplace(decomposition->size());
+    const StratifiedPixel pattern(scene.seed, frame, x, y);
+    for (int s = 0; s < settings.spp; ++s) {
+      const SampleKey key{scene.seed, frame, x, y, settings.firstSample + static_cast<uint32_t>(s)};
+      SampleStream stream(key);
+      // Pixel position and shutter time are stratified over the pixel's samples; the
+      // stream's first dimensions are the lens's.
+      const StratifiedSample stratified = pattern.sample(key.sampleIndex);
+      const Vec2f jitter = stratified.film;
+      const float time = stratified.time;
+      const Vec2f lens = stream.next2D();
+      const Ray ray = camera.generateRay({static_cast<float>(x) + jitter.x, static_cast<float>(y) + jitter.y},
+                                         lens, scene.timeAt(frame, time));
+      if (film) {
+        paths.decomposer->begin();
+        paths.record = {&*paths.decomposer, false, {}};
+      }
+      const Rgb L = tracer.radiance(ray, time, stream, local.rays, film ? &paths.record : nullptr);
+      ++local.samples;
+      if (!L.isFinite()) {
+        ++local.nonFinite;
+        continue;
+      }
+      if (film)
+        sums->add(paths.components,
+                  extrasOf(paths.record, ray, time, s < DecomposedFilm::kMotionSamples ? &motion : nullptr));
+      ++accepted;
+      moments.add(L);
+    }
+    for (size_t c = 0; c < 3; ++c) {
+      channels[c][pixel] = static_cast<float>(moments.mean(c, accepted));
+      channels[3 + c][pixel] = static_cast<float>(moments.varianceOfMean(c, accepted));
+    }
+    if (film) writeComponents(x, y, pixel, *sums);
+  }
+
+  // The specular components take their motion from the manifold walk.
+  void writeComponents(int x, int y, size_t pixel, DecomposedFilm::Pixel& sums) const {
+    for (int k = 0; k < decomposition->size(); ++k) {
+      if (!specular->isSpecular(k)) continue;
+      const SpecularTrack track = specular->track(x, y, k);
+      sums.setSpecularMotion(k, toFloat(track.forward), toFloat(track.backward));
+    }
+    film->write(pixel, sums);
+  }
+};
+
+// The window's tiles in parallel on `threads` threads (0: every core), each thread
+// counting its samples in `counters`.
+void renderTiles(const WindowPixels& pixels, int tile, int threads, const ProgressCallback& progress,
+                 tbb::enumerable_thread_specific<SampleCounters>& counters) {
+  const int width = pixels.window.width(), height = pixels.window.height();
+  const int tilesX = (width + tile - 1) / tile, tilesY = (height + tile - 1) / tile;
+  const size_t tileCount = static_cast<size_t>(tilesX) * static_cast<size_t>(tilesY);
+  std::atomic<size_t> tilesDone{0};
+  auto renderTile = [&](size_t index) {
+    SampleCounters& local = counters.local();
+    const int x0 = static_cast<int>(index % static_cast<size_t>(tilesX)) * tile;
+    const int y0 = static_cast<int>(index / static_cast<size_t>(tilesX)) * tile;
+    pixels.renderTile(x0, y0, tile, local);
+    const size_t done = ++tilesDone;
+    if (progress) progress(done, tileCount);
+  };
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, tileCount, 1), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t i = r.begin(); i != r.end(); ++i) renderTile(i);
+    });
+  });
+}
+
 }  // namespace
 
 void writeRenderAttributes(FrameImage& image, const Scene& scene, int64_t frame, const RenderSettings& settings,
@@ -108,17 +240,11 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
   const Camera camera(scene_.camera, settings_.width, settings_.height);
   const Decomposition* decomposition = settings_.decomposition.get();
   const PrimaryMotion motion(*geometry, camera, frame, settings_.motionSpan);
+  checkWindow(window, settings_, only);
 
-  if (window.x0 < 0 || window.y0 < 0 || window.x1 > settings_.width || window.y1 > settings_.height ||
-      window.width() <= 0 || window.height() <= 0)
-    throw std::invalid_argument("the pixel window lies outside the frame or is empty");
-  if (only && only->size() != static_cast<size_t>(window.width()) * static_cast<size_t>(window.height()))
-    throw std::invalid_argument("the pixel mask does not have the window's size");
-  const int width = window.width(), height = window.height(), tile = settings_.tileSize;
+  const int width = window.width(), height = window.height();
   FrameImage image(width, height);
-  float* channels[6];
-  const char* names[6] = {"R", "G", "B", "variance.R", "variance.G", "variance.B"};
-  for (int c = 0; c < 6; ++c) channels[c] = image.addChannel(names[c]).data();
+  const std::array<float*, 6> channels = addBeautyChannels(image);
   std::optional<DecomposedFilm> film;
   if (decomposition) film.emplace(image, *decomposition);
   std::optional<SpecularMotion> specular;
@@ -126,79 +252,20 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
     specular.emplace(*geometry, shot_->preciseShapes, *decomposition, settings_.width, settings_.height,
                      settings_.motionSpan);
 
-  const int tilesX = (width + tile - 1) / tile, tilesY = (height + tile - 1) / tile;
-  const size_t tileCount = static_cast<size_t>(tilesX) * static_cast<size_t>(tilesY);
-  std::atomic<size_t> tilesDone{0};
+  const WindowPixels pixels{.scene = scene_,
+                            .settings = settings_,
+                            .frame = frame,
+                            .window = window,
+                            .only = only,
+                            .camera = camera,
+                            .tracer = tracer,
+                            .motion = motion,
+                            .decomposition = decomposition,
+                            .film = film ? &*film : nullptr,
+                            .specular = specular ? &*specular : nullptr,
+                            .channels = channels};
   tbb::enumerable_thread_specific<SampleCounters> counters;
-
-  auto renderTile = [&](size_t index) {
-    SampleCounters& local = counters.local();
-    SampleComponents components;
-    std::optional<PathDecomposer> decomposer;
-    if (film) decomposer.emplace(*decomposition, components);
-    PathRecord record;
-    const int x0 = static_cast<int>(index % static_cast<size_t>(tilesX)) * tile;
-    const int y0 = static_cast<int>(index / static_cast<size_t>(tilesX)) * tile;
-    for (int iy = y0; iy < std::min(y0 + tile, height); ++iy) {
-      for (int ix = x0; ix < std::min(x0 + tile, width); ++ix) {
-        const int x = window.x0 + ix, y = window.y0 + iy;  // frame pixel coordinates
-        const size_t pixel = static_cast<size_t>(iy) * static_cast<size_t>(width) + static_cast<size_t>(ix);
-        if (only && (*only)[pixel] == 0) continue;
-        SampleMoments moments;
-        uint32_t accepted = 0;
-        std::optional<DecomposedFilm::Pixel> sums;
-        if (film) sums.emplace(decomposition->size());
-        const StratifiedPixel pattern(scene_.seed, frame, x, y);
-        for (int s = 0; s < settings_.spp; ++s) {
-          const SampleKey key{scene_.seed, frame, x, y, settings_.firstSample + static_cast<uint32_t>(s)};
-          SampleStream stream(key);
-          // Pixel position and shutter time are stratified over the pixel's samples; the
-          // stream's first dimensions are the lens's.
-          const StratifiedSample stratified = pattern.sample(key.sampleIndex);
-          const Vec2f jitter = stratified.film;
-          const float time = stratified.time;
-          const Vec2f lens = stream.next2D();
-          const Ray ray = camera.generateRay({static_cast<float>(x) + jitter.x, static_cast<float>(y) + jitter.y},
-                                             lens, scene_.timeAt(frame, time));
-          if (film) {
-            decomposer->begin();
-            record = {&*decomposer, false, {}};
-          }
-          const Rgb L = tracer.radiance(ray, time, stream, local.rays, film ? &record : nullptr);
-          ++local.samples;
-          if (!L.isFinite()) {
-            ++local.nonFinite;
-            continue;
-          }
-          if (film)
-            sums->add(components, extrasOf(record, ray, time, s < DecomposedFilm::kMotionSamples ? &motion : nullptr));
-          ++accepted;
-          moments.add(L);
-        }
-        for (size_t c = 0; c < 3; ++c) {
-          channels[c][pixel] = static_cast<float>(moments.mean(c, accepted));
-          channels[3 + c][pixel] = static_cast<float>(moments.varianceOfMean(c, accepted));
-        }
-        if (film) {
-          for (int k = 0; k < decomposition->size(); ++k) {
-            if (!specular->isSpecular(k)) continue;
-            const SpecularTrack track = specular->track(x, y, k);
-            sums->setSpecularMotion(k, toFloat(track.forward), toFloat(track.backward));
-          }
-          film->write(pixel, *sums);
-        }
-      }
-    }
-    const size_t done = ++tilesDone;
-    if (progress) progress(done, tileCount);
-  };
-
-  tbb::task_arena arena(settings_.threads > 0 ? settings_.threads : tbb::task_arena::automatic);
-  arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, tileCount, 1), [&](const tbb::blocked_range<size_t>& r) {
-      for (size_t i = r.begin(); i != r.end(); ++i) renderTile(i);
-    });
-  });
+  renderTiles(pixels, settings_.tileSize, settings_.threads, progress, counters);
 
   const RenderStats total = totalOf(counters, start);
   writeRenderAttributes(image, scene_, frame, settings_, total);

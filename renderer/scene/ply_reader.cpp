@@ -409,7 +409,8 @@ uint64_t readListCount(Reader& reader, const PlyProperty& property, const PlyEle
 // One vertex's values by role (0 for a role it lacks); list properties are skipped.
 template <typename Reader>
 std::array<double, kRoleCount> readVertexRoles(const fs::path& file, const PlyElement& element,
-                                               const PlyLayout& layout, Reader& reader, uint64_t instance) {
+                                               const PlyLayout& layout, Reader& reader,
+                                               uint64_t instance) {
   std::array<double, kRoleCount> values{};
   for (size_t p = 0; p < element.properties.size(); ++p) {
     const PlyProperty& property = element.properties[p];
@@ -427,8 +428,9 @@ std::array<double, kRoleCount> readVertexRoles(const fs::path& file, const PlyEl
 
 // Stores vertex `instance` in the mesh: its position, and its normal and uv where the
 // layout has them, each of which must be finite.
-void storeVertex(const fs::path& file, const PlyLayout& layout, const std::array<double, kRoleCount>& values,
-                 uint64_t instance, TriangleMesh& mesh) {
+void storeVertex(const fs::path& file, const PlyLayout& layout,
+                 const std::array<double, kRoleCount>& values, uint64_t instance,
+                 TriangleMesh& mesh) {
   const Vec3f position{static_cast<float>(values[kX]), static_cast<float>(values[kY]),
                        static_cast<float>(values[kZ])};
   if (!isFinite(position)) {
@@ -452,24 +454,26 @@ void storeVertex(const fs::path& file, const PlyLayout& layout, const std::array
   }
 }
 
-// The vertex element. `instance` follows the entry being read, for the caller's messages;
-// so in the readers below.
+// The vertex element. Like the element readers below, it keeps the entry being read in
+// `instance`, which the caller's messages name.
 template <typename Reader>
-void readVertices(const fs::path& file, const PlyElement& element, const PlyLayout& layout, Reader& reader,
-                  uint64_t& instance, TriangleMesh& mesh) {
+void readVertices(const fs::path& file, const PlyElement& element, const PlyLayout& layout,
+                  Reader& reader, uint64_t& instance, TriangleMesh& mesh) {
   mesh.positions.resize(element.count);
   if (layout.hasNormals) mesh.normals.resize(element.count);
   if (layout.hasUvs) mesh.uvs.resize(element.count);
   for (; instance < element.count; ++instance) {
-    storeVertex(file, layout, readVertexRoles(file, element, layout, reader, instance), instance, mesh);
+    storeVertex(file, layout, readVertexRoles(file, element, layout, reader, instance), instance,
+                mesh);
   }
 }
 
 // The `count` vertex indices of face `instance`, each an integer naming one of the
 // `vertexCount` vertices.
 template <typename Reader>
-void readPolygon(const fs::path& file, const PlyProperty& property, uint64_t count, uint32_t vertexCount,
-                 uint64_t instance, Reader& reader, std::vector<uint32_t>& polygon) {
+void readPolygon(const fs::path& file, const PlyProperty& property, uint64_t count,
+                 uint32_t vertexCount, uint64_t instance, Reader& reader,
+                 std::vector<uint32_t>& polygon) {
   polygon.clear();
   for (uint64_t k = 0; k < count; ++k) {
     const double index = reader.read(property.type);
@@ -480,8 +484,8 @@ void readPolygon(const fs::path& file, const PlyProperty& property, uint64_t cou
       const std::string shown = std::abs(index) < 1e18
                                     ? std::to_string(static_cast<long long>(index))
                                     : std::string("(out of any range)");
-      fail(file, "face " + std::to_string(instance) + " refers to vertex " + shown +
-                     " of " + std::to_string(vertexCount));
+      fail(file, "face " + std::to_string(instance) + " refers to vertex " + shown + " of " +
+                     std::to_string(vertexCount));
     }
     polygon.push_back(static_cast<uint32_t>(index));
   }
@@ -498,8 +502,8 @@ void addFan(const std::vector<uint32_t>& polygon, std::vector<uint32_t>& indices
 
 // The face element: its index list triangulated, every other property read past.
 template <typename Reader>
-void readFaces(const fs::path& file, const PlyElement& element, const PlyLayout& layout, uint32_t vertexCount,
-               Reader& reader, uint64_t& instance, TriangleMesh& mesh) {
+void readFaces(const fs::path& file, const PlyElement& element, const PlyLayout& layout,
+               uint32_t vertexCount, Reader& reader, uint64_t& instance, TriangleMesh& mesh) {
   std::vector<uint32_t> polygon;
   for (; instance < element.count; ++instance) {
     for (size_t p = 0; p < element.properties.size(); ++p) {
@@ -521,7 +525,8 @@ void readFaces(const fs::path& file, const PlyElement& element, const PlyLayout&
 
 // An element the mesh does not use, read past.
 template <typename Reader>
-void skipElement(const fs::path& file, const PlyElement& element, Reader& reader, uint64_t& instance) {
+void skipElement(const fs::path& file, const PlyElement& element, Reader& reader,
+                 uint64_t& instance) {
   if (reader.trySkipFixed(element)) return;
   for (; instance < element.count; ++instance) {
     for (const PlyProperty& property : element.properties) {
