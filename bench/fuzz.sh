@@ -90,7 +90,7 @@ rpc=(fuzz/rpc_handlers_fuzzer.cpp fuzz/rpc_fuzz_calls.cpp
      scheduler/farm_state_follow_ups.cpp scheduler/farm_state_queries.cpp scheduler/farm_state_requeue.cpp
      scheduler/farm_state_retention.cpp scheduler/farm_state_sessions.cpp scheduler/farm_state_submit.cpp scheduler/schema.cpp scheduler/sqlite_db.cpp
      contract/pipeline.cpp scheduler/planner.cpp scheduler/quoted_text.cpp scheduler/farm_names.cpp scheduler/output_check.cpp
-     scheduler/shot_report.cpp proto/wire/chunk_store.cpp proto/wire/chunk_transfer.cpp proto/wire/connection.cpp proto/wire/input_files.cpp
+     scheduler/shot_report.cpp scheduler/shot_verdict.cpp proto/wire/chunk_store.cpp proto/wire/chunk_transfer.cpp proto/wire/connection.cpp proto/wire/input_files.cpp
      proto/wire/sha256.cpp proto/wire/tls.cpp)
 sources_of() {
   case "$1" in

@@ -10,6 +10,7 @@
 
 #include "image/atomic_file.h"
 #include "scheduler/planner.h"
+#include "scheduler/shot_verdict.h"
 
 namespace pathfarm::farm {
 namespace {
@@ -71,47 +72,6 @@ std::string format(const char* pattern, double value) {
   char text[64];
   std::snprintf(text, sizeof text, pattern, value);
   return text;
-}
-
-// The pipeline against plain pt at equal error, and the verdict a user reads first.
-void judge(ShotReport& report, Pipeline pipeline, const std::map<std::string, double>& errors) {
-  report.set_cost_at_equal_error(-1);
-  const auto figure = [&](const std::string& name) {
-    const auto it = errors.find(name);
-    return it == errors.end() ? 0.0 : it->second;
-  };
-  const double final = figure("relmse.final"), baseline = figure("relmse.baseline");
-  if (pipeline == PIPELINE_PT || !(report.relative_cost() > 0) || !(final > 0) || !(baseline > 0)) return;
-  // Each relMSE includes the independent reference's own noise; the errors compared are
-  // what is left of them.
-  const double noise = figure("reference_noise");
-  if (final <= noise || baseline <= noise) {
-    report.set_verdict("The errors cannot be told from the reference's own noise (" + format("%.4f", noise) + "): " +
-                       report.pipeline() + "'s relMSE " + format("%.4f", final) + ", plain pt's " +
-                       format("%.4f", baseline) + ". Raise reference_spp to compare them.");
-    return;
-  }
-  const double cost = report.relative_cost() * (final - noise) / (baseline - noise);
-  report.set_cost_at_equal_error(cost);
-  const std::string figures = " (relative cost " + format("%.2f", report.relative_cost()) + " at relMSE " +
-                              format("%.4f", final) + ", pt " + format("%.4f", baseline) + " at the same spp" +
-                              (noise > 0 ? ", both less the reference's noise " + format("%.4f", noise) : "") + ")";
-  std::string verdict =
-      cost < 1 ? report.pipeline() + " paid off: " + format("%.2f", cost) +
-                     " of plain pt's core-seconds for the same error" + figures + "."
-               : report.pipeline() + " did not pay off: it cost " + format("%.2f", cost) +
-                     "x what plain pt would for the same error" + figures + "; plain pt is the cheaper choice here.";
-  const double worstTile = figure("worst_tile.final"), ptWorstTile = figure("worst_tile.baseline");
-  if (ptWorstTile > 0 && worstTile > 2 * ptWorstTile)
-    verdict += " Its worst 16x16 tile has " + format("%.1f", worstTile / ptWorstTile) + "x pt's relMSE: look for artifacts.";
-  if (noise > 0 && final < 2 * noise)
-    verdict += " Its relMSE is within 2x of the reference's own noise (" + format("%.4f", noise) +
-               "): raise reference_spp to measure it.";
-  if (report.temporal_error() > 0 && report.baseline_temporal_error() > 0 &&
-      report.temporal_error() > report.baseline_temporal_error())
-    verdict += " It flickers more than pt (temporal error " + format("%.4f", report.temporal_error()) + " against " +
-               format("%.4f", report.baseline_temporal_error()) + ").";
-  report.set_verdict(verdict);
 }
 
 // What a shot's finished tasks add up to.
@@ -231,10 +191,17 @@ void setErrors(ShotReport& report, const std::map<std::string, double>& errors) 
     error->set_worst_tile_relmse(figure("worst_tile"));
     error->set_worst_percent_share(figure("worst_share"));
     error->set_kept(errors.count(std::string("kept.") + stage) ? figure("kept") : 1.0);
+    if (const auto truth = intervalFigure(errors, "truth", std::string(".") + stage)) *error->mutable_truth_error() = *truth;
+    if (const auto tile = intervalFigure(errors, "worst_tile_truth", std::string(".") + stage))
+      *error->mutable_worst_tile_truth_error() = *tile;
   }
   report.set_reference_noise(errors.count("reference_noise") ? errors.at("reference_noise") : -1);
   if (errors.count("temporal.final")) report.set_temporal_error(errors.at("temporal.final"));
   if (errors.count("temporal.baseline")) report.set_baseline_temporal_error(errors.at("temporal.baseline"));
+  if (const auto temporal = intervalFigure(errors, "temporal_truth", ".final"))
+    *report.mutable_temporal_truth_error() = *temporal;
+  if (const auto temporal = intervalFigure(errors, "temporal_truth", ".baseline"))
+    *report.mutable_baseline_temporal_truth_error() = *temporal;
 }
 
 }  // namespace
@@ -280,9 +247,9 @@ std::string predictionSummary(const ShotReport& r) {
                      off(r.core_seconds_per_frame(), r.predicted_core_seconds_per_frame()) + "). ";
   const auto final = std::find_if(r.errors().begin(), r.errors().end(), [](const auto& e) { return e.stage() == "final"; });
   if (final != r.errors().end() && r.predicted_relmse() > 0) {
-    const double measured = final->relmse() - std::max(0.0, r.reference_noise());
+    const double measured = final->has_truth_error() ? final->truth_error().estimate() : final->relmse();
     text += "It predicted relMSE " + format("%.5f", r.predicted_relmse()) + "; the shot measured " +
-            format("%.5f", measured) + (r.reference_noise() > 0 ? " less the reference's noise" : "") + " (" +
+            format("%.5f", measured) + (final->has_truth_error() ? " against the truth" : "") + " (" +
             off(measured, r.predicted_relmse()) + "). ";
   }
   const double shot = r.core_seconds();
@@ -353,8 +320,8 @@ std::string reportMarkdown(const ShotReport& r) {
   md += "| overhead (relative cost x resolution gain) | " + format("%.2f", r.overhead()) + " |\n";
   md += "| **relative cost** (core-seconds per frame / pt's) | " + format("%.3f", r.relative_cost()) + " |\n";
   if (r.cost_at_equal_error() >= 0)
-    md += "| **cost at equal error** (relative cost x relMSE / pt's, pt's relMSE taken as 1/spp) | " +
-          format("%.3f", r.cost_at_equal_error()) + " |\n";
+    md += "| **cost at equal error** (relative cost x error / pt's, against the truth; pt's taken to fall as 1/spp; "
+          "95 % interval) | " + intervalText(r.cost_at_equal_error_interval(), "%.3f") + " |\n";
   md += "| re-render rate, all frames | " + format("%.2f%%", 100 * r.rerender_rate()) + " |\n";
   md += "| re-render rate, interpolated frames | " + format("%.2f%%", 100 * r.interpolation_rerender_rate()) + " |\n";
   md += causeRows(r.interpolation_rerender_causes());
@@ -372,12 +339,17 @@ std::string reportMarkdown(const ShotReport& r) {
   for (const int64_t frame : r.evaluation_frames()) md.append(" ").append(std::to_string(frame));
   md += " (relMSE of the beauty; the worst 16x16 tile and the share of the error in the worst 1 % of pixels "
         "show artifacts the mean hides):\n\n"
-        "| stage | relMSE | worst tile | error in worst 1 % | pixels measured |\n| --- | ---: | ---: | ---: | ---: |\n";
+        "| stage | relMSE | against the truth (95 % interval) | worst tile | worst tile against the truth | error in worst 1 % "
+        "| pixels measured |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n";
   for (const StageError& e : r.errors()) {
     const std::string measured = e.kept() < 1 ? format("%.1f%% (kept, not re-rendered)", 100 * e.kept()) : "all";
+    const auto truth = [](bool has, const Interval& interval, const char* pattern) {
+      return has ? intervalText(interval, pattern) : std::string("-");
+    };
     md += "| " + stageMeaning(e.stage()) + " | " + format("%.5f", e.relmse()) + " | " +
-          format("%.4f", e.worst_tile_relmse()) + " | " + format("%.0f%%", 100 * e.worst_percent_share()) + " | " +
-          measured + " |\n";
+          truth(e.has_truth_error(), e.truth_error(), "%.5f") + " | " + format("%.4f", e.worst_tile_relmse()) + " | " +
+          truth(e.has_worst_tile_truth_error(), e.worst_tile_truth_error(), "%.4f") + " | " +
+          format("%.0f%%", 100 * e.worst_percent_share()) + " | " + measured + " |\n";
   }
   md += "\n| figure | value |\n| --- | ---: |\n";
   if (r.reference_noise() >= 0)
@@ -385,8 +357,14 @@ std::string reportMarkdown(const ShotReport& r) {
           format("%.5f", r.reference_noise()) + " |\n";
   if (r.temporal_error() >= 0)
     md += "| temporal error, final | " + format("%.5f", r.temporal_error()) + " |\n";
+  if (r.has_temporal_truth_error())
+    md += "| temporal error against the truth's change, final (95 % interval) | " +
+          intervalText(r.temporal_truth_error(), "%.5f") + " |\n";
   if (r.baseline_temporal_error() >= 0)
     md += "| temporal error, baseline pt | " + format("%.5f", r.baseline_temporal_error()) + " |\n";
+  if (r.has_baseline_temporal_truth_error())
+    md += "| temporal error against the truth's change, baseline pt (95 % interval) | " +
+          intervalText(r.baseline_temporal_truth_error(), "%.5f") + " |\n";
   if (!r.contact_sheet_png().empty())
     md += "\n![contact sheet](contact_sheet.png)\n\nContact sheet, a row per evaluation frame: final, pt at " +
           std::to_string(r.spp()) + " spp, reference, and the per-pixel relMSE of the first two (black 1e-4 or less, "

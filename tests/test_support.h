@@ -2,6 +2,7 @@
 // Shared by the tests: scenes from inline JSON, and statistics over rendered pixels.
 #include <cmath>
 #include <filesystem>
+#include <random>
 #include <set>
 #include <system_error>
 #include <string>
@@ -134,6 +135,36 @@ inline void expectNear(Vec3f a, Vec3f b, float tolerance = 1e-5f) {
   EXPECT_NEAR(a.x, b.x, tolerance);
   EXPECT_NEAR(a.y, b.y, tolerance);
   EXPECT_NEAR(a.z, b.z, tolerance);
+}
+
+// A smooth picture to measure errors against: R, G, B between 0.3 and 0.8.
+inline FrameImage smoothTruth(int width, int height) {
+  FrameImage truth(width, height);
+  const char* names[] = {"R", "G", "B"};
+  for (int c = 0; c < 3; ++c) {
+    std::vector<float>& values = truth.addChannel(names[c]);
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x)
+        values[static_cast<size_t>(y) * width + x] =
+            static_cast<float>(0.3 + 0.5 * (0.5 + 0.5 * std::sin(x / 7.0 + c)) * (0.5 + 0.5 * std::cos(y / 9.0)));
+  }
+  return truth;
+}
+
+// `truth` with Gaussian noise of standard deviation `sigma` per value (drawn from `seed`),
+// and with `withVariance` its exact variance in variance.R/G/B, as an unbiased render of
+// the truth carries it.
+inline FrameImage noisyCopy(const FrameImage& truth, double sigma, uint64_t seed, bool withVariance) {
+  std::mt19937_64 random(seed);
+  std::normal_distribution<double> noise(0.0, sigma);
+  FrameImage copy(truth.width(), truth.height());
+  for (const char* name : {"R", "G", "B"}) {
+    const std::vector<float>& values = truth.channel(name);
+    std::vector<float>& noisy = copy.addChannel(name);
+    for (size_t p = 0; p < values.size(); ++p) noisy[p] = static_cast<float>(values[p] + noise(random));
+    if (withVariance) copy.addChannel(std::string("variance.") + name).assign(values.size(), static_cast<float>(sigma * sigma));
+  }
+  return copy;
 }
 
 }  // namespace pathfarm::test_support

@@ -5,13 +5,17 @@
 // baseline. A stage that flags pixels for re-rendering (upsample, interpolate) is measured
 // on the pixels it keeps: the flagged ones hold best-effort values the re-render replaces.
 // The reference's own noise (its expected relMSE from its variance) bounds what the
-// figures can tell. The task's chunk is the contact sheet of the evaluation frames (PNG;
-// contact_sheet.h).
+// figures can tell: each figure is also given against the truth, the reference's noise
+// taken out pixel by pixel, with a 95 % interval (error_interval.h), and so is the final
+// frames' error over the baseline's, which the cost at equal error scales by. The task's
+// chunk is the contact sheet of the evaluation frames (PNG; contact_sheet.h).
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include "image/png_preview.h"
 #include "postproc/metrics/contact_sheet.h"
+#include "postproc/metrics/error_interval.h"
 #include "postproc/metrics/image_metrics.h"
 #include "postproc/metrics/relmse.h"
 #include "worker/failure_class.h"
@@ -67,63 +71,147 @@ struct StageSums {
   int frames = 0;
 };
 
-}  // namespace
+// An input of the evaluation and the pixels of it that are measured.
+struct Measured {
+  const FrameImage* image;
+  std::vector<uint8_t> kept;
+};
 
-TaskOutput runEvaluateTask(const Lease& /*lease*/, const std::vector<TaskInput>& inputs) {
+// The inputs of an evaluation: the references by frame, each stage's frames by frame.
+struct Evaluation {
   std::map<int64_t, const FrameImage*> references;
+  std::map<std::string, std::map<int64_t, Measured>> stages;
+};
+
+Evaluation sortedInputs(const std::vector<TaskInput>& inputs) {
+  Evaluation evaluation;
   for (const TaskInput& input : inputs)
     if (input.kind == TASK_ASSEMBLE_FRAME && input.params.role() == ROLE_REFERENCE)
-      references[input.params.frame()] = &input.image();
-  if (references.empty()) throw BadInput("the evaluation has no reference frame");
-
-  std::map<std::string, StageSums> sums;
-  std::map<std::string, std::map<int64_t, const FrameImage*>> sequences;  // final, baseline
+      evaluation.references[input.params.frame()] = &input.image();
+  if (evaluation.references.empty()) throw BadInput("the evaluation has no reference frame");
   for (const TaskInput& input : inputs) {
     const std::string stage = stageOf(input);
-    const auto reference = references.find(input.params.frame());
-    if (stage.empty() || reference == references.end()) continue;
+    const auto reference = evaluation.references.find(input.params.frame());
+    if (stage.empty() || reference == evaluation.references.end()) continue;
     // A half-resolution denoise output has no full-resolution error; its upsampling has.
     if (input.image().width() != reference->second->width() || input.image().height() != reference->second->height())
       continue;
-    const std::vector<uint8_t> kept = keptPixels(stage, input.image());
-    const ImageMetrics m = compareImages(input.image(), *reference->second, kBeauty, {}, &kept);
-    StageSums& sum = sums[stage];
-    sum.relMse += m.relMse;
-    sum.worstTile = std::max(sum.worstTile, m.worstTileRelMse);
-    sum.worstShare += m.worstPercentShare;
-    sum.kept += static_cast<double>(std::count(kept.begin(), kept.end(), 1)) / static_cast<double>(kept.size());
-    ++sum.frames;
-    if (stage == "final" || stage == "baseline") sequences[stage][input.params.frame()] = &input.image();
+    evaluation.stages[stage][input.params.frame()] = {&input.image(), keptPixels(stage, input.image())};
   }
-  TaskOutput output;
-  for (const auto& [stage, total] : sums) {
-    output.metrics["relmse." + stage] = total.relMse / total.frames;
-    output.metrics["worst_tile." + stage] = total.worstTile;  // the worst over the frames
-    output.metrics["worst_share." + stage] = total.worstShare / total.frames;
-    output.metrics["kept." + stage] = total.kept / total.frames;
-  }
-  for (const auto& [stage, frames] : sequences) {
-    if (frames.size() < 2) continue;
-    std::vector<FrameImage> images, referenced;
-    for (const auto& [frame, image] : frames) {
-      images.push_back(*image);
-      referenced.push_back(*references.at(frame));
+  return evaluation;
+}
+
+// A figure and its interval as metrics NAME.STAGE, NAME_low.STAGE and NAME_high.STAGE; an
+// unbounded end is left out (metrics are finite numbers).
+void putInterval(TaskOutput& output, const std::string& name, const std::string& suffix, const Interval& interval) {
+  output.metrics[name + suffix] = interval.estimate;
+  if (std::isfinite(interval.low)) output.metrics[name + "_low" + suffix] = interval.low;
+  if (std::isfinite(interval.high)) output.metrics[name + "_high" + suffix] = interval.high;
+}
+
+// The contract's relMSE against the reference as it is, with the artifact measures.
+void putRawFigures(const Evaluation& evaluation, TaskOutput& output) {
+  for (const auto& [stage, frames] : evaluation.stages) {
+    StageSums sum;
+    for (const auto& [frame, measured] : frames) {
+      const ImageMetrics m = compareImages(*measured.image, *evaluation.references.at(frame), kBeauty, {}, &measured.kept);
+      sum.relMse += m.relMse;
+      sum.worstTile = std::max(sum.worstTile, m.worstTileRelMse);
+      sum.worstShare += m.worstPercentShare;
+      sum.kept += static_cast<double>(std::count(measured.kept.begin(), measured.kept.end(), 1)) /
+                  static_cast<double>(measured.kept.size());
+      ++sum.frames;
     }
-    output.metrics["temporal." + stage] = compareSequences(images, referenced, kBeauty).temporalRelMse;
+    output.metrics["relmse." + stage] = sum.relMse / sum.frames;
+    output.metrics["worst_tile." + stage] = sum.worstTile;  // the worst over the frames
+    output.metrics["worst_share." + stage] = sum.worstShare / sum.frames;
+    output.metrics["kept." + stage] = sum.kept / sum.frames;
   }
+}
+
+// Each stage's error against the truth (the reference's noise taken out) with its interval,
+// and its worst tile's.
+void putTruthFigures(const Evaluation& evaluation, TaskOutput& output) {
+  for (const auto& [stage, frames] : evaluation.stages) {
+    BlockedTerms all, worstTile;
+    for (const auto& [frame, measured] : frames) {
+      const FrameImage& reference = *evaluation.references.at(frame);
+      all.append(errorTerms(measured.image, reference, &measured.kept));
+      BlockedTerms tile = worstTileTerms(*measured.image, reference, &measured.kept);
+      if (worstTile.sums.empty() || tile.mean() > worstTile.mean()) worstTile = std::move(tile);
+    }
+    putInterval(output, "truth", "." + stage, meanInterval(all));
+    if (!worstTile.sums.empty()) putInterval(output, "worst_tile_truth", "." + stage, meanInterval(worstTile));
+  }
+}
+
+// The temporal error of the final frames and of the baseline: as the contract measures it
+// against the reference, and against the truth's change with its interval.
+void putTemporalFigures(const Evaluation& evaluation, TaskOutput& output) {
+  for (const char* stage : {"final", "baseline"}) {
+    const auto found = evaluation.stages.find(stage);
+    if (found == evaluation.stages.end() || found->second.size() < 2) continue;
+    std::vector<FrameImage> images, referenced;
+    BlockedTerms changes;
+    const Measured* before = nullptr;
+    int64_t frameBefore = 0;
+    for (const auto& [frame, measured] : found->second) {
+      images.push_back(*measured.image);
+      referenced.push_back(*evaluation.references.at(frame));
+      if (before)
+        changes.append(temporalTerms(*before->image, *measured.image, *evaluation.references.at(frameBefore),
+                                     *evaluation.references.at(frame)));
+      before = &measured;
+      frameBefore = frame;
+    }
+    output.metrics[std::string("temporal.") + stage] = compareSequences(images, referenced, kBeauty).temporalRelMse;
+    putInterval(output, "temporal_truth", std::string(".") + stage, meanInterval(changes));
+  }
+}
+
+// The final frames' error over the baseline's, on the frames both have, with its interval
+// (the blocks resampled together): what the cost at equal error scales the relative cost by.
+void putErrorRatio(const Evaluation& evaluation, TaskOutput& output) {
+  const auto finals = evaluation.stages.find("final"), baselines = evaluation.stages.find("baseline");
+  if (finals == evaluation.stages.end() || baselines == evaluation.stages.end()) return;
+  BlockedTerms final, baseline;
+  for (const auto& [frame, measured] : finals->second) {
+    const auto pt = baselines->second.find(frame);
+    if (pt == baselines->second.end()) continue;
+    const FrameImage& reference = *evaluation.references.at(frame);
+    final.append(errorTerms(measured.image, reference));
+    baseline.append(errorTerms(pt->second.image, reference));
+  }
+  if (!final.sums.empty()) putInterval(output, "error_ratio", "", ratioInterval(final, baseline));
+}
+
+}  // namespace
+
+TaskOutput runEvaluateTask(const Lease& /*lease*/, const std::vector<TaskInput>& inputs) {
+  const Evaluation evaluation = sortedInputs(inputs);
+  TaskOutput output;
+  putRawFigures(evaluation, output);
+  putTruthFigures(evaluation, output);
+  putTemporalFigures(evaluation, output);
+  putErrorRatio(evaluation, output);
+  const auto& references = evaluation.references;
   output.metrics["evaluation_frames"] = static_cast<double>(references.size());
   // The references' own expected relMSE, from their variance: the floor of the figures.
   double noise = 0;
   for (const auto& [frame, reference] : references) noise += expectedRelMse(*reference);
   output.metrics["reference_noise"] = noise / static_cast<double>(references.size());
   std::vector<ContactSheetRow> rows;
+  const auto finals = evaluation.stages.find("final"), baselines = evaluation.stages.find("baseline");
   for (const auto& [frame, reference] : references) {
-    const auto& finals = sequences["final"];
-    const auto& baselines = sequences["baseline"];
-    const auto final = finals.find(frame);
-    if (final == finals.end()) continue;
-    const auto baseline = baselines.find(frame);
-    rows.push_back({final->second, baseline == baselines.end() ? nullptr : baseline->second, reference});
+    if (finals == evaluation.stages.end()) break;
+    const auto final = finals->second.find(frame);
+    if (final == finals->second.end()) continue;
+    const FrameImage* baseline = nullptr;
+    if (baselines != evaluation.stages.end()) {
+      const auto pt = baselines->second.find(frame);
+      if (pt != baselines->second.end()) baseline = pt->second.image;
+    }
+    rows.push_back({final->second.image, baseline, reference});
   }
   output.chunk = rows.empty() ? std::string("no final frame among the evaluation frames\n")
                               : encodePngPreview(contactSheet(rows));

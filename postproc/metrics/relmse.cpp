@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "postproc/metrics/error_terms.h"
+
 namespace pathfarm {
 
 double relMse(const std::vector<float>& image, const std::vector<float>& reference) {
@@ -37,56 +39,12 @@ double expectedRelMse(const FrameImage& image) {
 
 namespace {
 
-constexpr int kErrorBlock = 8;
-
-// The mean of the 8 neighbours of pixel (x, y) inside the frame.
-double neighbourMean(const std::vector<float>& values, int width, int height, int x, int y) {
-  double sum = 0;
-  int count = 0;
-  for (int ny = std::max(0, y - 1); ny <= std::min(height - 1, y + 1); ++ny)
-    for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx) {
-      if (nx == x && ny == y) continue;
-      sum += values[static_cast<size_t>(ny) * width + nx];
-      ++count;
-    }
-  return count > 0 ? sum / count : values[static_cast<size_t>(y) * width + x];
-}
-
 // Over pixels and channels, ((image - reference)^2 - variance) / (d^2 + 0.01), without the
-// squared difference when `image` is null.
+// squared difference when `image` is null (error_terms.h).
 MeanEstimate estimatedAgainstNoisyReference(const FrameImage* image, const FrameImage& reference) {
-  if (image && (image->width() != reference.width() || image->height() != reference.height()))
-    throw std::invalid_argument("relMSE needs two frames of the same resolution");
-  const int w = reference.width(), h = reference.height();
-  struct Channel {
-    const std::vector<float>& ref;
-    const std::vector<float>& variance;
-    const std::vector<float>* values;
-  };
-  std::vector<Channel> channels;
-  for (const char* channel : {"R", "G", "B"}) {
-    const std::string varianceName = std::string("variance.") + channel;
-    if (!reference.hasChannel(varianceName))
-      throw std::invalid_argument("no \"" + varianceName + "\" channel to estimate the noise from");
-    channels.push_back({reference.channel(channel), reference.channel(varianceName),
-                        image ? &image->channel(channel) : nullptr});
-  }
+  const BlockedTerms terms = errorTerms(image, reference);
   MeanEstimate estimate;
-  for (int by = 0; by < h; by += kErrorBlock)
-    for (int bx = 0; bx < w; bx += kErrorBlock) {
-      double blockSum = 0, blockCount = 0;
-      for (const Channel& c : channels)
-        for (int y = by; y < std::min(h, by + kErrorBlock); ++y)
-          for (int x = bx; x < std::min(w, bx + kErrorBlock); ++x) {
-            const size_t p = static_cast<size_t>(y) * w + x;
-            const double d = neighbourMean(c.ref, w, h, x, y);
-            const double difference = c.values ? double{(*c.values)[p]} - c.ref[p] : 0.0;
-            const double noise = c.variance[p];
-            blockSum += (c.values ? difference * difference - noise : noise) / (d * d + 0.01);
-            blockCount += 1;
-          }
-      estimate.addBlock(blockSum, blockCount);
-    }
+  for (size_t b = 0; b < terms.sums.size(); ++b) estimate.addBlock(terms.sums[b], terms.counts[b]);
   return estimate;
 }
 

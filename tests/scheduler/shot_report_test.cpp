@@ -48,7 +48,10 @@ TEST(ShotReport, CostsRatesAndErrorsFollowFromTheTasks) {
   tasks.push_back(record(TASK_EVALUATE, ROLE_UNSPECIFIED, 0, 0.25));
   tasks.back().metrics = {{"relmse.final", 0.01},     {"relmse.baseline", 0.03},     {"temporal.final", 0.02},
                           {"worst_tile.final", 0.5}, {"worst_share.final", 0.25}, {"relmse.interpolate", 0.2},
-                          {"kept.interpolate", 0.9}};
+                          {"kept.interpolate", 0.9},  {"truth.final", 0.008},     {"truth_low.final", 0.007},
+                          {"truth_high.final", 0.009}, {"truth.baseline", 0.028}, {"truth_low.baseline", 0.026},
+                          {"truth_high.baseline", 0.03}, {"error_ratio", 0.3},    {"error_ratio_low", 0.25},
+                          {"error_ratio_high", 0.35}};
 
   ShotSummary summary;
   summary.set_id(7);
@@ -87,8 +90,10 @@ TEST(ShotReport, CostsRatesAndErrorsFollowFromTheTasks) {
 
   const std::string md = reportMarkdown(report);
   EXPECT_NE(md.find("| **relative cost**"), std::string::npos);
-  EXPECT_NE(md.find("| **final frames** | 0.01000 | 0.5000 | 25% | all |"), std::string::npos);
-  EXPECT_NE(md.find("| in-between frames interpolated | 0.20000 | 0.0000 | 0% | 90.0% (kept, not re-rendered) |"),
+  EXPECT_NE(md.find("| **final frames** | 0.01000 | 0.00800 (0.00700 to 0.00900) | 0.5000 | - | 25% | all |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| in-between frames interpolated | 0.20000 | - | 0.0000 | - | 0% | 90.0% (kept, not re-rendered) |"),
             std::string::npos);
   EXPECT_EQ(md.find("contact_sheet.png"), std::string::npos);  // no sheet, no picture
   ShotReport withSheet = report;
@@ -97,9 +102,13 @@ TEST(ShotReport, CostsRatesAndErrorsFollowFromTheTasks) {
   EXPECT_EQ(reportJson(withSheet).find("iVBOR"), std::string::npos);  // the bytes (base64) stay out of the JSON
   EXPECT_NE(reportJson(report).find("\"relative_cost\""), std::string::npos);
 
-  // relMSE 0.01 against pt's 0.03: pt would need 3x the samples, so 3x its cost.
-  EXPECT_DOUBLE_EQ(report.cost_at_equal_error(), report.relative_cost() * 0.01 / 0.03);
-  EXPECT_EQ(report.verdict().rfind("dui paid off: 0.11 of plain pt's core-seconds for the same error", 0), 0u)
+  // An error 0.3 of pt's against the truth: pt would need 1/0.3 the samples for it.
+  EXPECT_DOUBLE_EQ(report.cost_at_equal_error(), report.relative_cost() * 0.3);
+  EXPECT_DOUBLE_EQ(report.cost_at_equal_error_interval().low(), report.relative_cost() * 0.25);
+  EXPECT_DOUBLE_EQ(report.cost_at_equal_error_interval().high(), report.relative_cost() * 0.35);
+  EXPECT_DOUBLE_EQ(report.errors(1).truth_error().low(), 0.007);
+  EXPECT_EQ(report.verdict().rfind("dui paid off: 0.10 (0.09 to 0.12) of plain pt's core-seconds for the same error", 0),
+            0u)
       << report.verdict();
   EXPECT_NE(md.find("**Verdict:** dui paid off"), std::string::npos);
   // Why the farm ran another pipeline than the shot file named heads the report.
@@ -136,35 +145,69 @@ TEST(ShotReport, TheVerdictSaysPlainlyWhenThePipelineLost) {
   tasks.push_back(record(TASK_RENDER_TILE, ROLE_BASELINE, 1, 1.5));   // pt: 2 per frame
   tasks.push_back(record(TASK_ASSEMBLE_FRAME, ROLE_BASELINE, 1, 0.5));
   tasks.push_back(record(TASK_EVALUATE, ROLE_UNSPECIFIED, 0, 0.25));
-  tasks.back().metrics = {{"relmse.final", 0.02},       {"relmse.baseline", 0.01},      {"worst_tile.final", 3.0},
-                          {"worst_tile.baseline", 0.5}, {"temporal.final", 0.2},        {"temporal.baseline", 0.1}};
+  tasks.back().metrics = {{"relmse.final", 0.02},
+                          {"relmse.baseline", 0.01},
+                          {"truth.final", 0.02},
+                          {"truth_low.final", 0.018},
+                          {"truth_high.final", 0.022},
+                          {"truth.baseline", 0.01},
+                          {"truth_low.baseline", 0.009},
+                          {"truth_high.baseline", 0.011},
+                          {"error_ratio", 2.0},
+                          {"error_ratio_low", 1.7},
+                          {"error_ratio_high", 2.3},
+                          {"worst_tile_truth.final", 3.0},
+                          {"worst_tile_truth_low.final", 2.5},
+                          {"worst_tile_truth_high.final", 3.5},
+                          {"worst_tile_truth.baseline", 0.5},
+                          {"worst_tile_truth_low.baseline", 0.4},
+                          {"worst_tile_truth_high.baseline", 0.6},
+                          {"temporal_truth.final", 0.2},
+                          {"temporal_truth_low.final", 0.15},
+                          {"temporal_truth.baseline", 0.1},
+                          {"temporal_truth_high.baseline", 0.12}};
   const ShotReport report = buildReport(ShotSummary(), spec(), tasks);
   EXPECT_DOUBLE_EQ(report.relative_cost(), 2.0);
   EXPECT_DOUBLE_EQ(report.cost_at_equal_error(), 4.0);  // twice the cost at twice the error
   const std::string& verdict = report.verdict();
-  EXPECT_EQ(verdict.rfind("dui did not pay off: it cost 4.00x what plain pt would for the same error", 0), 0u) << verdict;
+  EXPECT_EQ(verdict.rfind("dui did not pay off: it cost 4.00 (3.40 to 4.60)x what plain pt would for the same error", 0),
+            0u)
+      << verdict;
   EXPECT_NE(verdict.find("worst 16x16 tile has 6.0x pt's"), std::string::npos) << verdict;
   EXPECT_NE(verdict.find("flickers more than pt"), std::string::npos) << verdict;
-  EXPECT_EQ(verdict.find("reference's own noise"), std::string::npos) << verdict;
+  EXPECT_EQ(verdict.find("cannot be told"), std::string::npos) << verdict;
   EXPECT_EQ(report.reference_noise(), -1);  // not measured
 
-  // Errors at the reference's own noise cannot be compared.
+  // An interval that includes 1 claims nothing either way; overlapping tiles and temporal
+  // errors claim no artifact and no flicker.
+  tasks.back().metrics["error_ratio_low"] = 0.4;
+  tasks.back().metrics["worst_tile_truth_low.final"] = 1.0;
+  tasks.back().metrics["temporal_truth_low.final"] = 0.11;
+  const ShotReport unsure = buildReport(ShotSummary(), spec(), tasks);
+  EXPECT_EQ(unsure.verdict().rfind("Cannot tell at this reference whether dui paid off", 0), 0u) << unsure.verdict();
+  EXPECT_NE(unsure.verdict().find("0.80 to 4.60"), std::string::npos) << unsure.verdict();
+  EXPECT_EQ(unsure.verdict().find("worst 16x16"), std::string::npos) << unsure.verdict();
+  EXPECT_EQ(unsure.verdict().find("flickers"), std::string::npos) << unsure.verdict();
+
+  // A baseline error that cannot be told from 0: nothing to compare against.
   tasks.back().metrics["reference_noise"] = 0.0125;
+  tasks.back().metrics["truth_low.baseline"] = -0.001;
   const ShotReport atTheFloor = buildReport(ShotSummary(), spec(), tasks);
   EXPECT_DOUBLE_EQ(atTheFloor.reference_noise(), 0.0125);
-  EXPECT_EQ(atTheFloor.verdict(), "The errors cannot be told from the reference's own noise (0.0125): dui's relMSE "
-                                  "0.0200, plain pt's 0.0100. Raise reference_spp to compare them.");
+  EXPECT_EQ(atTheFloor.verdict().rfind("The errors cannot be told from the reference's own noise (0.0125)", 0), 0u)
+      << atTheFloor.verdict();
   EXPECT_NE(reportMarkdown(atTheFloor).find("| the reference's own noise (its expected relMSE, included in every "
                                             "relMSE above) | 0.01250 |"),
             std::string::npos);
-  // Both errors less the noise: (0.02 - 0.0125) / (0.01 - 0.0125) cannot be compared.
   EXPECT_EQ(atTheFloor.cost_at_equal_error(), -1);
-  tasks.back().metrics["reference_noise"] = 0.005;
-  const ShotReport belowTheFloor = buildReport(ShotSummary(), spec(), tasks);
-  EXPECT_EQ(belowTheFloor.verdict().find("reference's own noise"), std::string::npos) << belowTheFloor.verdict();
-  EXPECT_DOUBLE_EQ(belowTheFloor.cost_at_equal_error(), 2.0 * (0.02 - 0.005) / (0.01 - 0.005));
-  EXPECT_NE(belowTheFloor.verdict().find("both less the reference's noise 0.0050"), std::string::npos)
-      << belowTheFloor.verdict();
+  // A ratio unbounded above (the evaluation leaves the infinite end out) pays off never.
+  tasks.back().metrics["truth_low.baseline"] = 0.009;
+  tasks.back().metrics.erase("error_ratio_high");
+  tasks.back().metrics["error_ratio"] = 0.2;
+  tasks.back().metrics["error_ratio_low"] = 0.1;
+  const ShotReport unbounded = buildReport(ShotSummary(), spec(), tasks);
+  EXPECT_EQ(unbounded.verdict().rfind("Cannot tell", 0), 0u) << unbounded.verdict();
+  EXPECT_NE(unbounded.verdict().find("to infinity"), std::string::npos) << unbounded.verdict();
 
   // No reference, no verdict; pt is its own baseline.
   tasks.pop_back();

@@ -88,6 +88,14 @@ function number(value, digits = 3) {
   return Math.abs(n) >= 1000 ? Math.round(n).toLocaleString() : Number(n.toPrecision(digits)).toString();
 }
 
+// A figure with its 95 % interval (report.proto's Interval): "0.12 (0.10 to 0.15)"; an
+// unbounded end shows as infinity.
+function withInterval(interval) {
+  if (!interval) return '';
+  const end = (value) => (isFinite(Number(value)) ? number(value) : (Number(value) > 0 ? '\u221e' : '-\u221e'));
+  return number(interval.estimate) + ' (' + end(interval.low) + ' to ' + end(interval.high) + ')';
+}
+
 function badge(state) {
   return el('span', { className: 'badge state-' + state }, state);
 }
@@ -485,14 +493,18 @@ function drawReport(report) {
       report.baseline_core_seconds_per_frame > 0 ? figure('relative cost', number(report.relative_cost)) : null,
       figure('resolution gain', number(report.resolution_gain)),
       figure('re-rendered', number(100 * report.rerender_rate) + '%'),
-      report.cost_at_equal_error >= 0 ? figure('cost at equal error', number(report.cost_at_equal_error)) : null),
+      report.cost_at_equal_error >= 0 ?
+        figure('cost at equal error (95 %)', withInterval(report.cost_at_equal_error_interval)) : null),
     report.verdict ? el('p', {}, report.verdict) : null,
     el('div', { className: 'plots' },
       (report.stages || []).length ? stageBars(report.stages) : el('p', { className: 'empty' }, 'No stage is done yet.'),
       speedErrorPlot(report)),
-    errors.length ? table(['stage', 'relMSE', 'worst tile', 'worst 1 % share', 'kept'],
+    errors.length ? table(['stage', 'relMSE', 'against the truth (95 %)', 'worst tile', 'worst tile, truth (95 %)',
+      'worst 1 % share', 'kept'],
       errors.map((e) => el('tr', {}, el('td', {}, e.stage), el('td', { className: 'num' }, number(e.relmse)),
+        el('td', { className: 'num' }, withInterval(e.truth_error)),
         el('td', { className: 'num' }, number(e.worst_tile_relmse)),
+        el('td', { className: 'num' }, withInterval(e.worst_tile_truth_error)),
         el('td', { className: 'num' }, number(100 * e.worst_percent_share) + '%'),
         el('td', { className: 'num' }, number(100 * e.kept) + '%'))), '') :
       el('p', { className: 'dim' }, 'No error figures: the shot has no reference (reference_spp).'));
