@@ -1,4 +1,5 @@
 // pathfarm: one executable, one subcommand per job (see README.md).
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
@@ -27,6 +28,9 @@ int main(int argc, char** argv) {
     app.exit(e);
     return pathfarm::kExitBadInput;
   }
+  // Logs on standard error: standard output carries what scripts read (`id=$(pathfarm
+  // submit ...)`, listings, reports).
+  spdlog::set_default_logger(spdlog::stderr_color_mt("pathfarm"));
   spdlog::set_level(verbose ? spdlog::level::debug : spdlog::level::info);
   spdlog::set_pattern("[%H:%M:%S] %^%l%$ %v");
   for (const pathfarm::Command& command : commands) {

@@ -10,13 +10,10 @@
 #include "proto/wire/connection.h"
 
 namespace pathfarm::farm {
-namespace {
 
-void check(const grpc::Status& status) {
-  if (!status.ok()) throw FarmError(status.error_code(), status.error_message());
+void FarmClient::check(const grpc::Status& status) const {
+  if (!status.ok()) throw FarmError(status.error_code(), explainedError(status, tls_));
 }
-
-}  // namespace
 
 std::string frameFileName(int64_t frame) {
   char name[64];
@@ -25,7 +22,7 @@ std::string frameFileName(int64_t frame) {
 }
 
 FarmClient::FarmClient(const std::string& address, std::string token, const ClientTls& tls)
-    : stub_(ClientService::NewStub(makeChannel(address, tls))), token_(std::move(token)) {}
+    : stub_(ClientService::NewStub(makeChannel(address, tls))), token_(std::move(token)), tls_(tls.enabled()) {}
 
 std::unique_ptr<grpc::ClientContext> FarmClient::context(bool stream) const {
   auto context = std::make_unique<grpc::ClientContext>();

@@ -59,8 +59,12 @@ class FarmClient {
   template <class Reply, class Method>
   Reply aboutShot(Method method, int64_t id);
   ShotSummary requeue(const RequeueRequest& request);
+  // Throws FarmError for a failed call, its message saying what to do about trouble with
+  // the connection itself (connection.h).
+  void check(const grpc::Status& status) const;
   std::unique_ptr<ClientService::Stub> stub_;
   std::string token_;
+  bool tls_ = false;
 };
 
 std::string frameFileName(int64_t frame);

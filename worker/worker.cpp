@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "proto/wire/chunk_store.h"
+#include "proto/wire/connection.h"
 #include "worker/backoff.h"
 #include "worker/cache_trim.h"
 #include "worker/scheduler_link.h"
@@ -40,13 +41,17 @@ void Worker::run(const std::atomic<bool>& stop) {
   for (;;) {
     const grpc::Status status = link.registerWorker(options_.name, options_.slots, options_.tags, registration);
     if (status.ok()) break;
-    // A refusal (bad token, bad tag) does not change by waiting.
+    // A refusal (bad token, bad tag) or a refused certificate does not change by waiting.
     const auto code = status.error_code();
     if (code == grpc::StatusCode::UNAUTHENTICATED || code == grpc::StatusCode::INVALID_ARGUMENT ||
         code == grpc::StatusCode::PERMISSION_DENIED)
       throw std::runtime_error("the scheduler refused this worker: " + status.error_message());
+    const bool overTls = options_.tls.enabled();
+    if (connectionTrouble(status, overTls) == ConnectionTrouble::CertificateRefused)
+      throw std::runtime_error("cannot connect to the scheduler at " + options_.scheduler + " over TLS: " +
+                               explainedError(status, overTls));
     if (stop) return;
-    spdlog::warn("cannot reach the scheduler at {}: {}; retrying", options_.scheduler, status.error_message());
+    spdlog::warn("cannot reach the scheduler at {}: {}; retrying", options_.scheduler, explainedError(status, overTls));
     backoff.sleep();
   }
   const int64_t workerId = registration.worker_id();

@@ -108,4 +108,30 @@ bool isAuthorized(const grpc::ServerContext& context, const std::string& token) 
   return equalInConstantTime(std::string_view(it->second.data(), it->second.size()), token);
 }
 
+ConnectionTrouble connectionTrouble(const grpc::Status& status, bool overTls) {
+  const std::string& message = status.error_message();
+  if (!overTls && status.error_code() == grpc::StatusCode::UNAVAILABLE && message.find("Socket closed") != std::string::npos)
+    return ConnectionTrouble::TlsExpected;
+  if (overTls && (message.find("handshake failed") != std::string::npos ||
+                  message.find("certificate verify failed") != std::string::npos))
+    return ConnectionTrouble::CertificateRefused;
+  return ConnectionTrouble::Other;
+}
+
+std::string explainedError(const grpc::Status& status, bool overTls) {
+  switch (connectionTrouble(status, overTls)) {
+    case ConnectionTrouble::TlsExpected:
+      return status.error_message() +
+             " (the scheduler closed a plain connection at once: it speaks TLS; give the CA of its certificate with "
+             "--tls-ca FILE or PATHFARM_TLS_CA)";
+    case ConnectionTrouble::CertificateRefused:
+      return status.error_message() +
+             " (the scheduler's certificate was refused: --tls-ca must name the CA that signed it, and the address "
+             "must be a name or IP the certificate lists)";
+    case ConnectionTrouble::Other:
+      break;
+  }
+  return status.error_message();
+}
+
 }  // namespace pathfarm::farm

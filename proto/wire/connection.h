@@ -22,6 +22,17 @@ std::shared_ptr<grpc::Channel> makeChannel(const std::string& address, const Cli
 bool isLoopbackAddress(const std::string& address);
 void configureServer(grpc::ServerBuilder& builder);
 
+// Trouble a failed call shows with the connection itself, told apart so that it can be
+// said in words that say what to do. gRPC reports both as a failure to connect.
+enum class ConnectionTrouble {
+  Other,
+  TlsExpected,         // a plain connection the scheduler closed at once: it speaks TLS
+  CertificateRefused,  // the TLS handshake failed: the certificate is not the CA's, or not the address's
+};
+ConnectionTrouble connectionTrouble(const grpc::Status& status, bool overTls);
+// The status's message, followed by what to do about such trouble.
+std::string explainedError(const grpc::Status& status, bool overTls);
+
 // The shared token: from `tokenFile` if given, else the file named by PATHFARM_TOKEN_FILE,
 // else the PATHFARM_TOKEN variable (set but empty is an error); empty when none is configured. Throws
 // std::runtime_error if a named file cannot be read or is empty.

@@ -212,6 +212,22 @@ try {
   if (await linked.isVisible('#token-form')) failures.push('the token in the link was not taken');
   if (new URL(linked.url()).hash.includes(TOKEN)) failures.push('the token stayed in the address bar');
   log('a link with the token opens the dashboard');
+
+  // A link to one shot, shared with someone who types the token: the shot's page once
+  // the token is given; and a link to the shot carrying the token opens it directly.
+  const shared = await (await browser.newContext()).newPage();
+  await shared.goto(`${dashboard}#/shot/${shotId}`);
+  await shared.waitForSelector('#token-form:not([hidden])');
+  await shared.fill('#token-input', TOKEN);
+  await shared.click('#token-form button[type=submit]');
+  await shared.locator('.shot-header h1').waitFor();
+  if (!new URL(shared.url()).hash.startsWith(`#/shot/${shotId}`)) failures.push('the shared link lost its shot: ' + shared.url());
+  const sharedWithToken = await (await browser.newContext()).newPage();
+  await sharedWithToken.goto(`${dashboard}#/shot/${shotId}&token=${TOKEN}`);
+  await sharedWithToken.locator('.shot-header h1').waitFor();
+  if (new URL(sharedWithToken.url()).hash !== `#/shot/${shotId}`)
+    failures.push('a shot link with the token kept the token or lost the shot: ' + sharedWithToken.url());
+  log('a link to one shot opens that shot, with the token typed in or carried');
 } catch (error) {
   failures.push(error.stack || String(error));
 } finally {

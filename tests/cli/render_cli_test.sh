@@ -3,11 +3,14 @@
 # with exit status 2, a clear message, and no output.
 source "$(dirname "$0")/cli_test_support.sh"
 
-# A good render: two frames and their previews.
+# A good render: two frames and their previews. The log goes to standard error: standard
+# output carries only what a script reads (a shot's id from submit, listings, reports).
 if ! "$pathfarm" render "$source_dir/scenes/cornell/scene.json" --frames 3:4 --spp 2 --res 24x16 \
-    --out "$work/out" --png > "$work/log" 2>&1; then
+    --out "$work/out" --png > "$work/stdout" 2> "$work/log"; then
   fail "render failed: $(cat "$work/log")"
 fi
+[ -s "$work/stdout" ] && fail "render logged to standard output: $(cat "$work/stdout")"
+grep -q "EXR frames and PNG previews in" "$work/log" || fail "no log on standard error: $(cat "$work/log")"
 for f in frame_0003.exr frame_0004.exr frame_0003.png frame_0004.png; do
   [ -s "$work/out/$f" ] || fail "missing $f"
 done

@@ -57,10 +57,20 @@ TEST_F(TlsFarmTest, AFarmOverTlsRendersTheSameBytesAndRefusesWhoDoesNotTrustIt) 
   ASSERT_EQ(waitForShot(id, 60s).state(), farm::SHOT_DONE);
   expectSameFrames(fetchFrames(id, "fetched", {"--tls-ca", file("ca.pem")}), renderLocally(spec), spec);
 
+  // Refused, each saying what to do.
   const CommandResult plain = runClient({"status"}, {});
   EXPECT_NE(plain.status, 0) << "a client without TLS was served:\n" << plain.output;
+  EXPECT_TRUE(contains(plain.output, "it speaks TLS; give the CA of its certificate with --tls-ca")) << plain.output;
   const CommandResult wrongCa = runClient({"status"}, {"--tls-ca", file("other-ca.pem")});
   EXPECT_NE(wrongCa.status, 0) << "a client trusting another CA was served:\n" << wrongCa.output;
+  EXPECT_TRUE(contains(wrongCa.output, "the scheduler's certificate was refused")) << wrongCa.output;
+  // A worker whose certificate check fails stops with the reason instead of retrying.
+  const CommandResult distrustingWorker =
+      runPathfarm({"worker", "--scheduler", address(), "--tls-ca", file("other-ca.pem"), "--cache",
+                   (dir() / "distrusting-cache").string()},
+                  {}, 20s);
+  EXPECT_GT(distrustingWorker.status, 0) << distrustingWorker.output;
+  EXPECT_TRUE(contains(distrustingWorker.output, "over TLS")) << distrustingWorker.output;
   const CommandResult environment = runPathfarm({"status", "--scheduler", address()}, {"PATHFARM_TLS_CA=" + file("ca.pem")});
   EXPECT_EQ(environment.status, 0) << environment.output;
 

@@ -146,10 +146,12 @@ function askForToken(message) {
 function setUpToken() {
   // `pathfarm local --http` prints a link carrying the token in the fragment, which the
   // browser never sends: kept for this tab, then taken out of the address bar.
+  // The rest of the fragment is the page it links to (a shot's, say), which stays.
   const match = location.hash.match(/[#&]token=([^&]+)/);
   if (match) {
     sessionStorage.setItem(TOKEN_KEY, decodeURIComponent(match[1]));
-    history.replaceState(null, '', location.pathname + '#/');
+    const route = location.hash.replace(/[#&]token=[^&]*/, '').replace(/^#?&?/, '#');
+    history.replaceState(null, '', location.pathname + (route.length > 1 ? route : '#/'));
   }
   const form = document.getElementById('token-form');
   form.addEventListener('submit', (event) => {
