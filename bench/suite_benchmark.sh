@@ -12,6 +12,10 @@
 #   bench/suite_benchmark.sh [--build DIR] [--scenes "dolly courtyard walkthrough cornell showroom"]
 #                            [--pipelines "dui"] [--spp 64] [--reference-spp 1024]
 #                            [--frames 0:23] [--res 320x180] [--figures docs/figures] [--repeat 1]
+#                            [--setting small|production]
+# --setting production is 640x360 at 256 spp against a 4096-spp reference (production renders
+# take hundreds of samples, where a frame's fixed costs weigh less); small, the default, is
+# 320x180 at 64 spp against 1024. Options after it change its values.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=build scenes="dolly courtyard walkthrough cornell showroom" pipelines=dui spp=64 reference=1024
@@ -27,6 +31,12 @@ while (($#)); do
     --res) res=$2 ;;
     --figures) figures=$2 ;;
     --repeat) repeat=$2 ;;
+    --setting)
+      case "$2" in
+        small) res=320x180 spp=64 reference=1024 ;;
+        production) res=640x360 spp=256 reference=4096 ;;
+        *) echo "suite_benchmark: --setting is small or production, not $2" >&2; exit 2 ;;
+      esac ;;
     *) echo "suite_benchmark: unknown option $1" >&2; exit 2 ;;
   esac
   shift 2
