@@ -19,11 +19,19 @@ std::pair<double, double> percentiles(std::vector<double>& values) {
   return {at(0.025), at(0.975)};
 }
 
-// Calls visit(b) for the blocks of one resample: as many as there are, drawn with replacement.
-template <class Visit>
-void resample(std::mt19937_64& random, size_t blocks, Visit visit) {
-  std::uniform_int_distribution<size_t> pick(0, blocks - 1);
-  for (size_t i = 0; i < blocks; ++i) visit(pick(random));
+// Per resample (kResamples of them, as many blocks drawn with replacement as there are),
+// the sums of `a` and of `b` over the drawn blocks: the same draws for both.
+std::vector<std::pair<double, double>> resampledSums(const std::vector<double>& a, const std::vector<double>& b) {
+  std::mt19937_64 random(kSeed);
+  std::uniform_int_distribution<size_t> pick(0, a.size() - 1);
+  std::vector<std::pair<double, double>> sums(kResamples);
+  for (auto& [sumA, sumB] : sums)
+    for (size_t i = 0; i < a.size(); ++i) {
+      const size_t block = pick(random);
+      sumA += a[block];
+      sumB += b[block];
+    }
+  return sums;
 }
 
 }  // namespace
@@ -32,16 +40,8 @@ Interval meanInterval(const BlockedTerms& terms) {
   Interval interval;
   interval.estimate = interval.low = interval.high = terms.mean();
   if (terms.sums.size() < 2) return interval;
-  std::mt19937_64 random(kSeed);
-  std::vector<double> means(kResamples);
-  for (double& mean : means) {
-    double sum = 0, count = 0;
-    resample(random, terms.sums.size(), [&](size_t b) {
-      sum += terms.sums[b];
-      count += terms.counts[b];
-    });
-    mean = sum / count;
-  }
+  std::vector<double> means;
+  for (const auto& [sum, count] : resampledSums(terms.sums, terms.counts)) means.push_back(sum / count);
   std::tie(interval.low, interval.high) = percentiles(means);
   return interval;
 }
@@ -56,16 +56,9 @@ Interval ratioInterval(const BlockedTerms& numerator, const BlockedTerms& denomi
   interval.low = below > 0 ? interval.estimate : -kInfinity;
   interval.high = kInfinity;
   if (!(below > 0) || numerator.sums.size() < 2) return interval;
-  std::mt19937_64 random(kSeed);
-  std::vector<double> ratios(kResamples);
-  for (double& ratio : ratios) {
-    double above = 0, under = 0;
-    resample(random, numerator.sums.size(), [&](size_t b) {
-      above += numerator.sums[b];
-      under += denominator.sums[b];
-    });
-    ratio = under > 0 ? above / under : kInfinity;
-  }
+  std::vector<double> ratios;
+  for (const auto& [above, under] : resampledSums(numerator.sums, denominator.sums))
+    ratios.push_back(under > 0 ? above / under : kInfinity);
   std::tie(interval.low, interval.high) = percentiles(ratios);
   return interval;
 }
