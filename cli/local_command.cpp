@@ -66,6 +66,7 @@ int runLocal(const LocalArguments& arguments) {
                           arguments.farm, arguments.limits, arguments.http});
     farm::FarmClient client = farm.client();
     spec = withChosenPipeline(client, *file, spec, out / "probe");
+    file.reset();  // its scene, no longer needed while the farm renders
     const int64_t id = client.submit(spec);
     spdlog::info("shot {} submitted: {} frames {}..{} at {}x{}, {} spp, {}-pixel tiles", id, spec.name(),
                  spec.frame_start(), spec.frame_end(), spec.width(), spec.height(), spec.spp(), spec.tile());

@@ -213,6 +213,12 @@ void renderFrames(const RenderOptions& options, const RenderJob& job) {
   }
 }
 
+// Bad input: said, and exit status 2.
+int refused(const std::exception& e) {
+  spdlog::error("{}", e.what());
+  return kExitBadInput;
+}
+
 int runRender(const RenderOptions& options) {
   RenderJob job;
   MetropolisSettings metropolis;
@@ -221,9 +227,12 @@ int runRender(const RenderOptions& options) {
     job = renderJobOf(options);
     checkIntegratorOptions(options, integrator);
     if (integrator.rendersWindows) metropolis = checkedMetropolisSettings(options, job);
-  } catch (const std::exception& e) {  // SceneError, UsageError, std::invalid_argument: all the user's input
-    spdlog::error("{}", e.what());
-    return kExitBadInput;
+  } catch (const SceneError& e) {
+    return refused(e);
+  } catch (const UsageError& e) {
+    return refused(e);
+  } catch (const std::invalid_argument& e) {  // settings the integrator refuses
+    return refused(e);
   }
   const std::filesystem::path out(options.out);
   std::error_code error;

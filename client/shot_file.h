@@ -3,7 +3,9 @@
 // parsed, every key checked, its scene loaded and what every pipeline shares resolved with
 // the scene's defaults and paths made absolute. It then reads as the spec of any pipeline
 // without touching the file again: the pipeline it names, or each of auto's candidates.
-// Reading runs no probe; shot_preparation.h runs them.
+// Reading runs neither the keyframe probe nor auto's pipeline probe (shot_preparation.h and
+// pipeline_probe.h do); "decompose": "auto" is resolved as the keys are read, with its own
+// small probe render (renderer/setup/auto_decomposition.h).
 #include <filesystem>
 #include <memory>
 #include <string_view>

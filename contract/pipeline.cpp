@@ -28,11 +28,30 @@ const std::vector<PipelineTraits>& allPipelines() {
   return pipelines;
 }
 
-const PipelineTraits& traitsOf(Pipeline pipeline) {
+namespace {
+
+const PipelineTraits* findTraits(Pipeline pipeline) {
   const auto& pipelines = allPipelines();
   const auto found = std::find_if(pipelines.begin(), pipelines.end(), [&](const auto& p) { return p.pipeline == pipeline; });
-  if (found == pipelines.end()) throw std::invalid_argument("no pipeline has the value " + std::to_string(pipeline));
-  return *found;
+  return found == pipelines.end() ? nullptr : &*found;
+}
+
+bool isOfFamily(Pipeline pipeline, PipelineFamily family) {
+  const PipelineTraits* traits = findTraits(pipeline);
+  return traits && traits->family == family;
+}
+
+}  // namespace
+
+const PipelineTraits& traitsOf(Pipeline pipeline) {
+  const PipelineTraits* traits = findTraits(pipeline);
+  if (!traits) throw std::invalid_argument(pipelineLabel(pipeline) + ": no such pipeline");
+  return *traits;
+}
+
+std::string pipelineLabel(Pipeline pipeline) {
+  const PipelineTraits* traits = findTraits(pipeline);
+  return traits ? std::string(traits->name) : "unknown pipeline " + std::to_string(pipeline);
 }
 
 std::string_view pipelineName(Pipeline pipeline) { return traitsOf(pipeline).name; }
@@ -49,17 +68,13 @@ std::string pipelineNames() {
   return names;
 }
 
-bool isFilteringPipeline(Pipeline pipeline) {
-  return pipeline != PIPELINE_UNSPECIFIED && traitsOf(pipeline).family == PipelineFamily::Filtering;
-}
+bool isFilteringPipeline(Pipeline pipeline) { return isOfFamily(pipeline, PipelineFamily::Filtering); }
 
-bool isMetropolisPipeline(Pipeline pipeline) {
-  return pipeline != PIPELINE_UNSPECIFIED && traitsOf(pipeline).family == PipelineFamily::Metropolis;
-}
+bool isMetropolisPipeline(Pipeline pipeline) { return isOfFamily(pipeline, PipelineFamily::Metropolis); }
 
 FilteringStages stagesOf(Pipeline pipeline) {
   if (!isFilteringPipeline(pipeline))
-    throw std::invalid_argument("pipeline " + std::to_string(pipeline) + " is not a filtering pipeline");
+    throw std::invalid_argument(pipelineLabel(pipeline) + " is not a filtering pipeline");
   return traitsOf(pipeline).stages;
 }
 

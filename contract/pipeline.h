@@ -44,11 +44,15 @@ const std::vector<PipelineTraits>& allPipelines();
 // Throws std::invalid_argument for PIPELINE_UNSPECIFIED or a value no traits describe.
 const PipelineTraits& traitsOf(Pipeline pipeline);
 std::string_view pipelineName(Pipeline pipeline);
+// The name, or "unknown pipeline N" for a value no traits describe (a stored spec from an
+// older scheduler, a newer client's value): for messages and reports, never throws.
+std::string pipelineLabel(Pipeline pipeline);
 // The pipeline a name spells, or nothing.
 std::optional<Pipeline> pipelineNamed(std::string_view name);
 // "auto, pt, d, ...": every name, for messages.
 std::string pipelineNames();
 
+// False for a value no traits describe.
 bool isFilteringPipeline(Pipeline pipeline);
 bool isMetropolisPipeline(Pipeline pipeline);
 // Throws std::invalid_argument for a pipeline that is not a filtering one.

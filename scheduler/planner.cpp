@@ -19,7 +19,10 @@ PipelineFamily familyOf(Pipeline pipeline) {
   try {
     return traitsOf(pipeline).family;
   } catch (const std::invalid_argument&) {
-    throw PlanError("pipeline " + std::to_string(pipeline) + " is not available (this farm runs: " + pipelineNames() + ")");
+    throw PlanError(pipeline == PIPELINE_UNSPECIFIED
+                        ? "the shot names no pipeline (a client older than this scheduler sends it by name: upgrade "
+                          "the client; this farm runs: " + pipelineNames() + ")"
+                        : pipelineLabel(pipeline) + " is not available (this farm runs: " + pipelineNames() + ")");
   }
 }
 

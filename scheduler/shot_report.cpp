@@ -211,7 +211,7 @@ ShotReport buildReport(const ShotSummary& summary, const ShotSpec& spec, const s
   report.set_shot_id(summary.id());
   report.set_name(spec.name());
   report.set_state(summary.state());
-  report.set_pipeline(std::string(pipelineName(spec.pipeline())));
+  report.set_pipeline(pipelineLabel(spec.pipeline()));
   report.set_pipeline_reason(spec.pipeline_reason());
   report.set_predicted_core_seconds_per_frame(spec.predicted_core_seconds_per_frame());
   report.set_predicted_relmse(spec.predicted_relmse());

@@ -1,5 +1,6 @@
 #include "scheduler/shot_verdict.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -32,12 +33,12 @@ std::string warnings(const std::map<std::string, double>& figures, const Interva
   std::string text;
   const auto tile = intervalFigure(figures, "worst_tile_truth", ".final");
   const auto ptTile = intervalFigure(figures, "worst_tile_truth", ".baseline");
-  if (tile && ptTile && ptTile->high() > 0 && tile->low() > 2 * ptTile->high())
+  if (tile && ptTile && ptTile->estimate() > 0 && tile->low() > 2 * ptTile->high())
     text += " Its worst 16x16 tile has " + numberText("%.1f", tile->estimate() / ptTile->estimate()) +
             "x pt's error: look for artifacts.";
   if (!(final.low() > 0))
     text += " Its error cannot be told from 0 at this reference (its noise " + numberText("%.4f", noise) +
-            "): the cost at equal error is an upper bound; raise reference_spp to measure it.";
+            "): only the interval's high end bounds the cost at equal error; raise reference_spp to measure it.";
   if (const auto temporal = intervalFigure(figures, "temporal_truth", ".final")) {
     const auto ptTemporal = intervalFigure(figures, "temporal_truth", ".baseline");
     if (ptTemporal && temporal->low() > ptTemporal->high())
@@ -71,10 +72,12 @@ void judge(ShotReport& report, Pipeline pipeline, const std::map<std::string, do
   const auto ratio = intervalFigure(figures, "error_ratio");
   const auto final = intervalFigure(figures, "truth", ".final");
   const auto baseline = intervalFigure(figures, "truth", ".baseline");
-  if (pipeline == PIPELINE_PT || !(report.relative_cost() > 0) || !ratio || !final || !baseline) return;
+  if (pipeline == PIPELINE_PT || !(report.relative_cost() > 0) || !final || !baseline) return;
   const double noise = figureOr(figures, "reference_noise", 0);
   const std::string& name = report.pipeline();
-  if (!(baseline->low() > 0) || !std::isfinite(ratio->estimate())) {
+  // Without pt's error told apart from 0 there is no ratio to scale the cost by (the
+  // evaluation leaves an unbounded one out).
+  if (!ratio || !(baseline->low() > 0)) {
     report.set_verdict("The errors cannot be told from the reference's own noise (" + numberText("%.4f", noise) +
                        "): " + name + "'s error against the truth " + intervalText(*final, "%.4f") + ", plain pt's " +
                        intervalText(*baseline, "%.4f") + ". Raise reference_spp to compare them.");
@@ -82,8 +85,10 @@ void judge(ShotReport& report, Pipeline pipeline, const std::map<std::string, do
   }
   const double cost = report.relative_cost();
   Interval* interval = report.mutable_cost_at_equal_error_interval();
-  interval->set_estimate(cost * ratio->estimate());
-  interval->set_low(cost * ratio->low());
+  // An error against the truth is not below 0; an estimate that is (within the
+  // reference's noise of 0) reads as 0.
+  interval->set_estimate(std::max(0.0, cost * ratio->estimate()));
+  interval->set_low(std::max(0.0, cost * ratio->low()));
   interval->set_high(cost * ratio->high());
   report.set_cost_at_equal_error(interval->estimate());
   const std::string figuresText = errorFigures(report, *final, *baseline, noise);

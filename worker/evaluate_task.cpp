@@ -102,8 +102,10 @@ Evaluation sortedInputs(const std::vector<TaskInput>& inputs) {
 }
 
 // A figure and its interval as metrics NAME.STAGE, NAME_low.STAGE and NAME_high.STAGE; an
-// unbounded end is left out (metrics are finite numbers).
+// unbounded end is left out, and so is the whole figure when its estimate is not a number
+// (metrics are finite numbers; the scheduler refuses others).
 void putInterval(TaskOutput& output, const std::string& name, const std::string& suffix, const Interval& interval) {
+  if (!std::isfinite(interval.estimate)) return;
   output.metrics[name + suffix] = interval.estimate;
   if (std::isfinite(interval.low)) output.metrics[name + "_low" + suffix] = interval.low;
   if (std::isfinite(interval.high)) output.metrics[name + "_high" + suffix] = interval.high;
@@ -133,15 +135,15 @@ void putRawFigures(const Evaluation& evaluation, TaskOutput& output) {
 // and its worst tile's.
 void putTruthFigures(const Evaluation& evaluation, TaskOutput& output) {
   for (const auto& [stage, frames] : evaluation.stages) {
-    BlockedTerms all, worstTile;
+    BlockedTerms all;
+    std::vector<BlockedTerms> tiles;
     for (const auto& [frame, measured] : frames) {
       const FrameImage& reference = *evaluation.references.at(frame);
       all.append(errorTerms(measured.image, reference, &measured.kept));
-      BlockedTerms tile = worstTileTerms(*measured.image, reference, &measured.kept);
-      if (worstTile.sums.empty() || tile.mean() > worstTile.mean()) worstTile = std::move(tile);
+      for (BlockedTerms& tile : tileTerms(*measured.image, reference, &measured.kept)) tiles.push_back(std::move(tile));
     }
-    putInterval(output, "truth", "." + stage, meanInterval(all));
-    if (!worstTile.sums.empty()) putInterval(output, "worst_tile_truth", "." + stage, meanInterval(worstTile));
+    if (!all.sums.empty()) putInterval(output, "truth", "." + stage, meanInterval(all));
+    if (!tiles.empty()) putInterval(output, "worst_tile_truth", "." + stage, maxOfMeansInterval(tiles));
   }
 }
 
@@ -182,7 +184,9 @@ void putErrorRatio(const Evaluation& evaluation, TaskOutput& output) {
     final.append(errorTerms(measured.image, reference));
     baseline.append(errorTerms(pt->second.image, reference));
   }
-  if (!final.sums.empty()) putInterval(output, "error_ratio", "", ratioInterval(final, baseline));
+  // Both are measured over the same pixels unless one skipped a value that is not finite.
+  if (!final.sums.empty() && final.counts == baseline.counts)
+    putInterval(output, "error_ratio", "", ratioInterval(final, baseline));
 }
 
 }  // namespace

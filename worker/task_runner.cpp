@@ -195,7 +195,7 @@ TaskOutput TaskRunner::runMetropolis(const Lease& lease, const ChunkFetcher& fet
                                      const std::atomic<bool>& abandon) {
   const auto shot = rendererFor(lease, fetch);
   if (!shot->metropolis)
-    throw BadInput("a Metropolis task in a shot of pipeline " + std::to_string(lease.spec().pipeline()));
+    throw BadInput("a Metropolis task in a shot of pipeline " + pipelineLabel(lease.spec().pipeline()));
   const MetropolisRenderer& renderer = *shot->metropolis;
   TaskOutput output;
   if (lease.kind() == TASK_MLT_SEED_POOL) {

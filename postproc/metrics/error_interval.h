@@ -16,8 +16,15 @@ struct Interval {
   bool contains(double value) const { return low <= value && value <= high; }
 };
 
-// The mean term (an error against the truth) and its interval.
+// The mean term (an error against the truth) and its interval; unbounded with fewer than
+// two blocks, where the spread between blocks says nothing.
 Interval meanInterval(const BlockedTerms& terms);
+
+// The highest of several means (the worst tile's error) and its interval. Each resample
+// redraws every tile's blocks and takes the highest mean again, so the interval carries
+// the choice of the worst among noisy candidates, not only that tile's own noise. Throws
+// std::invalid_argument without a tile.
+Interval maxOfMeansInterval(const std::vector<BlockedTerms>& tiles);
 
 // The ratio of two means over the same blocks, resampled together (a pipeline's error
 // over plain pt's, measured on the same frames). When the denominator's mean can reach 0

@@ -1,6 +1,7 @@
 #include "postproc/metrics/error_terms.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -41,7 +42,9 @@ BlockedTerms blockedSums(Rect area, int width, int block, const std::vector<uint
           for (int x = bx; x < std::min(area.x1, bx + block); ++x) {
             const size_t p = static_cast<size_t>(y) * width + x;
             if (kept && !(*kept)[p]) continue;
-            sum += term(c, p, x, y);
+            const double value = term(c, p, x, y);
+            if (!std::isfinite(value)) continue;
+            sum += value;
             count += 1;
           }
       if (count > 0) {
@@ -133,18 +136,16 @@ BlockedTerms temporalTerms(const FrameImage& before, const FrameImage& after, co
   });
 }
 
-BlockedTerms worstTileTerms(const FrameImage& image, const FrameImage& reference, const std::vector<uint8_t>* kept) {
-  BlockedTerms worst;
-  bool found = false;
+std::vector<BlockedTerms> tileTerms(const FrameImage& image, const FrameImage& reference,
+                                    const std::vector<uint8_t>* kept) {
+  std::vector<BlockedTerms> tiles;
   for (int y0 = 0; y0 < reference.height(); y0 += kTile)
     for (int x0 = 0; x0 < reference.width(); x0 += kTile) {
       const Rect tile{x0, y0, std::min(reference.width(), x0 + kTile), std::min(reference.height(), y0 + kTile)};
       BlockedTerms terms = errorTermsIn(tile, &image, reference, kept, kTileBlock);
-      if (terms.sums.empty()) continue;
-      if (!found || terms.mean() > worst.mean()) worst = std::move(terms);
-      found = true;
+      if (terms.sums.size() >= kMinTileBlocks) tiles.push_back(std::move(terms));
     }
-  return worst;
+  return tiles;
 }
 
 }  // namespace pathfarm

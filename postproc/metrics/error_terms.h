@@ -29,7 +29,8 @@ struct BlockedTerms {
 
 // The beauty's terms of `image` against `reference`, over the pixels whose `kept` byte is
 // non-zero (every pixel without `kept`), in blocks of `block` pixels; blocks with no pixel
-// kept are left out. Without `image`, the terms are the reference's own expected error,
+// kept are left out, and so are values that are not finite (a damaged pixel is counted
+// apart by the figures that report it, image_metrics.h). Without `image`, the terms are the reference's own expected error,
 // Var r / (d^2 + 0.01). Throws std::invalid_argument without the reference's variance
 // channels or for frames of different sizes.
 BlockedTerms errorTerms(const FrameImage* image, const FrameImage& reference, const std::vector<uint8_t>* kept = nullptr,
@@ -41,9 +42,12 @@ BlockedTerms errorTerms(const FrameImage* image, const FrameImage& reference, co
 BlockedTerms temporalTerms(const FrameImage& before, const FrameImage& after, const FrameImage& referenceBefore,
                            const FrameImage& referenceAfter);
 
-// The 16x16 tile (aligned to the frame's origin, edge tiles partial) whose terms have the
-// highest mean, as blocks of 4x4 pixels (its interval comes from those).
-BlockedTerms worstTileTerms(const FrameImage& image, const FrameImage& reference,
-                            const std::vector<uint8_t>* kept = nullptr);
+// The terms of every 16x16 tile (aligned to the frame's origin, edge tiles partial) in
+// blocks of 4x4 pixels, for the worst tile's figure (error_interval.h, maxOfMeansInterval).
+// Tiles with fewer than kMinTileBlocks blocks of kept pixels are left out: a tile the
+// stage flagged almost whole says little and would often be the noisiest.
+inline constexpr size_t kMinTileBlocks = 8;
+std::vector<BlockedTerms> tileTerms(const FrameImage& image, const FrameImage& reference,
+                                    const std::vector<uint8_t>* kept = nullptr);
 
 }  // namespace pathfarm

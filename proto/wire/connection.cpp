@@ -110,10 +110,14 @@ bool isAuthorized(const grpc::ServerContext& context, const std::string& token) 
 
 ConnectionTrouble connectionTrouble(const grpc::Status& status, bool overTls) {
   const std::string& message = status.error_message();
-  if (!overTls && status.error_code() == grpc::StatusCode::UNAVAILABLE && message.find("Socket closed") != std::string::npos)
+  // Only a call that never connected: a scheduler that dies mid-call closes the socket too.
+  const bool neverConnected = message.find("failed to connect to all addresses") != std::string::npos;
+  if (!overTls && neverConnected && status.error_code() == grpc::StatusCode::UNAVAILABLE &&
+      message.find("Socket closed") != std::string::npos)
     return ConnectionTrouble::TlsExpected;
-  if (overTls && (message.find("handshake failed") != std::string::npos ||
-                  message.find("certificate verify failed") != std::string::npos))
+  // Only the certificate check: other handshake failures (a reset, a plain scheduler) may pass.
+  if (overTls && (message.find("certificate verify failed") != std::string::npos ||
+                  message.find("CERTIFICATE_VERIFY_FAILED") != std::string::npos))
     return ConnectionTrouble::CertificateRefused;
   return ConnectionTrouble::Other;
 }

@@ -1,6 +1,6 @@
 #pragma once
-// The dashboard's page: the files of scheduler/dashboard/ (HTML, script, style), embedded
-// in the binary at build time by scheduler/dashboard/embed_assets.cmake.
+// The dashboard's page: the files of scheduler/http/dashboard/ (HTML, script, style), embedded
+// in the binary at build time by scheduler/http/dashboard/embed_assets.cmake.
 #include <span>
 #include <string_view>
 

@@ -103,7 +103,7 @@ json shotPageJson(const ShotReply& shot, const std::vector<std::pair<int64_t, Ch
   return {{"summary", shotJson(shot.summary())},
           {"spec",
            {{"scene", spec.scene()},
-            {"pipeline", std::string(pipelineName(spec.pipeline()))},
+            {"pipeline", pipelineLabel(spec.pipeline())},
             {"frame_start", spec.frame_start()},
             {"frame_end", spec.frame_end()},
             {"width", spec.width()},

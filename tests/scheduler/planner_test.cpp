@@ -120,7 +120,7 @@ TEST(Planner, RefusesWhatItCannotRun) {
     planShot(spec);
     FAIL() << "an unknown pipeline was planned";
   } catch (const PlanError& e) {
-    EXPECT_NE(std::string(e.what()).find("pipeline 99 is not available (this farm runs: auto, pt, d,"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("unknown pipeline 99 is not available (this farm runs: auto, pt, d,"), std::string::npos)
         << e.what();
   }
   spec.set_pipeline(PIPELINE_UNSPECIFIED);

@@ -200,6 +200,12 @@ TEST(ShotReport, TheVerdictSaysPlainlyWhenThePipelineLost) {
                                             "relMSE above) | 0.01250 |"),
             std::string::npos);
   EXPECT_EQ(atTheFloor.cost_at_equal_error(), -1);
+  // A ratio the evaluation could not bound at all is left out of its figures: the same.
+  tasks.back().metrics["truth_low.baseline"] = 0.009;
+  const double ratio = tasks.back().metrics["error_ratio"];
+  tasks.back().metrics.erase("error_ratio");
+  EXPECT_EQ(buildReport(ShotSummary(), spec(), tasks).verdict().rfind("The errors cannot be told", 0), 0u);
+  tasks.back().metrics["error_ratio"] = ratio;
   // A ratio unbounded above (the evaluation leaves the infinite end out) pays off never.
   tasks.back().metrics["truth_low.baseline"] = 0.009;
   tasks.back().metrics.erase("error_ratio_high");
