@@ -2,18 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include "scheduler/task_records.h"
+
 namespace pathfarm::farm {
 namespace {
-
-TaskRecord record(TaskKind kind, TaskRole role, int64_t frame, double coreSeconds, bool done = true) {
-  TaskRecord task;
-  task.kind = kind;
-  task.params.set_role(role);
-  task.params.set_frame(frame);
-  task.coreSeconds = coreSeconds;
-  task.done = done;
-  return task;
-}
 
 ShotSpec spec() {
   ShotSpec s;
@@ -31,21 +23,21 @@ ShotSpec spec() {
 
 TEST(ShotReport, CostsRatesAndErrorsFollowFromTheTasks) {
   std::vector<TaskRecord> tasks;
-  tasks.push_back(record(TASK_RENDER_TILE, ROLE_KEYFRAME, 0, 2.0));
+  tasks.push_back(taskRecord(TASK_RENDER_TILE, ROLE_KEYFRAME, 0, 2.0));
   tasks.back().metrics["samples"] = 200;
-  tasks.push_back(record(TASK_ASSEMBLE_FRAME, ROLE_KEYFRAME, 0, 1.0));
-  tasks.push_back(record(TASK_DENOISE, ROLE_UNSPECIFIED, 0, 0.5));
-  tasks.push_back(record(TASK_UPSAMPLE, ROLE_UNSPECIFIED, 0, 9.0, false));  // not done: counts nothing
-  tasks.push_back(record(TASK_INTERPOLATE, ROLE_UNSPECIFIED, 1, 1.0));
+  tasks.push_back(taskRecord(TASK_ASSEMBLE_FRAME, ROLE_KEYFRAME, 0, 1.0));
+  tasks.push_back(taskRecord(TASK_DENOISE, ROLE_UNSPECIFIED, 0, 0.5));
+  tasks.push_back(taskRecord(TASK_UPSAMPLE, ROLE_UNSPECIFIED, 0, 9.0, false));  // not done: counts nothing
+  tasks.push_back(taskRecord(TASK_INTERPOLATE, ROLE_UNSPECIFIED, 1, 1.0));
   tasks.back().metrics = {{"rerender_pixels", 10}, {"rerender_holes", 4}};
-  tasks.push_back(record(TASK_RENDER_TILE, ROLE_RERENDER, 1, 0.5));
+  tasks.push_back(taskRecord(TASK_RENDER_TILE, ROLE_RERENDER, 1, 0.5));
   tasks.back().metrics["samples"] = 80;
-  tasks.push_back(record(TASK_COMPOSITE, ROLE_UNSPECIFIED, 1, 0.5));
+  tasks.push_back(taskRecord(TASK_COMPOSITE, ROLE_UNSPECIFIED, 1, 0.5));
   tasks.back().metrics["rerender_pixels"] = 10;
-  tasks.push_back(record(TASK_RENDER_TILE, ROLE_BASELINE, 1, 3.0));
+  tasks.push_back(taskRecord(TASK_RENDER_TILE, ROLE_BASELINE, 1, 3.0));
   tasks.back().metrics["samples"] = 800;  // measurement: not traced for the output
-  tasks.push_back(record(TASK_ASSEMBLE_FRAME, ROLE_BASELINE, 1, 1.0));
-  tasks.push_back(record(TASK_EVALUATE, ROLE_UNSPECIFIED, 0, 0.25));
+  tasks.push_back(taskRecord(TASK_ASSEMBLE_FRAME, ROLE_BASELINE, 1, 1.0));
+  tasks.push_back(taskRecord(TASK_EVALUATE, ROLE_UNSPECIFIED, 0, 0.25));
   tasks.back().metrics = {{"relmse.final", 0.01},     {"relmse.baseline", 0.03},     {"temporal.final", 0.02},
                           {"worst_tile.final", 0.5}, {"worst_share.final", 0.25}, {"relmse.interpolate", 0.2},
                           {"kept.interpolate", 0.9},  {"truth.final", 0.008},     {"truth_low.final", 0.007},
@@ -123,9 +115,9 @@ TEST(ShotReport, AnUpsampledKeyframesReRenderIsSplitByCause) {
   // Two keyframes of 10x10 pixels: 30 re-rendered in all, 20 on edges of directly seen
   // light and 6 on moving caustics (the rest flagged by the upsampler itself).
   std::vector<TaskRecord> tasks;
-  tasks.push_back(record(TASK_UPSAMPLE, ROLE_UNSPECIFIED, 0, 1.0));
+  tasks.push_back(taskRecord(TASK_UPSAMPLE, ROLE_UNSPECIFIED, 0, 1.0));
   tasks.back().metrics = {{"rerender_pixels", 10}, {"rerender_light_edges", 8}, {"rerender_moving_caustics", 2}};
-  tasks.push_back(record(TASK_UPSAMPLE, ROLE_UNSPECIFIED, 3, 1.0));
+  tasks.push_back(taskRecord(TASK_UPSAMPLE, ROLE_UNSPECIFIED, 3, 1.0));
   tasks.back().metrics = {{"rerender_pixels", 20}, {"rerender_light_edges", 12}, {"rerender_moving_caustics", 4}};
   ShotSummary summary;
   summary.set_state(SHOT_DONE);
@@ -141,10 +133,10 @@ TEST(ShotReport, AnUpsampledKeyframesReRenderIsSplitByCause) {
 
 TEST(ShotReport, TheVerdictSaysPlainlyWhenThePipelineLost) {
   std::vector<TaskRecord> tasks;
-  tasks.push_back(record(TASK_RENDER_TILE, ROLE_KEYFRAME, 0, 16.0));  // 4 core-seconds per frame
-  tasks.push_back(record(TASK_RENDER_TILE, ROLE_BASELINE, 1, 1.5));   // pt: 2 per frame
-  tasks.push_back(record(TASK_ASSEMBLE_FRAME, ROLE_BASELINE, 1, 0.5));
-  tasks.push_back(record(TASK_EVALUATE, ROLE_UNSPECIFIED, 0, 0.25));
+  tasks.push_back(taskRecord(TASK_RENDER_TILE, ROLE_KEYFRAME, 0, 16.0));  // 4 core-seconds per frame
+  tasks.push_back(taskRecord(TASK_RENDER_TILE, ROLE_BASELINE, 1, 1.5));   // pt: 2 per frame
+  tasks.push_back(taskRecord(TASK_ASSEMBLE_FRAME, ROLE_BASELINE, 1, 0.5));
+  tasks.push_back(taskRecord(TASK_EVALUATE, ROLE_UNSPECIFIED, 0, 0.25));
   tasks.back().metrics = {{"relmse.final", 0.02},
                           {"relmse.baseline", 0.01},
                           {"truth.final", 0.02},
@@ -224,8 +216,8 @@ TEST(ShotReport, TheVerdictSaysPlainlyWhenThePipelineLost) {
 TEST(ShotReport, APtShotIsItsOwnBaselineAndAGivenCostIsUsed) {
   ShotSpec pt = spec();
   pt.set_pipeline(PIPELINE_PT);
-  std::vector<TaskRecord> tasks = {record(TASK_RENDER_TILE, ROLE_OUTPUT, 0, 6.0),
-                                   record(TASK_ASSEMBLE_FRAME, ROLE_OUTPUT, 0, 2.0)};
+  std::vector<TaskRecord> tasks = {taskRecord(TASK_RENDER_TILE, ROLE_OUTPUT, 0, 6.0),
+                                   taskRecord(TASK_ASSEMBLE_FRAME, ROLE_OUTPUT, 0, 2.0)};
   tasks[0].metrics["samples"] = 3200;
   const ShotReport own = buildReport({}, pt, tasks);
   EXPECT_DOUBLE_EQ(own.relative_cost(), 1.0);

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "scheduler/shot_report.h"
+#include "scheduler/task_records.h"
 #include "test_support.h"
 #include "worker/filter_tasks.h"
 
@@ -19,16 +20,6 @@ TaskInput evaluationInput(TaskKind kind, TaskRole role, int64_t frame, FrameImag
   input.params.set_frame(frame);
   input.params.set_role(role);
   return input;
-}
-
-TaskRecord doneTask(TaskKind kind, TaskRole role, int64_t frame, double coreSeconds) {
-  TaskRecord task;
-  task.kind = kind;
-  task.params.set_role(role);
-  task.params.set_frame(frame);
-  task.coreSeconds = coreSeconds;
-  task.done = true;
-  return task;
 }
 
 // The verdict on a dui shot that costs what plain pt costs per frame and whose final
@@ -54,10 +45,10 @@ std::string verdictAt(double errorOverPt, uint64_t seed) {
   spec.set_height(kEvaluatedSize);
   spec.set_spp(64);
   spec.set_keyframe_interval(3);
-  std::vector<TaskRecord> tasks = {doneTask(TASK_RENDER_TILE, ROLE_KEYFRAME, 0, 8.0),  // 2 core-seconds a frame
-                                   doneTask(TASK_RENDER_TILE, ROLE_BASELINE, 1, 1.5),  // pt: 2 a frame
-                                   doneTask(TASK_ASSEMBLE_FRAME, ROLE_BASELINE, 1, 0.5),
-                                   doneTask(TASK_EVALUATE, ROLE_UNSPECIFIED, 0, 0.1)};
+  std::vector<TaskRecord> tasks = {taskRecord(TASK_RENDER_TILE, ROLE_KEYFRAME, 0, 8.0),  // 2 core-seconds a frame
+                                   taskRecord(TASK_RENDER_TILE, ROLE_BASELINE, 1, 1.5),  // pt: 2 a frame
+                                   taskRecord(TASK_ASSEMBLE_FRAME, ROLE_BASELINE, 1, 0.5),
+                                   taskRecord(TASK_EVALUATE, ROLE_UNSPECIFIED, 0, 0.1)};
   tasks.back().metrics = runEvaluateTask(Lease(), inputs).metrics;
   const ShotReport report = buildReport(ShotSummary(), spec, tasks);
   EXPECT_DOUBLE_EQ(report.relative_cost(), 1.0);
