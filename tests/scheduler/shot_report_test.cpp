@@ -85,8 +85,9 @@ TEST(ShotReport, CostsRatesAndErrorsFollowFromTheTasks) {
   EXPECT_NE(md.find("| **final frames** | 0.01000 | 0.00800 (0.00700 to 0.00900) | 0.5000 | - | 25% | all |"),
             std::string::npos)
       << md;
-  EXPECT_NE(md.find("| in-between frames interpolated | 0.20000 | - | 0.0000 | - | 0% | 90.0% (kept, not re-rendered) |"),
-            std::string::npos);
+  EXPECT_NE(
+      md.find("| in-between frames interpolated | 0.20000 | - | 0.0000 | - | 0% | 90.0% (kept, not re-rendered) |"),
+      std::string::npos);
   EXPECT_EQ(md.find("contact_sheet.png"), std::string::npos);  // no sheet, no picture
   ShotReport withSheet = report;
   withSheet.set_contact_sheet_png("\x89PNG...");

@@ -34,8 +34,9 @@ std::string verdictAt(double errorOverPt, uint64_t seed) {
                                      test_support::noisyCopy(truth, 0.4 / 32, base, true)));
     inputs.push_back(evaluationInput(TASK_ASSEMBLE_FRAME, ROLE_BASELINE, frame,
                                      test_support::noisyCopy(truth, kPtSigma, base + 1, true)));
-    inputs.push_back(evaluationInput(TASK_COMPOSITE, ROLE_UNSPECIFIED, frame,
-                                     test_support::noisyCopy(truth, kPtSigma * std::sqrt(errorOverPt), base + 2, false)));
+    inputs.push_back(
+        evaluationInput(TASK_COMPOSITE, ROLE_UNSPECIFIED, frame,
+                        test_support::noisyCopy(truth, kPtSigma * std::sqrt(errorOverPt), base + 2, false)));
   }
   ShotSpec spec;
   spec.set_pipeline(PIPELINE_DUI);
