@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "cli/command.h"
+#include "cli/reference_cache_options.h"
 #include "cli/shot_progress.h"
 #include "cli/tls_options.h"
 #include "proto/wire/connection.h"
@@ -33,6 +34,7 @@ struct ClientArguments {
   std::string out;
   bool json = false;
   bool sharedPaths = false;
+  std::string referenceCache;
   farm::ClientTls tls;
 };
 
@@ -103,6 +105,7 @@ void addShotCommands(ClientCommands& add) {
                       "names this submit: submitting again with the same key prints the same shot, adds nothing");
         c->add_flag("--shared-paths", a.sharedPaths,
                     "upload nothing: workers read the scene at its absolute path on storage they share with you");
+        addReferenceCacheOption(c, a.referenceCache);
       },
       [](farm::FarmClient& client, const ClientArguments& a) {
         const farm::ShotFile file = farm::ShotFile::load(a.shotFile);
@@ -114,6 +117,8 @@ void addShotCommands(ClientCommands& add) {
                        static_cast<double>(sent.bytesSent) / 1e6);
         }
         spec = withChosenPipeline(client, file, spec, std::filesystem::path(spec.output()) / "probe", a.submitKey);
+        if (const auto references = referenceCacheOf(file, a.referenceCache))
+          attachCachedReferences(*references, client, spec);
         std::printf("%lld\n", static_cast<long long>(client.submit(spec, a.submitKey)));
         return kExitOk;
       });
@@ -142,10 +147,14 @@ void addShotCommands(ClientCommands& add) {
       [](CLI::App* c, ClientArguments& a) {
         c->add_option("id", a.shotId, "shot id")->required();
         c->add_option("--out", a.out, "output folder")->required();
+        c->add_option("--reference-cache", a.referenceCache, "also keep the shot's references in this folder");
       },
       [](farm::FarmClient& client, const ClientArguments& a) {
-        const auto summary = client.shot(a.shotId).summary();
+        const farm::ShotReply shot = client.shot(a.shotId);
+        const auto& summary = shot.summary();
         const auto files = client.fetch(a.shotId, a.out);
+        if (!a.referenceCache.empty() && summary.state() == farm::SHOT_DONE)
+          keepRenderedReferences(farm::ReferenceCache(a.referenceCache), client, a.shotId, shot.spec());
         std::printf("%zu frames in %s\n", files.size(), a.out.c_str());
         if (summary.state() != farm::SHOT_DONE)
           spdlog::warn("shot {} is {}: fetched the {} frames finished so far", a.shotId,

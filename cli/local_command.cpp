@@ -3,7 +3,8 @@
 // into DIR and stops everything. A finished shot keeps its frames, its report and the
 // farm's logs; the intermediate chunks, the workers' caches and the database go, unless
 // --keep-farm asks to keep them (a shot that did not finish keeps them, to be looked into).
-// With --http the dashboard serves while the shot runs (docs/dashboard.md).
+// With --http the dashboard serves while the shot runs (docs/dashboard.md). References are
+// taken from and kept in the shot's reference cache (cli/reference_cache_options.h).
 #include <spdlog/spdlog.h>
 
 #include <memory>
@@ -11,6 +12,7 @@
 
 #include "cli/command.h"
 #include "cli/shot_size_options.h"
+#include "cli/reference_cache_options.h"
 #include "cli/shot_progress.h"
 #include "renderer/scene/json_node.h"
 #include "client/local_farm.h"
@@ -26,6 +28,7 @@ struct LocalArguments {
   int workers = 2;
   int threads = 0;
   bool keepFarm = false;
+  std::string referenceCache;
   std::string http;
   farm::ShotLimits limits;
   farm::FarmSettings farm;
@@ -66,7 +69,9 @@ int runLocal(const LocalArguments& arguments) {
                           arguments.farm, arguments.limits, arguments.http});
     farm::FarmClient client = farm.client();
     spec = withChosenPipeline(client, *file, spec, out / "probe");
+    const std::optional<farm::ReferenceCache> references = referenceCacheOf(*file, arguments.referenceCache);
     file.reset();  // its scene, no longer needed while the farm renders
+    if (references) attachCachedReferences(*references, client, spec);
     const int64_t id = client.submit(spec);
     spdlog::info("shot {} submitted: {} frames {}..{} at {}x{}, {} spp, {}-pixel tiles", id, spec.name(),
                  spec.frame_start(), spec.frame_end(), spec.width(), spec.height(), spec.spp(), spec.tile());
@@ -77,6 +82,7 @@ int runLocal(const LocalArguments& arguments) {
     }
     const auto files = client.fetch(id, out);
     const farm::ShotReport report = client.report(id);
+    if (references && summary.state() == farm::SHOT_DONE) keepRenderedReferences(*references, client, id, spec);
     farm.stop();
     farm::writeReportFiles(report, out);
     spdlog::info("{}", describeShot(summary));
@@ -115,6 +121,7 @@ std::vector<Command> addLocalCommand(CLI::App& app) {
                     "HOST:PORT (loopback; port 0: any) serving the dashboard while the shot runs; its link, "
                     "with the farm's token, is logged");
   addShotSizeOptions(local, arguments->limits, arguments->farm);
+  addReferenceCacheOption(local, arguments->referenceCache);
   local->add_flag("--keep-farm", arguments->keepFarm,
                   "keep the farm's database, chunks and worker caches after the shot is done (default: only its logs)");
   return {{local, [arguments] { return runLocal(*arguments); }}};

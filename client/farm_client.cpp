@@ -163,11 +163,22 @@ ShotSummary FarmClient::retry(int64_t id) {
 }
 
 std::vector<std::filesystem::path> FarmClient::fetch(int64_t id, const std::filesystem::path& folder) {
+  std::filesystem::create_directories(folder);
+  return fetchFrames(id, false, [&](int64_t frame) { return folder / frameFileName(frame); });
+}
+
+std::vector<std::filesystem::path> FarmClient::fetchReferences(
+    int64_t id, const std::function<std::filesystem::path(int64_t frame)>& fileOf) {
+  return fetchFrames(id, true, fileOf);
+}
+
+std::vector<std::filesystem::path> FarmClient::fetchFrames(
+    int64_t id, bool references, const std::function<std::filesystem::path(int64_t frame)>& fileOf) {
   ShotRequest request;
   request.set_shot_id(id);
+  request.set_references(references);
   const auto call = context(true);
   auto reader = stub_->FetchOutputs(call.get(), request);
-  std::filesystem::create_directories(folder);
   std::vector<std::filesystem::path> files;
   // Each frame's chunk starts with a part that carries its reference; its file is written
   // as the parts come, and appears once the whole chunk checks out.
@@ -177,7 +188,7 @@ std::vector<std::filesystem::path> FarmClient::fetch(int64_t id, const std::file
     while (reader->Read(&part)) {
       if (part.part().has_ref()) {
         if (chunk) chunk->commit();
-        files.push_back(folder / frameFileName(part.frame()));
+        files.push_back(fileOf(part.frame()));
         chunk.emplace(part.part().ref(), kMaxChunkBytes, files.back(), AtomicFileWriter::Sync::Yes, "write frame");
       }
       if (!chunk) throw ChunkError("the output stream began without a chunk reference");

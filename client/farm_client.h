@@ -51,6 +51,9 @@ class FarmClient {
   std::vector<BlocklistEntry> clearBlocklist(int64_t shotId, int64_t workerId);  // what is left
   // Writes every finished frame as DIR/frame_NNNN.exr (verified, atomically); returns the files.
   std::vector<std::filesystem::path> fetch(int64_t id, const std::filesystem::path& folder);
+  // Writes each reference frame of the shot (rendered or given) to fileOf(frame), the same way.
+  std::vector<std::filesystem::path> fetchReferences(int64_t id,
+                                                     const std::function<std::filesystem::path(int64_t frame)>& fileOf);
   std::vector<WorkerInfo> workers();
 
  private:
@@ -59,6 +62,8 @@ class FarmClient {
   template <class Reply, class Method>
   Reply aboutShot(Method method, int64_t id);
   ShotSummary requeue(const RequeueRequest& request);
+  std::vector<std::filesystem::path> fetchFrames(int64_t id, bool references,
+                                                 const std::function<std::filesystem::path(int64_t frame)>& fileOf);
   // Throws FarmError for a failed call, its message saying what to do about trouble with
   // the connection itself (connection.h).
   void check(const grpc::Status& status) const;

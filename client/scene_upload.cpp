@@ -16,20 +16,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string readWhole(const fs::path& file) {
-  std::error_code error;
-  const auto size = fs::file_size(file, error);
-  if (error) throw SceneError(file.string() + ": cannot read the scene file (" + error.message() + ")");
-  if (size > kMaxChunkBytes)
-    throw SceneError(file.string() + ": larger than the farm's " + std::to_string(kMaxChunkBytes >> 30) +
-                     " GiB limit per file");
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  if (!in) throw SceneError(file.string() + ": cannot read the scene file");
-  return bytes.str();
-}
-
 bool isInside(const fs::path& file, const fs::path& folder) {
   const fs::path relative = file.lexically_relative(folder);
   return !relative.empty() && *relative.begin() != "..";
@@ -46,6 +32,20 @@ fs::path commonFolder(const std::vector<fs::path>& files) {
 
 }  // namespace
 
+std::string readUploadFile(const fs::path& file) {
+  std::error_code error;
+  const auto size = fs::file_size(file, error);
+  if (error) throw SceneError(file.string() + ": cannot read the file (" + error.message() + ")");
+  if (size > kMaxChunkBytes)
+    throw SceneError(file.string() + ": larger than the farm's " + std::to_string(kMaxChunkBytes >> 30) +
+                     " GiB limit per file");
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  if (!in) throw SceneError(file.string() + ": cannot read the file");
+  return bytes.str();
+}
+
 std::vector<fs::path> describeSceneInputs(ShotSpec& spec) {
   std::vector<fs::path> files;
   {
@@ -59,7 +59,7 @@ std::vector<fs::path> describeSceneInputs(ShotSpec& spec) {
 
   spec.clear_inputs();
   for (const fs::path& file : files) {
-    const std::string bytes = readWhole(file);
+    const std::string bytes = readUploadFile(file);
     InputFile* input = spec.add_inputs();
     input->set_path(file.lexically_relative(root).generic_string());
     input->mutable_chunk()->set_sha256(sha256Hex(bytes));
@@ -86,7 +86,7 @@ UploadSummary uploadSceneInputs(FarmClient& client, ShotSpec& spec) {
   for (const ChunkRef& ref : client.missingInputs(chunks)) missing.insert(ref.sha256());
   for (size_t i = 0; i < files.size(); ++i) {
     if (!missing.erase(chunks[i].sha256())) continue;  // stored already, or sent for an earlier file
-    client.putInput(readWhole(files[i]), chunks[i]);
+    client.putInput(readUploadFile(files[i]), chunks[i]);
     ++summary.filesSent;
     summary.bytesSent += static_cast<uint64_t>(chunks[i].size());
   }

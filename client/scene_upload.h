@@ -7,6 +7,7 @@
 // worker's disk, which only works with shared storage).
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "pathfarm/shot.pb.h"
@@ -18,6 +19,10 @@ struct UploadSummary {
   int64_t files = 0, filesSent = 0;
   uint64_t bytes = 0, bytesSent = 0;
 };
+
+// A file to upload, whole; throws SceneError when it cannot be read or is larger than a
+// chunk may be.
+std::string readUploadFile(const std::filesystem::path& file);
 
 // Fills `spec.inputs` with the scene's files, named relative to their common folder, and
 // rewrites `spec.scene` the same way; sends nothing. Returns each input's file on this

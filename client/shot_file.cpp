@@ -107,7 +107,7 @@ void readPipelineKeys(const JsonNode& root, const Scene& scene, ShotSpec& spec) 
 // Every key a shot file may have: those all pipelines share, and each pipeline's own.
 std::vector<const char*> shotFileKeys() {
   std::vector<const char*> keys = {"name", "scene", "frames", "resolution", "spp", "max_depth", "pipeline", "tile",
-                                   "output", "priority", "max_attempts", "decompose", "reference_spp",
+                                   "output", "priority", "max_attempts", "decompose", "reference_spp", "reference_cache",
                                    "evaluation_frames", "baseline_core_seconds", "required_tags", "max_workers"};
   for (const PipelineTraits& traits : allPipelines())
     for (const std::string_view key : traits.keys)  // literals: terminated
@@ -180,6 +180,7 @@ ShotFile ShotFile::parse(std::string_view text, const std::filesystem::path& fil
   spec.set_output((folder / (root.has("output") ? root["output"].string() : "output/" + spec.name()))
                       .lexically_normal()
                       .string());
+  if (root.has("reference_cache")) shot.referenceCache_ = (folder / root["reference_cache"].string()).lexically_normal();
   if (named != PIPELINE_NOOP) shot.scene_ = readSceneKeys(root, folder, spec);
   shot.named_ = shot.specAs(named);
   return shot;

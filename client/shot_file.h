@@ -40,6 +40,9 @@ class ShotFile {
   const Scene* scene() const { return scene_.get(); }
   // "rerender_bound": the most pixels the keyframe probe lets an interval re-render.
   double rerenderBound() const;
+  // "reference_cache": the folder keeping references between shots (reference_cache.h),
+  // absolute; empty when the file names none.
+  const std::filesystem::path& referenceCache() const { return referenceCache_; }
   // The file's top level, for messages about what it asks (JsonNode::fail).
   JsonNode root() const { return JsonNode(text_->document, "", text_->label); }
 
@@ -52,6 +55,7 @@ class ShotFile {
   std::shared_ptr<const Scene> scene_;
   ShotSpec common_;  // the keys every pipeline shares
   ShotSpec named_;
+  std::filesystem::path referenceCache_;
 };
 
 // The file's text, or SceneError.

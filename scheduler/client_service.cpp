@@ -117,7 +117,9 @@ grpc::Status ClientServiceImpl::FetchOutputs(grpc::ServerContext* context, const
                                              grpc::ServerWriter<OutputPart>* writer) {
   return guarded(c_, context, [&] {
     c_.state.summary(request->shot_id(), farmClockSeconds());  // NOT_FOUND for an unknown shot
-    for (const auto& [frame, ref] : c_.state.outputs(request->shot_id())) {
+    const auto frames = request->references() ? c_.state.references(request->shot_id())
+                                              : c_.state.outputs(request->shot_id());
+    for (const auto& [frame, ref] : frames) {
       // Adapts the output stream to sendStoredChunk's Write(ChunkPart).
       struct FramePartWriter {
         grpc::ServerWriter<OutputPart>* writer;

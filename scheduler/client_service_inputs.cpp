@@ -1,4 +1,5 @@
-// Scene files a client uploads before it submits (inputs without shared storage).
+// Scene files a client uploads before it submits (inputs without shared storage), and the
+// reference frames its cache held.
 #include "proto/wire/input_files.h"
 #include "scheduler/quoted_text.h"
 #include "scheduler/service_chunks.h"
@@ -35,6 +36,12 @@ std::string ClientServiceImpl::inputProblem(const ShotSpec& spec) const {
   for (const InputFile& file : spec.inputs()) {
     if (!c_.state.hasChunk(file.chunk().sha256()) || !c_.store.has(file.chunk().sha256()))
       return "scene file " + quotedInput(file.path()) + " (" + quotedInput(file.chunk().sha256()) + ") was not uploaded";
+  }
+  for (const KnownReference& reference : spec.known_references()) {
+    const std::string& sha = reference.chunk().sha256();
+    if (!isSha256Hex(sha) || !c_.state.hasChunk(sha) || !c_.store.has(sha))
+      return "the reference of frame " + std::to_string(reference.frame()) + " (" + quotedInput(sha) +
+             ") was not uploaded";
   }
   return "";
 }

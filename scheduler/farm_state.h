@@ -4,6 +4,7 @@
 // rules for which task a worker gets next live in one place (lease()), and the timeouts
 // in one checker (expireLeases()). Times are wall-clock seconds since the epoch, passed
 // in by the caller so that tests control them.
+#include <functional>
 #include <map>
 #include <mutex>
 #include <optional>
@@ -157,6 +158,8 @@ class FarmState {
   void clearBlocklist(int64_t shotId, int64_t workerId, double now);
   // The frames a shot has produced: (frame, chunk) in frame order.
   std::vector<std::pair<int64_t, ChunkRef>> outputs(int64_t shotId);
+  // Its reference frames, rendered or given: (frame, chunk) in task order.
+  std::vector<std::pair<int64_t, ChunkRef>> references(int64_t shotId);
   std::vector<WorkerInfo> workers(double now);
   // The shot's spec and every task's figures, for its report. Throws std::out_of_range.
   std::pair<ShotSpec, std::vector<TaskRecord>> taskRecords(int64_t shotId);
@@ -231,6 +234,10 @@ class FarmState {
   // Staged follow-ups of attempts no longer running are dropped.
   void dropStaleFollowUps();
   int64_t inputCount(int64_t taskId);
+  // Done tasks of the shot matching the SQL `condition` (over tasks as t) whose params
+  // `keep` accepts: (frame, output chunk) in task order.
+  std::vector<std::pair<int64_t, ChunkRef>> doneFrames(int64_t shotId, const std::string& condition,
+                                                       const std::function<bool(const TaskParams&)>& keep);
   // Adds the task's inputs after `afterTaskId`, at most `limit`, to a Lease or a
   // LeaseInputsPart; returns the last one's task id (0: none).
   template <class Message>

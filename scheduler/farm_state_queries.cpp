@@ -1,5 +1,7 @@
 // FarmState's reads of shots, outputs, task records and workers, and the user's
 // controls of a shot (cancel, pause, resume, retry).
+#include <functional>
+
 #include "scheduler/farm_state.h"
 #include "scheduler/farm_state_internal.h"
 
@@ -142,15 +144,27 @@ ShotSummary FarmState::retry(int64_t shotId, double now) {
 }
 
 std::vector<std::pair<int64_t, ChunkRef>> FarmState::outputs(int64_t shotId) {
+  return doneFrames(shotId, "t.is_output", [](const TaskParams&) { return true; });
+}
+
+std::vector<std::pair<int64_t, ChunkRef>> FarmState::references(int64_t shotId) {
+  return doneFrames(shotId, "t.kind = " + std::to_string(int{TASK_ASSEMBLE_FRAME}), [](const TaskParams& params) {
+    return params.role() == ROLE_REFERENCE && !params.has_window();  // a whole frame, not a region
+  });
+}
+
+std::vector<std::pair<int64_t, ChunkRef>> FarmState::doneFrames(
+    int64_t shotId, const std::string& condition, const std::function<bool(const TaskParams&)>& keep) {
   return transact([&]() -> std::vector<std::pair<int64_t, ChunkRef>> {
     std::vector<std::pair<int64_t, ChunkRef>> out;
     Statement& q = db_.query(
         "SELECT t.params, c.sha256, c.size FROM tasks t JOIN chunks c ON c.sha256 = t.output_sha "
-        "WHERE t.shot_id = ?1 AND t.is_output AND t.state = ?2 ORDER BY t.id");
+        "WHERE t.shot_id = ?1 AND " + condition + " AND t.state = ?2 ORDER BY t.id");
     q.bind(1, shotId).bind(2, asInt(TaskState::Done));
     while (q.step()) {
       TaskParams params;
       params.ParseFromString(q.blob(0));
+      if (!keep(params)) continue;
       ChunkRef ref;
       ref.set_sha256(q.text(1));
       ref.set_size(q.integer(2));

@@ -7,6 +7,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <set>
 #include <string>
 
 #include "postproc/poisson/window_blend.h"
@@ -37,6 +38,14 @@ void checkRenderSpec(const ShotSpec& spec) {
   for (const int64_t frame : spec.evaluation_frames())
     if (frame < spec.frame_start() || frame > spec.frame_end())
       throw PlanError("evaluation_frames: frame " + std::to_string(frame) + " is not in the shot");
+  std::set<int64_t> known;
+  for (const KnownReference& reference : spec.known_references()) {
+    const auto& frames = spec.evaluation_frames();
+    if (std::find(frames.begin(), frames.end(), reference.frame()) == frames.end())
+      throw PlanError("known_references: frame " + std::to_string(reference.frame()) + " is not an evaluation frame");
+    if (!known.insert(reference.frame()).second)
+      throw PlanError("known_references: frame " + std::to_string(reference.frame()) + " is given twice");
+  }
 }
 
 void setWindow(TaskParams& params, int x0, int y0, int x1, int y1) {
@@ -91,6 +100,21 @@ size_t planFrameRender(const ShotSpec& spec, int64_t frame, TaskRole role, int s
   return plan.size() - 1;
 }
 
+// The task whose output is the frame's reference: the frame the client gave, handed on, or
+// the frame rendered at reference_spp.
+size_t planReference(const ShotSpec& spec, int64_t frame, std::vector<PlannedTask>& plan) {
+  for (const KnownReference& known : spec.known_references()) {
+    if (known.frame() != frame) continue;
+    PlannedTask given{TASK_ASSEMBLE_FRAME, {}, {}};
+    given.params.set_frame(frame);
+    given.params.set_role(ROLE_REFERENCE);
+    *given.params.mutable_given_frame() = known.chunk();
+    plan.push_back(std::move(given));
+    return plan.size() - 1;
+  }
+  return planFrameRender(spec, frame, ROLE_REFERENCE, spec.reference_spp(), true, plan);
+}
+
 // Per evaluation frame, the tasks whose outputs the evaluation compares (every stage the
 // frame passes through).
 using StageOutputs = std::map<int64_t, std::vector<size_t>>;
@@ -104,7 +128,7 @@ void planEvaluation(const ShotSpec& spec, bool filtering, const StageOutputs& st
     if (measureBaseline)
       evaluate.dependencies.push_back(planFrameRender(spec, frame, ROLE_BASELINE, spec.spp(), true, plan));
     if (spec.reference_spp() == 0) continue;
-    evaluate.dependencies.push_back(planFrameRender(spec, frame, ROLE_REFERENCE, spec.reference_spp(), true, plan));
+    evaluate.dependencies.push_back(planReference(spec, frame, plan));
     const std::vector<size_t>& outputs = stages.at(frame);
     evaluate.dependencies.insert(evaluate.dependencies.end(), outputs.begin(), outputs.end());
   }

@@ -226,6 +226,7 @@ ShotReport buildReport(const ShotSummary& summary, const ShotSpec& spec, const s
   report.set_keyframe_reason(filtering ? spec.keyframe_reason() : "every frame is rendered");
   report.set_tasks_total(static_cast<int64_t>(tasks.size()));
   report.set_reference_spp(spec.reference_spp());
+  report.set_cached_references(spec.known_references_size());
   for (const int64_t frame : spec.evaluation_frames()) report.add_evaluation_frames(frame);
 
   const TaskTotals totals = addUpTasks(report, tasks);
@@ -335,6 +336,9 @@ std::string reportMarkdown(const ShotReport& r) {
     md += "No error figures: the shot names no `reference_spp`.\n";
     return md;
   }
+  if (r.cached_references() > 0)
+    md += "The references of " + std::to_string(r.cached_references()) + " evaluation frame(s) came from the "
+          "reference cache: an earlier shot rendered them from the same scene files and settings.\n\n";
   md += "Errors against pt at " + std::to_string(r.reference_spp()) + " spp on frames";
   for (const int64_t frame : r.evaluation_frames()) md.append(" ").append(std::to_string(frame));
   md += " (relMSE of the beauty; the worst 16x16 tile and the share of the error in the worst 1 % of pixels "

@@ -8,6 +8,7 @@
 #include "contract/pipeline.h"
 #include "image/atomic_file.h"
 #include "image/exr_io.h"
+#include "image/size_text.h"
 #include "renderer/integrators/frame_renderer.h"
 #include "renderer/scene/scene_loader.h"
 #include "renderer/setup/auto_decomposition.h"
@@ -88,6 +89,7 @@ TaskOutput TaskRunner::run(const Lease& lease, const ChunkFetcher& fetch, std::a
 
 TaskOutput TaskRunner::assemble(const Lease& lease, const ChunkFetcher& fetch, const ChunkFileFetcher& files,
                                 std::atomic<double>& progress) {
+  if (lease.params().has_given_frame()) return handOnGivenFrame(lease, fetch);
   const std::string attempt = "attempt-" + std::to_string(lease.attempt_id());
   std::vector<std::unique_ptr<ScratchFile>> written;  // the tiles `fetch` gave, without `files`
   const ChunkFileFetcher viaScratch = [&](const ChunkRef& ref) {
@@ -99,6 +101,23 @@ TaskOutput TaskRunner::assemble(const Lease& lease, const ChunkFetcher& fetch, c
   TaskOutput output;
   output.chunkFile = std::make_shared<const ScratchFile>(scratchPathFor(outgoingRoot_, attempt + ".exr"));
   assembleFrame(lease, files ? files : viaScratch, output.chunkFile->path(), progress);
+  return output;
+}
+
+// A reference the client's cache gave: checked as any frame another party made, then
+// handed on as it is.
+TaskOutput TaskRunner::handOnGivenFrame(const Lease& lease, const ChunkFetcher& fetch) {
+  const std::string label = "the cached reference of frame " + std::to_string(lease.params().frame());
+  TaskOutput output;
+  output.chunk = fetch(lease.params().given_frame());
+  const FrameImage frame = decodeExr(output.chunk, label);
+  if (frame.width() != lease.spec().width() || frame.height() != lease.spec().height())
+    throw BadInput(label + " is " + sizeText(frame.width(), frame.height()) + ", the shot renders " +
+                   sizeText(lease.spec().width(), lease.spec().height()));
+  for (const char* channel : {"R", "G", "B"})
+    if (!frame.hasChannel(channel)) throw BadInput(label + " has no channel \"" + channel + "\"");
+  if (const std::string bad = frame.firstNonFinite(); !bad.empty())
+    throw BadInput(label + " holds a non-finite value (" + bad + ")");
   return output;
 }
 

@@ -65,6 +65,7 @@ class TaskRunner {
   std::shared_ptr<ShotRenderer> rendererFor(const Lease& lease, const ChunkFetcher& fetch);
   TaskOutput assemble(const Lease& lease, const ChunkFetcher& fetch, const ChunkFileFetcher& files,
                       std::atomic<double>& progress);
+  TaskOutput handOnGivenFrame(const Lease& lease, const ChunkFetcher& fetch);
   TaskOutput renderTile(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,
                         const std::atomic<bool>& abandon);
   TaskOutput renderGradientFrame(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <set>
 
@@ -321,6 +322,40 @@ TEST(Planner, EvaluationAddsBaselineReferenceAndOneEvaluateTask) {
   spec.clear_evaluation_frames();
   spec.add_evaluation_frames(25);  // not in the shot
   EXPECT_THROW(planShot(spec), PlanError);
+}
+
+TEST(Planner, AKnownReferenceIsHandedOnAndOnlyTheOtherFramesReferenceIsRendered) {
+  ShotSpec spec = renderSpec();  // frames 3..4, 12 tiles a frame
+  spec.set_reference_spp(256);
+  spec.add_evaluation_frames(3);
+  spec.add_evaluation_frames(4);
+  KnownReference* known = spec.add_known_references();
+  known->set_frame(4);
+  known->mutable_chunk()->set_sha256(std::string(64, 'a'));
+  const auto plan = planShot(spec);
+  std::map<int64_t, int> referenceTiles;
+  std::vector<const PlannedTask*> given;
+  for (const PlannedTask& task : plan) {
+    if (task.params.role() != ROLE_REFERENCE) continue;
+    if (task.kind == TASK_RENDER_TILE) ++referenceTiles[task.params.frame()];
+    if (task.params.has_given_frame()) given.push_back(&task);
+  }
+  EXPECT_EQ(referenceTiles, (std::map<int64_t, int>{{3, 12}}));
+  ASSERT_EQ(given.size(), 1u);
+  EXPECT_EQ(given[0]->kind, TASK_ASSEMBLE_FRAME);
+  EXPECT_EQ(given[0]->params.frame(), 4);
+  EXPECT_EQ(given[0]->params.given_frame().sha256(), std::string(64, 'a'));
+  EXPECT_TRUE(given[0]->dependencies.empty());
+  const size_t givenIndex = static_cast<size_t>(given[0] - plan.data());
+  const auto& evaluated = plan.back().dependencies;
+  EXPECT_NE(std::find(evaluated.begin(), evaluated.end(), givenIndex), evaluated.end()) << "the evaluation reads it";
+
+  known->set_frame(3);
+  spec.add_known_references()->set_frame(3);
+  EXPECT_THROW(planShot(spec), PlanError) << "one frame given twice";
+  spec.mutable_known_references()->RemoveLast();
+  known->set_frame(5);
+  EXPECT_THROW(planShot(spec), PlanError) << "a frame the shot does not evaluate";
 }
 
 TEST(Planner, TgptRendersEveryFrameSolvesWindowsAndBlendsEachFrameFromItsWindows) {

@@ -214,5 +214,47 @@ TEST(FrameImageCheck, FirstNonFiniteNamesTheChannelAndPixel) {
   EXPECT_EQ(image.firstNonFinite(), "channel B at pixel (1, 1)");
 }
 
+// A reference from the client's cache (TaskParams.given_frame) is handed on as its bytes
+// when it is a frame of the shot; one of another size, without a beauty or holding a NaN
+// is refused with a reason.
+TEST(AssembleFrame, AGivenReferenceIsCheckedAndHandedOnAsItIs) {
+  const auto handOn = [](const FrameImage& given) {
+    Lease lease;
+    lease.set_kind(TASK_ASSEMBLE_FRAME);
+    lease.mutable_spec()->set_width(4);
+    lease.mutable_spec()->set_height(2);
+    lease.mutable_params()->set_frame(7);
+    lease.mutable_params()->set_role(ROLE_REFERENCE);
+    lease.mutable_params()->mutable_given_frame()->set_sha256("given");
+    const std::string bytes = encodeExr(given, ExrCompression::Fast);
+    const auto folder = test_support::processTemporaryFolder("pathfarm_given");
+    TaskRunner runner(1, folder / "scenes", folder / "outgoing");
+    std::atomic<double> progress{0};
+    std::atomic<bool> abandon{false};
+    const TaskOutput output = runner.run(
+        lease, [&](const ChunkRef& ref) { return ref.sha256() == "given" ? bytes : std::string(); }, progress, abandon);
+    EXPECT_EQ(output.chunk, bytes);
+  };
+  handOn(tile(4, 2, 0.5f));
+
+  const auto refusal = [&](const FrameImage& given) {
+    try {
+      handOn(given);
+    } catch (const BadInput& e) {
+      return std::string(e.what());
+    } catch (const std::exception& e) {
+      return "not BadInput: " + std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(refusal(tile(2, 2, 0.5f)), "the cached reference of frame 7 is 2x2, the shot renders 4x2");
+  FrameImage noBeauty(4, 2);
+  noBeauty.addChannel("Y");
+  EXPECT_NE(refusal(noBeauty).find("has no channel \"R\""), std::string::npos) << refusal(noBeauty);
+  FrameImage poisoned = tile(4, 2, 0.5f);
+  poisoned.channel("B")[5] = std::numeric_limits<float>::infinity();
+  EXPECT_NE(refusal(poisoned).find("holds a non-finite value"), std::string::npos) << refusal(poisoned);
+}
+
 }  // namespace
 }  // namespace pathfarm::farm

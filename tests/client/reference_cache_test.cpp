@@ -1,0 +1,68 @@
+// The reference cache's key: it must change with everything a reference's pixels depend on
+// (a scene file's bytes, the frame, the size, the samples, the depth, the renderer) and
+// with nothing else (the order the scene's files were read in, the shot's own spp).
+#include "client/reference_cache.h"
+
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "renderer/setup/renderer_version.h"
+
+namespace pathfarm::farm {
+namespace {
+
+ShotSpec describedSpec() {
+  ShotSpec spec;
+  spec.set_scene("scene.json");
+  for (const char* path : {"scene.json", "textures/wood.png", "meshes/chair.obj"}) {
+    InputFile* input = spec.add_inputs();
+    input->set_path(path);
+    input->mutable_chunk()->set_sha256(std::string(64, path[0]));
+  }
+  spec.set_width(320);
+  spec.set_height(180);
+  spec.set_spp(64);
+  spec.set_reference_spp(4096);
+  spec.set_max_depth(8);
+  return spec;
+}
+
+TEST(ReferenceKey, ChangesWithWhatTheReferenceDependsOnAndNothingElse) {
+  const std::string key = referenceKey(describedSpec(), 11, kRendererVersion);
+  EXPECT_EQ(key.size(), 64u);
+  EXPECT_EQ(key, referenceKey(describedSpec(), 11, kRendererVersion)) << "a digest, the same every time";
+
+  const std::vector<std::pair<const char*, std::function<void(ShotSpec&)>>> changes = {
+      {"a texture's bytes", [](ShotSpec& s) { s.mutable_inputs(1)->mutable_chunk()->set_sha256(std::string(64, 'x')); }},
+      {"a file's name", [](ShotSpec& s) { s.mutable_inputs(2)->set_path("meshes/table.obj"); }},
+      {"one more file", [](ShotSpec& s) { s.add_inputs()->set_path("sky.exr"); }},
+      {"the scene file", [](ShotSpec& s) { s.set_scene("meshes/chair.obj"); }},
+      {"the width", [](ShotSpec& s) { s.set_width(321); }},
+      {"the height", [](ShotSpec& s) { s.set_height(181); }},
+      {"the reference's spp", [](ShotSpec& s) { s.set_reference_spp(4097); }},
+      {"the depth", [](ShotSpec& s) { s.set_max_depth(9); }},
+      {"the zoom", [](ShotSpec& s) { s.set_camera_zoom(2); }},
+  };
+  for (const auto& [what, change] : changes) {
+    ShotSpec changed = describedSpec();
+    change(changed);
+    EXPECT_NE(referenceKey(changed, 11, kRendererVersion), key) << what;
+  }
+  EXPECT_NE(referenceKey(describedSpec(), 12, kRendererVersion), key) << "another frame";
+  EXPECT_NE(referenceKey(describedSpec(), 11, kRendererVersion + 1), key) << "another renderer version";
+
+  ShotSpec reordered = describedSpec();
+  reordered.mutable_inputs()->SwapElements(0, 2);
+  EXPECT_EQ(referenceKey(reordered, 11, kRendererVersion), key) << "the order the files were read in";
+  ShotSpec otherShot = describedSpec();
+  otherShot.set_spp(256);
+  otherShot.set_pipeline(PIPELINE_DUI);
+  otherShot.set_name("another shot");
+  EXPECT_EQ(referenceKey(otherShot, 11, kRendererVersion), key) << "what only the shot's own frames depend on";
+}
+
+}  // namespace
+}  // namespace pathfarm::farm
