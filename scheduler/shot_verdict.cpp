@@ -27,18 +27,33 @@ std::string errorFigures(const ShotReport& report, const Interval& final, const 
          (noise > 0 ? ", the reference's noise " + numberText("%.4f", noise) + " taken out" : "") + ")";
 }
 
+// The reference spp whose noise would be a tenth of `error`, from the noise at
+// `referenceSpp` (noise falls as 1/spp), rounded up to a power of two.
+int resolvingSpp(int referenceSpp, double noise, double error) {
+  const double needed = referenceSpp * 10 * noise / error;
+  double spp = 1;
+  while (spp < needed && spp < (1 << 24)) spp *= 2;
+  return static_cast<int>(spp);
+}
+
 // The warnings that follow the verdict: artifacts, an error the reference cannot resolve,
 // flicker; each only where the intervals show it.
-std::string warnings(const std::map<std::string, double>& figures, const Interval& final, double noise) {
+std::string warnings(const std::map<std::string, double>& figures, const Interval& final, double noise,
+                     int referenceSpp) {
   std::string text;
   const auto tile = intervalFigure(figures, "worst_tile_truth", ".final");
   const auto ptTile = intervalFigure(figures, "worst_tile_truth", ".baseline");
   if (tile && ptTile && ptTile->estimate() > 0 && tile->low() > 2 * ptTile->high())
     text += " Its worst 16x16 tile has " + numberText("%.1f", tile->estimate() / ptTile->estimate()) +
             "x pt's error: look for artifacts.";
-  if (!(final.low() > 0))
+  if (!(final.low() > 0)) {
     text += " Its error cannot be told from 0 at this reference (its noise " + numberText("%.4f", noise) +
             "): only the interval's high end bounds the cost at equal error; raise reference_spp to measure it.";
+  } else if (noise > final.estimate() / 10) {
+    text += " The reference resolves its error only coarsely: the reference's noise " + numberText("%.4f", noise) +
+            " is more than a tenth of it; a reference of " +
+            std::to_string(resolvingSpp(referenceSpp, noise, final.estimate())) + " spp would resolve it.";
+  }
   if (const auto temporal = intervalFigure(figures, "temporal_truth", ".final")) {
     const auto ptTemporal = intervalFigure(figures, "temporal_truth", ".baseline");
     if (ptTemporal && temporal->low() > ptTemporal->high())
@@ -105,7 +120,7 @@ void judge(ShotReport& report, Pipeline pipeline, const std::map<std::string, do
               intervalText(*interval, "%.2f") + " of plain pt's, and that 95 % interval includes 1" + figuresText +
               ". Raise reference_spp to tell.";
   }
-  report.set_verdict(verdict + warnings(figures, *final, noise));
+  report.set_verdict(verdict + warnings(figures, *final, noise, report.reference_spp()));
 }
 
 }  // namespace pathfarm::farm

@@ -169,7 +169,23 @@ TEST(ShotReport, TheVerdictSaysPlainlyWhenThePipelineLost) {
   EXPECT_NE(verdict.find("worst 16x16 tile has 6.0x pt's"), std::string::npos) << verdict;
   EXPECT_NE(verdict.find("flickers more than pt"), std::string::npos) << verdict;
   EXPECT_EQ(verdict.find("cannot be told"), std::string::npos) << verdict;
+  EXPECT_EQ(verdict.find("coarsely"), std::string::npos) << verdict;
   EXPECT_EQ(report.reference_noise(), -1);  // not measured
+
+  // A reference whose noise is more than a tenth of the error it measures says so, and
+  // what would resolve it: at 256 spp a noise of 0.005 against an error of 0.02 needs
+  // 256 x 10 x 0.005 / 0.02 = 640, so 1024 spp.
+  ShotSpec withReference = spec();
+  withReference.set_reference_spp(256);
+  tasks.back().metrics["reference_noise"] = 0.005;
+  const ShotReport coarse = buildReport(ShotSummary(), withReference, tasks);
+  EXPECT_NE(coarse.verdict().find("resolves its error only coarsely: the reference's noise 0.0050 is more than a "
+                                  "tenth of it; a reference of 1024 spp would resolve it."),
+            std::string::npos)
+      << coarse.verdict();
+  tasks.back().metrics["reference_noise"] = 0.0019;  // under a tenth of 0.02: resolved
+  EXPECT_EQ(buildReport(ShotSummary(), withReference, tasks).verdict().find("coarsely"), std::string::npos);
+  tasks.back().metrics.erase("reference_noise");
 
   // An interval that includes 1 claims nothing either way; overlapping tiles and temporal
   // errors claim no artifact and no flicker.
