@@ -8,6 +8,7 @@
 #include "image/exr_io.h"
 #include "postproc/metrics/relmse.h"
 #include "client/pipeline_choice.h"
+#include "client/reference_choice.h"
 #include "client/shot_preparation.h"
 
 namespace pathfarm::farm {
@@ -134,7 +135,7 @@ ShotSpec choosePipeline(FarmClient& client, const ShotFile& file, const ShotSpec
   spec.set_predicted_core_seconds_per_frame(choice.predictedCoreSecondsPerFrame);
   spec.set_predicted_relmse(choice.predictedRelMse);
   spec.set_probe_core_seconds(choice.probeCoreSeconds);
-  return spec;
+  return withReferenceChosen(spec, *file.scene());
 }
 
 }  // namespace pathfarm::farm

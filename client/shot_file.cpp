@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "client/reference_choice.h"
 #include "renderer/setup/auto_decomposition.h"
 #include "renderer/metropolis/metropolis_renderer.h"
 #include "renderer/scene/scene_loader.h"
@@ -71,7 +72,15 @@ void readMetropolisKeys(const JsonNode& root, const Scene& scene, ShotSpec& spec
 }
 
 void readEvaluationKeys(const JsonNode& root, ShotSpec& spec) {
-  spec.set_reference_spp(root.has("reference_spp") ? root["reference_spp"].integer(1, 1 << 24) : 0);
+  if (!root.has("reference_spp")) {
+    spec.set_reference_spp(0);
+  } else if (root["reference_spp"].isString()) {
+    if (root["reference_spp"].string() != "auto")
+      root["reference_spp"].fail("expected a number of samples or \"auto\"");
+    spec.set_reference_spp(kAutoReferenceSpp);  // chosen by withReferenceChosen once the pipeline is known
+  } else {
+    spec.set_reference_spp(root["reference_spp"].integer(1, 1 << 24));
+  }
   if (root.has("baseline_core_seconds")) spec.set_baseline_core_seconds(root["baseline_core_seconds"].number(1e-9, 1e12));
   if (auto frames = root.optional("evaluation_frames")) {
     for (const JsonNode& frame : frames->elements()) {
@@ -79,7 +88,7 @@ void readEvaluationKeys(const JsonNode& root, ShotSpec& spec) {
       if (value < spec.frame_start() || value > spec.frame_end()) frame.fail("not a frame of the shot");
       spec.add_evaluation_frames(value);
     }
-  } else if (spec.pipeline() != PIPELINE_PT || spec.reference_spp() > 0) {
+  } else if (spec.pipeline() != PIPELINE_PT || spec.reference_spp() != 0) {
     for (const int64_t frame : defaultEvaluationFrames(spec)) spec.add_evaluation_frames(frame);
   }
 }
@@ -107,8 +116,9 @@ void readPipelineKeys(const JsonNode& root, const Scene& scene, ShotSpec& spec) 
 // Every key a shot file may have: those all pipelines share, and each pipeline's own.
 std::vector<const char*> shotFileKeys() {
   std::vector<const char*> keys = {"name", "scene", "frames", "resolution", "spp", "max_depth", "pipeline", "tile",
-                                   "output", "priority", "max_attempts", "decompose", "reference_spp", "reference_cache",
-                                   "evaluation_frames", "baseline_core_seconds", "required_tags", "max_workers"};
+                                   "output", "priority", "max_attempts", "decompose", "reference_spp",
+                                   "reference_cache", "evaluation_frames", "baseline_core_seconds", "required_tags",
+                                   "max_workers"};
   for (const PipelineTraits& traits : allPipelines())
     for (const std::string_view key : traits.keys)  // literals: terminated
       if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key.data());
@@ -180,7 +190,8 @@ ShotFile ShotFile::parse(std::string_view text, const std::filesystem::path& fil
   spec.set_output((folder / (root.has("output") ? root["output"].string() : "output/" + spec.name()))
                       .lexically_normal()
                       .string());
-  if (root.has("reference_cache")) shot.referenceCache_ = (folder / root["reference_cache"].string()).lexically_normal();
+  if (root.has("reference_cache"))
+    shot.referenceCache_ = (folder / root["reference_cache"].string()).lexically_normal();
   if (named != PIPELINE_NOOP) shot.scene_ = readSceneKeys(root, folder, spec);
   shot.named_ = shot.specAs(named);
   return shot;

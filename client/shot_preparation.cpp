@@ -1,6 +1,7 @@
 #include "client/shot_preparation.h"
 
 #include "client/keyframe_probe.h"
+#include "client/reference_choice.h"
 #include "renderer/scene/scene.h"
 #include "scheduler/planner.h"
 
@@ -32,7 +33,7 @@ ShotSpec preparedShot(const ShotFile& file, Pipeline pipeline) {
   ShotSpec spec = pipeline == file.pipeline() ? file.spec() : file.specAs(pipeline);
   const PipelineFamily family = traitsOf(pipeline).family;
   if (family == PipelineFamily::Choice || family == PipelineFamily::Noop) return spec;
-  spec = withKeyframesChosen(std::move(spec), file);
+  spec = withReferenceChosen(withKeyframesChosen(std::move(spec), file), *file.scene());
   if (plannedTasksAtLeast(spec) <= ShotLimits{}.maxTasks) {
     try {
       planShot(spec);

@@ -34,7 +34,8 @@ void checkRenderSpec(const ShotSpec& spec) {
     throw PlanError("resolution: width and height must be 1 to 16384");
   if (spec.spp() < 1) throw PlanError("spp: must be at least 1");
   if (spec.tile() < 8) throw PlanError("tile: must be at least 8 pixels");
-  if (spec.reference_spp() < 0) throw PlanError("reference_spp: must not be negative");
+  if (spec.reference_spp() < 0)
+    throw PlanError("reference_spp: must not be negative (the client chooses \"auto\" before it submits)");
   for (const int64_t frame : spec.evaluation_frames())
     if (frame < spec.frame_start() || frame > spec.frame_end())
       throw PlanError("evaluation_frames: frame " + std::to_string(frame) + " is not in the shot");

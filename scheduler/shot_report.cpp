@@ -227,6 +227,7 @@ ShotReport buildReport(const ShotSummary& summary, const ShotSpec& spec, const s
   report.set_tasks_total(static_cast<int64_t>(tasks.size()));
   report.set_reference_spp(spec.reference_spp());
   report.set_cached_references(spec.known_references_size());
+  report.set_reference_reason(spec.reference_reason());
   for (const int64_t frame : spec.evaluation_frames()) report.add_evaluation_frames(frame);
 
   const TaskTotals totals = addUpTasks(report, tasks);
@@ -336,6 +337,7 @@ std::string reportMarkdown(const ShotReport& r) {
     md += "No error figures: the shot names no `reference_spp`.\n";
     return md;
   }
+  if (!r.reference_reason().empty()) md += "The reference's samples: " + r.reference_reason() + ".\n\n";
   if (r.cached_references() > 0)
     md += "The references of " + std::to_string(r.cached_references()) + " evaluation frame(s) came from the "
           "reference cache: an earlier shot rendered them from the same scene files and settings.\n\n";
