@@ -32,12 +32,12 @@ class ReferenceCache {
   // the folder lacks; returns how many it kept.
   int keep(FarmClient& client, int64_t shotId, const ShotSpec& spec) const;
 
+  // Each evaluation frame's file in the folder (there or not); empty when the scene's files
+  // cannot be named by content (then nothing is cached).
+  std::map<int64_t, std::filesystem::path> filesOf(const ShotSpec& spec) const;
   const std::filesystem::path& folder() const { return folder_; }
 
  private:
-  // Each evaluation frame's file in the folder; empty when the scene's files cannot be
-  // named by content (then nothing is cached).
-  std::map<int64_t, std::filesystem::path> filesOf(const ShotSpec& spec) const;
 
   std::filesystem::path folder_;
 };

@@ -9,7 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "client/shot_file.h"
 #include "renderer/setup/renderer_version.h"
+#include "test_support.h"
 
 namespace pathfarm::farm {
 namespace {
@@ -62,6 +64,22 @@ TEST(ReferenceKey, ChangesWithWhatTheReferenceDependsOnAndNothingElse) {
   otherShot.set_pipeline(PIPELINE_DUI);
   otherShot.set_name("another shot");
   EXPECT_EQ(referenceKey(otherShot, 11, kRendererVersion), key) << "what only the shot's own frames depend on";
+}
+
+// The demo's shots ship their references beside the scene, so that a fresh clone measures
+// against 16384 spp without rendering them. A change to the scene or the renderer's version
+// makes other keys: this fails until bench/demo_references.sh has rendered them anew.
+TEST(ReferenceCache, TheDemosShippedReferencesAreTheOnesItsShotsAskFor) {
+  for (const char* shot : {"cornell", "showroom"}) {
+    const ShotFile file = ShotFile::load(test_support::sourceDir() / "scenes" / shot / "shot.json");
+    ASSERT_FALSE(file.referenceCache().empty()) << shot;
+    const auto files = ReferenceCache(file.referenceCache()).filesOf(file.spec());
+    ASSERT_EQ(files.size(), static_cast<size_t>(file.spec().evaluation_frames_size())) << shot;
+    for (const auto& [frame, path] : files)
+      EXPECT_TRUE(std::filesystem::exists(path))
+          << shot << ": no reference of frame " << frame << " (" << path.string()
+          << "); run bench/demo_references.sh and commit what it writes";
+  }
 }
 
 }  // namespace
