@@ -12,14 +12,17 @@
 #   bench/suite_benchmark.sh [--build DIR] [--scenes "dolly courtyard walkthrough cornell showroom"]
 #                            [--pipelines "dui"] [--spp 64] [--reference-spp 1024]
 #                            [--frames 0:23] [--res 320x180] [--figures docs/figures] [--repeat 1]
-#                            [--setting small|production]
+#                            [--setting small|production] [--reference-cache DIR]
 # --setting production is 640x360 at 256 spp against a 4096-spp reference (production renders
 # take hundreds of samples, where a frame's fixed costs weigh less); small, the default, is
-# 320x180 at 64 spp against 1024. Options after it change its values.
+# 320x180 at 64 spp against 1024. Options after it change its values. References are kept
+# in the reference cache (default ~/.cache/pathfarm/references; client/reference_cache.h),
+# so a second run of a scene at the same size renders none.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=build scenes="dolly courtyard walkthrough cornell showroom" pipelines=dui spp=64 reference=1024
 frames=0:23 res=320x180 figures=docs/figures repeat=1
+cache="${XDG_CACHE_HOME:-$HOME/.cache}/pathfarm/references"
 while (($#)); do
   case "$1" in
     --build) build=$2 ;;
@@ -31,6 +34,7 @@ while (($#)); do
     --res) res=$2 ;;
     --figures) figures=$2 ;;
     --repeat) repeat=$2 ;;
+    --reference-cache) cache=$2 ;;
     --setting)
       case "$2" in
         small) res=320x180 spp=64 reference=1024 ;;
@@ -60,7 +64,7 @@ JSON
     reports=()
     for ((run = 1; run <= repeat; run++)); do
       rm -rf "$out"
-      "$pathfarm" local "$work/shot.json" --workers 2 > "$work/log" 2>&1 || { cat "$work/log" >&2; exit 1; }
+      "$pathfarm" local "$work/shot.json" --workers 2 --reference-cache "$cache" > "$work/log" 2>&1 || { cat "$work/log" >&2; exit 1; }
       cp "$out/report.json" "$work/report-$run.json"
       reports+=("$work/report-$run.json")
     done
