@@ -78,7 +78,8 @@ scene=("${gltf[@]}" "${meshes[@]}" "${exr[@]}"
        renderer/scene/scene_loader.cpp renderer/scene/environment_parser.cpp renderer/scene/light_parser.cpp
        renderer/scene/material_parser.cpp renderer/scene/transform_parser.cpp renderer/scene/mesh.cpp
        renderer/lights/environment_light.cpp renderer/sampling/piecewise_constant.cpp)
-shot=("${scene[@]}" client/shot_file.cpp client/shot_preparation.cpp contract/pipeline.cpp scheduler/planner.cpp scheduler/quoted_text.cpp
+shot=("${scene[@]}" client/shot_file.cpp client/shot_preparation.cpp client/reference_choice.cpp contract/pipeline.cpp
+      scheduler/planner.cpp scheduler/quoted_text.cpp
       postproc/poisson/window_blend.cpp
       renderer/decomposition/decomposition.cpp renderer/decomposition/lpe_automaton.cpp
       "$generated/pathfarm/shot.pb.cc" "$generated/pathfarm/chunk.pb.cc")

@@ -5,21 +5,11 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "client/reference_pilot.h"
 #include "contract/pipeline.h"
-#include "postproc/metrics/relmse.h"
-#include "renderer/integrators/frame_renderer.h"
 
 namespace pathfarm::farm {
 namespace {
-
-// The pilot renders at a quarter of the shot's resolution per axis with 16 times the
-// samples per pixel: the cost of 8 spp at full size. A pixel's variance per sample hardly
-// depends on its size (the paths' variance dominates the footprint's), and 8 samples a
-// pixel miss the rare bright paths that make most of it: on the Cornell box an 8-spp pilot
-// at full size put pt's relMSE at 1/7 of what a 128-spp reference then measured.
-constexpr int kPilotScale = 4;
-constexpr int kPilotSpp = 8 * kPilotScale * kPilotScale;
-constexpr int kMinPilotSize = 16;
 
 // The error a pipeline of each family reaches against pt's at the same spp, as the
 // moving-camera suite measured it (docs/performance.md, "Figures with their intervals"):
@@ -42,17 +32,6 @@ std::string figure(const char* pattern, double value) {
   char text[64];
   std::snprintf(text, sizeof text, pattern, value);
   return text;
-}
-
-// pt's relMSE at one sample per pixel on `frame`, from a pilot's variance.
-double pilotRelMsePerSample(const Scene& scene, const ShotSpec& spec, int64_t frame) {
-  RenderSettings settings;
-  settings.width = std::max(kMinPilotSize, spec.width() / kPilotScale);
-  settings.height = std::max(kMinPilotSize, spec.height() / kPilotScale);
-  settings.spp = kPilotSpp;
-  settings.maxDepth = spec.max_depth();
-  settings.firstSample = kIndependentFirstSample;
-  return expectedRelMse(FrameRenderer(scene, settings).render(frame)) * kPilotSpp;
 }
 
 }  // namespace

@@ -13,10 +13,12 @@
 #include "renderer/setup/auto_decomposition.h"
 #include "renderer/scene/json_node.h"
 #include "client/keyframe_probe.h"
+#include "client/reference_pilot.h"
 #include "client/shot_preparation.h"
 
-// Two steps of reading and preparing a shot render probes: "decompose": "auto" on a scene
-// with glass, and "keyframe_interval": "auto". Rendering is not reading, and the renderer (Embree,
+// Three steps of reading and preparing a shot render probes: "decompose": "auto" on a scene
+// with glass, "keyframe_interval": "auto" and the pilot of "reference_spp": "auto" (for
+// auto's prediction only, but linked). Rendering is not reading, and the renderer (Embree,
 // TBB) compiled with sanitizers would cost minutes per CI run; these stand-ins keep
 // everything else, and choose what a probe could.
 namespace pathfarm {
@@ -42,6 +44,8 @@ KeyframeChoice chooseKeyframeInterval(const Scene&, const ShotSpec& spec, double
   if (longest < 2) return {1, "k = 1: the shot is too short to interpolate any frame"};
   return {longest, "k = " + std::to_string(longest) + ": the fuzzer's stand-in for the probe"};
 }
+
+double pilotRelMsePerSample(const Scene&, const ShotSpec&, int64_t) { return 1; }
 
 }  // namespace farm
 }  // namespace pathfarm
