@@ -11,9 +11,9 @@
 #include <optional>
 
 #include "cli/command.h"
-#include "cli/shot_size_options.h"
 #include "cli/reference_cache_options.h"
 #include "cli/shot_progress.h"
+#include "cli/shot_size_options.h"
 #include "renderer/scene/json_node.h"
 #include "client/local_farm.h"
 #include "client/shot_preparation.h"
