@@ -29,6 +29,19 @@ unsigned timeStepsFor(const AnimatedTrs& animation, double open, double close) {
   return animation.hasKeyInside(open, close) ? 17 : 2;
 }
 
+// Vertices blend linearly between steps, so a joint that turns needs steps inside the
+// shutter even between keys; five keep a 90-degree turn within 2 % of the arm's length
+// of its arc. A deforming mesh stores every vertex per step, hence not a placement's 17.
+constexpr unsigned kDeformingSteps = 5;
+
+// Vertex i's attribute blended between the posed steps around a time, as Embree blends
+// a deforming mesh's positions.
+Vec3f blendedVertex(const std::vector<TriangleMesh>& poses, std::vector<Vec3f> TriangleMesh::*attribute, uint32_t i,
+                    std::pair<size_t, float> at) {
+  const Vec3f a = (poses[at.first].*attribute)[i];
+  return poses.size() == 1 ? a : lerp(a, (poses[at.first + 1].*attribute)[i], at.second);
+}
+
 }  // namespace
 
 Vec2f sphereUv(Vec3f n) {
@@ -37,7 +50,7 @@ Vec2f sphereUv(Vec3f n) {
 }
 
 FrameGeometry::FrameGeometry(const ShotGeometry& shot, int64_t frame)
-    : shot_(shot), frame_(frame), timeSteps_(shot.scene().objects.size()) {
+    : shot_(shot), frame_(frame), timeSteps_(shot.scene().objects.size()), poses_(shot.scene().objects.size()) {
   const Scene& scene = shot.scene();
   if (!shot.placesObjects()) {
     top_ = shot.staticScene();  // nothing moves: trace the static BVH directly
@@ -50,7 +63,7 @@ FrameGeometry::FrameGeometry(const ShotGeometry& shot, int64_t frame)
   auto attach = [&](RTCScene child, int object) {
     RTCGeometry instance = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
     rtcSetGeometryInstancedScene(instance, child);
-    if (object < 0) {
+    if (object < 0 || shot.shape(object).deforming) {
       const float identity[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
       rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, identity);
     } else if (shot.shape(object).instanced) {
@@ -76,7 +89,12 @@ FrameGeometry::FrameGeometry(const ShotGeometry& shot, int64_t frame)
   };
   if (shot.staticScene()) attach(shot.staticScene(), -1);
   for (size_t i = 0; i < scene.objects.size(); ++i) {
-    if (RTCScene child = shot.objectScene(static_cast<int>(i))) attach(child, static_cast<int>(i));
+    const int object = static_cast<int>(i);
+    if (shot.shape(object).deforming) {
+      attach(buildDeformed(object, scene.timeAt(frame, 0), scene.timeAt(frame, 1)), object);
+    } else if (RTCScene child = shot.objectScene(object)) {
+      attach(child, object);
+    }
   }
   rtcCommitScene(top_);
   shot.device().check("placing the animated and instanced objects of a frame");
@@ -84,6 +102,40 @@ FrameGeometry::FrameGeometry(const ShotGeometry& shot, int64_t frame)
 
 FrameGeometry::~FrameGeometry() {
   if (ownsTop_) rtcReleaseScene(top_);
+  for (RTCScene s : deformedScenes_) rtcReleaseScene(s);
+}
+
+RTCScene FrameGeometry::buildDeformed(int object, double open, double close) {
+  const PreparedShape& shape = shot_.shape(object);
+  const MeshDeformation& deformation = *shot_.scene().objects[static_cast<size_t>(object)].deformation;
+  const unsigned steps = close > open ? kDeformingSteps : 1;
+  auto& poses = poses_[static_cast<size_t>(object)];
+  std::vector<const std::vector<Vec3f>*> positions;
+  for (unsigned s = 0; s < steps; ++s) {
+    MeshDeformation::Pose pose = deformation.poseAt(steps == 1 ? open : open + (close - open) * s / (steps - 1));
+    TriangleMesh posed = *shape.mesh;  // the rest mesh's triangles (wound to its normals), uvs and signs
+    posed.positions = std::move(pose.positions);
+    posed.normals = std::move(pose.normals);
+    posed.tangents = std::move(pose.tangents);
+    poses.push_back(std::move(posed));
+  }
+  for (const TriangleMesh& posed : poses) positions.push_back(&posed.positions);
+  RTCDevice device = shot_.device().get();
+  RTCGeometry geometry = newTriangleGeometry(device, shape, positions);
+  rtcCommitGeometry(geometry);
+  RTCScene scene = rtcNewScene(device);
+  rtcAttachGeometry(scene, geometry);
+  rtcReleaseGeometry(geometry);
+  rtcCommitScene(scene);
+  deformedScenes_.push_back(scene);
+  return scene;
+}
+
+std::pair<size_t, float> FrameGeometry::stepAt(size_t stepCount, float time) const {
+  if (stepCount < 2) return {0, 0.0f};
+  const float position = std::clamp(time, 0.0f, 1.0f) * static_cast<float>(stepCount - 1);
+  const size_t i = std::min(static_cast<size_t>(position), stepCount - 2);
+  return {i, position - static_cast<float>(i)};
 }
 
 Transform FrameGeometry::shapeToWorld(int object, float time) const {
@@ -92,9 +144,7 @@ Transform FrameGeometry::shapeToWorld(int object, float time) const {
   if (steps.size() == 1) return Transform::fromTrs(steps[0]);
   // Embree's quaternion motion blur: linear in translation and scale, slerp in rotation,
   // between the two time steps around `time`.
-  const float position = std::clamp(time, 0.0f, 1.0f) * static_cast<float>(steps.size() - 1);
-  const size_t i = std::min(static_cast<size_t>(position), steps.size() - 2);
-  const float f = position - static_cast<float>(i);
+  const auto [i, f] = stepAt(steps.size(), time);
   const Trs& a = steps[i];
   const Trs& b = steps[i + 1];
   return Transform::fromTrs({lerp(a.translation, b.translation, f), slerp(a.rotation, b.rotation, f),
@@ -167,17 +217,43 @@ SurfaceHit FrameGeometry::makeHit(const Ray& ray, float distance, int object, un
     hit.uv = sphereUv(n);
     return hit;
   }
+  hit = triangleSurface(object, primitive, {u, v}, toWorld, time);
+  hit.distance = distance;
+  return hit;
+}
+
+SurfaceHit FrameGeometry::deformedSurface(int object, uint32_t primitive, Vec2f barycentric, float time) const {
+  return triangleSurface(object, primitive, barycentric, Transform(), time);
+}
+
+SurfaceHit FrameGeometry::triangleSurface(int object, uint32_t primitive, Vec2f barycentric,
+                                                 const Transform& toWorld, float time) const {
+  const PreparedShape& shape = shot_.shape(object);
   const TriangleMesh& mesh = *shape.mesh;
   const uint32_t i0 = mesh.indices[3 * primitive], i1 = mesh.indices[3 * primitive + 1],
                  i2 = mesh.indices[3 * primitive + 2];
-  const float w = 1 - u - v;
-  const Vec3f p0 = mesh.positions[i0], p1 = mesh.positions[i1], p2 = mesh.positions[i2];
+  const float u = barycentric.x, v = barycentric.y, w = 1 - u - v;
+  // A deforming mesh blends its two posed steps around `time` per vertex, as Embree does;
+  // normal mapping reads the nearer step's tangents.
+  const auto& poses = poses_[static_cast<size_t>(object)];
+  const auto at = stepAt(poses.size(), time);
+  const TriangleMesh& posed = poses.empty() ? mesh : poses[at.first + (at.second > 0.5f ? 1 : 0)];
+  const auto vertex = [&](std::vector<Vec3f> TriangleMesh::*attribute, uint32_t i) {
+    return poses.empty() ? (mesh.*attribute)[i] : blendedVertex(poses, attribute, i, at);
+  };
+  SurfaceHit hit;
+  hit.object = object;
+  hit.primitive = primitive;
+  hit.barycentric = barycentric;
+  const Vec3f p0 = vertex(&TriangleMesh::positions, i0), p1 = vertex(&TriangleMesh::positions, i1),
+              p2 = vertex(&TriangleMesh::positions, i2);
   hit.shapePosition = p0 * w + p1 * u + p2 * v;
   hit.position = toWorld.point(hit.shapePosition);
   hit.geometricNormal = normalize(toWorld.normal(cross(p1 - p0, p2 - p0)));
   hit.shadingNormal = hit.geometricNormal;
   if (!mesh.normals.empty()) {
-    const Vec3f n = mesh.normals[i0] * w + mesh.normals[i1] * u + mesh.normals[i2] * v;
+    const Vec3f n = vertex(&TriangleMesh::normals, i0) * w + vertex(&TriangleMesh::normals, i1) * u +
+                    vertex(&TriangleMesh::normals, i2) * v;
     if (dot(n, n) > 0) hit.shadingNormal = normalize(toWorld.normal(n));
   }
   if (!mesh.uvs.empty()) {
@@ -187,9 +263,23 @@ SurfaceHit FrameGeometry::makeHit(const Ray& ray, float distance, int object, un
     hit.uv = {u, v};
   }
   const Scene& scene = shot_.scene();
-  hit.shadingNormal = normalMappedShadingNormal(scene, scene.objects[static_cast<size_t>(object)], mesh,
+  hit.shadingNormal = normalMappedShadingNormal(scene, scene.objects[static_cast<size_t>(object)], posed,
                                                 {i0, i1, i2, u, v}, toWorld, hit.shadingNormal, hit.uv);
   return hit;
+}
+
+float FrameGeometry::deformedAreaScale(int object, uint32_t primitive, float time) const {
+  const TriangleMesh& rest = *shot_.shape(object).mesh;
+  const auto& poses = poses_[static_cast<size_t>(object)];
+  const auto at = stepAt(poses.size(), time);
+  Vec3f posed[3], unposed[3];
+  for (size_t k = 0; k < 3; ++k) {
+    const uint32_t i = rest.indices[3 * primitive + k];
+    posed[k] = blendedVertex(poses, &TriangleMesh::positions, i, at);
+    unposed[k] = rest.positions[i];
+  }
+  const auto area = [](const Vec3f* p) { return length(cross(p[1] - p[0], p[2] - p[0])); };
+  return area(posed) / area(unposed);
 }
 
 Bounds3 FrameGeometry::bounds() const {

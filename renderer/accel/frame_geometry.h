@@ -30,8 +30,14 @@ class FrameGeometry {
   bool connects(const SurfaceHit& from, Vec3f target, float time) const;
   bool escapes(const SurfaceHit& from, Vec3f direction, float time) const;
   // The transform from the object's prepared shape to world space at `time`: Embree's
-  // own interpolation for animated objects, identity for static ones (already in world).
+  // own interpolation for animated objects, identity for static ones (already in world)
+  // and for deforming ones (posed in world space).
   Transform shapeToWorld(int object, float time) const;
+  // The point at `barycentric` in triangle `primitive` of a deforming object at `time`,
+  // as a hit would find it (position, normals, uv).
+  SurfaceHit deformedSurface(int object, uint32_t primitive, Vec2f barycentric, float time) const;
+  // The world area of that triangle at `time` over its rest area.
+  float deformedAreaScale(int object, uint32_t primitive, float time) const;
 
   int64_t frame() const { return frame_; }
   const ShotGeometry& shot() const { return shot_; }
@@ -41,6 +47,14 @@ class FrameGeometry {
  private:
   SurfaceHit makeHit(const Ray& ray, float distance, int object, unsigned primitive, float u,
                      float v, float time) const;
+  // Triangle `primitive` at `barycentric`: a rigid mesh's placed by `toWorld`, a
+  // deforming mesh's posed at `time`.
+  SurfaceHit triangleSurface(int object, uint32_t primitive, Vec2f barycentric, const Transform& toWorld,
+                                    float time) const;
+  // Poses a deforming object at the frame's time steps and builds its BVH.
+  RTCScene buildDeformed(int object, double open, double close);
+  // The step before `time` and the fraction of the way to the next, as Embree blends them.
+  std::pair<size_t, float> stepAt(size_t stepCount, float time) const;
 
   const ShotGeometry& shot_;
   int64_t frame_;
@@ -50,6 +64,10 @@ class FrameGeometry {
   // Per object, its transform at the instance's uniformly spaced time steps (empty for
   // static objects), interpolated the way Embree does for shading.
   std::vector<std::vector<Trs>> timeSteps_;
+  // Per deforming object, its posed mesh at uniformly spaced time steps (empty for the
+  // others), and the BVHs built from them.
+  std::vector<std::vector<TriangleMesh>> poses_;
+  std::vector<RTCScene> deformedScenes_;
 };
 
 // The surface coordinates of a sphere's point with object-space unit normal n.

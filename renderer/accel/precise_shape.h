@@ -35,6 +35,9 @@ class PreciseShape {
   explicit PreciseShape(const SceneObject& object);
 
   bool isAnimated() const { return animated_; }
+  // A deforming mesh (SceneObject::deformation) is held in its rest pose here: the
+  // specular walk, which differentiates rigid motion, must not trace it.
+  bool deforms() const { return object_.deformation != nullptr; }
   AffineMotion placementAt(double seconds) const {
     return animated_ ? object_.transform.motionAt(seconds) : still_;
   }

@@ -82,6 +82,7 @@ PreparedShape prepare(const Scene& scene, const SceneObject& object, bool instan
   if (coverage >= 0 && object.type != ShapeType::Sphere) shape.coverage = &scene.coverages[static_cast<size_t>(coverage)];
   shape.type = object.type;
   shape.animated = object.transform.isAnimated();
+  shape.deforming = object.deformation != nullptr;
   shape.instanced = instanced;
   if (instanced) shape.placement = object.transform.transformAt(0);
   // Animated and instanced objects keep their object space (identity here); Embree places
@@ -108,24 +109,7 @@ RTCGeometry makeGeometry(RTCDevice device, const PreparedShape& shape) {
     vertex[3] = shape.radius;
     return geometry;
   }
-  const TriangleMesh& mesh = *shape.mesh;
-  RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* positions = static_cast<float*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
-  for (size_t i = 0; i < mesh.positions.size(); ++i) {
-    positions[3 * i] = mesh.positions[i].x;
-    positions[3 * i + 1] = mesh.positions[i].y;
-    positions[3 * i + 2] = mesh.positions[i].z;
-  }
-  auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), mesh.triangleCount()));
-  std::memcpy(indices, mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t));
-  if (shape.coverage) {
-    rtcSetGeometryUserData(geometry, const_cast<PreparedShape*>(&shape));
-    rtcSetGeometryIntersectFilterFunction(geometry, coverageFilter);
-    rtcSetGeometryOccludedFilterFunction(geometry, coverageFilter);
-  }
-  return geometry;
+  return newTriangleGeometry(device, shape, {&shape.mesh->positions});
 }
 
 RTCScene newScene(RTCDevice device) {
@@ -158,19 +142,47 @@ void extend(RTCBounds& bounds, const RTCBounds& by) {
 
 }  // namespace
 
+RTCGeometry newTriangleGeometry(RTCDevice device, const PreparedShape& shape,
+                                const std::vector<const std::vector<Vec3f>*>& positionsPerStep) {
+  const TriangleMesh& mesh = *shape.mesh;
+  RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  rtcSetGeometryTimeStepCount(geometry, static_cast<unsigned>(positionsPerStep.size()));
+  for (size_t step = 0; step < positionsPerStep.size(); ++step) {
+    const std::vector<Vec3f>& points = *positionsPerStep[step];
+    auto* positions = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX,
+                                                                  static_cast<unsigned>(step), RTC_FORMAT_FLOAT3,
+                                                                  3 * sizeof(float), points.size()));
+    for (size_t i = 0; i < points.size(); ++i) {
+      positions[3 * i] = points[i].x;
+      positions[3 * i + 1] = points[i].y;
+      positions[3 * i + 2] = points[i].z;
+    }
+  }
+  auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
+      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), mesh.triangleCount()));
+  std::memcpy(indices, mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t));
+  if (shape.coverage) {
+    rtcSetGeometryUserData(geometry, const_cast<PreparedShape*>(&shape));
+    rtcSetGeometryIntersectFilterFunction(geometry, coverageFilter);
+    rtcSetGeometryOccludedFilterFunction(geometry, coverageFilter);
+  }
+  return geometry;
+}
+
 ShotGeometry::ShotGeometry(const Scene& scene, const EmbreeDevice& device)
     : scene_(scene), device_(device), objectScenes_(scene.objects.size(), nullptr) {
   // A mesh placed more than once, still or animated, gets one object-space BVH that every
   // placement instances.
   std::map<SharingKey, int> placements;
   for (const SceneObject& object : scene.objects)
-    if (object.type != ShapeType::Sphere) ++placements[sharingKey(scene, object)];
+    if (object.type != ShapeType::Sphere && !object.deformation) ++placements[sharingKey(scene, object)];
   std::map<SharingKey, size_t> firstPlacement;  // whose prepared mesh and BVH the others share
 
   shapes_.reserve(scene.objects.size());  // the coverage filters hold pointers to them
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     const SceneObject& object = scene.objects[i];
-    const bool shared = object.type != ShapeType::Sphere && placements[sharingKey(scene, object)] > 1;
+    const bool shared =
+        object.type != ShapeType::Sphere && !object.deformation && placements[sharingKey(scene, object)] > 1;
     const bool instanced = shared && !object.transform.isAnimated();
     if (shared) {
       const auto [first, isFirst] = firstPlacement.try_emplace(sharingKey(scene, object), i);
@@ -187,6 +199,10 @@ ShotGeometry::ShotGeometry(const Scene& scene, const EmbreeDevice& device)
     }
     shapes_.push_back(prepare(scene, object, instanced));
     const PreparedShape& shape = shapes_.back();
+    if (shape.deforming) {  // its BVH is built per frame
+      placesObjects_ = true;
+      continue;
+    }
     RTCGeometry geometry = makeGeometry(device.get(), shape);
     rtcCommitGeometry(geometry);
     if (shape.animated || shape.instanced) {
@@ -218,6 +234,17 @@ ShotGeometry::ShotGeometry(const Scene& scene, const EmbreeDevice& device)
     rtcGetSceneBounds(objectScenes_[i], &local);
     extend(staticBounds_, placedBounds(local, shapes_[i].placement));
   }
+}
+
+Vec3f ShotGeometry::surfacePointAt(const SurfaceHit& hit, double seconds) const {
+  const PreparedShape& shape = shapes_[static_cast<size_t>(hit.object)];
+  const SceneObject& object = scene_.objects[static_cast<size_t>(hit.object)];
+  if (shape.animated) return object.transform.transformAt(seconds).point(hit.shapePosition);
+  if (!shape.deforming) return hit.position;
+  const uint32_t* corners = &shape.mesh->indices[3 * hit.primitive];
+  const float u = hit.barycentric.x, v = hit.barycentric.y;
+  return object.deformation->positionAt(corners[0], seconds) * (1 - u - v) +
+         object.deformation->positionAt(corners[1], seconds) * u + object.deformation->positionAt(corners[2], seconds) * v;
 }
 
 ShotGeometry::~ShotGeometry() {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "renderer/accel/embree_device.h"
+#include "renderer/accel/surface_hit.h"
 #include "renderer/scene/scene.h"
 
 namespace pathfarm {
@@ -20,6 +21,9 @@ struct PreparedShape {
   float radius = 0;  // spheres
   std::shared_ptr<const TriangleMesh> mesh;  // triangles; one for all instances of a mesh
   bool animated = false;
+  // Its vertices move on their own (SceneObject::deformation): FrameGeometry builds its
+  // BVH per frame from the poses across the shutter. `mesh` keeps the rest pose.
+  bool deforming = false;
   // Static, but placed by an Embree instance of its mesh's shared BVH.
   bool instanced = false;
   // To world space for objects that do not move: the placement of an instanced object,
@@ -45,7 +49,11 @@ class ShotGeometry {
   // The object-space BVH of an animated or instanced object (null for the others); the
   // placements of one mesh share theirs.
   RTCScene objectScene(int object) const { return objectScenes_[static_cast<size_t>(object)]; }
-  // Whether some object must be placed per frame (animated or instanced).
+  // Where the surface point `hit` found is at `seconds`: carried by its object's
+  // animation, or by a deforming mesh's vertices (the same triangle and barycentric
+  // coordinates); a still object's stays where it is.
+  Vec3f surfacePointAt(const SurfaceHit& hit, double seconds) const;
+  // Whether some object must be placed per frame (animated, instanced or deforming).
   bool placesObjects() const { return placesObjects_; }
   // The world-space bounds of everything that does not move, instances included.
   const RTCBounds& staticBounds() const { return staticBounds_; }
@@ -61,5 +69,10 @@ class ShotGeometry {
   bool placesObjects_ = false;
   RTCBounds staticBounds_{};
 };
+
+// An Embree triangle geometry of `shape`'s mesh with one vertex buffer per time step
+// (one for a still mesh), cut-outs filtered; the caller commits it.
+RTCGeometry newTriangleGeometry(RTCDevice device, const PreparedShape& shape,
+                                const std::vector<const std::vector<Vec3f>*>& positionsPerStep);
 
 }  // namespace pathfarm

@@ -15,6 +15,9 @@ struct SurfaceHit {
   Vec2f uv;
   int object = -1;        // index into Scene::objects
   uint32_t primitive = 0;
+  // Where in triangle `primitive` (Embree's u, v): how a point on a deforming mesh is
+  // found again at another time.
+  Vec2f barycentric;
 };
 
 }  // namespace pathfarm

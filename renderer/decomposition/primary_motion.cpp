@@ -13,16 +13,13 @@ const MotionPair kStill{Vec2f{0, 0}, Vec2f{0, 0}};
 }  // namespace
 
 MotionPair PrimaryMotion::ofSurface(const SurfaceHit& hit, float time) const {
-  const bool moves = geometry_.shot().shape(hit.object).animated;
+  const PreparedShape& shape = geometry_.shot().shape(hit.object);
+  const bool moves = shape.animated || shape.deforming;
   if (!moves && !camera_.isAnimated()) return kStill;  // nothing moves: no need to project
   const Scene& scene = geometry_.shot().scene();
   const auto imageAt = [&](int offset) {
     const double seconds = scene.timeAt(frame_ + offset, time);
-    // An animated object's shape is in object space: carry the point with the animation.
-    const Vec3f point =
-        offset != 0 && moves
-            ? scene.objects[static_cast<size_t>(hit.object)].transform.transformAt(seconds).point(hit.shapePosition)
-            : hit.position;
+    const Vec3f point = offset != 0 && moves ? geometry_.shot().surfacePointAt(hit, seconds) : hit.position;
     return camera_.project(point, seconds);
   };
   const auto now = imageAt(0);

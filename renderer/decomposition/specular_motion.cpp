@@ -16,8 +16,9 @@ SpecularMotion::SpecularMotion(const FrameGeometry& geometry, const std::vector<
       next_(geometry.shot().scene().timeAt(geometry.frame() + span.forward, kShutterFraction)),
       previous_(geometry.shot().scene().timeAt(geometry.frame() - span.backward, kShutterFraction)),
       cameraNow_(camera_.at(now_)),
-      sceneMoves_(camera_.isAnimated() ||
-                  std::any_of(shapes.begin(), shapes.end(), [](const PreciseShape& s) { return s.isAnimated(); })) {
+      sceneMoves_(camera_.isAnimated() || std::any_of(shapes.begin(), shapes.end(), [](const PreciseShape& s) {
+                    return s.isAnimated() || s.deforms();
+                  })) {
   const int eye = automaton_.next(automaton_.initial(), PathSymbol::E);
   for (int k = 0; k < decomposition.size(); ++k) {
     const bool named = k != decomposition.residual();
@@ -37,6 +38,13 @@ SpecularTrack SpecularMotion::track(int x, int y, int component) const {
     result.forward = result.backward = Vec2d{0, 0};
     return result;
   }
+  const auto deforms = [&](int object) { return shapes_[static_cast<size_t>(object)].deforms(); };
+  result.walked = true;
+  // The walk follows rigid motion only: a chain over a deforming surface gets no motion,
+  // so its pixels are re-rendered rather than warped.
+  if (deforms(chain->endpoint) || std::any_of(chain->links.begin(), chain->links.end(),
+                                              [&](const ChainLink& link) { return deforms(link.object); }))
+    return result;
   const auto moves = [&](int object) { return shapes_[static_cast<size_t>(object)].isAnimated(); };
   result.walked =
       camera_.isAnimated() || moves(chain->endpoint) ||

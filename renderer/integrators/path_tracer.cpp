@@ -51,7 +51,7 @@ Rgb PathTracer::radiance(Ray ray, float time, SampleStream& stream, RayCounts& c
     const Vec3f wo = shaded.wo;
     const Bsdf& bsdf = shaded.bsdf;
     const LobeList lobes = decomposer ? bsdf.lobes() : LobeList{};
-    const bool animated = decomposer && object.transform.isAnimated();
+    const bool animated = decomposer && object.moves();
 
     if (bsdf.hasNonDeltaLobe() && !lights_.empty()) {
       if (const auto light = lights_.sample(geometry_, hit.position, time, u.light, u.lightPoint)) {

@@ -14,6 +14,7 @@
 #include "renderer/math/animation.h"
 #include "renderer/scene/camera.h"
 #include "renderer/scene/mesh.h"
+#include "renderer/scene/mesh_deformation.h"
 #include "renderer/scene/texture.h"
 
 namespace pathfarm {
@@ -30,8 +31,13 @@ struct SceneObject {
   Rgb emission;      // radiance emitted from the front side (outward normal); black if none
   int emissionTexture = -1;  // into Scene::textures: emission is multiplied by it at the hit's uv
   AnimatedTrs transform;  // object to world
+  // Vertices that move on their own (skins, morph targets); then `transform` is the
+  // identity and the deformation's poses are in world space.
+  std::shared_ptr<const MeshDeformation> deformation;
 
   bool isEmitter() const { return !emission.isBlack(); }
+  // Whether the object's surface moves during the shot, rigidly or not.
+  bool moves() const { return transform.isAnimated() || deformation; }
 };
 
 struct RenderDefaults {

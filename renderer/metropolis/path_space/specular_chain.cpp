@@ -38,7 +38,10 @@ void onExactRay(const BdptScene& bdpt, float time, Vec3f origin, Vec3f direction
   hit.shapePosition = bdpt.geometry.shapeToWorld(hit.object, time).inversePoint(hit.position);
 }
 
-bool animated(const BdptScene& bdpt, const SurfaceHit& hit) { return bdpt.geometry.shot().shape(hit.object).animated; }
+bool animated(const BdptScene& bdpt, const SurfaceHit& hit) {
+  const PreparedShape& shape = bdpt.geometry.shot().shape(hit.object);
+  return shape.animated || shape.deforming;
+}
 
 // The symmetric geometry term |cos at p| |cos at q| / |p - q|^2 (a solid angle at p for
 // an environment q).

@@ -7,9 +7,10 @@
 namespace pathfarm {
 namespace {
 
-bool onAnimatedObject(const WindowScene& scene, const PathVertex& x) {
-  if (!x.isSurfaceLike() || x.hit.object < 0) return false;
-  return scene.geometry.frame(scene.time.window().first).shot().shape(x.hit.object).animated;
+const PreparedShape* movingShapeOf(const WindowScene& scene, const PathVertex& x) {
+  if (!x.isSurfaceLike() || x.hit.object < 0) return nullptr;
+  const PreparedShape& shape = scene.geometry.frame(scene.time.window().first).shot().shape(x.hit.object);
+  return shape.animated || shape.deforming ? &shape : nullptr;
 }
 
 Transform shapeToWorld(const WindowScene& scene, int object, WindowInstant at) {
@@ -37,7 +38,7 @@ const PunctualLight& punctualLightOf(const WindowScene& scene, const PathVertex&
 bool movesWithTime(const WindowScene& scene, const PathVertex& x) {
   if (x.type == VertexType::Camera) return scene.camera.camera().isAnimated();
   if (x.isPunctual()) return punctualLightOf(scene, x).transform.isAnimated();
-  return onAnimatedObject(scene, x);
+  return movingShapeOf(scene, x) != nullptr;
 }
 
 PathVertex placedAt(const WindowScene& scene, const PathVertex& x, WindowInstant from, WindowInstant to) {
@@ -55,7 +56,17 @@ PathVertex placedAt(const WindowScene& scene, const PathVertex& x, WindowInstant
     moved.direction = placed.direction;
     return moved;
   }
-  if (!onAnimatedObject(scene, x)) return x;
+  const PreparedShape* shape = movingShapeOf(scene, x);
+  if (!shape) return x;
+  if (shape->deforming) {  // the same point of the same triangle on the mesh's pose then
+    const SurfaceHit there =
+        scene.geometry.frame(to.frame).deformedSurface(x.hit.object, x.hit.primitive, x.hit.barycentric, to.shutterFraction);
+    moved.hit.position = there.position;
+    moved.hit.shapePosition = there.shapePosition;
+    moved.hit.geometricNormal = there.geometricNormal;
+    moved.hit.shadingNormal = there.shadingNormal;
+    return moved;
+  }
   const Transform before = shapeToWorld(scene, x.hit.object, from);
   const Transform after = shapeToWorld(scene, x.hit.object, to);
   moved.hit.position = after.point(x.hit.shapePosition);
@@ -65,7 +76,10 @@ PathVertex placedAt(const WindowScene& scene, const PathVertex& x, WindowInstant
 }
 
 double areaScale(const WindowScene& scene, const PathVertex& x, WindowInstant at) {
-  if (!onAnimatedObject(scene, x)) return 1;
+  const PreparedShape* shape = movingShapeOf(scene, x);
+  if (!shape) return 1;
+  if (shape->deforming)
+    return scene.geometry.frame(at.frame).deformedAreaScale(x.hit.object, x.hit.primitive, at.shutterFraction);
   const Transform toWorld = shapeToWorld(scene, x.hit.object, at);
   const auto& m = toWorld.matrix();
   const double det = static_cast<double>(m[0]) * (m[5] * m[10] - m[6] * m[9]) -

@@ -65,22 +65,6 @@ Decomposition decomposeAffine(const Affine3d& a) {
   return d;
 }
 
-// The index of the key segment [times[k], times[k+1]) holding t, and t's fraction of it;
-// before the first key or after the last the value is held.
-struct Segment {
-  size_t key;
-  double fraction;
-  bool hold;
-};
-
-Segment locate(const std::vector<double>& times, double t) {
-  if (t <= times.front()) return {0, 0, true};
-  if (t >= times.back()) return {times.size() - 1, 0, true};
-  const size_t next = static_cast<size_t>(std::upper_bound(times.begin(), times.end(), t) - times.begin());
-  const size_t key = next - 1;
-  return {key, (t - times[key]) / (times[next] - times[key]), false};
-}
-
 }  // namespace
 
 GltfNodeAnimation::GltfNodeAnimation(const GltfDocument& document) : document_(document) {
@@ -89,6 +73,7 @@ GltfNodeAnimation::GltfNodeAnimation(const GltfDocument& document) : document_(d
   parents_.assign(n, -1);
   rest_.resize(n);
   channels_.resize(n);
+  weights_.resize(n);
   for (size_t i = 0; i < n; ++i) {
     const tinygltf::Node& node = model.nodes[i];
     const std::string pointer = gltfPointer("nodes", static_cast<int>(i));
@@ -138,87 +123,92 @@ void GltfNodeAnimation::readAnimations() {
     for (size_t c = 0; c < animation.channels.size(); ++c) {
       const tinygltf::AnimationChannel& source = animation.channels[c];
       const std::string pointer = base + "/channels/" + std::to_string(c);
-      if (source.target_path == "weights")
-        document_.fail(pointer, "animates morph target weights; pathfarm does not support morph targets");
       if (source.target_node < 0) continue;  // no target: the channel animates nothing
       if (static_cast<size_t>(source.target_node) >= channels_.size())
         document_.fail(pointer + "/target/node", "node " + std::to_string(source.target_node) + " does not exist");
+      if (source.target_path == "weights") {
+        KeyTrack& weights = weights_[static_cast<size_t>(source.target_node)];
+        if (!weights.times.empty())
+          document_.fail(pointer, "a second channel animates the same node's morph target weights");
+        weights = readTrack(animation, source.sampler, 0, pointer);
+        duration_ = std::max(duration_, weights.times.back());
+        continue;
+      }
       Channel channel;
       channel.node = source.target_node;
-      int components = 3;
+      size_t width = 3;
       if (source.target_path == "translation") {
         channel.path = Path::Translation;
       } else if (source.target_path == "scale") {
         channel.path = Path::Scale;
       } else if (source.target_path == "rotation") {
         channel.path = Path::Rotation;
-        components = 4;
+        width = 4;
       } else {
         document_.fail(pointer + "/target/path", "unknown target path \"" + source.target_path + "\"");
       }
-      if (source.sampler < 0 || static_cast<size_t>(source.sampler) >= animation.samplers.size())
-        document_.fail(pointer + "/sampler", "sampler " + std::to_string(source.sampler) + " does not exist");
-      const tinygltf::AnimationSampler& sampler = animation.samplers[static_cast<size_t>(source.sampler)];
-      const std::string samplerPointer = base + "/samplers/" + std::to_string(source.sampler);
-      if (sampler.interpolation == "STEP") {
-        channel.interpolation = Interpolation::Step;
-      } else if (sampler.interpolation == "CUBICSPLINE") {
-        channel.interpolation = Interpolation::CubicSpline;
-      } else if (sampler.interpolation.empty() || sampler.interpolation == "LINEAR") {
-        channel.interpolation = Interpolation::Linear;
-      } else {
-        document_.fail(samplerPointer + "/interpolation", "unknown interpolation \"" + sampler.interpolation + "\"");
-      }
-      const std::vector<float> times = document_.readFloats(sampler.input, 1, samplerPointer + "/input");
-      if (times.empty()) document_.fail(samplerPointer + "/input", "a sampler needs at least one key");
-      for (size_t k = 0; k < times.size(); ++k) {
-        if (times[k] < 0 || times[k] > kMaxKeyTime || (k > 0 && !(times[k] > times[k - 1])))
-          document_.fail(samplerPointer + "/input", "key times must lie in [0, " + std::to_string(kMaxKeyTime) +
-                                                        "] s and increase strictly");
-        channel.times.push_back(times[k]);
-      }
-      channel.values = document_.readFloats(sampler.output, components, samplerPointer + "/output");
-      const size_t perKey = channel.interpolation == Interpolation::CubicSpline ? 3 : 1;
-      if (channel.values.size() != channel.times.size() * perKey * static_cast<size_t>(components))
-        document_.fail(samplerPointer + "/output", "has " + std::to_string(channel.values.size() / components) +
-                                                       " values for " + std::to_string(channel.times.size()) +
-                                                       " keys");
-      duration_ = std::max(duration_, channel.times.back());
+      channel.track = readTrack(animation, source.sampler, width, pointer);
+      duration_ = std::max(duration_, channel.track.times.back());
       channels_[static_cast<size_t>(channel.node)].push_back(std::move(channel));
     }
   }
 }
 
+KeyTrack GltfNodeAnimation::readTrack(const tinygltf::Animation& animation, int samplerIndex, size_t width,
+                                      const std::string& channelPointer) {
+  if (samplerIndex < 0 || static_cast<size_t>(samplerIndex) >= animation.samplers.size())
+    document_.fail(channelPointer + "/sampler", "sampler " + std::to_string(samplerIndex) + " does not exist");
+  const tinygltf::AnimationSampler& sampler = animation.samplers[static_cast<size_t>(samplerIndex)];
+  const std::string pointer =
+      channelPointer.substr(0, channelPointer.rfind("/channels/")) + "/samplers/" + std::to_string(samplerIndex);
+  KeyTrack track;
+  if (sampler.interpolation == "STEP") {
+    track.interpolation = KeyInterpolation::Step;
+  } else if (sampler.interpolation == "CUBICSPLINE") {
+    track.interpolation = KeyInterpolation::CubicSpline;
+  } else if (sampler.interpolation.empty() || sampler.interpolation == "LINEAR") {
+    track.interpolation = KeyInterpolation::Linear;
+  } else {
+    document_.fail(pointer + "/interpolation", "unknown interpolation \"" + sampler.interpolation + "\"");
+  }
+  const std::vector<float> times = document_.readFloats(sampler.input, 1, pointer + "/input");
+  if (times.empty()) document_.fail(pointer + "/input", "a sampler needs at least one key");
+  for (size_t k = 0; k < times.size(); ++k) {
+    if (times[k] < 0 || times[k] > kMaxKeyTime || (k > 0 && !(times[k] > times[k - 1])))
+      document_.fail(pointer + "/input", "key times must lie in [0, " + std::to_string(kMaxKeyTime) +
+                                             "] s and increase strictly");
+    track.times.push_back(times[k]);
+  }
+  const size_t perKey = track.interpolation == KeyInterpolation::CubicSpline ? 3 : 1;
+  // Weights are SCALAR outputs, one per target and key: their width follows from the count.
+  track.values = document_.readFloats(sampler.output, width == 0 ? 1 : static_cast<int>(width), pointer + "/output");
+  track.width = width == 0 ? track.values.size() / (track.times.size() * perKey) : width;
+  if (track.width == 0 || track.values.size() != track.times.size() * perKey * track.width)
+    document_.fail(pointer + "/output", "has " + std::to_string(track.values.size()) + " numbers for " +
+                                            std::to_string(track.times.size()) + " keys of " +
+                                            std::to_string(std::max<size_t>(track.width, 1)) + " components");
+  return track;
+}
+
+const KeyTrack* GltfNodeAnimation::weightTrack(int node) const {
+  const KeyTrack& track = weights_[static_cast<size_t>(node)];
+  return track.times.empty() ? nullptr : &track;
+}
+
 Affine3d GltfNodeAnimation::localAt(int node, double seconds) const {
   Trs trs = rest_[static_cast<size_t>(node)];
   for (const Channel& c : channels_[static_cast<size_t>(node)]) {
-    const size_t width = c.path == Path::Rotation ? 4 : 3;
-    const Segment s = locate(c.times, seconds);
-    // CUBICSPLINE stores (in-tangent, value, out-tangent) per key.
-    const size_t stride = c.interpolation == Interpolation::CubicSpline ? 3 * width : width;
-    const size_t valueOffset = c.interpolation == Interpolation::CubicSpline ? width : 0;
     std::array<double, 4> v{};
-    const auto at = [&](size_t key, size_t offset, size_t i) -> double { return c.values[key * stride + offset + i]; };
-    if (s.hold || c.interpolation == Interpolation::Step) {
-      for (size_t i = 0; i < width; ++i) v[i] = at(s.key, valueOffset, i);
-    } else if (c.interpolation == Interpolation::Linear && c.path == Path::Rotation) {
+    const KeyTrack::Segment s = c.track.locate(seconds);
+    if (c.path == Path::Rotation && c.track.interpolation == KeyInterpolation::Linear && !s.hold) {
       const auto quaternion = [&](size_t key) {
-        return Quaternion{c.values[key * 4 + 3], c.values[key * 4], c.values[key * 4 + 1], c.values[key * 4 + 2]};
+        return Quaternion{c.track.keyValue(key, 3), c.track.keyValue(key, 0), c.track.keyValue(key, 1),
+                          c.track.keyValue(key, 2)};
       };
       const Quaternion q = slerp(quaternion(s.key), quaternion(s.key + 1), static_cast<float>(s.fraction));
       v = {q.x, q.y, q.z, q.w};
-    } else if (c.interpolation == Interpolation::Linear) {
-      for (size_t i = 0; i < width; ++i) v[i] = at(s.key, 0, i) + (at(s.key + 1, 0, i) - at(s.key, 0, i)) * s.fraction;
     } else {
-      // Cubic Hermite spline (glTF 2.0 specification, appendix C), tangents scaled by
-      // the key interval.
-      const double t = s.fraction, t2 = t * t, t3 = t2 * t;
-      const double span = c.times[s.key + 1] - c.times[s.key];
-      for (size_t i = 0; i < width; ++i) {
-        const double p0 = at(s.key, width, i), m0 = at(s.key, 2 * width, i) * span;
-        const double p1 = at(s.key + 1, width, i), m1 = at(s.key + 1, 0, i) * span;
-        v[i] = (2 * t3 - 3 * t2 + 1) * p0 + (t3 - 2 * t2 + t) * m0 + (-2 * t3 + 3 * t2) * p1 + (t3 - t2) * m1;
-      }
+      c.track.sample(seconds, v.data());
     }
     const Vec3f xyz = Vec3d{v[0], v[1], v[2]}.toFloat();
     if (c.path == Path::Translation) trs.translation = xyz;
@@ -246,11 +236,11 @@ std::vector<double> GltfNodeAnimation::sampleTimes(int node) const {
     const auto& channels = channels_[static_cast<size_t>(n)];
     if (!channels.empty()) ++animatedNodes;
     for (const Channel& c : channels) {
-      times.insert(times.end(), c.times.begin(), c.times.end());
-      if (c.interpolation == Interpolation::CubicSpline) nonlinear = true;
-      if (c.interpolation == Interpolation::Step) {
-        for (size_t k = 1; k < c.times.size(); ++k)
-          times.push_back(std::max(c.times[k - 1], c.times[k] - kStepLead));
+      const std::vector<double>& keys = c.track.times;
+      times.insert(times.end(), keys.begin(), keys.end());
+      if (c.track.interpolation == KeyInterpolation::CubicSpline) nonlinear = true;
+      if (c.track.interpolation == KeyInterpolation::Step) {
+        for (size_t k = 1; k < keys.size(); ++k) times.push_back(std::max(keys[k - 1], keys[k] - kStepLead));
       }
     }
   }

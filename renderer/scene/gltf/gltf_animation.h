@@ -2,11 +2,13 @@
 // Where a glTF node is over time: its local TRS (rest values, or a matrix, overridden by
 // the animation channels that target it, with LINEAR, STEP or CUBICSPLINE samplers)
 // composed through its parents into a world placement the renderer can move objects
-// and cameras with (AnimatedTrs). Every animation in the file plays from time 0.
+// and cameras with (AnimatedTrs), and the morph target weights animated on it. Every
+// animation in the file plays from time 0.
 #include <vector>
 
-#include "renderer/math/vec3d.h"
 #include "renderer/math/animation.h"
+#include "renderer/math/key_track.h"
+#include "renderer/math/vec3d.h"
 #include "renderer/scene/gltf/gltf_document.h"
 
 namespace pathfarm {
@@ -22,8 +24,8 @@ struct Affine3d {
 
 class GltfNodeAnimation {
  public:
-  // Reads every node's rest placement and every animation; refuses animations of morph
-  // target weights, malformed samplers and hierarchies with cycles.
+  // Reads every node's rest placement and every animation; refuses malformed samplers
+  // and hierarchies with cycles.
   explicit GltfNodeAnimation(const GltfDocument& document);
 
   // The node's world placement at `seconds`.
@@ -33,22 +35,24 @@ class GltfNodeAnimation {
   // cubic splines or steps make the motion nonlinear between keys. `withScale` false
   // drops the scale (cameras). Refuses placements with shear or zero scale.
   AnimatedTrs worldTransform(int node, bool withScale) const;
+  // The animation of the node's morph target weights (null if none): a track of one
+  // component per target, its width checked against the mesh's targets by the caller.
+  const KeyTrack* weightTrack(int node) const;
   // The time of the last key of any animation (0 without animation).
   double duration() const { return duration_; }
   const std::vector<int>& parents() const { return parents_; }
 
  private:
   enum class Path { Translation, Rotation, Scale };
-  enum class Interpolation { Linear, Step, CubicSpline };
   struct Channel {
     int node;
     Path path;
-    Interpolation interpolation;
-    std::vector<double> times;
-    std::vector<float> values;  // 3 or 4 per key; CUBICSPLINE: in-tangent, value, out-tangent
+    KeyTrack track;  // 3 components, 4 for rotations (x, y, z, w)
   };
 
   void readAnimations();
+  // The sampler a channel plays, its width given (0: whatever the output holds per key).
+  KeyTrack readTrack(const tinygltf::Animation& animation, int sampler, size_t width, const std::string& pointer);
   Affine3d localAt(int node, double seconds) const;
   std::vector<double> sampleTimes(int node) const;
   Trs decompose(int node, const Affine3d& placement, bool withScale) const;
@@ -57,6 +61,7 @@ class GltfNodeAnimation {
   std::vector<int> parents_;  // -1 for roots
   std::vector<Trs> rest_;
   std::vector<std::vector<Channel>> channels_;  // per node
+  std::vector<KeyTrack> weights_;                // per node; no keys when not animated
   double duration_ = 0;
 };
 

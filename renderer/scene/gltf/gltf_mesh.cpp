@@ -42,14 +42,10 @@ std::shared_ptr<const TriangleMesh> importPrimitive(const GltfDocument& document
     document.warn(pointer + "/mode", "points and lines have no area and are not rendered");
     return nullptr;
   }
-  if (!primitive.targets.empty())
-    document.fail(pointer + "/targets", "morph targets are not supported by pathfarm");
   const auto attribute = [&](const char* name) {
     const auto it = primitive.attributes.find(name);
     return it == primitive.attributes.end() ? -1 : it->second;
   };
-  if (attribute("JOINTS_0") >= 0 || attribute("WEIGHTS_0") >= 0)
-    document.fail(pointer + "/attributes", "skinned meshes (JOINTS_0/WEIGHTS_0) are not supported by pathfarm");
   if (attribute("POSITION") < 0) document.fail(pointer + "/attributes", "has no POSITION attribute");
 
   auto mesh = std::make_shared<TriangleMesh>();

@@ -4,6 +4,7 @@
 #include <map>
 
 #include "renderer/scene/gltf/gltf_animation.h"
+#include "renderer/scene/gltf/gltf_deformation.h"
 #include "renderer/scene/gltf/gltf_lights.h"
 #include "renderer/scene/gltf/gltf_materials.h"
 #include "renderer/scene/gltf/gltf_mesh.h"
@@ -89,6 +90,27 @@ void importCamera(const GltfDocument& document, const GltfNodeAnimation& animati
                               "gives \"camera\"");
 }
 
+// Gives `object` its deformation. One that never changes is posed once into a static
+// mesh, so the renderer treats it as any still object.
+void placeDeformation(const GltfDocument& document, std::shared_ptr<const MeshDeformation> deformation,
+                      SceneObject& object) {
+  if (!deformation) return;
+  object.transform = AnimatedTrs();  // poses are in world space
+  if (!deformation->isAnimated()) {
+    auto posed = std::make_shared<TriangleMesh>(deformation->rest());
+    MeshDeformation::Pose pose = deformation->poseAt(0);
+    posed->positions = std::move(pose.positions);
+    posed->normals = std::move(pose.normals);
+    posed->tangents = std::move(pose.tangents);
+    object.mesh = std::move(posed);
+    return;
+  }
+  if (object.isEmitter())
+    document.fail("/materials", "object \"" + object.name + "\" emits light and deforms (skin or morph targets); "
+                                "pathfarm samples only emitters of a fixed shape");
+  object.deformation = std::move(deformation);
+}
+
 }  // namespace
 
 bool isGltfFile(const std::filesystem::path& file) {
@@ -117,7 +139,6 @@ Scene importGltfScene(const GltfDocument& document, const GltfImportOptions& opt
   for (const int n : nodes) {
     const tinygltf::Node& node = model.nodes[static_cast<size_t>(n)];
     const std::string pointer = gltfPointer("nodes", n);
-    if (node.skin >= 0) document.fail(pointer + "/skin", "skinned meshes are not supported by pathfarm");
     if (node.mesh < 0) continue;
     if (static_cast<size_t>(node.mesh) >= model.meshes.size())
       document.fail(pointer + "/mesh", "mesh " + std::to_string(node.mesh) + " does not exist");
@@ -146,6 +167,7 @@ Scene importGltfScene(const GltfDocument& document, const GltfImportOptions& opt
         object.emissionTexture = materials.emissionTexture[static_cast<size_t>(material)];
       }
       object.transform = placement;
+      placeDeformation(document, importDeformation(document, animation, n, static_cast<int>(p), mesh), object);
       scene.objects.push_back(std::move(object));
     }
   }

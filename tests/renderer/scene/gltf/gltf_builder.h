@@ -22,11 +22,11 @@ class GltfBuilder {
 
   nlohmann::json& doc() { return doc_; }
 
-  // An accessor of float components ("SCALAR", "VEC2", "VEC3", "VEC4"), with min and
-  // max for POSITION when `withBounds`.
+  // An accessor of float components ("SCALAR", "VEC2", "VEC3", "VEC4", "MAT4"), with
+  // min and max for POSITION when `withBounds`.
   int floats(const std::vector<float>& values, const std::string& type, bool withBounds = false) {
     const int view = appendView(values.data(), values.size() * sizeof(float));
-    const int width = type == "SCALAR" ? 1 : type[3] - '0';
+    const int width = type == "SCALAR" ? 1 : type == "MAT4" ? 16 : type[3] - '0';
     nlohmann::json accessor = {{"bufferView", view}, {"componentType", 5126},
                                {"count", values.size() / static_cast<size_t>(width)}, {"type", type}};
     if (withBounds) {
@@ -49,6 +49,15 @@ class GltfBuilder {
     const int view = appendView(values.data(), values.size() * sizeof(T));
     doc_["accessors"].push_back({{"bufferView", view}, {"componentType", sizeof(T) == 2 ? 5123 : 5125},
                                  {"count", values.size()}, {"type", "SCALAR"}});
+    return static_cast<int>(doc_["accessors"].size()) - 1;
+  }
+
+  // An accessor of unsigned shorts (componentType 5123) of `type`, e.g. JOINTS_0's "VEC4".
+  int unsignedShorts(const std::vector<uint16_t>& values, const std::string& type) {
+    const int view = appendView(values.data(), values.size() * sizeof(uint16_t));
+    const size_t width = type == "SCALAR" ? 1 : static_cast<size_t>(type[3] - '0');
+    doc_["accessors"].push_back(
+        {{"bufferView", view}, {"componentType", 5123}, {"count", values.size() / width}, {"type", type}});
     return static_cast<int>(doc_["accessors"].size()) - 1;
   }
 

@@ -8,6 +8,7 @@
 
 #include "renderer/scene/scene_loader.h"
 #include "test_support.h"
+#include "tests/renderer/scene/gltf/gltf_arm.h"
 #include "tests/renderer/scene/gltf/gltf_builder.h"
 
 namespace pathfarm {
@@ -102,16 +103,33 @@ TEST(GltfErrors, UnsupportedRequiredExtension) {
   expectError(loadError(b, "required"), "required.gltf", "/extensionsRequired/0", "EXT_meshopt_compression");
 }
 
-TEST(GltfErrors, SkinsAndMorphTargetsAreRefusedByName) {
-  GltfBuilder skinned = validScene();
-  skinned.doc()["nodes"][0]["skin"] = 0;
-  const int inverseBind = skinned.floats(std::vector<float>(16, 0.0f), "VEC4");
-  skinned.doc()["skins"] = {{{"joints", {1}}, {"inverseBindMatrices", inverseBind}}};
-  expectError(loadError(skinned, "skin"), "skin.gltf", "/nodes/0/skin", "skinned meshes");
+TEST(GltfErrors, BadSkinsAndMorphTargetsAreRefusedByPointer) {
+  const std::string attributes = "/meshes/0/primitives/0/attributes";
+  GltfBuilder outside = gltftest::skinnedArm({0, 0, 1});
+  outside.doc()["skins"][0]["joints"] = {outside.doc()["skins"][0]["joints"][0]};  // the elbow's joint 1 is gone
+  outside.doc()["skins"][0]["inverseBindMatrices"] =
+      outside.floats({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}, "MAT4");
+  expectError(loadError(outside, "outside"), "outside.gltf", attributes + "/JOINTS_0", "outside the skin's 1 joints");
 
-  GltfBuilder morphed = validScene();
-  morphed.doc()["meshes"][0]["primitives"][0]["targets"] = {{{"POSITION", 0}}};
-  expectError(loadError(morphed, "morph"), "morph.gltf", "/targets", "morph targets");
+  GltfBuilder weightless = gltftest::skinnedArm({0, 0, 1});
+  weightless.doc()["accessors"][3].erase("bufferView");  // WEIGHTS_0 all zero
+  expectError(loadError(weightless, "weightless"), "weightless.gltf", attributes + "/WEIGHTS_0",
+              "vertex 0 has no joint weight");
+
+  GltfBuilder unpaired = gltftest::skinnedArm({0, 0, 1});
+  unpaired.doc()["meshes"][0]["primitives"][0]["attributes"].erase("WEIGHTS_0");
+  expectError(loadError(unpaired, "unpaired"), "unpaired.gltf", attributes, "JOINTS_0 without WEIGHTS_0");
+
+  GltfBuilder glowing = gltftest::skinnedArm({0, 0, 1});
+  glowing.doc()["materials"] = {{{"emissiveFactor", {1, 1, 1}}}};
+  glowing.doc()["meshes"][0]["primitives"][0]["material"] = 0;
+  expectError(loadError(glowing, "glowing"), "glowing.gltf", "/materials", "emits light and deforms");
+
+  GltfBuilder miscounted = validScene();
+  miscounted.doc()["meshes"][0]["primitives"][0]["targets"] = {{{"POSITION", 0}}};
+  miscounted.doc()["meshes"][0]["weights"] = {0.5, 0.5};
+  expectError(loadError(miscounted, "miscounted"), "miscounted.gltf", "/meshes/0/weights",
+              "2 weights for 1 morph targets");
 }
 
 TEST(GltfErrors, AbsurdCountIsRefusedBeforeAllocating) {
