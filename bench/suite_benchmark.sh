@@ -9,7 +9,7 @@
 # intervals (report.proto's Interval); with --repeat N every shot runs N times (the same
 # bits each time) and the costs are the median of the runs with their range.
 #
-#   bench/suite_benchmark.sh [--build DIR] [--scenes "dolly courtyard walkthrough cornell showroom"]
+#   bench/suite_benchmark.sh [--build DIR] [--scenes "dolly courtyard walkthrough cornell showroom creature"]
 #                            [--pipelines "dui"] [--spp 64] [--reference-spp 1024]
 #                            [--frames 0:23] [--res 320x180] [--figures docs/figures] [--repeat 1]
 #                            [--setting small|production] [--reference-cache DIR]
@@ -20,7 +20,7 @@
 # so a second run of a scene at the same size renders none.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-build=build scenes="dolly courtyard walkthrough cornell showroom" pipelines=dui spp=64 reference=1024
+build=build scenes="dolly courtyard walkthrough cornell showroom creature" pipelines=dui spp=64 reference=1024
 frames=0:23 res=320x180 figures=docs/figures repeat=1
 cache="${XDG_CACHE_HOME:-$HOME/.cache}/pathfarm/references"
 while (($#)); do
