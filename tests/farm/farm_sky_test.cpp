@@ -111,6 +111,31 @@ TEST_F(SkyShotTest, SkyMirrorAndGlassLightSurviveEveryDuiStage) {
   expectSkyInEveryFinalFrame(out);
 }
 
+// A character (the creature suite scene: a skinned tentacle and a morphing blob, mirrored
+// and seen through glass) through every stage of dui: components still add up to the
+// beauty, and every final frame is finite.
+TEST_F(SkyShotTest, ADeformingCharacterSurvivesEveryDuiStage) {
+  const fs::path shot = dir() / "creature.shot.json";
+  writeFile(shot, R"({"name": "creature", "scene": ")" +
+                      (fs::path(PATHFARM_SOURCE_DIR) / "scenes" / "creature" / "scene.json").string() +
+                      R"(", "frames": {"start": 0, "end": 4}, "resolution": [64, 36], "spp": 4, "max_depth": 5,
+    "pipeline": "dui", "keyframe_interval": 2, "tile": 32, "baseline_core_seconds": 1})");
+  const fs::path out = dir() / "creature-out";
+  const CommandResult local = runPathfarm(
+      {"local", shot.string(), "--workers", "2", "--threads", "1", "--out", out.string(), "--keep-farm"}, {}, 300s);
+  ASSERT_EQ(local.status, 0) << local.output;
+  std::map<int, int> checked = expectEveryStageAddsUp(
+      out / "farm", {farm::TASK_ASSEMBLE_FRAME, farm::TASK_DENOISE, farm::TASK_UPSAMPLE, farm::TASK_INTERPOLATE,
+                     farm::TASK_RENDER_TILE, farm::TASK_COMPOSITE});
+  for (const farm::TaskKind kind : {farm::TASK_DENOISE, farm::TASK_UPSAMPLE, farm::TASK_INTERPOLATE})
+    EXPECT_GT(checked[kind], 0) << "no output of " << farm::TaskKind_Name(kind) << " was checked";
+  for (int64_t frame = 0; frame <= 4; ++frame) {
+    const FrameImage image = readExr(out / farm::frameFileName(frame));
+    for (const char* c : {"R", "G", "B"})
+      for (const float v : image.channel(c)) ASSERT_TRUE(std::isfinite(v) && v >= 0) << "frame " << frame;
+  }
+}
+
 // d writes its frames from the denoise tasks, without a composite: the sky must be
 // there all the same.
 TEST_F(SkyShotTest, SkyMirrorAndGlassLightSurviveTheDPipeline) {

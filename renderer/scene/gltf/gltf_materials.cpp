@@ -284,8 +284,9 @@ GltfMaterials importMaterials(const GltfDocument& document, Scene& scene) {
       }
     }
     if (const tinygltf::Value* ior = gltfExtension(m.extensions, "KHR_materials_ior")) {
-      material.ior = gltfFactor(document, pointer + "/extensions/KHR_materials_ior/ior", gltfNumberOr(*ior, "ior", 1.5), 1.0001,
-                            3);
+      // 1 is air (nothing reflects or bends); the extension's other special value, 0, is
+      // refused by the range.
+      material.ior = gltfFactor(document, pointer + "/extensions/KHR_materials_ior/ior", gltfNumberOr(*ior, "ior", 1.5), 1, 3);
     }
     if (gltfExtension(m.extensions, "KHR_materials_volume")) solidDielectric(document, pointer, material);
 

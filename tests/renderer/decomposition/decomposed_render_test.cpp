@@ -53,7 +53,8 @@ void expectComponentsAddUpToBeauty(const Scene& scene, const std::string& label)
 }
 
 TEST(DecomposedRender, ComponentsAddUpToTheBeautyOfTheSameSamples) {
-  for (const char* path : {"scenes/cornell/scene.json", "scenes/materials/scene.json", "scenes/dolly/scene.json"}) {
+  for (const char* path : {"scenes/cornell/scene.json", "scenes/materials/scene.json", "scenes/dolly/scene.json",
+                           "scenes/creature/scene.json"}) {
     expectComponentsAddUpToBeauty(loadScene(test_support::sourceDir() / path), path);
   }
   const Scene lobes = test_support::sceneFromJson(R"({

@@ -183,5 +183,45 @@ TEST(GltfRender, BlendPassesRaysThroughInProportionToTransparency) {
   EXPECT_NEAR(meanOver(image, -0.8, 0.8, -0.8, 0.8), 1.5, 5 * 0.0125);
 }
 
+// The lamp square of emission 3 at z = 0 before a sky of radiance 1, seen through a clear
+// solid (KHR_materials_volume) sheet of index `ior` tilted 30 degrees between it and the
+// camera, or without the sheet when `ior` is 0.
+FrameImage renderThroughSheet(const std::string& name, double ior) {
+  GltfBuilder b;
+  b.doc()["materials"] = {{{"name", "lamp"}, {"emissiveFactor", {1, 1, 1}},
+                           {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 3}}}}}},
+                          {{"name", "sheet"},
+                           {"pbrMetallicRoughness", {{"metallicFactor", 0}, {"roughnessFactor", 0}}},
+                           {"extensions",
+                            {{"KHR_materials_transmission", {{"transmissionFactor", 1}}},
+                             {"KHR_materials_ior", {{"ior", ior > 0 ? ior : 1.5}}},
+                             {"KHR_materials_volume", {{"thicknessFactor", 1}}}}}}};
+  std::vector<int> nodes{b.node({{"mesh", b.square(0)}, {"scale", {0.6, 0.6, 1}}}), b.camera({0, 0, 4})};
+  const float s = std::sin(kPi / 12), c = std::cos(kPi / 12);  // a 30-degree turn about y
+  if (ior > 0) nodes.push_back(b.node({{"mesh", b.square(1)}, {"translation", {0, 0, 1.5}}, {"scale", {3, 3, 1}},
+                                      {"rotation", {0, s, 0, c}}}));
+  b.scene(nodes);
+  b.write(renderFolder(), name);
+  const Scene scene = parseScene(R"({"include": ")" + name + R"(.gltf",
+    "materials": {"lamp": {"type": "diffuse", "reflectance": 0}}, "environment": {"radiance": 1}})",
+                                 renderFolder() / (name + ".json"));
+  RenderSettings settings = RenderSettings::defaultsOf(scene);
+  settings.width = settings.height = 32;
+  settings.spp = 4;
+  return FrameRenderer(scene, settings).render(0);
+}
+
+TEST(GltfRender, AnIorOfOneNeitherReflectsNorBendsLight) {
+  const auto difference = [](const FrameImage& a, const FrameImage& b) {
+    double sum = 0;
+    for (size_t i = 0; i < a.channel("G").size(); ++i) sum += std::abs(a.channel("G")[i] - b.channel("G")[i]);
+    return sum / static_cast<double>(a.channel("G").size());
+  };
+  const FrameImage bare = renderThroughSheet("no_sheet", 0);
+  EXPECT_LT(difference(renderThroughSheet("air_sheet", 1.0), bare), 1e-4);
+  // Glass's index shifts the lamp and reflects the sky: the comparison can tell.
+  EXPECT_GT(difference(renderThroughSheet("glass_sheet", 1.5), bare), 0.05);
+}
+
 }  // namespace
 }  // namespace pathfarm
