@@ -21,7 +21,7 @@ done
 cmake --build "$build" --target scene_scale > /dev/null || { echo "gltf_scale.sh: cannot build scene_scale in $build" >&2; exit 2; }
 python3 bench/gltf_scale/make_scale_scenes.py "$work"
 ls -l "$work"/*.glb
-for scene in terrain rocks_1 rocks_10 rocks_100 rocks_100_copies; do
+for scene in terrain rocks_1 rocks_10 rocks_100 rocks_100_copies character; do
   echo
   "$build/bin/scene_scale" --scene "$work/$scene.json" --res "$res" --spp "$spp" --repeat "$repeat"
 done

@@ -8,6 +8,9 @@
   rocks_100_copies.glb  the same 100 placements, each node with a mesh of its own (100
                  glTF meshes reading the same accessors), which the importer loads as
                  100 meshes: the baseline that instancing is measured against
+  character.glb  a skinned tube of 100,000 triangles bending on a chain of 60 joints, each
+                 vertex weighted to the 4 joints nearest along it, every joint turning on
+                 its own keys (24 a second): what posing a character per frame costs
 
 and beside each a JSON scene that includes it under a constant sky. Standard library
 only; the binary chunk is written with array, so a million triangles take a few seconds.
@@ -104,6 +107,74 @@ def bumpy_sphere(segments=224, rows=224):
     return positions, normals, uvs, indices
 
 
+def skinned_tube(rings=500, segments=100, joints=60, height=3.0):
+    """A tube along y of radius 0.25 (2 x rings x segments triangles) and, per vertex, the 4
+    joints nearest along y (joint k at y = k * height / (joints - 1)) with hat weights."""
+    positions, normals, uvs = array.array("f"), array.array("f"), array.array("f")
+    vertex_joints, vertex_weights = array.array("H"), array.array("f")
+    spacing = height / (joints - 1)
+    for j in range(rings + 1):
+        y = height * j / rings
+        nearest = min(max(int(round(y / spacing)) - 1, 0), joints - 4)
+        hats = [max(0.0, 1.5 - abs(y / spacing - (nearest + k))) for k in range(4)]
+        total = sum(hats)
+        for i in range(segments + 1):
+            phi = 2 * math.pi * i / segments
+            positions.extend((0.25 * math.cos(phi), y, -0.25 * math.sin(phi)))
+            normals.extend((math.cos(phi), 0, -math.sin(phi)))
+            uvs.extend((i / segments, j / rings))
+            vertex_joints.extend(nearest + k for k in range(4))
+            vertex_weights.extend(h / total for h in hats)
+    return positions, normals, uvs, grid_indices(segments, rings), vertex_joints, vertex_weights
+
+
+def add_skin(document, payload, vertex_joints, vertex_weights, joints=60, height=3.0, keys=24):
+    """The tube's skin: JOINTS_0/WEIGHTS_0, a chain of joint nodes, their inverse bind
+    matrices and a second of animation turning each joint on its own phase."""
+    spacing = height / (joints - 1)
+    times = array.array("f", (k / keys for k in range(keys + 1)))
+    binds = array.array("f")
+    for k in range(joints):
+        binds.extend((1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -k * spacing, 0, 1))
+    turns = []
+    for k in range(joints):
+        rotation = array.array("f")
+        for t in times:
+            angle = 0.06 * math.sin(2 * math.pi * t + 0.3 * k)
+            rotation.extend((0, 0, math.sin(angle / 2), math.cos(angle / 2)))
+        turns.append(rotation)
+    blocks = [(vertex_joints, "VEC4", 5123), (vertex_weights, "VEC4", 5126), (binds, "MAT4", 5126),
+              (times, "SCALAR", 5126)] + [(r, "VEC4", 5126) for r in turns]
+    widths = {"SCALAR": 1, "VEC4": 4, "MAT4": 16}
+    first = len(document["accessors"])
+    for values, kind, component in blocks:
+        data = values.tobytes()
+        payload += b"\0" * (-len(payload) % 4)
+        document["bufferViews"].append({"buffer": 0, "byteOffset": len(payload), "byteLength": len(data)})
+        accessor = {"bufferView": len(document["bufferViews"]) - 1, "componentType": component,
+                    "count": len(values) // widths[kind], "type": kind}
+        if kind == "SCALAR":
+            accessor["min"], accessor["max"] = [min(values)], [max(values)]
+        document["accessors"].append(accessor)
+        payload += data
+    document["buffers"][0]["byteLength"] = len(payload)
+    attributes = document["meshes"][0]["primitives"][0]["attributes"]
+    attributes["JOINTS_0"], attributes["WEIGHTS_0"] = first, first + 1
+    nodes = document["nodes"]
+    chain = []
+    for k in range(joints):
+        chain.append(len(nodes))
+        nodes.append({"name": f"joint{k}", "translation": [0, spacing if k else 0, 0]})
+        if k:
+            nodes[chain[k - 1]]["children"] = [chain[k]]
+    document["skins"] = [{"joints": chain, "inverseBindMatrices": first + 2}]
+    nodes.append({"name": "character", "mesh": 0, "skin": 0})
+    document["animations"] = [{"samplers": [{"input": first + 3, "output": first + 4 + k} for k in range(joints)],
+                               "channels": [{"sampler": k, "target": {"node": chain[k], "path": "rotation"}}
+                                            for k in range(joints)]}]
+    return payload, [chain[0], len(nodes) - 1]
+
+
 def camera_node(document, position, target):
     """A perspective camera at `position` looking at `target` (y up)."""
     forward = [t - p for t, p in zip(target, position)]
@@ -123,9 +194,11 @@ def camera_node(document, position, target):
     return len(document["nodes"]) - 1
 
 
-def write(out, name, document, payload):
+def write(out, name, document, payload, shutter=None):
+    """The .glb and a JSON scene including it (with the motion-blur shutter, if given)."""
     (out / f"{name}.glb").write_bytes(glb(document, payload))
-    scene = {"include": f"{name}.glb", "environment": {"radiance": [0.9, 0.95, 1.0]},
+    include = {"file": f"{name}.glb", "shutter": shutter} if shutter else f"{name}.glb"
+    scene = {"include": include, "environment": {"radiance": [0.9, 0.95, 1.0]},
              "render": {"resolution": [320, 180], "spp": 4, "max_depth": 4}}
     (out / f"{name}.json").write_text(json.dumps(scene, indent=1) + "\n")
 
@@ -139,6 +212,14 @@ def main():
     document["scenes"] = [{"nodes": [0, camera_node(document, (0, 4, 11), (0, 0, 0))]}]
     document["scene"] = 0
     write(out, "terrain", document, payload)
+
+    positions, normals, uvs, indices, vertex_joints, vertex_weights = skinned_tube()
+    document, payload = mesh_document(positions, normals, uvs, indices)
+    document["nodes"] = []
+    payload, roots = add_skin(document, payload, vertex_joints, vertex_weights)
+    document["scenes"] = [{"nodes": roots + [camera_node(document, (0, 1.5, 6), (0, 1.5, 0))]}]
+    document["scene"] = 0
+    write(out, "character", document, payload, shutter=[0, 0.5])
 
     sphere = bumpy_sphere()
     for count, copies in ((1, False), (10, False), (100, False), (100, True)):

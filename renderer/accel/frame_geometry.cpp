@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "renderer/accel/normal_mapping.h"
+#include "renderer/accel/shutter_poses.h"
 
 namespace pathfarm {
 namespace {
@@ -28,11 +29,6 @@ unsigned timeStepsFor(const AnimatedTrs& animation, double open, double close) {
   if (close <= open) return 1;
   return animation.hasKeyInside(open, close) ? 17 : 2;
 }
-
-// Vertices blend linearly between steps, so a joint that turns needs steps inside the
-// shutter even between keys; five keep a 90-degree turn within 2 % of the arm's length
-// of its arc. A deforming mesh stores every vertex per step, hence not a placement's 17.
-constexpr unsigned kDeformingSteps = 5;
 
 // Vertex i's attribute blended between the posed steps around a time, as Embree blends
 // a deforming mesh's positions.
@@ -108,12 +104,13 @@ FrameGeometry::~FrameGeometry() {
 RTCScene FrameGeometry::buildDeformed(int object, double open, double close) {
   const PreparedShape& shape = shot_.shape(object);
   const MeshDeformation& deformation = *shot_.scene().objects[static_cast<size_t>(object)].deformation;
-  const unsigned steps = close > open ? kDeformingSteps : 1;
   auto& poses = poses_[static_cast<size_t>(object)];
   std::vector<const std::vector<Vec3f>*> positions;
-  for (unsigned s = 0; s < steps; ++s) {
-    MeshDeformation::Pose pose = deformation.poseAt(steps == 1 ? open : open + (close - open) * s / (steps - 1));
-    TriangleMesh posed = *shape.mesh;  // the rest mesh's triangles (wound to its normals), uvs and signs
+  for (MeshDeformation::Pose& pose : shutterPoses(deformation, open, close)) {
+    // What shading reads per vertex; the triangles stay the rest mesh's (wound to its normals).
+    TriangleMesh posed;
+    posed.uvs = shape.mesh->uvs;
+    posed.tangentSigns = shape.mesh->tangentSigns;
     posed.positions = std::move(pose.positions);
     posed.normals = std::move(pose.normals);
     posed.tangents = std::move(pose.tangents);

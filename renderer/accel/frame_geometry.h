@@ -64,8 +64,8 @@ class FrameGeometry {
   // Per object, its transform at the instance's uniformly spaced time steps (empty for
   // static objects), interpolated the way Embree does for shading.
   std::vector<std::vector<Trs>> timeSteps_;
-  // Per deforming object, its posed mesh at uniformly spaced time steps (empty for the
-  // others), and the BVHs built from them.
+  // Per deforming object, its poses at the shutter's instants (shutter_poses.h; empty for
+  // the others), holding what shading reads per vertex, and the BVHs built from them.
   std::vector<std::vector<TriangleMesh>> poses_;
   std::vector<RTCScene> deformedScenes_;
 };

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "renderer/accel/frame_geometry.h"
+#include "renderer/accel/shutter_poses.h"
 #include "renderer/decomposition/primary_motion.h"
 #include "renderer/integrators/frame_renderer.h"
 #include "renderer/scene/scene_loader.h"
@@ -60,8 +61,9 @@ TEST(DeformingGeometry, ARayMeetsTheArmWhereItsJointHasTurnedAtTheRaysTime) {
   // Followed by its triangle, the same point of the forearm at the turn's ends.
   expectNear(shot.surfacePointAt(*hit, 0.0), forearmPoint(0.9f, 0.5f, 0), 1e-5f);
   expectNear(shot.surfacePointAt(*hit, 1.0), forearmPoint(0.9f, 0.5f, 0.5 * kPi), 1e-5f);
-  // Between steps the forearm lies on the chord of a 22.5-degree arc: within 2 % of its
-  // reach of the arc. A line between the shutter's ends would be 0.29 off at the hand.
+  // Between instants the forearm lies on the chord of an arc of at most 22.5 degrees:
+  // within 2 % of its reach of the arc. A line between the shutter's ends would be 0.29
+  // off at the hand.
   const double angle = 0.375 * 0.5 * kPi;
   const Vec3f between = forearmPoint(0.9f, 0.5f, angle);
   const auto near = downOnto(frame, between, 0.375f);
@@ -70,6 +72,21 @@ TEST(DeformingGeometry, ARayMeetsTheArmWhereItsJointHasTurnedAtTheRaysTime) {
   // The deformed triangle's point at that time is the hit itself.
   expectNear(frame.deformedSurface(near->object, near->primitive, near->barycentric, 0.375f).position,
              near->position, 1e-5f);
+}
+
+TEST(DeformingGeometry, TheShutterIsPosedAtAsFewInstantsAsKeepTheBlurOnTheArc) {
+  const Scene scene = armTurningThroughFrameZero();
+  const MeshDeformation& arm = *scene.objects[0].deformation;
+  EXPECT_EQ(shutterPoses(arm, 0.5, 0.5).size(), 1u);  // closed
+  // A quarter turn in one shutter: the hand's chord strays 0.41 from its arc, 190 times the
+  // tolerance of 0.0022 (the arm's extent is 2.2): four segments would leave 12 times it.
+  EXPECT_EQ(shutterPoses(arm, 0, 1).size(), 9u);
+  // A fiftieth of that turn strays by 1 / 2500 as much: one segment is within tolerance.
+  EXPECT_EQ(shutterPoses(arm, 0.5, 0.52).size(), 2u);
+  // Each pose is the deformation at its instant.
+  const auto poses = shutterPoses(arm, 0, 1);
+  for (size_t s = 0; s < poses.size(); ++s)
+    expectNear(poses[s].positions[2], arm.positionAt(2, static_cast<double>(s) / 8), 1e-6f);
 }
 
 TEST(DeformingGeometry, MotionVectorsFollowAPointOfTheForearmAsItsJointTurns) {
@@ -135,6 +152,63 @@ TEST(DeformingGeometry, AFrameOfTheSkinnedArmRendersAsTheSamePoseWrittenByHand) 
   // Same rays, same surfaces: only rounding of the vertices (and a sample at an edge) differs.
   EXPECT_GT(sum, 0.1 * static_cast<double>(a.size()));
   EXPECT_LT(difference, 2e-3 * sum);
+}
+
+// A black square before a sky of radiance 1 grows by a morph target from half-size 1 to 2
+// over frame 0's open shutter (one second, its weight LINEAR from 0 to 1). A point of the
+// plane at max(|x|, |y|) = m is covered while 1 + t > m, for a share clamp(2 - m, 0, 1)
+// of the shutter, so the blurred image there reads 1 minus that.
+TEST(DeformingGeometry, MotionBlurOfAGrowingSquareIsItsTimeAveragedCoverage) {
+  gltftest::GltfBuilder b;
+  const int square = b.square(0);
+  b.doc()["materials"] = {{{"name", "black"}}};
+  b.doc()["meshes"][static_cast<size_t>(square)]["primitives"][0]["targets"] = {
+      {{"POSITION", b.doc()["meshes"][static_cast<size_t>(square)]["primitives"][0]["attributes"]["POSITION"]}}};
+  const int node = b.node({{"mesh", square}});
+  const int times = b.floats({0, 1}, "SCALAR"), weights = b.floats({0, 1}, "SCALAR");
+  b.doc()["animations"] = {{{"samplers", {{{"input", times}, {"output", weights}}}},
+                            {"channels", {{{"sampler", 0}, {"target", {{"node", node}, {"path", "weights"}}}}}}}};
+  b.scene({node, b.camera({0, 0, 4}, 2 * std::atan(0.75))});  // the plane z = 0 seen over [-3, 3]^2
+  b.write(armFolder(), "growing");
+  const Scene scene = parseScene(R"({"include": {"file": "growing.gltf", "shutter": [0, 1]}, "fps": 1,
+    "materials": {"black": {"type": "diffuse", "reflectance": 0}}, "environment": {"radiance": 1}})",
+                                 armFolder() / "growing.json");
+  RenderSettings settings = RenderSettings::defaultsOf(scene);
+  const int size = 48;
+  settings.width = settings.height = size;
+  settings.spp = 16;
+  const FrameImage image = FrameRenderer(scene, settings).render(0);
+  // Per pixel, the expected value over its area (16 x 16 points) and which half of the
+  // growth band its centre lies in.
+  struct Band {
+    double measured = 0, expected = 0;
+    int pixels = 0;
+  } inner, outer;
+  const auto planeAt = [&](double pixel) { return pixel / size * 6 - 3; };
+  for (int py = 0; py < size; ++py)
+    for (int px = 0; px < size; ++px) {
+      const double m = std::max(std::abs(planeAt(px + 0.5)), std::abs(planeAt(py + 0.5)));
+      if (m < 1.1 || m > 1.9) continue;
+      double expected = 0;
+      for (int sy = 0; sy < 16; ++sy)
+        for (int sx = 0; sx < 16; ++sx) {
+          const double at = std::max(std::abs(planeAt(px + (sx + 0.5) / 16)), std::abs(planeAt(py + (sy + 0.5) / 16)));
+          expected += 1 - std::clamp(2 - at, 0.0, 1.0);
+        }
+      Band& band = m < 1.5 ? inner : outer;
+      band.expected += expected / 256;
+      band.measured += image.channel("G")[static_cast<size_t>(py * size + px)];
+      ++band.pixels;
+    }
+  for (const Band* band : {&inner, &outer}) {
+    ASSERT_GT(band->pixels, 100);
+    // Each sample sees the sky or not: a variance of at most 1/4 per sample.
+    const double sigma = std::sqrt(band->pixels * 0.25 / settings.spp);
+    EXPECT_NEAR(band->measured, band->expected, 5 * sigma);
+  }
+  // The bands are told apart: a square frozen at mid-shutter would give 0 and 1 there.
+  EXPECT_LT(inner.measured / inner.pixels, 0.45);
+  EXPECT_GT(outer.measured / outer.pixels, 0.55);
 }
 
 }  // namespace
