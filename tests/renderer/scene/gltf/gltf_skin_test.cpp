@@ -68,6 +68,21 @@ TEST(GltfSkin, NormalsTurnWithTheJointsAndStayUnit) {
   for (const Vec3f& n : pose.normals) EXPECT_NEAR(length(n), 1.0f, 1e-5f);
 }
 
+TEST(GltfSkin, MorphTargetsApplyBeforeTheSkin) {
+  // The hand (vertex 2) lifted by 0.5 along y in the mesh's own space, at weight 1: the
+  // elbow then turns the lifted hand.
+  GltfBuilder b = gltftest::skinnedArm({0, 0, 1});
+  std::vector<float> lift(18, 0.0f);
+  lift[7] = 0.5f;
+  b.doc()["meshes"][0]["primitives"][0]["targets"] = {{{"POSITION", b.floats(lift, "VEC3")}}};
+  b.doc()["meshes"][0]["weights"] = {1.0};
+  const Scene scene = loadScene(b.write(skinFolder(), "arm_morphed"));
+  const SceneObject& arm = onlyMesh(scene);
+  ASSERT_TRUE(arm.deformation);
+  expectNear(arm.deformation->positionAt(2, 1.0), Vec3f{1, 0, 0} + turnedAboutZ({1, 0.5f, 0}, 0.5 * kPi), 1e-5f);
+  expectNear(arm.deformation->poseAt(1.0).positions[2], {0.5f, 1, 0}, 1e-5f);
+}
+
 TEST(GltfSkin, AStillSkinIsPosedOnceIntoAStaticMesh) {
   GltfBuilder b = gltftest::skinnedArm({0, 0, 1}, false);
   const Scene scene = loadScene(b.write(skinFolder(), "arm_still"));
