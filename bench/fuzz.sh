@@ -68,8 +68,8 @@ tinygltf=(fuzz/tinygltf_implementation.cpp)
 math=(renderer/math/quaternion.cpp renderer/math/transform.cpp)
 gltf=(renderer/scene/gltf/gltf_document.cpp renderer/scene/gltf/gltf_animation.cpp
       renderer/scene/gltf/gltf_materials.cpp renderer/scene/gltf/gltf_mesh.cpp renderer/scene/gltf/gltf_scene.cpp
-      renderer/scene/gltf/gltf_lights.cpp
-      renderer/math/animation.cpp renderer/scene/texture.cpp renderer/scene/json_node.cpp
+      renderer/scene/gltf/gltf_lights.cpp renderer/scene/gltf/gltf_deformation.cpp renderer/scene/mesh_deformation.cpp
+      renderer/math/key_track.cpp renderer/math/animation.cpp renderer/scene/texture.cpp renderer/scene/json_node.cpp
       renderer/scene/alpha_coverage.cpp renderer/scene/scene_inputs.cpp "${math[@]}" "${tinygltf[@]}")
 meshes=(renderer/scene/mesh_io.cpp renderer/scene/obj_reader.cpp renderer/scene/ply_reader.cpp
         renderer/scene/scene_inputs.cpp fuzz/tinyobj_implementation.cpp)
