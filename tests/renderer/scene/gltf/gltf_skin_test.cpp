@@ -149,5 +149,24 @@ TEST(GltfMorph, DefaultWeightsApplyWhenNothingAnimatesThemAndTheNodesOverrideThe
   expectNear(onlyMesh(fromNode).mesh->positions[0], {0, 0, 5.25f}, 1e-6f);
 }
 
+TEST(GltfMorph, NormalAndTangentOffsetsBlendAndAreRenormalized) {
+  GltfBuilder b;
+  const int position = b.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3", true);
+  const int normal = b.floats({0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3");
+  const int tangent = b.floats({1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1}, "VEC4");
+  const int normalOffset = b.floats({0, 1, -1, 0, 1, -1, 0, 1, -1}, "VEC3");
+  const int tangentOffset = b.floats({-1, 1, 0, -1, 1, 0, -1, 1, 0}, "VEC3");
+  const int mesh = b.mesh({{"POSITION", position}, {"NORMAL", normal}, {"TANGENT", tangent}});
+  b.doc()["meshes"][0]["primitives"][0]["targets"] = {{{"NORMAL", normalOffset}, {"TANGENT", tangentOffset}}};
+  b.doc()["meshes"][0]["weights"] = {0.5};
+  b.scene({b.node({{"mesh", mesh}}), b.camera({0, 0, 3})});
+  const Scene scene = loadScene(b.write(skinFolder(), "morph_frames"));
+  const TriangleMesh& posed = *onlyMesh(scene).mesh;
+  // (0, 0, 1) + 0.5 (0, 1, -1) and (1, 0, 0) + 0.5 (-1, 1, 0), each made unit.
+  const float half = std::sqrt(0.5f);
+  expectNear(posed.normals[1], {0, half, half}, 1e-6f);
+  expectNear(posed.tangents[1], {half, half, 0}, 1e-6f);
+}
+
 }  // namespace
 }  // namespace pathfarm
