@@ -14,7 +14,8 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent / "showroom"))
-from make_scene import Writer, axis_angle, look_rotation, png, quad, sphere, tiles  # noqa: E402
+from make_scene import (Writer, axis_angle, chrome_material, glass_material, lamp_material, look_rotation,  # noqa: E402
+                        quad, sphere, tiles_material, use_extensions, write_scene)
 
 FPS = 24
 FRAMES = 24
@@ -144,27 +145,15 @@ def add_blob(w, material):
 
 def main():
     w = Writer()
-    image = w.view(png(256, 256, tiles))
-    w.gltf["images"].append({"bufferView": image, "mimeType": "image/png"})
-    w.gltf["samplers"].append({"magFilter": 9729, "minFilter": 9729, "wrapS": 10497, "wrapT": 10497})
-    w.gltf["textures"].append({"source": 0, "sampler": 0})
-    floor = w.material("tiles", pbrMetallicRoughness={"baseColorTexture": {"index": 0}, "metallicFactor": 0,
-                                                       "roughnessFactor": 0.55})
+    floor = tiles_material(w)
     skin = w.material("skin", pbrMetallicRoughness={"baseColorFactor": [0.85, 0.3, 0.12, 1], "metallicFactor": 0,
                                                     "roughnessFactor": 0.4})
     jelly = w.material("jelly", pbrMetallicRoughness={"baseColorFactor": [0.2, 0.55, 0.75, 1], "metallicFactor": 0,
                                                       "roughnessFactor": 0.25})
-    chrome = w.material("chrome", pbrMetallicRoughness={"baseColorFactor": [0.95, 0.95, 0.95, 1],
-                                                        "metallicFactor": 1, "roughnessFactor": 0.02})
-    glass = w.material("glass", pbrMetallicRoughness={"metallicFactor": 0, "roughnessFactor": 0},
-                       extensions={"KHR_materials_transmission": {"transmissionFactor": 1},
-                                   "KHR_materials_ior": {"ior": 1.5},
-                                   "KHR_materials_volume": {"thicknessFactor": 0.5}})
-    lamp = w.material("lamp", emissiveFactor=[1.0, 0.9, 0.75],
-                      pbrMetallicRoughness={"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0},
-                      extensions={"KHR_materials_emissive_strength": {"emissiveStrength": 14}})
-    w.gltf["extensionsUsed"] = ["KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_volume",
-                                "KHR_materials_emissive_strength"]
+    chrome = chrome_material(w)
+    glass = glass_material(w, 0.5)
+    lamp = lamp_material(w)
+    use_extensions(w)
 
     sphere_mesh = sphere()
     nodes = [
@@ -194,11 +183,7 @@ def main():
     animation["samplers"] += blob_samplers
     animation["channels"].append({"sampler": len(animation["samplers"]) - 1,
                                   "target": {"node": blob, "path": "weights"}})
-    w.gltf["scenes"] = [{"name": "creature", "nodes": nodes}]
-    w.gltf["scene"] = 0
-    out = HERE / "creature.glb"
-    out.write_bytes(w.glb())
-    print(f"wrote {out} ({out.stat().st_size} bytes)")
+    write_scene(w, "creature", nodes, HERE)
 
 
 if __name__ == "__main__":

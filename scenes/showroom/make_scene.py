@@ -165,32 +165,63 @@ def look_rotation(eye, target):
     return [cy * sp, sy * cp, -sy * sp, cy * cp]  # yaw about y, then pitch about the turned x
 
 
-def main():
-    w = Writer()
+def tiles_material(w):
+    """The tiled floor: the tiles() texture (image 0, texture 0), rough and not metal."""
     image = w.view(png(256, 256, tiles))
     w.gltf["images"].append({"bufferView": image, "mimeType": "image/png"})
     w.gltf["samplers"].append({"magFilter": 9729, "minFilter": 9729, "wrapS": 10497, "wrapT": 10497})
     w.gltf["textures"].append({"source": 0, "sampler": 0})
+    return w.material("tiles", pbrMetallicRoughness={"baseColorTexture": {"index": 0}, "metallicFactor": 0,
+                                                      "roughnessFactor": 0.55})
 
-    floor = w.material("tiles", pbrMetallicRoughness={"baseColorTexture": {"index": 0}, "metallicFactor": 0,
-                                                       "roughnessFactor": 0.55})
-    chrome = w.material("chrome", pbrMetallicRoughness={"baseColorFactor": [0.95, 0.95, 0.95, 1],
-                                                        "metallicFactor": 1, "roughnessFactor": 0.02})
+
+def chrome_material(w):
+    return w.material("chrome", pbrMetallicRoughness={"baseColorFactor": [0.95, 0.95, 0.95, 1],
+                                                      "metallicFactor": 1, "roughnessFactor": 0.02})
+
+
+def glass_material(w, thickness):
+    """A clear solid: transmission with a volume (the extensions listed by use_extensions)."""
+    return w.material("glass", pbrMetallicRoughness={"metallicFactor": 0, "roughnessFactor": 0},
+                      extensions={"KHR_materials_transmission": {"transmissionFactor": 1},
+                                  "KHR_materials_ior": {"ior": 1.5},
+                                  "KHR_materials_volume": {"thicknessFactor": thickness}})
+
+
+def lamp_material(w):
+    """The key light's: warm white emission of strength 14 on a black body."""
+    return w.material("lamp", emissiveFactor=[1.0, 0.9, 0.75],
+                      pbrMetallicRoughness={"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0},
+                      extensions={"KHR_materials_emissive_strength": {"emissiveStrength": 14}})
+
+
+def use_extensions(w):
+    w.gltf["extensionsUsed"] = ["KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_volume",
+                                "KHR_materials_emissive_strength"]
+
+
+def write_scene(w, name, nodes, folder):
+    """Makes `nodes` the default scene, named `name`, and writes folder/name.glb."""
+    w.gltf["scenes"] = [{"name": name, "nodes": nodes}]
+    w.gltf["scene"] = 0
+    out = folder / f"{name}.glb"
+    out.write_bytes(w.glb())
+    print(f"wrote {out} ({out.stat().st_size} bytes)")
+
+
+def main():
+    w = Writer()
+    floor = tiles_material(w)
+    chrome = chrome_material(w)
     gold = w.material("rough_gold", pbrMetallicRoughness={"baseColorFactor": [1.0, 0.78, 0.34, 1],
                                                           "metallicFactor": 1, "roughnessFactor": 0.35})
-    glass = w.material("glass", pbrMetallicRoughness={"metallicFactor": 0, "roughnessFactor": 0},
-                       extensions={"KHR_materials_transmission": {"transmissionFactor": 1},
-                                   "KHR_materials_ior": {"ior": 1.5},
-                                   "KHR_materials_volume": {"thicknessFactor": 0.6}})
+    glass = glass_material(w, 0.6)
     red = w.material("red_plastic", pbrMetallicRoughness={"baseColorFactor": [0.75, 0.08, 0.05, 1],
                                                           "metallicFactor": 0, "roughnessFactor": 0.3})
     stand = w.material("stand", pbrMetallicRoughness={"baseColorFactor": [0.3, 0.3, 0.32, 1],
                                                       "metallicFactor": 0, "roughnessFactor": 0.8})
-    lamp = w.material("lamp", emissiveFactor=[1.0, 0.9, 0.75],
-                      pbrMetallicRoughness={"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0},
-                      extensions={"KHR_materials_emissive_strength": {"emissiveStrength": 14}})
-    w.gltf["extensionsUsed"] = ["KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_volume",
-                                "KHR_materials_emissive_strength"]
+    lamp = lamp_material(w)
+    use_extensions(w)
 
     sphere_mesh = sphere()
     floor_mesh = w.mesh("floor", *quad(6, 6, 6), floor)
@@ -239,11 +270,7 @@ def main():
          [axis_angle((0, 1, 0), 0), axis_angle((0, 1, 0), 40), axis_angle((0, 1, 0), 80)], "LINEAR"),
         (carrier, "translation", [0, end], [[1.6, 0.05, -0.1], [1.6, 0.05, -0.5]], "LINEAR"),
     ])
-    w.gltf["scenes"] = [{"name": "showroom", "nodes": nodes}]
-    w.gltf["scene"] = 0
-    out = HERE / "showroom.glb"
-    out.write_bytes(w.glb())
-    print(f"wrote {out} ({out.stat().st_size} bytes)")
+    write_scene(w, "showroom", nodes, HERE)
 
 
 if __name__ == "__main__":
