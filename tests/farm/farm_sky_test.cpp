@@ -1,7 +1,7 @@
 // Light that reaches the camera without a diffuse vertex (the sky seen directly, in a
 // mirror, through glass) survives every stage of the dui pipeline: each stage's output has
 // its components adding up to its beauty, and the final frames show the sky where plain
-// path tracing does.
+// path tracing does. A deforming character (the creature scene) survives them the same way.
 #include <cmath>
 #include <map>
 #include <set>
