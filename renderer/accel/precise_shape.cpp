@@ -95,6 +95,7 @@ std::optional<PreciseShape::LocalHit> PreciseShape::intersectTriangle(uint32_t t
 
 std::optional<SurfaceDifferentials> PreciseShape::intersect(Vec3d origin, Vec3d direction, double minDistance,
                                                             double seconds) const {
+  if (deforms()) return std::nullopt;  // only its rest pose is held here (deforms())
   const AffineMotion placement = placementAt(seconds);
   const Mat3d toLocal = placement.linear.inverse();
   // The ray parameter is the same in both spaces: the local direction is not renormalized.
@@ -129,7 +130,7 @@ std::vector<PreciseShape> preciseShapesOf(const Scene& scene) {
   std::map<const TriangleMesh*, std::shared_ptr<const TriangleBvh>> bvhOfMesh;
   for (const SceneObject& object : scene.objects) {
     std::shared_ptr<const TriangleBvh> bvh;
-    if (object.type != ShapeType::Sphere) {
+    if (object.type != ShapeType::Sphere && !object.deformation) {  // a deforming mesh is never traced here
       auto& shared = bvhOfMesh[object.mesh.get()];
       if (!shared) shared = std::make_shared<const TriangleBvh>(*object.mesh);
       bvh = shared;

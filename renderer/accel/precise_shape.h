@@ -28,15 +28,15 @@ struct SurfaceDifferentials {
 
 class PreciseShape {
  public:
-  // `bvh` is the mesh's double-precision BVH (null for spheres), shared by every object
+  // `bvh` is the mesh's double-precision BVH (null for spheres and deforming meshes), shared by every object
   // that places the same mesh.
   PreciseShape(const SceneObject& object, std::shared_ptr<const TriangleBvh> bvh);
   // With a BVH of its own.
   explicit PreciseShape(const SceneObject& object);
 
   bool isAnimated() const { return animated_; }
-  // A deforming mesh (SceneObject::deformation) is held in its rest pose here: the
-  // specular walk, which differentiates rigid motion, must not trace it.
+  // A deforming mesh (SceneObject::deformation) is not held here: intersect() never hits
+  // it, and the specular walk, which differentiates rigid motion, leaves its chains alone.
   bool deforms() const { return object_.deformation != nullptr; }
   AffineMotion placementAt(double seconds) const {
     return animated_ ? object_.transform.motionAt(seconds) : still_;
