@@ -224,7 +224,7 @@ SurfaceHit FrameGeometry::deformedSurface(int object, uint32_t primitive, Vec2f 
 }
 
 SurfaceHit FrameGeometry::triangleSurface(int object, uint32_t primitive, Vec2f barycentric,
-                                                 const Transform& toWorld, float time) const {
+                                         const Transform& toWorld, float time) const {
   const PreparedShape& shape = shot_.shape(object);
   const TriangleMesh& mesh = *shape.mesh;
   const uint32_t i0 = mesh.indices[3 * primitive], i1 = mesh.indices[3 * primitive + 1],
