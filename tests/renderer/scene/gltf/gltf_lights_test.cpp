@@ -1,6 +1,7 @@
 // KHR_lights_punctual: lights placed and animated by their nodes arrive in the scene with
-// the file's colour, intensity and cones; a light a node refers to wrongly is refused by
-// pointer; and a glTF point light lights a floor as its closed form says.
+// the file's colour, intensity (candela and lux, turned into watts at 683 lm/W) and cones;
+// a light a node refers to wrongly is refused by pointer; and a glTF point light lights a
+// floor as its closed form says.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -20,9 +21,10 @@ using test_support::expectNear;
 std::filesystem::path lightsFolder() { return test_support::processTemporaryFolder("pathfarm_gltf_lights"); }
 
 const float kHalfTurn = std::sqrt(0.5f);  // sin and cos of 45 degrees, for quarter-turn quaternions
+const float kLumensPerWatt = 683;  // the luminous efficacy the extension's units assume
 
-// A point light (colour (1, 0.5, 0.25), intensity 4), a spot (cones 0.2 and 0.5 rad) and
-// a directional light, each on its own node.
+// A point light (colour (1, 0.5, 0.25), 4 cd), a spot (10 cd, cones 0.2 and 0.5 rad) and
+// a directional light (3 lux), each on its own node.
 GltfBuilder threeLights() {
   GltfBuilder b;
   b.doc()["extensionsUsed"] = {"KHR_lights_punctual"};
@@ -47,18 +49,34 @@ TEST(GltfLights, NodesPlaceLightsWithTheFilesColourIntensityAndCones) {
   const PunctualLight& bulb = scene.punctualLights[0];
   EXPECT_EQ(bulb.type, PunctualType::Point);
   EXPECT_EQ(bulb.name, "bulb");  // the node has no name: the light's
-  EXPECT_FLOAT_EQ(bulb.intensity.r, 4);
-  EXPECT_FLOAT_EQ(bulb.intensity.g, 2);
-  EXPECT_FLOAT_EQ(bulb.intensity.b, 1);
+  EXPECT_FLOAT_EQ(bulb.intensity.r, 4 / kLumensPerWatt);
+  EXPECT_FLOAT_EQ(bulb.intensity.g, 2 / kLumensPerWatt);
+  EXPECT_FLOAT_EQ(bulb.intensity.b, 1 / kLumensPerWatt);
   expectNear(bulb.position(0), {1, 2, 3});
   const PunctualLight& key = scene.punctualLights[1];
   EXPECT_EQ(key.type, PunctualType::Spot);
   EXPECT_EQ(key.name, "key");
   EXPECT_FLOAT_EQ(key.cosInner, std::cos(0.2f));
   EXPECT_FLOAT_EQ(key.cosOuter, std::cos(0.5f));
+  EXPECT_FLOAT_EQ(key.intensity.g, 10 / kLumensPerWatt);
   expectNear(key.forward(0), {0, -1, 0}, 1e-6f);
   EXPECT_EQ(scene.punctualLights[2].type, PunctualType::Directional);
+  EXPECT_FLOAT_EQ(scene.punctualLights[2].intensity.g, 3 / kLumensPerWatt);
   expectNear(scene.punctualLights[2].forward(0), {0, 0, -1});
+}
+
+// Blender's exporter writes a sun's W/m^2 as lux unconverted (and its point lights'
+// watts as candela, converted): from its files a sun keeps the number it was written with,
+// while the other lights are converted as in any file.
+TEST(GltfLights, ASunFromBlendersExporterKeepsItsWattsPerSquareMetre) {
+  GltfBuilder b = threeLights();
+  b.doc()["asset"]["generator"] = "Khronos glTF Blender I/O v3.4.50";
+  b.scene({b.node({{"mesh", b.square()}}), b.camera({0, 0, 3}), b.node({{"extensions", lightRef(0)}}),
+           b.node({{"extensions", lightRef(2)}})});
+  const Scene scene = loadScene(b.write(lightsFolder(), "blender"));
+  ASSERT_EQ(scene.punctualLights.size(), 2u);
+  EXPECT_FLOAT_EQ(scene.punctualLights[0].intensity.r, 4 / kLumensPerWatt);
+  EXPECT_FLOAT_EQ(scene.punctualLights[1].intensity.g, 3);
 }
 
 // The sun hangs under a parent turning 90 degrees about +y over 1 s (LINEAR): its -z
@@ -119,11 +137,11 @@ TEST(GltfLights, BadLightsAreRefusedByPointer) {
 }
 
 // A floor (the unit square scaled 100) seen from 2 above by a camera whose view spans
-// |x|, |y| <= 1 on it, lit by the file's point light (green intensity 1) at (0.3, 0.2, 1),
-// its material replaced by a Lambertian of albedo 1/2 through a JSON include.
+// |x|, |y| <= 1 on it, lit by the file's point light (green 683 cd, which is 1 W/sr) at
+// (0.3, 0.2, 1), its material replaced by a Lambertian of albedo 1/2 through a JSON include.
 TEST(GltfLights, APointLightFromTheFileLightsTheFloorAsTheClosedFormSays) {
   GltfBuilder b;
-  b.doc()["extensions"]["KHR_lights_punctual"]["lights"] = {{{"type", "point"}, {"color", {1, 0.5, 0.25}}, {"intensity", 2}}};
+  b.doc()["extensions"]["KHR_lights_punctual"]["lights"] = {{{"type", "point"}, {"color", {1, 0.5, 0.25}}, {"intensity", 2 * kLumensPerWatt}}};
   b.doc()["materials"] = {{{"name", "floor"}}};
   const int floor = b.node({{"mesh", b.square(0)}, {"scale", {100, 100, 1}}});
   const int light = b.node({{"extensions", lightRef(0)}, {"translation", {0.3, 0.2, 1}}});
