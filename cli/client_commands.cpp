@@ -8,13 +8,16 @@
 
 #include "cli/command.h"
 #include "cli/reference_cache_options.h"
+#include "cli/shot_key_options.h"
 #include "cli/shot_progress.h"
 #include "cli/tls_options.h"
+#include "cli/usage_parsing.h"
 #include "proto/wire/connection.h"
 #include "renderer/scene/json_node.h"
 #include "client/farm_client.h"
 #include "client/scene_upload.h"
 #include "client/shot_preparation.h"
+#include "client/shot_source.h"
 #include "scheduler/shot_report.h"
 
 namespace pathfarm {
@@ -24,6 +27,7 @@ struct ClientArguments {
   std::string scheduler = "127.0.0.1:7700";
   std::string tokenFile;
   std::string shotFile;
+  ShotKeyArguments shotKeys;
   std::string submitKey;
   int64_t shotId = 0;
   int priority = 0;
@@ -53,6 +57,9 @@ int withClient(const ClientArguments& arguments, Body body) {
                             farm::clientTlsFromEnvironment(arguments.tls));
     return body(client);
   } catch (const SceneError& e) {
+    spdlog::error("{}", e.what());
+    return kExitBadInput;
+  } catch (const UsageError& e) {
     spdlog::error("{}", e.what());
     return kExitBadInput;
   } catch (const farm::FarmError& e) {
@@ -98,9 +105,11 @@ void shotIdOption(CLI::App* command, ClientArguments& a) { command->add_option("
 // Submitting a shot, and following it to its frames and report.
 void addShotCommands(ClientCommands& add) {
   add.command(
-      "submit", "queue a shot file; prints the shot id",
+      "submit", "queue a shot (a shot file, or a scene file with shot keys as options); prints the shot id",
       [](CLI::App* c, ClientArguments& a) {
-        c->add_option("shot", a.shotFile, "shot file (JSON)")->required();
+        c->add_option("shot", a.shotFile, "shot file (JSON), or a scene file (glTF, JSON scene) to render as a shot")
+            ->required();
+        addShotKeyOptions(c, a.shotKeys);
         c->add_option("--submit-key", a.submitKey,
                       "names this submit: submitting again with the same key prints the same shot, adds nothing");
         c->add_flag("--shared-paths", a.sharedPaths,
@@ -108,7 +117,7 @@ void addShotCommands(ClientCommands& add) {
         addReferenceCacheOption(c, a.referenceCache);
       },
       [](farm::FarmClient& client, const ClientArguments& a) {
-        const farm::ShotFile file = farm::ShotFile::load(a.shotFile);
+        const farm::ShotFile file = farm::loadShotSource(a.shotFile, shotKeysOf(a.shotKeys));
         farm::ShotSpec spec = farm::preparedShot(file);  // validated before anything is queued
         if (!a.sharedPaths) {
           const farm::UploadSummary sent = farm::uploadSceneInputs(client, spec);

@@ -13,10 +13,13 @@
 #include "cli/command.h"
 #include "cli/reference_cache_options.h"
 #include "cli/shot_progress.h"
+#include "cli/shot_key_options.h"
 #include "cli/shot_size_options.h"
+#include "cli/usage_parsing.h"
 #include "renderer/scene/json_node.h"
 #include "client/local_farm.h"
 #include "client/shot_preparation.h"
+#include "client/shot_source.h"
 #include "scheduler/shot_report.h"
 
 namespace pathfarm {
@@ -24,6 +27,7 @@ namespace {
 
 struct LocalArguments {
   std::string shotFile;
+  ShotKeyArguments keys;
   std::string out;
   int workers = 2;
   int threads = 0;
@@ -57,9 +61,12 @@ int runLocal(const LocalArguments& arguments) {
   std::optional<farm::ShotFile> file;
   farm::ShotSpec spec;
   try {
-    file = farm::ShotFile::load(arguments.shotFile);
+    file = farm::loadShotSource(arguments.shotFile, shotKeysOf(arguments.keys));
     spec = farm::preparedShot(*file);
   } catch (const SceneError& e) {
+    spdlog::error("{}", e.what());
+    return kExitBadInput;
+  } catch (const UsageError& e) {
     spdlog::error("{}", e.what());
     return kExitBadInput;
   }
@@ -113,7 +120,10 @@ int runLocal(const LocalArguments& arguments) {
 std::vector<Command> addLocalCommand(CLI::App& app) {
   auto arguments = std::make_shared<LocalArguments>();
   CLI::App* local = app.add_subcommand("local", "render a shot on a farm of local worker processes");
-  local->add_option("shot", arguments->shotFile, "shot file (JSON, see docs/shot-format.md)")->required();
+  local->add_option("shot", arguments->shotFile,
+                    "shot file (JSON, see docs/shot-format.md), or a scene file (glTF, JSON scene) to render as a shot")
+      ->required();
+  addShotKeyOptions(local, arguments->keys);
   local->add_option("--workers", arguments->workers, "worker processes")->check(CLI::Range(1, 256))->capture_default_str();
   local->add_option("--threads", arguments->threads, "render threads per worker (0: the cores shared out)");
   local->add_option("--out", arguments->out, "output folder (default: the shot's output)");

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# glTF scenes as a user brings them: `pathfarm render` of a .glb, a broken file refused
+# glTF scenes as a user brings them: `pathfarm render` and `pathfarm local` of a .glb, a broken file refused
 # with exit status 2 naming the file and the JSON pointer, and the showroom (a JSON scene
 # including a .glb, with punctual lights added) finished by every pipeline on a local farm
 # with finite frames.
@@ -22,6 +22,16 @@ rest = data[20 + length:]
 body = struct.pack("<I4s", len(text), b"JSON") + text + rest
 open(sys.argv[2], "wb").write(struct.pack("<4sII", b"glTF", 2, 12 + len(body)) + body)
 PY
+# The .glb handed to `pathfarm local` as it is, with shot keys as options: a pt shot of
+# it renders the bytes `pathfarm render` wrote above.
+cp "$showroom/showroom.glb" "$work/showroom.glb"
+"$pathfarm" local "$work/showroom.glb" --frames 5 --res 32x18 --spp 2 --pipeline pt --workers 1 > "$work/log" 2>&1 ||
+  fail "local of showroom.glb failed: $(tail -5 "$work/log")"
+cmp -s "$work/output/showroom/frame_0005.exr" "$work/glb/frame_0005.exr" ||
+  fail "local of showroom.glb differs from its render: $(tail -5 "$work/log")"
+expect_refused local "$work/showroom.glb" --res 32 --workers 1
+grep -q -- '--res "32": expected WIDTHxHEIGHT' "$work/log" || fail "--res 32 message: $(cat "$work/log")"
+
 expect_refused render "$work/broken.glb" --out "$work/broken"
 grep -q "broken.glb: /meshes/0/primitives/0/attributes/POSITION: .* overrun" "$work/log" ||
   fail "broken.glb message: $(cat "$work/log")"
