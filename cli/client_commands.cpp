@@ -15,6 +15,7 @@
 #include "proto/wire/connection.h"
 #include "renderer/scene/json_node.h"
 #include "client/farm_client.h"
+#include "image/beauty_copy.h"
 #include "client/scene_upload.h"
 #include "client/shot_preparation.h"
 #include "client/shot_source.h"
@@ -38,6 +39,7 @@ struct ClientArguments {
   std::string out;
   bool json = false;
   bool sharedPaths = false;
+  bool beauty = false;
   std::string referenceCache;
   farm::ClientTls tls;
 };
@@ -157,11 +159,18 @@ void addShotCommands(ClientCommands& add) {
         c->add_option("id", a.shotId, "shot id")->required();
         c->add_option("--out", a.out, "output folder")->required();
         c->add_option("--reference-cache", a.referenceCache, "also keep the shot's references in this folder");
+        c->add_flag("--beauty", a.beauty,
+                    "also write each frame's R, G, B alone into OUT/beauty/, for viewers that refuse the other "
+                    "layers (Blender)");
       },
       [](farm::FarmClient& client, const ClientArguments& a) {
         const farm::ShotReply shot = client.shot(a.shotId);
         const auto& summary = shot.summary();
         const auto files = client.fetch(a.shotId, a.out);
+        if (a.beauty) {
+          std::filesystem::create_directories(std::filesystem::path(a.out) / "beauty");
+          for (const auto& file : files) writeBeautyCopy(file, std::filesystem::path(a.out) / "beauty" / file.filename());
+        }
         if (!a.referenceCache.empty() && summary.state() == farm::SHOT_DONE)
           keepRenderedReferences(farm::ReferenceCache(a.referenceCache), client, a.shotId, shot.spec());
         std::printf("%zu frames in %s\n", files.size(), a.out.c_str());

@@ -8,6 +8,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "image/beauty_copy.h"
 #include "image/exr_io.h"
 #include "test_support.h"
 
@@ -49,6 +50,28 @@ TEST(ExrIo, MultiLayerRoundTripIsExact) {
   for (const auto& entry : std::filesystem::directory_iterator(file.parent_path()))
     EXPECT_EQ(entry.path().string().find(file.string() + "."), std::string::npos) << "left behind: " << entry.path();
   std::filesystem::remove(file);
+}
+
+// The beauty copy holds R, G, B alone, bit for bit, over more rows than one strip.
+TEST(ExrIo, ABeautyCopyHoldsTheBeautyAndTheAttributesAlone) {
+  FrameImage original(19, 150);
+  std::mt19937 random(9);
+  std::uniform_real_distribution<float> value(0.0f, 4.0f);
+  for (const char* name : {"R", "G", "B", "diffuse_direct.color.R", "variance.G"})
+    for (float& v : original.addChannel(name)) v = value(random);
+  original.attributes()["pathfarm.frame"] = "7";
+  const auto frame = temporaryFile("full.exr"), copy = temporaryFile("beauty.exr");
+  writeExr(frame, original);
+  writeBeautyCopy(frame, copy);
+  const FrameImage beauty = readExr(copy);
+  EXPECT_EQ(beauty.width(), 19);
+  EXPECT_EQ(beauty.height(), 150);
+  EXPECT_EQ(beauty.channelNames().size(), 3u);
+  for (const char* name : {"R", "G", "B"}) EXPECT_EQ(beauty.channel(name), original.channel(name)) << name;
+  EXPECT_EQ(beauty.attributes().at("pathfarm.frame"), "7");
+  EXPECT_THROW(writeBeautyCopy(temporaryFile("missing.exr"), copy), ExrError);
+  std::filesystem::remove(frame);
+  std::filesystem::remove(copy);
 }
 
 TEST(ExrIo, MissingAndTruncatedFilesAreErrorsNamingTheFile) {
