@@ -8,22 +8,9 @@ namespace {
 constexpr double kMaxIntensity = 1e12;
 constexpr double kRightAngle = 1.5707963267948966;
 // KHR_lights_punctual gives point and spot lights in candela and directional lights in
-// lux; pathfarm renders in radiometric units, at the luminous efficacy the extension and
-// Blender's importer both use.
-constexpr float kLumensPerWatt = 683;
-
-// Blender's glTF exporter writes a sun's strength (W/m^2) as lux without the 683 lm/W its
-// own importer divides by, so a sun from Blender is read as it was written.
-bool writtenByBlender(const GltfDocument& document) {
-  return document.model().asset.generator.rfind("Khronos glTF Blender I/O", 0) == 0;
-}
-
-// Watts per candela (point, spot) or per lux (directional) for this file.
-float radiometricScale(const GltfDocument& document, PunctualType type, const std::string& pointer) {
-  if (type != PunctualType::Directional || !writtenByBlender(document)) return 1 / kLumensPerWatt;
-  document.warn(pointer + "/intensity", "read as W/m^2, as Blender's exporter writes a sun's strength");
-  return 1;
-}
+// lux; pathfarm renders in radiometric units, converted at the luminous efficacy the
+// extension and Blender's exporter and importer all use (docs/gltf.md, "Light units").
+constexpr float kWattsPerLumen = 1.0f / 683;
 
 PunctualLight readLight(const GltfDocument& document, int index) {
   const tinygltf::Light& source = document.model().lights[static_cast<size_t>(index)];
@@ -46,8 +33,7 @@ PunctualLight readLight(const GltfDocument& document, int index) {
       color[c] = gltfFactor(document, pointer + "/color/" + std::to_string(c), source.color[c], 0, 1e6);
   }
   light.intensity = Rgb(color[0], color[1], color[2]) *
-                    (gltfFactor(document, pointer + "/intensity", source.intensity, 0, kMaxIntensity) *
-                     radiometricScale(document, light.type, pointer));
+                    (gltfFactor(document, pointer + "/intensity", source.intensity, 0, kMaxIntensity) * kWattsPerLumen);
   if (light.type == PunctualType::Spot) {
     const float inner = gltfFactor(document, pointer + "/spot/innerConeAngle", source.spot.innerConeAngle, 0, kRightAngle);
     const float outer = gltfFactor(document, pointer + "/spot/outerConeAngle", source.spot.outerConeAngle, 0, kRightAngle);

@@ -65,20 +65,6 @@ TEST(GltfLights, NodesPlaceLightsWithTheFilesColourIntensityAndCones) {
   expectNear(scene.punctualLights[2].forward(0), {0, 0, -1});
 }
 
-// Blender's exporter writes a sun's W/m^2 as lux unconverted (and its point lights'
-// watts as candela, converted): from its files a sun keeps the number it was written with,
-// while the other lights are converted as in any file.
-TEST(GltfLights, ASunFromBlendersExporterKeepsItsWattsPerSquareMetre) {
-  GltfBuilder b = threeLights();
-  b.doc()["asset"]["generator"] = "Khronos glTF Blender I/O v3.4.50";
-  b.scene({b.node({{"mesh", b.square()}}), b.camera({0, 0, 3}), b.node({{"extensions", lightRef(0)}}),
-           b.node({{"extensions", lightRef(2)}})});
-  const Scene scene = loadScene(b.write(lightsFolder(), "blender"));
-  ASSERT_EQ(scene.punctualLights.size(), 2u);
-  EXPECT_FLOAT_EQ(scene.punctualLights[0].intensity.r, 4 / kLumensPerWatt);
-  EXPECT_FLOAT_EQ(scene.punctualLights[1].intensity.g, 3);
-}
-
 // The sun hangs under a parent turning 90 degrees about +y over 1 s (LINEAR): its -z
 // swings from -z to -x, through the diagonal at 0.5 s.
 TEST(GltfLights, AnAnimatedParentTurnsItsLight) {
