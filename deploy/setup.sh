@@ -13,9 +13,9 @@ PACKAGES=(
   clang libclang-rt-14-dev libcpp-httplib-dev prometheus-cpp-dev
   chromium nodejs
 )
-# Blender, for the add-on in clients/blender and its test (docs/blender.md): opt-in, since
+# Blender, for the add-on in clients/blender, its test and its screenshots (Xvfb; docs/blender.md): opt-in, since
 # it is a minute of installing that CI's budget does not have.
-if [ "${PATHFARM_BLENDER:-0}" = 1 ]; then PACKAGES+=(blender python3-numpy); fi
+if [ "${PATHFARM_BLENDER:-0}" = 1 ]; then PACKAGES+=(blender python3-numpy xvfb xauth); fi
 
 missing=()
 for package in "${PACKAGES[@]}"; do

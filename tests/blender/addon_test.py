@@ -119,6 +119,18 @@ def test_each_light(addon):
             compare_regions(light, pixels(job.frames()[0]), pixels(cycles))
 
 
+def test_environment_map(addon):
+    """An HDR World lands the right way round: the sky and the floor it lights, region by
+    region, against Cycles."""
+    blender_scene.only_light(None)
+    blender_scene.use_environment_map(WORK)
+    bpy.context.scene.pathfarm.output = os.path.join(WORK, "environment")
+    job = run_shot(addon, bpy.context)
+    if job.frames():
+        cycles = blender_scene.render_cycles(os.path.join(WORK, "cycles_environment.exr"), 2, SPP, MAX_DEPTH - 1)
+        compare_regions("an HDR World", pixels(job.frames()[0]), pixels(cycles))
+
+
 def test_bad_input(addon):
     """Clear messages, never a traceback: no camera, an unreachable farm, a wrong token."""
     from pathfarm_blender.farm_client import FarmError
@@ -156,6 +168,7 @@ def main():
     try:
         test_round_trip(addon)
         test_each_light(addon)
+        test_environment_map(addon)
         test_bad_input(addon)
     finally:
         addon.farm_client.stop_local_farm()

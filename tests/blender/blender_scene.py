@@ -110,6 +110,26 @@ def build(folder, resolution=(96, 54), frames=(1, 3)):
     return scene
 
 
+def use_environment_map(folder, width=64, height=32):
+    """The World as an equirectangular HDR image: four azimuth quarters of different
+    brightness and a darker lower half, so a map turned or flipped shows."""
+    image = bpy.data.images.new("sky_map", width, height, float_buffer=True)
+    quarters = ((1.5, 0.6, 0.3), (0.2, 0.4, 1.2), (0.8, 0.8, 0.8), (0.1, 0.9, 0.2))
+    pixels = []
+    for y in range(height):  # Blender's rows run bottom to top
+        for x in range(width):
+            scale = 1.0 if y >= height // 2 else 0.3
+            pixels += [c * scale for c in quarters[x * 4 // width]] + [1]
+    image.pixels = pixels
+    image.filepath_raw = os.path.join(folder, "sky_map.hdr")
+    image.file_format = "HDR"
+    image.save()
+    world = bpy.context.scene.world
+    texture = world.node_tree.nodes.new("ShaderNodeTexEnvironment")
+    texture.image = bpy.data.images.load(image.filepath_raw)
+    world.node_tree.links.new(texture.outputs["Color"], world.node_tree.nodes["Background"].inputs["Color"])
+
+
 def add_light(name, kind, location, rotation, energy):
     data = bpy.data.lights.new(name, kind)
     data.energy = energy

@@ -27,13 +27,12 @@ class RENDER_PT_pathfarm(bpy.types.Panel):
         layout.prop(settings, "max_depth")
         layout.prop(settings, "reference")
         layout.prop(settings, "output")
-        render = context.scene.render
-        layout.label(text=f"Frames {context.scene.frame_start}–{context.scene.frame_end} at "
-                          f"{render.resolution_x * render.resolution_percentage // 100}×"
-                          f"{render.resolution_y * render.resolution_percentage // 100}, "
-                          f"{render.fps / render.fps_base:g} fps (from the scene)")
+        render, scene = context.scene.render, context.scene
+        scale = render.resolution_percentage / 100
+        layout.label(text=f"{scene.frame_start}–{scene.frame_end}, {round(render.resolution_x * scale)}×"
+                          f"{round(render.resolution_y * scale)}, {render.fps / render.fps_base:g} fps")
         row = layout.row()
-        row.operator("pathfarm.submit", icon="RENDER_ANIMATION")
+        row.operator("pathfarm.submit", text="Submit", icon="RENDER_ANIMATION")
         row.operator("pathfarm.cancel", icon="CANCEL")
         if state.status:
             layout.label(text=state.status, icon="ERROR" if state.status.startswith(("failed", "pathfarm")) else "INFO")
