@@ -50,6 +50,11 @@ struct Material {
   float roughness = 1;
   int metallicRoughnessTexture = -1;  // index into Scene::textures, -1 for none
   float transmission = 0;
+  // KHR_materials_specular's specularFactor and specularColorFactor: the dielectric part's
+  // reflectance goes from specular * min(specularColor F0, 1) at normal incidence to
+  // `specular` at grazing (metallic_roughness.h).
+  float specular = 1;
+  Rgb dielectricSpecularColor{1.0f};
   // KHR_materials_transmission's transmissionTexture: linear, its R scales `transmission`.
   int transmissionTexture = -1;  // index into Scene::textures, -1 for none
   // A tangent-space normal map (linear data) and the scale of its x and y (any type).

@@ -1,6 +1,8 @@
 #include "renderer/materials/metallic_roughness.h"
 
 #include <algorithm>
+#include <tuple>
+#include <utility>
 
 #include "renderer/materials/fresnel.h"
 #include "renderer/materials/specular_albedo.h"
@@ -14,6 +16,22 @@ namespace {
 Vec3f mirrored(Vec3f v) { return {v.x, v.y, -v.z}; }
 
 float mean(Rgb c) { return (c.r + c.g + c.b) * (1.0f / 3); }
+
+// The mean of a factor's channels, exactly the value of a grey one (as every factor is
+// without KHR_materials_specular's colour).
+float factorMean(Rgb c) { return c.r == c.g && c.g == c.b ? c.r : mean(c); }
+
+Rgb perChannel(const auto& f) { return {f(0), f(1), f(2)}; }
+
+// A, B and s c0 of F' = A F + B = A (F - F0) + s c0 (metallic_roughness.h), from
+// KHR_materials_specular's factors.
+std::tuple<Rgb, Rgb, Rgb> specularRemap(const Material& material, float ior) {
+  const float s = std::clamp(material.specular, 0.0f, 1.0f);
+  const float f0 = fresnelDielectric(1, ior).reflectance;
+  const auto c0 = [&](int c) { return std::min(std::max(material.dielectricSpecularColor[c], 0.0f) * f0, 1.0f); };
+  return {perChannel([&](int c) { return s * (1 - c0(c)) / (1 - f0); }),
+          perChannel([&](int c) { return s * (c0(c) - f0) / (1 - f0); }), perChannel([&](int c) { return s * c0(c); })};
+}
 
 }  // namespace
 
@@ -30,6 +48,8 @@ MetallicRoughnessBsdf::MetallicRoughnessBsdf(const Material& material, const Sur
       delta_(alpha_ < kDeltaAlpha),
       reflectSymbol_(glossyLobeSymbol(alpha_, roughnessThreshold, LobeSymbol::R)),
       transmitSymbol_(glossyLobeSymbol(alpha_, roughnessThreshold, LobeSymbol::T)) {
+  std::tie(specularScale_, specularOffset_, normalReflectance_) = specularRemap(material, ior_);
+  excessBound_ = specularOffset_.r < 0 || specularOffset_.g < 0 || specularOffset_.b < 0;
   // Listed from the material, not the point, so that every point agrees (see the header).
   const bool dielectricAnywhere = material.metallic < 1 || material.metallicRoughnessTexture >= 0;
   int next = 1;
@@ -37,28 +57,50 @@ MetallicRoughnessBsdf::MetallicRoughnessBsdf(const Material& material, const Sur
   transmissionLobe_ = dielectricAnywhere && material.transmission > 0 ? next++ : -1;
 }
 
-float MetallicRoughnessBsdf::dielectricFresnel(float cosThetaI) const {
-  return fresnelDielectric(cosThetaI, ior_).reflectance;
+Rgb MetallicRoughnessBsdf::dielectricFresnel(float cosThetaI) const {
+  const float fresnel = fresnelDielectric(cosThetaI, ior_).reflectance;
+  // F >= F0 holds up to rounding, which must not make F' negative.
+  return perChannel([&](int c) { return std::max(specularScale_[c] * fresnel + specularOffset_[c], 0.0f); });
 }
 
 Rgb MetallicRoughnessBsdf::reflectionFresnel(float cosThetaI) const {
-  return fresnelSchlick(cosThetaI, baseColor_) * metallic_ + Rgb((1 - metallic_) * dielectricFresnel(cosThetaI));
+  return fresnelSchlick(cosThetaI, baseColor_) * metallic_ + dielectricFresnel(cosThetaI) * (1 - metallic_);
 }
 
-float MetallicRoughnessBsdf::albedoBound(float cosTheta) const {
-  return specularAlbedoBound(cosTheta, alpha_, ior_);
+Rgb MetallicRoughnessBsdf::remappedAlbedo(float fresnelAlbedo, float excessAlbedo) const {
+  return perChannel([&](int c) {
+    const float bound = specularOffset_[c] >= 0 ? specularScale_[c] * fresnelAlbedo + specularOffset_[c]
+                                                : specularScale_[c] * excessAlbedo + normalReflectance_[c];
+    return std::min(bound, 1.0f);
+  });
+}
+
+Rgb MetallicRoughnessBsdf::albedoBound(float cosTheta) const {
+  return remappedAlbedo(specularAlbedoBound(cosTheta, alpha_, ior_),
+                        excessBound_ ? specularExcessAlbedoBound(cosTheta, alpha_, ior_) : 0);
+}
+
+Rgb MetallicRoughnessBsdf::averageAlbedoBound() const {
+  return remappedAlbedo(averageSpecularAlbedoBound(alpha_, ior_),
+                        excessBound_ ? averageSpecularExcessAlbedoBound(alpha_, ior_) : 0);
 }
 
 MetallicRoughnessBsdf::LobeProbabilities MetallicRoughnessBsdf::probabilities(Vec3f wo) const {
   const float dielectric = 1 - metallic_;
   const float reflection = mean(reflectionFresnel(wo.z));
   const float diffuse =
-      diffuseLobe_ < 0 ? 0 : dielectric * (1 - transmission_) * mean(baseColor_) * (1 - albedoBound(wo.z));
-  const float transmission =
-      transmissionLobe_ < 0 ? 0 : dielectric * transmission_ * mean(baseColor_) * (1 - dielectricFresnel(wo.z));
+      diffuseLobe_ < 0 ? 0 : dielectric * (1 - transmission_) * mean(baseColor_) * factorMean(Rgb(1) - albedoBound(wo.z));
+  const float transmission = transmissionLobe_ < 0 ? 0
+                                                   : dielectric * transmission_ * mean(baseColor_) *
+                                                         factorMean(Rgb(1) - dielectricFresnel(wo.z));
   const float total = reflection + diffuse + transmission;
   if (!(total > 0)) return {};
   return {reflection / total, diffuse / total, transmission / total};
+}
+
+Rgb MetallicRoughnessBsdf::transmittance(float cosThetaI, float scale) const {
+  const Rgb fresnel = dielectricFresnel(cosThetaI);
+  return perChannel([&](int c) { return (1 - metallic_) * transmission_ * (1 - fresnel[c]) * scale; });
 }
 
 LobeValues MetallicRoughnessBsdf::evaluate(Vec3f wo, Vec3f wi) const {
@@ -70,16 +112,19 @@ LobeValues MetallicRoughnessBsdf::evaluate(Vec3f wo, Vec3f wi) const {
     }
     const float weight = (1 - metallic_) * (1 - transmission_);
     if (diffuseLobe_ >= 0 && weight > 0) {
-      // Kelemen and Szirmay-Kalos 2001: reflects rho (1 - E(cos_o)), what the coating leaves.
-      const float base = (1 - albedoBound(wo.z)) * (1 - albedoBound(wi.z)) /
-                         (kPi * (1 - averageSpecularAlbedoBound(alpha_, ior_)));
-      v.value[diffuseLobe_] = baseColor_ * (weight * base * wi.z);
+      // Kelemen and Szirmay-Kalos 2001: reflects rho (1 - E'(cos_o)), what the coating leaves.
+      const Rgb outgoing = albedoBound(wo.z), incoming = albedoBound(wi.z), average = averageAlbedoBound();
+      v.value[diffuseLobe_] = baseColor_ * perChannel([&](int c) {
+        if (!(average[c] < 1)) return 0.0f;  // a coating that reflects everything
+        const float base = (1 - outgoing[c]) * (1 - incoming[c]) / (kPi * (1 - average[c]));
+        return weight * base * wi.z;
+      });
     }
   } else if (wi.z < 0 && transmissionLobe_ >= 0 && !delta_) {
     const Vec3f wiMirrored = mirrored(wi);
     const Vec3f m = normalize(wo + wiMirrored);
-    const float weight = (1 - metallic_) * transmission_ * (1 - dielectricFresnel(dot(wo, m)));
-    v.value[transmissionLobe_] = baseColor_ * (weight * distribution_.reflectionEval(wo, wiMirrored, m));
+    const float eval = distribution_.reflectionEval(wo, wiMirrored, m);
+    v.value[transmissionLobe_] = baseColor_ * transmittance(dot(wo, m), eval);
   }
   return v;
 }
@@ -137,7 +182,7 @@ std::optional<BsdfSample> MetallicRoughnessBsdf::sample(Vec3f woIn, float uLobe,
     lobe = diffuseLobe_;
   } else {
     if (delta_) {
-      const Rgb value = baseColor_ * ((1 - metallic_) * transmission_ * (1 - dielectricFresnel(wo.z)));
+      const Rgb value = baseColor_ * transmittance(wo.z, 1);
       return result(oneLobeSample(-wo, value / p.transmission, p.transmission, transmitSymbol_, true,
                                   transmissionLobe_));
     }

@@ -1,16 +1,24 @@
 #pragma once
-// glTF 2.0's pbrMetallicRoughness with KHR_materials_transmission and KHR_materials_ior
-// (Material::type MetallicRoughness). At a point: base colour rho, metallic m, GGX
-// alpha = roughness^2, transmission t, index eta. With half vector h,
+// glTF 2.0's pbrMetallicRoughness with KHR_materials_transmission, KHR_materials_ior and
+// KHR_materials_specular (Material::type MetallicRoughness). At a point: base colour rho,
+// metallic m, GGX alpha = roughness^2, transmission t, index eta. With half vector h,
 //
 //   f = m f_metal + (1 - m) f_dielectric
 //   f_metal      = Schlick(wo.h; F0 = rho) D G / (4 cos_o cos_i)
-//   f_dielectric = F(wo.h; eta) D G / (4 cos_o cos_i)                       specular
-//                + (1 - t) rho (1 - E(cos_o)) (1 - E(cos_i)) / (pi (1 - E_avg))   diffuse
-//                + t rho (1 - F(wo.h'; eta)) D G / (4 cos_o |cos_i|)          transmission
+//   f_dielectric = F'(wo.h) D G / (4 cos_o cos_i)                             specular
+//                + (1 - t) rho (1 - E'(cos_o)) (1 - E'(cos_i)) / (pi (1 - E'_avg)) diffuse
+//                + t rho (1 - F'(wo.h')) D G / (4 cos_o |cos_i|)              transmission
 //
-// with D and G the GGX distribution and Smith shadowing of microfacet.h, F exact dielectric
-// Fresnel, and E the bound on the dielectric specular albedo of specular_albedo.h.
+// with D and G the GGX distribution and Smith shadowing of microfacet.h. F' is the exact
+// dielectric Fresnel F of eta, F0 = F(1), remapped per channel as KHR_materials_specular
+// asks, from s c0 at normal incidence to s at grazing (s its specularFactor, c0 =
+// min(c F0, 1) with c its specularColorFactor): F' = A F + B with A = s (1 - c0) / (1 - F0)
+// and B = s (c0 - F0) / (1 - F0). The extension blends the two ends with Schlick's weight,
+// this with the exact Fresnel's; F' = F when s = c = 1, and F' >= 0 since F >= F0. E' bounds
+// the albedo of F' with the bounds of specular_albedo.h: E' = min(A E + B, 1) with E the
+// bound on the albedo of F when B >= 0 (c0 >= F0); otherwise, from F' = A (F - F0) + s c0,
+// E' = min(A E_x + s c0, 1) with E_x the bound on the albedo of F - F0 (the constant
+// s c0 reflects at most itself), which keeps the diffuse base as bright as it may be.
 //
 // Transmission is thin-walled, as glTF defines it without KHR_materials_volume: light
 // passes the surface without refraction, through the reflection lobe mirrored in the
@@ -19,9 +27,9 @@
 // an inside: the surface is two-sided, and wo below it mirrors both directions.
 //
 // Energy. Metal: Schlick <= 1 and the Smith single-scattering lobe loses energy. Dielectric,
-// with E_s the specular albedo: the transmission's albedo is at most
-// integral (1 - F) G1(wi') D_wo(m) dm <= 1 - E_s, and the diffuse one is exactly
-// rho (1 - E(cos_o)) <= 1 - E_s since E >= E_s, so with rho <= 1 the dielectric part's
+// per channel, with E_s the albedo of the specular lobe (of F', bounded by E'): the transmission's albedo is at most
+// integral (1 - F') G1(wi') D_wo(m) dm <= 1 - E_s, and the diffuse one is exactly
+// rho (1 - E'(cos_o)) <= 1 - E_s since E' >= E_s, so with rho <= 1 the dielectric part's
 // albedo is at most E_s + t (1 - E_s) + (1 - t) (1 - E_s) = 1, and so is the mix. The
 // bound's slack (0.006 to 0.015 away from grazing) costs the diffuse lobe about 1 % of
 // rho. Every term is symmetric in wo and wi (wo.h = wi.h, and the mirrored transmission
@@ -76,15 +84,22 @@ class MetallicRoughnessBsdf {
   };
   // The methods below assume wo.z > 0 (mirrored by the public ones).
   LobeProbabilities probabilities(Vec3f wo) const;
-  // m Schlick(rho) + (1 - m) F(eta): the shared specular lobe's Fresnel.
+  // m Schlick(rho) + (1 - m) F': the shared specular lobe's Fresnel.
   Rgb reflectionFresnel(float cosThetaI) const;
-  float dielectricFresnel(float cosThetaI) const;
-  float albedoBound(float cosTheta) const;
+  Rgb dielectricFresnel(float cosThetaI) const;  // F'
+  Rgb albedoBound(float cosTheta) const;         // E'
+  Rgb averageAlbedoBound() const;                // E'_avg
+  // E' from the bounds on the albedos of F and of F - F0 (the header).
+  Rgb remappedAlbedo(float fresnelAlbedo, float excessAlbedo) const;
+  // (1 - m) t (1 - F'(cos)) scale: the transmission lobe's weight.
+  Rgb transmittance(float cosThetaI, float scale) const;
   LobeValues evaluate(Vec3f wo, Vec3f wi) const;
   float density(Vec3f wo, Vec3f wi) const;
 
   Rgb baseColor_;
   float metallic_, alpha_, ior_, transmission_;
+  Rgb specularScale_, specularOffset_, normalReflectance_;  // A, B and s c0: F' = A F + B
+  bool excessBound_;  // some channel has B < 0: E' reads the bound on F - F0
   MicrofacetDistribution distribution_;
   bool delta_;
   LobeSymbol reflectSymbol_, transmitSymbol_;

@@ -4,8 +4,8 @@
 #include <cmath>
 
 #include "renderer/materials/specular_albedo_tabulation.h"
-// kTabulatedAlbedo and kTabulatedAverage, written at build time by
-// tabulate_specular_albedo.cpp from specular_albedo::tabulate().
+// kTabulatedAlbedo, kTabulatedAverage and their Excess counterparts, written at build time
+// by tabulate_specular_albedo.cpp from specular_albedo::tabulate().
 #include "specular_albedo_table.inc"
 
 namespace pathfarm {
@@ -17,6 +17,8 @@ using specular_albedo::kRoughness;
 using specular_albedo::muNode;
 static_assert(std::size(kTabulatedAlbedo) == size_t(kIor) * kRoughness * kMu);
 static_assert(std::size(kTabulatedAverage) == size_t(kIor) * kRoughness);
+static_assert(std::size(kTabulatedExcessAlbedo) == std::size(kTabulatedAlbedo));
+static_assert(std::size(kTabulatedExcessAverage) == std::size(kTabulatedAverage));
 
 // Cell index and weight of the upper node for x in [0, n - 1].
 struct Cell {
@@ -42,9 +44,7 @@ float interpolate(Cell r, Cell n, const F& f) {
   return (1 - n.t) * along(n.index) + n.t * along(n.index + 1);
 }
 
-}  // namespace
-
-float specularAlbedoBound(float cosTheta, float alpha, float eta) {
+float lookUp(const float* albedo, float cosTheta, float alpha, float eta) {
   // Linear in cos(theta) between the nodes, as the average assumes; the node spacing is
   // what is quadratic.
   const float mu = std::clamp(cosTheta, 0.0f, 1.0f);
@@ -52,14 +52,30 @@ float specularAlbedoBound(float cosTheta, float alpha, float eta) {
   const float a = muNode(i), b = muNode(i + 1);
   const float w = std::clamp((mu - a) / (b - a), 0.0f, 1.0f);
   return interpolate(roughnessCell(alpha), iorCell(eta), [&](int k, int j) {
-    const float* row = &kTabulatedAlbedo[(size_t(k) * kRoughness + j) * kMu];
+    const float* row = &albedo[(size_t(k) * kRoughness + j) * kMu];
     return (1 - w) * row[i] + w * row[i + 1];
   });
 }
 
-float averageSpecularAlbedoBound(float alpha, float eta) {
+float lookUpAverage(const float* average, float alpha, float eta) {
   return interpolate(roughnessCell(alpha), iorCell(eta),
-                     [&](int k, int j) { return kTabulatedAverage[size_t(k) * kRoughness + j]; });
+                     [&](int k, int j) { return average[size_t(k) * kRoughness + j]; });
+}
+
+}  // namespace
+
+float specularAlbedoBound(float cosTheta, float alpha, float eta) {
+  return lookUp(kTabulatedAlbedo, cosTheta, alpha, eta);
+}
+
+float averageSpecularAlbedoBound(float alpha, float eta) { return lookUpAverage(kTabulatedAverage, alpha, eta); }
+
+float specularExcessAlbedoBound(float cosTheta, float alpha, float eta) {
+  return lookUp(kTabulatedExcessAlbedo, cosTheta, alpha, eta);
+}
+
+float averageSpecularExcessAlbedoBound(float alpha, float eta) {
+  return lookUpAverage(kTabulatedExcessAverage, alpha, eta);
 }
 
 }  // namespace pathfarm

@@ -22,4 +22,10 @@ float specularAlbedoBound(float cosTheta, float alpha, float eta);
 // 2 * integral of E(mu) mu dmu over [0, 1], for the same alpha and eta.
 float averageSpecularAlbedoBound(float alpha, float eta);
 
+// The same bound (and average) for the albedo of F - F(1), the Fresnel reflectance above
+// its value at normal incidence, tabulated alike: KHR_materials_specular scales that part
+// apart from the rest (metallic_roughness.h).
+float specularExcessAlbedoBound(float cosTheta, float alpha, float eta);
+float averageSpecularExcessAlbedoBound(float alpha, float eta);
+
 }  // namespace pathfarm

@@ -21,8 +21,9 @@ constexpr float kMargin = 0.01f;
 // which is above the albedo wherever it is convex in cos(theta), as Fresnel is.
 constexpr int kGrazingNode = 9;
 
-double integrate(float mu, float alpha, float eta) {
+double integrate(float mu, float alpha, float eta, Reflectance reflectance) {
   const MicrofacetDistribution distribution(MicrofacetType::GGX, alpha);
+  const float subtracted = reflectance == Reflectance::Excess ? fresnelDielectric(1, eta).reflectance : 0.0f;
   const Vec3f wo{std::sqrt(std::max(0.0f, 1 - mu * mu)), 0, mu};
   double sum = 0;
   for (int a = 0; a < kQuadrature; ++a) {
@@ -33,7 +34,7 @@ double integrate(float mu, float alpha, float eta) {
       if (cosOM <= 0) continue;
       const Vec3f wi = reflect(wo, m);
       if (wi.z <= 0) continue;
-      sum += fresnelDielectric(cosOM, eta).reflectance * distribution.G1(wi, m);
+      sum += (fresnelDielectric(cosOM, eta).reflectance - subtracted) * distribution.G1(wi, m);
     }
   }
   return sum / (kQuadrature * kQuadrature);
@@ -41,7 +42,7 @@ double integrate(float mu, float alpha, float eta) {
 
 }  // namespace
 
-Table tabulate() {
+Table tabulate(Reflectance reflectance) {
   Table table{std::vector<float>(size_t(kIor) * kRoughness * kMu), std::vector<float>(size_t(kIor) * kRoughness)};
   for (int k = 0; k < kIor; ++k) {
     for (int j = 0; j < kRoughness; ++j) {
@@ -49,7 +50,7 @@ Table tabulate() {
       // At grazing incidence everything is reflected in the limit; one is a safe bound.
       row[0] = 1;
       for (int i = 1; i < kMu; ++i)
-        row[i] = std::min(1.0f, float(integrate(muNode(i), alphaNode(j), iorNode(k))) + kMargin);
+        row[i] = std::min(1.0f, float(integrate(muNode(i), alphaNode(j), iorNode(k), reflectance)) + kMargin);
       for (int i = 1; i < kGrazingNode; ++i) {
         const float chord = 1 - (1 - row[kGrazingNode]) * muNode(i) / muNode(kGrazingNode);
         row[i] = std::max(row[i], chord);

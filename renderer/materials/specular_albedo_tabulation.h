@@ -31,7 +31,11 @@ struct Table {
   std::vector<float> average;  // [ior][roughness]
 };
 
+// What a table integrates: the dielectric Fresnel reflectance F, or its excess F - F(1)
+// over normal incidence (specularExcessAlbedoBound).
+enum class Reflectance { Fresnel, Excess };
+
 // Integrates every node; deterministic, so the build's table and this agree bit for bit.
-Table tabulate();
+Table tabulate(Reflectance reflectance = Reflectance::Fresnel);
 
 }  // namespace pathfarm::specular_albedo

@@ -21,7 +21,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: %s OUTPUT.inc\n", argv[0]);
     return 2;
   }
-  const auto table = pathfarm::specular_albedo::tabulate();
+  using pathfarm::specular_albedo::Reflectance;
+  const auto table = pathfarm::specular_albedo::tabulate(Reflectance::Fresnel);
+  const auto excess = pathfarm::specular_albedo::tabulate(Reflectance::Excess);
   std::FILE* out = std::fopen(argv[1], "w");
   if (!out) {
     std::perror(argv[1]);
@@ -30,5 +32,7 @@ int main(int argc, char** argv) {
   std::fprintf(out, "// Written by tabulate_specular_albedo at build time; do not edit.\n");
   writeArray(out, "kTabulatedAlbedo", table.albedo);
   writeArray(out, "kTabulatedAverage", table.average);
+  writeArray(out, "kTabulatedExcessAlbedo", excess.albedo);
+  writeArray(out, "kTabulatedExcessAverage", excess.average);
   return std::fclose(out) == 0 ? 0 : 1;
 }

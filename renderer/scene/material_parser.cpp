@@ -55,12 +55,12 @@ void parseReflectance(const JsonNode& node, const std::filesystem::path& folder,
   material.reflectanceTexture = loadTexture(node["texture"], folder, textures, TextureEncoding::Srgb);
 }
 
-// glTF's pbrMetallicRoughness (+ transmission, ior). The base colour texture, as in glTF,
+// glTF's pbrMetallicRoughness (+ transmission, ior, specular). The base colour texture, as in glTF,
 // multiplies a factor that stays 1 unless given: {"texture": ...} alone means factor 1.
 void parseMetallicRoughness(const JsonNode& node, const std::filesystem::path& folder,
                             std::vector<ImageTexture>& textures, Material& material) {
   node.expectKeys({"type", "base_color", "metallic", "roughness", "metallic_roughness_texture", "transmission",
-                   "ior"});
+                   "ior", "specular", "specular_color"});
   material.reflectance = Rgb(1);
   if (auto color = node.optional("base_color")) parseReflectance(*color, folder, textures, material);
   if (auto metallic = node.optional("metallic")) material.metallic = static_cast<float>(metallic->number(0, 1));
@@ -69,6 +69,8 @@ void parseMetallicRoughness(const JsonNode& node, const std::filesystem::path& f
   // The BSDF's tabulated specular albedo covers [1, 3] (specular_albedo.h); glTF's
   // KHR_materials_ior allows 1 (no reflection) and real materials stay below 2.5.
   if (auto ior = node.optional("ior")) material.ior = static_cast<float>(ior->number(1, 3));
+  if (auto specular = node.optional("specular")) material.specular = static_cast<float>(specular->number(0, 1));
+  if (auto color = node.optional("specular_color")) material.dielectricSpecularColor = color->rgb(0, 1e6);
   if (auto texture = node.optional("metallic_roughness_texture")) {
     material.metallicRoughnessTexture = loadTexture(*texture, folder, textures, TextureEncoding::Linear);
   }

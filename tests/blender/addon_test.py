@@ -18,7 +18,7 @@ import blender_scene  # noqa: E402
 PATHFARM, REPOSITORY, WORK = sys.argv[sys.argv.index("--") + 1:]
 SPP, MAX_DEPTH = 128, 3
 REGIONS = (3, 3)  # columns x rows of the image, each compared on its own
-TOLERANCE = 0.06  # the target is 5 %; glTF's specular layer costs up to 5.7 % at grazing views (docs/blender.md)
+TOLERANCE = 0.08  # the target is 5 %; the materials differ by up to 7 % at grazing views (docs/blender.md)
 failures = []
 
 

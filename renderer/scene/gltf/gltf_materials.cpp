@@ -13,10 +13,31 @@ namespace {
 // Material extensions whose parameters reach the material below.
 const std::set<std::string>& understoodExtensions() {
   static const std::set<std::string> names{"KHR_materials_emissive_strength", "KHR_materials_ior",
-                                           "KHR_materials_transmission", "KHR_materials_volume"};
+                                           "KHR_materials_specular", "KHR_materials_transmission",
+                                           "KHR_materials_volume"};
   return names;
 }
 
+
+// KHR_materials_specular's factors; its textures are not read (a warning says so).
+void readSpecular(const GltfDocument& document, const std::string& pointer, const tinygltf::Value& extension,
+                  Material& material) {
+  material.specular = gltfFactor(document, pointer + "/specularFactor", gltfNumberOr(extension, "specularFactor", 1), 0, 1);
+  if (extension.Has("specularColorFactor")) {
+    const tinygltf::Value& color = extension.Get("specularColorFactor");
+    if (!color.IsArray() || color.ArrayLen() != 3) document.fail(pointer + "/specularColorFactor", "a colour has three components");
+    float c[3];
+    for (int i = 0; i < 3; ++i) {
+      const tinygltf::Value& v = color.Get(i);
+      const std::string p = pointer + "/specularColorFactor/" + std::to_string(i);
+      if (!v.IsNumber()) document.fail(p, "expected a number");
+      c[i] = gltfFactor(document, p, v.GetNumberAsDouble(), 0, 1e6);
+    }
+    material.dielectricSpecularColor = Rgb(c[0], c[1], c[2]);
+  }
+  for (const char* texture : {"specularTexture", "specularColorTexture"})
+    if (extension.Has(texture)) document.warn(pointer + "/" + texture, "not read: the factor alone applies");
+}
 
 TextureWrap wrapMode(int gltfWrap) {
   switch (gltfWrap) {
@@ -288,6 +309,8 @@ GltfMaterials importMaterials(const GltfDocument& document, Scene& scene) {
       // refused by the range.
       material.ior = gltfFactor(document, pointer + "/extensions/KHR_materials_ior/ior", gltfNumberOr(*ior, "ior", 1.5), 1, 3);
     }
+    if (const tinygltf::Value* specular = gltfExtension(m.extensions, "KHR_materials_specular"))
+      readSpecular(document, pointer + "/extensions/KHR_materials_specular", *specular, material);
     if (gltfExtension(m.extensions, "KHR_materials_volume")) solidDielectric(document, pointer, material);
 
     scene.materialNames.push_back(

@@ -95,10 +95,35 @@ inline Vec3f randomDirection(Uniform& rng, bool sphere) {
   }
 }
 
+constexpr float kRoughnessThreshold = 0.1f;
+
 // A Monte Carlo estimate per channel with its standard error.
 struct Estimate {
   Rgb mean, stdError;
 };
+
+// Directional albedo as the mean sample weight of a metallic-roughness sheet (no 1/eta^2:
+// the sheet has one medium).
+inline Estimate albedo(const Material& m, Rgb base, Vec3f wo, int n = 100000) {
+  const Bsdf bsdf(m, base, kRoughnessThreshold);
+  Uniform rng(33);
+  double sum[3] = {}, sum2[3] = {};
+  for (int i = 0; i < n; ++i) {
+    const float uLobe = rng.next();
+    const auto s = bsdf.sample(wo, uLobe, rng.next2());
+    if (!s) continue;
+    for (int c = 0; c < 3; ++c) {
+      sum[c] += s->weight[c];
+      sum2[c] += double(s->weight[c]) * s->weight[c];
+    }
+  }
+  float mean[3], se[3];
+  for (int c = 0; c < 3; ++c) {
+    mean[c] = float(sum[c] / n);
+    se[c] = float(std::sqrt(std::max(0.0, sum2[c] / n - double(mean[c]) * mean[c]) / n));
+  }
+  return {{mean[0], mean[1], mean[2]}, {se[0], se[1], se[2]}};
+}
 
 inline Vec3f directionFromCos(float cosTheta, float phi = 0.3f) {
   const float s = std::sqrt(std::max(0.0f, 1 - cosTheta * cosTheta));
@@ -130,6 +155,13 @@ inline Material metallicRoughness(float roughness, float metallic, float transmi
   return m;
 }
 
+// With KHR_materials_specular's factor and colour.
+inline Material withSpecular(Material m, float specular, Rgb color) {
+  m.specular = specular;
+  m.dielectricSpecularColor = color;
+  return m;
+}
+
 // Every configuration with a non-delta lobe; colored albedo and default gold-like metal.
 // The metallic-roughness sheets are thin-walled: twoSided stays false, since the suites'
 // two-sided checks assume refraction (metallic_roughness_test.cpp checks both sides).
@@ -157,6 +189,11 @@ inline std::vector<MaterialCase> nonDeltaCases() {
       {"MetallicRoughnessTransmission", metallicRoughness(0.4f, 0, 1, 1.33f), albedo, false},
       {"MetallicRoughnessRoughest", metallicRoughness(1, 0.5f, 0.5f, 2.4f), albedo, false},
       {"MetallicRoughnessSmoothDiffusePart", metallicRoughness(0, 0, 0.5f), albedo, false},
+      // Blender's Specular 0 (colour 0: no reflection at normal incidence, all at grazing),
+      // and a weak tinted coating whose colour passes 1 in one channel.
+      {"MetallicRoughnessSpecularColourZero", withSpecular(metallicRoughness(0.5f, 0, 0), 1, Rgb(0)), albedo, false},
+      {"MetallicRoughnessSpecularTinted",
+       withSpecular(metallicRoughness(0.4f, 0.3f, 0.5f), 0.6f, Rgb(3, 1, 0.2f)), albedo, false},
   };
 }
 
@@ -173,8 +210,6 @@ inline std::vector<Vec3f> testDirections(bool twoSided) {
   }
   return dirs;
 }
-
-constexpr float kRoughnessThreshold = 0.1f;
 
 // Upper quantile of the chi-square distribution, Wilson and Hilferty 1931: (X/k)^(1/3) is
 // close to normal with mean 1 - 2/(9k) and variance 2/(9k).

@@ -78,8 +78,10 @@ double integrateBothSides(const G& g, Vec3f wo, double alpha, double tolerance) 
       alpha, tolerance);
 }
 
-// The dielectric coating's specular albedo, F(wo.h) D G / (4 cos_o) over the hemisphere.
-double coatingAlbedo(float mu, double alpha, float ior) {
+// The dielectric coating's specular albedo, F(wo.h) D G / (4 cos_o) over the hemisphere,
+// or that of F - F(1) when `excess` (specularExcessAlbedoBound's).
+double coatingAlbedo(float mu, double alpha, float ior, bool excess = false) {
+  const double subtracted = excess ? fresnelDielectric(1, ior).reflectance : 0;
   const Ggx ggx{alpha};
   const Vec3f wo = directionFromCos(mu, 0.7f);
   return integrateAroundNormal(
@@ -89,7 +91,8 @@ double coatingAlbedo(float mu, double alpha, float ior) {
         const Vec3f wi = reflect(wo, h);
         if (wi.z <= 0) return 0.0;
         // dwi = 4 (wo.h) dh cancels the 1/4 of the microfacet BRDF.
-        return fresnelDielectric(cosOH, ior).reflectance * ggx.D(h) * ggx.G1(wo, h) * ggx.G1(wi, h) * cosOH / mu;
+        return (fresnelDielectric(cosOH, ior).reflectance - subtracted) * ggx.D(h) * ggx.G1(wo, h) * ggx.G1(wi, h) *
+               cosOH / mu;
       },
       alpha, 1e-7);
 }
@@ -133,20 +136,52 @@ TEST(SpecularAlbedoBound, BoundsTheCoatingAlbedoClosely) {
   }
 }
 
-// The table is integrated by a build step and read back from generated source: at every
-// node the lookup returns what integrating that node now gives.
-TEST(SpecularAlbedoBound, TheBuildsTableHoldsTheIntegratedNodes) {
+// The same for the albedo of F - F0 (KHR_materials_specular's remapping): above it, and
+// close away from grazing; exactly F - F0 on a smooth coating.
+TEST(SpecularAlbedoBound, ExcessBoundsTheAlbedoOfTheFresnelExcessClosely) {
+  Uniform rng(32);
+  double largestSlack = 0;
+  for (int i = 0; i < 120; ++i) {
+    const float mu = 0.02f + 0.98f * rng.next(), roughness = 0.05f + 0.95f * rng.next();
+    const float ior = 1 + 2 * rng.next();
+    const double alpha = double(roughness) * roughness;
+    const double slack = specularExcessAlbedoBound(mu, float(alpha), ior) - coatingAlbedo(mu, alpha, ior, true);
+    EXPECT_GE(slack, 0) << "mu " << mu << " roughness " << roughness << " ior " << ior;
+    if (mu > 0.09f) largestSlack = std::max(largestSlack, slack);
+  }
+  EXPECT_LE(largestSlack, 0.02);
+  for (const float ior : {1.01f, 1.45f, 2.5f}) {
+    const double f0 = fresnelDielectric(1, ior).reflectance;
+    for (int i = 1; i <= 100; ++i) {
+      const float mu = i / 100.0f;
+      const double excess = fresnelDielectric(mu, ior).reflectance - f0;
+      ASSERT_GE(specularExcessAlbedoBound(mu, 0, ior), excess - 1e-7) << "mu " << mu << " ior " << ior;
+      if (mu > 0.09f) ASSERT_LE(specularExcessAlbedoBound(mu, 0, ior), excess + 0.02) << "mu " << mu;
+    }
+  }
+}
+
+// The tables are integrated by a build step and read back from generated source: at every
+// node the lookups return what integrating that node now gives.
+TEST(SpecularAlbedoBound, TheBuildsTablesHoldTheIntegratedNodes) {
   using namespace specular_albedo;
-  const Table integrated = tabulate();
-  for (int k = 0; k < kIor; ++k) {
-    for (int j = 0; j < kRoughness; ++j) {
-      const float alpha = alphaNode(j), eta = iorNode(k);
-      ASSERT_NEAR(averageSpecularAlbedoBound(alpha, eta), integrated.average[size_t(k) * kRoughness + j], 1e-5)
-          << "alpha " << alpha << " eta " << eta;
-      for (int i = 0; i < kMu; ++i) {
-        ASSERT_NEAR(specularAlbedoBound(muNode(i), alpha, eta),
-                    integrated.albedo[(size_t(k) * kRoughness + j) * kMu + i], 1e-5)
-            << "mu " << muNode(i) << " alpha " << alpha << " eta " << eta;
+  for (const Reflectance reflectance : {Reflectance::Fresnel, Reflectance::Excess}) {
+    const bool excess = reflectance == Reflectance::Excess;
+    const Table integrated = tabulate(reflectance);
+    for (int k = 0; k < kIor; ++k) {
+      for (int j = 0; j < kRoughness; ++j) {
+        const float alpha = alphaNode(j), eta = iorNode(k);
+        const float average =
+            excess ? averageSpecularExcessAlbedoBound(alpha, eta) : averageSpecularAlbedoBound(alpha, eta);
+        ASSERT_NEAR(average, integrated.average[size_t(k) * kRoughness + j], 1e-5)
+            << "alpha " << alpha << " eta " << eta << " excess " << excess;
+        for (int i = 0; i < kMu; ++i) {
+          const float mu = muNode(i);
+          const float bound =
+              excess ? specularExcessAlbedoBound(mu, alpha, eta) : specularAlbedoBound(mu, alpha, eta);
+          ASSERT_NEAR(bound, integrated.albedo[(size_t(k) * kRoughness + j) * kMu + i], 1e-5)
+              << "mu " << mu << " alpha " << alpha << " eta " << eta << " excess " << excess;
+        }
       }
     }
   }
@@ -165,28 +200,6 @@ TEST(SpecularAlbedoBound, AverageIsTheCosineWeightedMeanOfTheBound) {
       EXPECT_NEAR(averageSpecularAlbedoBound(alpha, ior), sum, 1e-5) << "alpha " << alpha << " ior " << ior;
     }
   }
-}
-
-// Directional albedo as the mean sample weight (no 1/eta^2: the sheet has one medium).
-Estimate albedo(const Material& m, Rgb base, Vec3f wo, int n = 100000) {
-  const Bsdf bsdf(m, base, kRoughnessThreshold);
-  Uniform rng(33);
-  double sum[3] = {}, sum2[3] = {};
-  for (int i = 0; i < n; ++i) {
-    const float uLobe = rng.next();
-    const auto s = bsdf.sample(wo, uLobe, rng.next2());
-    if (!s) continue;
-    for (int c = 0; c < 3; ++c) {
-      sum[c] += s->weight[c];
-      sum2[c] += double(s->weight[c]) * s->weight[c];
-    }
-  }
-  float mean[3], se[3];
-  for (int c = 0; c < 3; ++c) {
-    mean[c] = float(sum[c] / n);
-    se[c] = float(std::sqrt(std::max(0.0, sum2[c] / n - double(mean[c]) * mean[c]) / n));
-  }
-  return {{mean[0], mean[1], mean[2]}, {se[0], se[1], se[2]}};
 }
 
 // (2) White furnace over the parameter space, from either side of the sheet.

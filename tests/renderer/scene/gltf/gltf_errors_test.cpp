@@ -173,6 +173,15 @@ TEST(GltfErrors, OutOfRangeMaterialFactor) {
   EXPECT_NE(message.find("factor.gltf"), std::string::npos) << message;
 }
 
+TEST(GltfErrors, ASpecularFactorOutOfRangeIsRefusedByPointer) {
+  GltfBuilder b = validScene();
+  b.doc()["materials"] = {{{"extensions", {{"KHR_materials_specular", {{"specularColorFactor", {1, -1, 1}}}}}}}};
+  b.doc()["meshes"][0]["primitives"][0]["material"] = 0;
+  const std::string message = loadError(b, "specular");
+  EXPECT_NE(message.find("/materials/0/extensions/KHR_materials_specular/specularColorFactor/1"), std::string::npos)
+      << message;
+}
+
 TEST(GltfErrors, IncludeOfAMissingFileNamesTheJsonKey) {
   try {
     parseScene(R"({"include": "nowhere.glb", "environment": {"radiance": 1}})", errorsFolder() / "shot.json");

@@ -113,7 +113,9 @@ TEST(GltfImport, MaterialFactorsAndExtensionsReachTheMaterial) {
        {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1}}}, {"KHR_materials_ior", {{"ior", 1.33}}}}}},
       {{"name", "lamp"},
        {"emissiveFactor", {1, 0.5, 0.25}},
-       {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 8}}}}}}};
+       {"extensions",
+        {{"KHR_materials_emissive_strength", {{"emissiveStrength", 8}}},
+         {"KHR_materials_specular", {{"specularFactor", 0.25}, {"specularColorFactor", {0, 0.5, 2}}}}}}}};
   const int copper = b.node({{"mesh", b.square(0)}});
   const int glass = b.node({{"mesh", b.square(1)}});
   const int lamp = b.node({{"mesh", b.square(2)}});
@@ -132,6 +134,11 @@ TEST(GltfImport, MaterialFactorsAndExtensionsReachTheMaterial) {
   EXPECT_TRUE(scene.objects[0].emission.isBlack());
   EXPECT_FLOAT_EQ(scene.objects[2].emission.r, 8);
   EXPECT_FLOAT_EQ(scene.objects[2].emission.b, 2);
+  EXPECT_FLOAT_EQ(m1.specular, 1);  // without the extension: glTF's dielectric specular layer
+  const Material& m2 = scene.materials[static_cast<size_t>(scene.objects[2].material)];
+  EXPECT_FLOAT_EQ(m2.specular, 0.25f);
+  EXPECT_FLOAT_EQ(m2.dielectricSpecularColor.r, 0);
+  EXPECT_FLOAT_EQ(m2.dielectricSpecularColor.b, 2);
 }
 
 TEST(GltfImport, AVolumeMakesAFullyTransmissiveSurfaceASolidDielectric) {
