@@ -8,6 +8,8 @@
 
 #include "cli/command.h"
 #include "cli/reference_cache_options.h"
+#include "cli/frame_name_options.h"
+#include "cli/shot_hook_options.h"
 #include "cli/shot_key_options.h"
 #include "cli/shot_progress.h"
 #include "cli/tls_options.h"
@@ -40,6 +42,8 @@ struct ClientArguments {
   bool json = false;
   bool sharedPaths = false;
   bool beauty = false;
+  farm::ShotHooks hooks;
+  std::string frameNames;
   std::string referenceCache;
   farm::ClientTls tls;
 };
@@ -146,13 +150,24 @@ void addShotCommands(ClientCommands& add) {
         for (const auto& event : reply.events()) std::printf("  %.3f  %s\n", event.time(), event.message().c_str());
         return kExitOk;
       });
-  add.command("watch", "follow a shot until it ends", shotIdOption,
-              [](farm::FarmClient& client, const ClientArguments& a) {
-                ShotProgress progress;
-                const auto summary = client.watch(a.shotId, [&](const farm::ShotSummary& s) { progress.update(s); });
-                std::printf("%s\n", describeShot(summary).c_str());
-                return exitFor(summary);
-              });
+  add.command(
+      "watch", "follow a shot until it ends",
+      [](CLI::App* c, ClientArguments& a) {
+        shotIdOption(c, a);
+        addShotHookOptions(c, a.hooks);
+      },
+      [](farm::FarmClient& client, const ClientArguments& a) {
+        farm::ShotSummary summary;
+        {
+          ShotProgress progress;
+          summary = client.watch(a.shotId, [&](const farm::ShotSummary& s) { progress.update(s); });
+        }
+        std::printf("%s\n", describeShot(summary).c_str());
+        std::fflush(stdout);
+        const farm::ShotSpec spec = client.shot(a.shotId).spec();
+        farm::runShotHook(a.hooks, outcomeOf(spec, summary, spec.output()));
+        return exitFor(summary);
+      });
   add.command(
       "fetch", "write a shot's finished frames as EXR files",
       [](CLI::App* c, ClientArguments& a) {
@@ -162,14 +177,21 @@ void addShotCommands(ClientCommands& add) {
         c->add_flag("--beauty", a.beauty,
                     "also write each frame's R, G, B alone into OUT/beauty/, for viewers that refuse the other "
                     "layers (Blender)");
+        addFrameNamesOption(c, a.frameNames);
       },
       [](farm::FarmClient& client, const ClientArguments& a) {
+        const std::optional<farm::FrameNames> names = frameNamesOf(a.frameNames);
         const farm::ShotReply shot = client.shot(a.shotId);
         const auto& summary = shot.summary();
-        const auto files = client.fetch(a.shotId, a.out);
+        const std::filesystem::path out(a.out);
+        auto files = client.fetch(a.shotId, out);
+        if (names) files = farm::renameFrames(files, out, *names, shot.spec().name(), a.shotId);
         if (a.beauty) {
-          std::filesystem::create_directories(std::filesystem::path(a.out) / "beauty");
-          for (const auto& file : files) writeBeautyCopy(file, std::filesystem::path(a.out) / "beauty" / file.filename());
+          for (const auto& file : files) {
+            const std::filesystem::path copy = out / "beauty" / std::filesystem::relative(file, out);
+            std::filesystem::create_directories(copy.parent_path());
+            writeBeautyCopy(file, copy);
+          }
         }
         if (!a.referenceCache.empty() && summary.state() == farm::SHOT_DONE)
           keepRenderedReferences(farm::ReferenceCache(a.referenceCache), client, a.shotId, shot.spec());

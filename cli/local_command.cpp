@@ -5,6 +5,7 @@
 // --keep-farm asks to keep them (a shot that did not finish keeps them, to be looked into).
 // With --http the dashboard serves while the shot runs (docs/dashboard.md). References are
 // taken from and kept in the shot's reference cache (cli/reference_cache_options.h).
+// --on-done and --on-failed run a command when the shot ends (client/shot_hooks.h).
 #include <spdlog/spdlog.h>
 
 #include <memory>
@@ -13,6 +14,8 @@
 #include "cli/command.h"
 #include "cli/reference_cache_options.h"
 #include "cli/shot_progress.h"
+#include "cli/frame_name_options.h"
+#include "cli/shot_hook_options.h"
 #include "cli/shot_key_options.h"
 #include "cli/shot_size_options.h"
 #include "cli/usage_parsing.h"
@@ -28,6 +31,8 @@ namespace {
 struct LocalArguments {
   std::string shotFile;
   ShotKeyArguments keys;
+  farm::ShotHooks hooks;
+  std::string frameNames;
   std::string out;
   int workers = 2;
   int threads = 0;
@@ -59,8 +64,10 @@ void removeIntermediateData(const std::filesystem::path& farmFolder) {
 
 int runLocal(const LocalArguments& arguments) {
   std::optional<farm::ShotFile> file;
+  std::optional<farm::FrameNames> names;
   farm::ShotSpec spec;
   try {
+    names = frameNamesOf(arguments.frameNames);
     file = farm::loadShotSource(arguments.shotFile, shotKeysOf(arguments.keys));
     spec = farm::preparedShot(*file);
   } catch (const SceneError& e) {
@@ -87,7 +94,8 @@ int runLocal(const LocalArguments& arguments) {
       ShotProgress progress;
       summary = client.watch(id, [&](const farm::ShotSummary& s) { progress.update(s); });
     }
-    const auto files = client.fetch(id, out);
+    auto files = client.fetch(id, out);
+    if (names) files = farm::renameFrames(files, out, *names, spec.name(), id);
     const farm::ShotReport report = client.report(id);
     if (references && summary.state() == farm::SHOT_DONE) keepRenderedReferences(*references, client, id, spec);
     farm.stop();
@@ -105,6 +113,7 @@ int runLocal(const LocalArguments& arguments) {
     }
     const bool done = summary.state() == farm::SHOT_DONE;
     if (done && !arguments.keepFarm) removeIntermediateData(out / "farm");
+    farm::runShotHook(arguments.hooks, outcomeOf(spec, summary, out.string()));
     return done ? kExitOk : kExitFailure;
   } catch (const SceneError& e) {  // the shot file does not read as one of auto's candidates
     spdlog::error("{}", e.what());
@@ -124,6 +133,8 @@ std::vector<Command> addLocalCommand(CLI::App& app) {
                     "shot file (JSON, see docs/shot-format.md), or a scene file (glTF, JSON scene) to render as a shot")
       ->required();
   addShotKeyOptions(local, arguments->keys);
+  addShotHookOptions(local, arguments->hooks);
+  addFrameNamesOption(local, arguments->frameNames);
   local->add_option("--workers", arguments->workers, "worker processes")->check(CLI::Range(1, 256))->capture_default_str();
   local->add_option("--threads", arguments->threads, "render threads per worker (0: the cores shared out)");
   local->add_option("--out", arguments->out, "output folder (default: the shot's output)");

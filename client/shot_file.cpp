@@ -118,7 +118,7 @@ std::vector<const char*> shotFileKeys() {
   std::vector<const char*> keys = {"name", "scene", "frames", "resolution", "spp", "max_depth", "pipeline", "tile",
                                    "output", "priority", "max_attempts", "decompose", "reference_spp",
                                    "reference_cache", "evaluation_frames", "baseline_core_seconds", "required_tags",
-                                   "max_workers"};
+                                   "max_workers", "preview_every"};
   for (const PipelineTraits& traits : allPipelines())
     for (const std::string_view key : traits.keys)  // literals: terminated
       if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key.data());
@@ -187,6 +187,7 @@ ShotFile ShotFile::parse(std::string_view text, const std::filesystem::path& fil
   }
   spec.set_max_workers(root.has("max_workers") ? root["max_workers"].integer(1, 1'000'000) : 0);
   spec.set_tile(root.has("tile") ? root["tile"].integer(8, 4096) : 64);
+  spec.set_preview_every(root.has("preview_every") ? root["preview_every"].integer(1, 1000) : 1);
   spec.set_output((folder / (root.has("output") ? root["output"].string() : "output/" + spec.name()))
                       .lexically_normal()
                       .string());

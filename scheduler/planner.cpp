@@ -136,10 +136,27 @@ void planEvaluation(const ShotSpec& spec, bool filtering, const StageOutputs& st
   if (spec.reference_spp() > 0 && !spec.evaluation_frames().empty()) plan.push_back(std::move(evaluate));
 }
 
+// Indices 0 .. count - 1 with every `every`-th first (0, every, 2 every, ...), then the
+// rest in order: tasks are leased in the order they are planned, so these frames finish
+// first (ShotSpec::preview_every).
+std::vector<size_t> previewOrder(size_t count, int every) {
+  std::vector<size_t> order;
+  order.reserve(count);
+  const size_t stride = static_cast<size_t>(std::max(every, 1));
+  for (size_t i = 0; i < count; i += stride) order.push_back(i);
+  if (stride > 1)
+    for (size_t i = 0; i < count; ++i)
+      if (i % stride != 0) order.push_back(i);
+  return order;
+}
+
 void planPathTracing(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
   StageOutputs stages;
-  for (int64_t frame = spec.frame_start(); frame <= spec.frame_end(); ++frame)
+  const auto frames = static_cast<size_t>(spec.frame_end() - spec.frame_start() + 1);
+  for (const size_t i : previewOrder(frames, spec.preview_every())) {
+    const int64_t frame = spec.frame_start() + static_cast<int64_t>(i);
     stages[frame].push_back(planFrameRender(spec, frame, ROLE_OUTPUT, spec.spp(), false, plan));
+  }
   planEvaluation(spec, false, stages, plan);
 }
 
@@ -184,7 +201,8 @@ void planFiltering(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
   const std::vector<int64_t> keyframes = keyframesOf(spec);
   const int keyframeSpp = stages.upsample ? std::max(1, spec.spp() / 4) : spec.spp();
   std::map<int64_t, size_t> rendered;  // frame -> its assembled render (keyframe or features)
-  for (size_t i = 0; i < keyframes.size(); ++i) {
+  const std::vector<size_t> keyframeOrder = previewOrder(keyframes.size(), spec.preview_every());
+  for (const size_t i : keyframeOrder) {
     // Its motion vectors reach the neighbouring keyframes directly (one frame at the ends).
     const int forward = i + 1 < keyframes.size() ? static_cast<int>(keyframes[i + 1] - keyframes[i]) : 1;
     const int backward = i > 0 ? static_cast<int>(keyframes[i] - keyframes[i - 1]) : 1;
@@ -205,7 +223,7 @@ void planFiltering(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
   std::map<int64_t, size_t> finalOf;  // frame -> the task whose frame the composite finishes
   // d re-renders nothing, so a composite would only copy: its denoise writes the final frame.
   const bool denoiseIsFinal = !stages.upsample && !stages.interpolate;
-  for (size_t i = 0; i < keyframes.size(); ++i) {
+  for (const size_t i : keyframeOrder) {
     const int64_t frame = keyframes[i];
     PlannedTask denoise = task(TASK_DENOISE, frame, {rendered.at(frame)});
     if (i > 0) denoise.dependencies.push_back(rendered.at(keyframes[i - 1]));

@@ -23,12 +23,17 @@ body = struct.pack("<I4s", len(text), b"JSON") + text + rest
 open(sys.argv[2], "wb").write(struct.pack("<4sII", b"glTF", 2, 12 + len(body)) + body)
 PY
 # The .glb handed to `pathfarm local` as it is, with shot keys as options: a pt shot of
-# it renders the bytes `pathfarm render` wrote above.
+# it renders the bytes `pathfarm render` wrote above, under the name --frame-names gives,
+# and --on-done runs when it is done.
 cp "$showroom/showroom.glb" "$work/showroom.glb"
-"$pathfarm" local "$work/showroom.glb" --frames 5 --res 32x18 --spp 2 --pipeline pt --workers 1 > "$work/log" 2>&1 ||
-  fail "local of showroom.glb failed: $(tail -5 "$work/log")"
-cmp -s "$work/output/showroom/frame_0005.exr" "$work/glb/frame_0005.exr" ||
+"$pathfarm" local "$work/showroom.glb" --frames 5 --res 32x18 --spp 2 --pipeline pt --workers 1 \
+  --frame-names '{shot}/{frame:03d}.exr' \
+  --on-done 'echo "$PATHFARM_SHOT_NAME $PATHFARM_SHOT_STATE $PATHFARM_SHOT_OUTPUT" > "$PATHFARM_SHOT_OUTPUT/hook"' \
+  > "$work/log" 2>&1 || fail "local of showroom.glb failed: $(tail -5 "$work/log")"
+cmp -s "$work/output/showroom/showroom/005.exr" "$work/glb/frame_0005.exr" ||
   fail "local of showroom.glb differs from its render: $(tail -5 "$work/log")"
+[ "$(cat "$work/output/showroom/hook" 2>/dev/null)" = "showroom SHOT_DONE $work/output/showroom" ] ||
+  fail "--on-done: $(cat "$work/output/showroom/hook" 2>&1)"
 expect_refused local "$work/showroom.glb" --res 32 --workers 1
 grep -q -- '--res "32": expected WIDTHxHEIGHT' "$work/log" || fail "--res 32 message: $(cat "$work/log")"
 

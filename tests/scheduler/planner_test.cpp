@@ -484,5 +484,38 @@ TEST(Planner, MetropolisRefusesEmptySettings) {
   EXPECT_THROW(planShot(spec), PlanError);
 }
 
+// preview_every: every n-th frame's tasks are planned, and so leased, first; the rest keep
+// frame order, and the plan holds the same tasks with the same dependencies.
+TEST(Planner, PreviewOrderPlansEveryNthFrameFirst) {
+  const auto framesOf = [](const std::vector<PlannedTask>& plan, TaskKind kind) {
+    std::vector<int64_t> frames;
+    for (const PlannedTask& task : plan)
+      if (task.kind == kind) frames.push_back(task.params.frame());
+    return frames;
+  };
+  ShotSpec pt = renderSpec();
+  pt.set_frame_start(10);
+  pt.set_frame_end(19);
+  const auto inOrder = planShot(pt);
+  pt.set_preview_every(4);
+  const auto preview = planShot(pt);
+  EXPECT_EQ(framesOf(inOrder, TASK_ASSEMBLE_FRAME), (std::vector<int64_t>{10, 11, 12, 13, 14, 15, 16, 17, 18, 19}));
+  EXPECT_EQ(framesOf(preview, TASK_ASSEMBLE_FRAME), (std::vector<int64_t>{10, 14, 18, 11, 12, 13, 15, 16, 17, 19}));
+  EXPECT_EQ(countKinds(preview), countKinds(inOrder));
+
+  ShotSpec d = filteringSpec("d", 1);
+  d.set_preview_every(5);
+  const auto plan = planShot(d);
+  EXPECT_EQ(framesOf(plan, TASK_DENOISE), (std::vector<int64_t>{10, 15, 11, 12, 13, 14, 16, 17, 18, 19}));
+  for (const PlannedTask& task : plan) {
+    if (task.kind != TASK_DENOISE) continue;
+    const int64_t f = task.params.frame();
+    std::set<int64_t> neighbours{f};
+    if (f > 10) neighbours.insert(f - 1);
+    if (f < 19) neighbours.insert(f + 1);
+    EXPECT_EQ(dependencyFrames(plan, task, TASK_ASSEMBLE_FRAME), neighbours) << "frame " << f;
+  }
+}
+
 }  // namespace
 }  // namespace pathfarm::farm
