@@ -86,6 +86,9 @@ def test_round_trip(addon):
     settings.pipeline, settings.spp, settings.max_depth, settings.workers = "pt", SPP, MAX_DEPTH, 2
     bpy.ops.wm.save_as_mainfile(filepath=os.path.join(WORK, "scene.blend"))
     job = run_shot(addon, bpy.context)
+    warnings = [warning.text for warning in bpy.context.window_manager.pathfarm_job.warnings]
+    check(any("panel: emits from both sides" in text for text in warnings),
+          f"the panel's two-sided emission is listed as lost ({warnings})")
     frames = job.frames()
     check(len(frames) == 3, f"three frames come back ({len(frames)})")
     if len(frames) != 3:

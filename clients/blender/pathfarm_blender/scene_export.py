@@ -9,8 +9,14 @@ import bpy
 
 from .farm_client import FarmError
 
-# Principled BSDF inputs that the glTF file (or pathfarm's reading of it) does not carry.
-DROPPED_PRINCIPLED_INPUTS = ("Subsurface", "Sheen", "Clearcoat", "Anisotropic")
+# Principled BSDF inputs that the glTF file (or pathfarm's reading of it) does not carry,
+# each by its Blender 3.x name and, where 4.0 renamed it, its new one.
+DROPPED_PRINCIPLED_INPUTS = (("Subsurface", "Subsurface Weight"), ("Sheen", "Sheen Weight"),
+                             ("Clearcoat", "Coat Weight"), ("Anisotropic",))
+
+
+def principled_input(node, names):
+    return next((node.inputs[name] for name in names if name in node.inputs), None)
 
 
 def check_scene(scene):
@@ -50,16 +56,17 @@ def material_warnings(material):
         warnings.append(f"material {material.name}: emits from both sides in Blender, from the front face only "
                         "in pathfarm (turn on Backface Culling to see it as pathfarm will)")
     if surface.type == "BSDF_PRINCIPLED":
-        for name in DROPPED_PRINCIPLED_INPUTS:
-            socket = surface.inputs.get(name)
+        for names in DROPPED_PRINCIPLED_INPUTS:
+            socket = principled_input(surface, names)
             if socket is not None and (socket.links or socket.default_value > 0):
-                warnings.append(f"material {material.name}: Principled {name} is not rendered by pathfarm")
+                warnings.append(f"material {material.name}: Principled {names[0]} is not rendered by pathfarm")
     return warnings
 
 
 def emits(surface):
-    strength = surface.inputs.get("Emission Strength" if surface.type == "BSDF_PRINCIPLED" else "Strength")
-    color = surface.inputs.get("Emission" if surface.type == "BSDF_PRINCIPLED" else "Color")
+    principled = surface.type == "BSDF_PRINCIPLED"
+    strength = principled_input(surface, ("Emission Strength",) if principled else ("Strength",))
+    color = principled_input(surface, ("Emission", "Emission Color") if principled else ("Color",))
     if strength is None or color is None:
         return False
     return bool(strength.links or color.links) or (strength.default_value > 0 and max(color.default_value[:3]) > 0)
