@@ -44,6 +44,7 @@ struct ClientArguments {
   bool beauty = false;
   farm::ShotHooks hooks;
   std::string frameNames;
+  std::vector<int64_t> after;
   std::string referenceCache;
   farm::ClientTls tls;
 };
@@ -116,6 +117,9 @@ void addShotCommands(ClientCommands& add) {
         c->add_option("shot", a.shotFile, "shot file (JSON), or a scene file (glTF, JSON scene) to render as a shot")
             ->required();
         addShotKeyOptions(c, a.shotKeys);
+        c->add_option("--after", a.after,
+                      "shot id this one waits for: it starts when every one is done, and fails if one fails or is "
+                      "cancelled (repeatable)");
         c->add_option("--submit-key", a.submitKey,
                       "names this submit: submitting again with the same key prints the same shot, adds nothing");
         c->add_flag("--shared-paths", a.sharedPaths,
@@ -132,6 +136,7 @@ void addShotCommands(ClientCommands& add) {
                        static_cast<double>(sent.bytesSent) / 1e6);
         }
         spec = withChosenPipeline(client, file, spec, std::filesystem::path(spec.output()) / "probe", a.submitKey);
+        for (const int64_t after : a.after) spec.add_after_shots(after);
         if (const auto references = referenceCacheOf(file, a.referenceCache))
           attachCachedReferences(*references, client, spec);
         std::printf("%lld\n", static_cast<long long>(client.submit(spec, a.submitKey)));

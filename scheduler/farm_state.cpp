@@ -72,8 +72,10 @@ std::optional<int64_t> FarmState::nextTask(int64_t workerId, double now) {
       "SELECT id, required_tags != '' OR max_workers > 0 FROM shots WHERE state IN (?1, ?2) AND building = 0 "
       "AND id NOT IN "
       "(SELECT shot_id FROM worker_failures WHERE worker_id = ?3 AND blocklisted = 1) "
+      "AND NOT EXISTS (SELECT 1 FROM shot_waits w JOIN shots p ON p.id = w.after_id "
+      "WHERE w.shot_id = shots.id AND p.state != ?4) "
       "ORDER BY priority DESC, id ASC");
-  shotQuery.bind(1, int64_t{SHOT_QUEUED}).bind(2, int64_t{SHOT_RUNNING}).bind(3, workerId);
+  shotQuery.bind(1, int64_t{SHOT_QUEUED}).bind(2, int64_t{SHOT_RUNNING}).bind(3, workerId).bind(4, int64_t{SHOT_DONE});
   while (shotQuery.step()) {
     const int64_t shot = shotQuery.integer(0);
     // The pool rules are read only for shots that have any: a farm without pools pays nothing.
@@ -457,6 +459,21 @@ void FarmState::endShot(int64_t shotId, ShotState state, const std::string& fail
       .bind(3, asInt(TaskState::Leased))
       .run();
   addEvent(shotId, std::string(ShotState_Name(state)) + (failure.empty() ? "" : ": " + failure), now);
+  if (state == SHOT_FAILED || state == SHOT_CANCELLED) failShotsWaitingFor(shotId, state, now);
+}
+
+void FarmState::failShotsWaitingFor(int64_t shotId, ShotState state, double now) {
+  std::vector<int64_t> waiting;
+  Statement& q = db_.query("SELECT w.shot_id FROM shot_waits w JOIN shots s ON s.id = w.shot_id "
+                           "WHERE w.after_id = ?1 AND s.state IN (?2, ?3, ?4)");
+  q.bind(1, shotId).bind(2, int64_t{SHOT_QUEUED}).bind(3, int64_t{SHOT_RUNNING}).bind(4, int64_t{SHOT_PAUSED});
+  while (q.step()) waiting.push_back(q.integer(0));
+  q.reset();
+  // Each ends in turn, failing the shots that wait for it (a chain; no cycle, since a shot
+  // waits only for shots submitted before it).
+  for (const int64_t id : waiting)
+    endShot(id, SHOT_FAILED, "shot " + std::to_string(shotId) + ", which it waits for, ended " + ShotState_Name(state),
+            now);
 }
 
 void FarmState::addEvent(int64_t shotId, const std::string& message, double now) {

@@ -245,6 +245,10 @@ class FarmState {
   void countTaskDone(int64_t shotId, double now);
   bool anyWorkerCanRun(int64_t shotId, double now);
   void endShot(int64_t shotId, ShotState state, const std::string& failure, double now);
+  // Fails the unfinished shots waiting for `shotId`, which ended failed or cancelled.
+  void failShotsWaitingFor(int64_t shotId, ShotState state, double now);
+  // Throws std::invalid_argument unless every shot `spec` waits for exists and can still be done.
+  void checkShotsWaitedFor(const ShotSpec& spec);
   void setShotState(int64_t shotId, ShotState state, double now);
   // Queued or running again, as far as it had got.
   void reactivate(int64_t shotId, double now);

@@ -10,6 +10,19 @@
 
 namespace pathfarm::farm {
 
+void FarmState::checkShotsWaitedFor(const ShotSpec& spec) {
+  for (const int64_t after : spec.after_shots()) {
+    Statement& q = db_.query("SELECT state FROM shots WHERE id = ?1").bind(1, after);
+    const bool found = q.step();
+    const auto state = found ? static_cast<ShotState>(q.integer(0)) : SHOT_STATE_UNSPECIFIED;
+    q.reset();
+    if (!found) throw std::invalid_argument("after_shots: shot " + std::to_string(after) + " does not exist");
+    if (state == SHOT_FAILED || state == SHOT_CANCELLED)
+      throw std::invalid_argument("after_shots: shot " + std::to_string(after) + " ended " + ShotState_Name(state) +
+                                  "; a shot waiting for it could never start");
+  }
+}
+
 int64_t FarmState::submit(const ShotSpec& spec, const std::vector<PlannedTask>& plan, double now,
                           const std::string& submitKey) {
   std::optional<int64_t> earlier;
@@ -20,6 +33,7 @@ int64_t FarmState::submit(const ShotSpec& spec, const std::vector<PlannedTask>& 
       lookup.reset();
       if (earlier) return *earlier;
     }
+    checkShotsWaitedFor(spec);
     Statement& insert = db_.query(
         "INSERT INTO shots (name, spec, state, priority, tasks_left, submitted_at, submit_key, required_tags, "
         "max_workers, building) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, 1)");
@@ -37,7 +51,10 @@ int64_t FarmState::submit(const ShotSpec& spec, const std::vector<PlannedTask>& 
       insert.bind(7, submitKey);
     }
     insert.run();
-    return db_.lastInsertId();
+    const int64_t id = db_.lastInsertId();
+    for (const int64_t after : spec.after_shots())
+      db_.query("INSERT OR IGNORE INTO shot_waits (shot_id, after_id) VALUES (?1, ?2)").bind(1, id).bind(2, after).run();
+    return id;
   });
   if (earlier) return shotId;  // a retried submit: that one is building or built the shot
 
@@ -62,6 +79,11 @@ int64_t FarmState::submit(const ShotSpec& spec, const std::vector<PlannedTask>& 
     transact([&] {
       db_.query("UPDATE shots SET building = 0 WHERE id = ?1").bind(1, shotId).run();
       addEvent(shotId, "submitted: " + std::to_string(plan.size()) + " tasks", now);
+      if (spec.after_shots_size() > 0) {
+        std::string waits;
+        for (const int64_t after : spec.after_shots()) waits += (waits.empty() ? "" : ", ") + std::to_string(after);
+        addEvent(shotId, "waits for shot " + waits + " to be done", now);
+      }
     });
   } catch (...) {
     transact([&] { db_.query("DELETE FROM shots WHERE id = ?1").bind(1, shotId).run(); });

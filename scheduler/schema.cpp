@@ -148,6 +148,14 @@ const std::vector<const char*>& migrations() {
       )sql",
       // 12: a shot's pipeline is a Pipeline, no longer a name (moveLegacyPipelineNames).
       "",
+      // 13: shots a shot waits for (ShotSpec::after_shots), and the shots waiting for one.
+      R"sql(
+      CREATE TABLE shot_waits (
+        shot_id INTEGER NOT NULL REFERENCES shots(id) ON DELETE CASCADE,
+        after_id INTEGER NOT NULL REFERENCES shots(id) ON DELETE CASCADE,
+        PRIMARY KEY (shot_id, after_id));
+      CREATE INDEX shot_waits_reverse ON shot_waits(after_id);
+      )sql",
   };
   return list;
 }

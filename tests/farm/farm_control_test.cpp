@@ -1,6 +1,7 @@
 // Controls of a shot from the CLI on a real farm: a frame requeued after the shot is done
 // renders again, the shot ends again with the same bytes, and what cannot be requeued is
-// refused with a message and exit status 2.
+// refused with a message and exit status 2; a shot submitted --after another starts when
+// that one is done.
 #include "farm/farm_fixture.h"
 
 namespace pathfarm::farmtest {
@@ -38,6 +39,35 @@ TEST_F(FarmTest, ARequeuedFrameRendersAgainToTheSameBytes) {
   EXPECT_EQ(refused({"--task", "99999"}, "has no task 99999"), 2);
   EXPECT_EQ(refused({"--frame", "7"}, "no task for frame 7"), 2);
   refused({}, "give --task ID or --frame N");
+}
+
+TEST_F(FarmTest, AShotSubmittedAfterAnotherStartsWhenThatOneIsDone) {
+  RenderSpec first;
+  first.name = "first";
+  RenderSpec second = first;
+  second.name = "second";
+  const std::string scheduler = startScheduler();
+  const CommandResult a = runPathfarm({"submit", writeShotFile(first).string(), "--scheduler", scheduler});
+  ASSERT_EQ(a.status, 0) << a.output;
+  const int64_t firstId = shotIdFrom(a);
+  const CommandResult b = runPathfarm(
+      {"submit", writeShotFile(second).string(), "--scheduler", scheduler, "--after", std::to_string(firstId)});
+  ASSERT_EQ(b.status, 0) << b.output;
+  const int64_t secondId = shotIdFrom(b);
+  // Above the first in priority, it would be leased first if it did not wait.
+  ASSERT_EQ(runPathfarm({"priority", std::to_string(secondId), "5", "--scheduler", scheduler}).status, 0);
+  startWorker("w1");
+  ASSERT_EQ(waitForShot(secondId, 60s).state(), farm::SHOT_DONE);
+  // The second shot's first lease came after the first shot had ended.
+  EXPECT_EQ(database().integer("SELECT (SELECT MIN(a.leased_at) FROM attempts a JOIN tasks t ON t.id = a.task_id "
+                               "WHERE t.shot_id = " + std::to_string(secondId) +
+                               ") >= (SELECT finished_at FROM shots WHERE id = " + std::to_string(firstId) + ")"),
+            1);
+
+  const CommandResult refused =
+      runPathfarm({"submit", writeShotFile(second).string(), "--scheduler", scheduler, "--after", "999"});
+  EXPECT_EQ(refused.status, 2) << refused.output;
+  EXPECT_TRUE(contains(refused.output, "shot 999 does not exist")) << refused.output;
 }
 
 }  // namespace

@@ -31,8 +31,9 @@ class FarmStateTest : public ::testing::Test {
   }
   void open() { state_ = std::make_unique<FarmState>((folder_ / "farm.db").string(), settings_, now_); }
 
-  // One frame of 2x1 tiles plus its assembly, as the planner makes for "pt".
-  int64_t submitFrame(int priority = 0, int maxAttempts = 3) {
+  // One frame of 2x1 tiles plus its assembly, as the planner makes for "pt", waiting for
+  // the shots `after`.
+  int64_t submitFrame(int priority = 0, int maxAttempts = 3, const std::vector<int64_t>& after = {}) {
     ShotSpec spec;
     spec.set_name("shot");
     spec.set_pipeline(PIPELINE_PT);
@@ -42,6 +43,7 @@ class FarmStateTest : public ::testing::Test {
     spec.set_tile(32);
     spec.set_priority(priority);
     spec.set_max_attempts(maxAttempts);
+    for (const int64_t shot : after) spec.add_after_shots(shot);
     return state_->submit(spec, planShot(spec), now_);
   }
   // The frames of filteredSpec() are 16x8 in tiles of 8: a re-render of the tile at (x0, y0).

@@ -37,6 +37,43 @@ TEST_F(FarmStateTest, AssemblyWaitsForItsTilesAndGetsTheirChunks) {
   EXPECT_EQ(state_->outputs(shot)[0].second.sha256(), storedChunk("frame").sha256());
 }
 
+// A shot waiting for another is not leased until that one is done, whatever its priority.
+TEST_F(FarmStateTest, AShotWaitsUntilTheShotsItNamesAreDone) {
+  const int64_t first = submitFrame();
+  const int64_t second = submitFrame(5, 3, {first});
+  const int64_t worker = state_->registerWorker("w", 1, now_);
+  const Lease a = leaseFor(worker), b = leaseFor(worker);
+  EXPECT_EQ(a.shot_id(), first);
+  EXPECT_EQ(b.shot_id(), first);
+  EXPECT_FALSE(state_->lease(worker, now_).has_value()) << "the waiting shot was leased";
+  EXPECT_TRUE(complete(a.attempt_id(), storedChunk("a"), now_).accepted());
+  EXPECT_TRUE(complete(b.attempt_id(), storedChunk("b"), now_).accepted());
+  const Lease assemble = leaseFor(worker);
+  EXPECT_EQ(assemble.shot_id(), first);
+  EXPECT_TRUE(complete(assemble.attempt_id(), storedChunk("frame"), now_).accepted());
+  EXPECT_EQ(state_->summary(first, now_).state(), SHOT_DONE);
+  EXPECT_EQ(leaseFor(worker).shot_id(), second);
+}
+
+// One that ends failed or cancelled fails the shots waiting for it, and theirs in turn; a
+// shot cannot wait for one that does not exist or can no longer be done.
+TEST_F(FarmStateTest, AShotFailsWithTheShotItWaitsFor) {
+  const int64_t first = submitFrame();
+  const int64_t second = submitFrame(0, 3, {first});
+  const int64_t third = submitFrame(0, 3, {second});
+  const int64_t unrelated = submitFrame();
+  state_->cancel(first, now_);
+  const ShotSummary failed = state_->summary(second, now_);
+  EXPECT_EQ(failed.state(), SHOT_FAILED);
+  EXPECT_NE(failed.failure().find("shot " + std::to_string(first) + ", which it waits for, ended SHOT_CANCELLED"),
+            std::string::npos)
+      << failed.failure();
+  EXPECT_EQ(state_->summary(third, now_).state(), SHOT_FAILED);
+  EXPECT_EQ(state_->summary(unrelated, now_).state(), SHOT_QUEUED);
+  EXPECT_THROW(submitFrame(0, 3, {first}), std::invalid_argument);
+  EXPECT_THROW(submitFrame(0, 3, {unrelated + 100}), std::invalid_argument);
+}
+
 TEST_F(FarmStateTest, CompletionNeedsItsChunkStoredFirst) {
   submitFrame();
   const Lease lease = leaseFor(state_->registerWorker("w", 1, now_));
@@ -433,9 +470,10 @@ TEST(Schema, MigratesOnceAndRefusesANewerDatabase) {
   {
     Database db(file.string());
     migrate(db);
-    EXPECT_EQ(schemaVersion(db), 12);
+    EXPECT_EQ(schemaVersion(db), 13);
     EXPECT_NO_THROW(db.execute("SELECT lost FROM tasks"));  // migration 3's column
     EXPECT_NO_THROW(db.execute("SELECT attempt_id, params FROM follow_ups"));  // migration 11's table
+    EXPECT_NO_THROW(db.execute("SELECT shot_id, after_id FROM shot_waits"));  // migration 13's table
     migrate(db);  // nothing to do the second time
     db.execute("PRAGMA user_version = 99");
     EXPECT_THROW(migrate(db), DatabaseError);
