@@ -4,6 +4,7 @@ local farm the add-on starts, and the frames that come back are checked: their n
 size, a cube that moves, the World's colour in the sky, and every light's brightness
 against Cycles' render of the same scene, region by region. Bad input gets a message."""
 
+import json
 import os
 import sys
 import time
@@ -84,11 +85,15 @@ def test_round_trip(addon):
     settings = scene.pathfarm
     settings.executable, settings.output = PATHFARM, os.path.join(WORK, "shot")
     settings.pipeline, settings.spp, settings.max_depth, settings.workers = "pt", SPP, MAX_DEPTH, 2
+    settings.preview_every = 2  # frames 1 and 3 first: the shot file carries the key to the farm
     bpy.ops.wm.save_as_mainfile(filepath=os.path.join(WORK, "scene.blend"))
     job = run_shot(addon, bpy.context)
     warnings = [warning.text for warning in bpy.context.window_manager.pathfarm_job.warnings]
     check(any("panel: emits from both sides" in text for text in warnings),
           f"the panel's two-sided emission is listed as lost ({warnings})")
+    with open(job.shot_file) as file:
+        shot = json.load(file)
+    check(shot.get("preview_every") == 2 and shot.get("pipeline") == "pt", f"the shot file carries the panel ({shot})")
     frames = job.frames()
     check(len(frames) == 3, f"three frames come back ({len(frames)})")
     if len(frames) != 3:

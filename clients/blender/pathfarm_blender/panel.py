@@ -25,6 +25,7 @@ class RENDER_PT_pathfarm(bpy.types.Panel):
         layout.prop(settings, "pipeline")
         layout.prop(settings, "spp")
         layout.prop(settings, "max_depth")
+        layout.prop(settings, "preview_every")
         layout.prop(settings, "reference")
         layout.prop(settings, "output")
         render, scene = context.scene.render, context.scene

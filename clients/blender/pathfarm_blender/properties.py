@@ -38,6 +38,13 @@ class PathfarmSettings(bpy.types.PropertyGroup):
     max_depth: IntProperty(
         name="Max depth", description="Scattering events per path (Cycles' total bounces + 1)", default=8, min=1, max=1024
     )
+    preview_every: IntProperty(
+        name="Preview every",
+        description="Render every n-th frame first, for an early review (1: in frame order)",
+        default=1,
+        min=1,
+        max=1000,
+    )
     reference: BoolProperty(
         name="Reference", description="Also render references and report every frame's error against them", default=False
     )

@@ -122,6 +122,8 @@ def export_shot(context, folder):
     if environment:
         scene_json["environment"] = environment
     shot = {"name": shot_name(scene), "scene": "scene.json", "pipeline": settings.pipeline, "output": "frames"}
+    if settings.preview_every > 1:
+        shot["preview_every"] = settings.preview_every
     if settings.reference:
         shot["reference_spp"] = "auto"
     write_json(os.path.join(folder, "scene.json"), scene_json)
