@@ -6,6 +6,7 @@ cd "$(dirname "$0")/.."
 
 PACKAGES=(
   build-essential cmake ninja-build pkg-config git python3 procps
+  iproute2 openssl sqlite3
   libembree-dev libopenexr-dev libimath-dev libtbb-dev
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler
   libsqlite3-dev libssl-dev libspdlog-dev libfmt-dev libgtest-dev libgmock-dev

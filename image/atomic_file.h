@@ -32,6 +32,11 @@ class AtomicFileWriter {
   int fd_ = -1;
 };
 
+// Removes from `folder` (not below it) the temporaries of writers whose process is gone
+// (killed before they committed or cleaned up); returns how many. Those of live processes
+// stay: they may still commit.
+size_t removeAbandonedTemporaries(const std::filesystem::path& folder);
+
 void writeFileAtomically(const std::filesystem::path& file, const std::string& bytes,
                          AtomicFileWriter::Sync sync = AtomicFileWriter::Sync::Yes);
 

@@ -57,6 +57,8 @@ struct SchedulerServer::Services {
 SchedulerServer::SchedulerServer(SchedulerOptions options) : options_(std::move(options)) {
   checkExposure(options_);
   services_ = std::make_unique<Services>(options_);
+  if (const size_t removed = services_->store.removeAbandonedWrites(); removed > 0)
+    spdlog::info("removed {} chunk(s) left half-written in the store by a scheduler that was killed", removed);
   grpc::ServerBuilder builder;
   configureServer(builder);
   builder.AddListeningPort(options_.listen, serverCredentials(options_.tls), &port_);

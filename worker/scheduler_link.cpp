@@ -1,6 +1,7 @@
 #include "worker/scheduler_link.h"
 
 #include <optional>
+#include <thread>
 
 #include "proto/wire/chunk_transfer.h"
 #include "proto/wire/connection.h"
@@ -14,7 +15,19 @@ constexpr double kTransferSeconds = 300;  // a chunk of a large frame on a slow 
 }  // namespace
 
 SchedulerLink::SchedulerLink(const std::string& address, std::string token, const ClientTls& tls)
-    : stub_(WorkerService::NewStub(makeChannel(address, tls))), token_(std::move(token)) {}
+    : channel_(makeChannel(address, tls)), stub_(WorkerService::NewStub(channel_)), token_(std::move(token)) {}
+
+void SchedulerLink::pause(std::chrono::milliseconds delay) {
+  const auto until = std::chrono::system_clock::now() + delay;
+  // WaitForConnected polls the connection and starts attempts; a connection that is up
+  // already (the call failed for another reason) gets the plain wait.
+  if (channel_->GetState(false) != GRPC_CHANNEL_READY && channel_->WaitForConnected(until)) return;
+  std::this_thread::sleep_until(until);
+}
+
+Backoff SchedulerLink::backoff() {
+  return Backoff([this](std::chrono::milliseconds delay) { pause(delay); });
+}
 
 std::unique_ptr<grpc::ClientContext> SchedulerLink::context(double seconds, WorkerSession* used) const {
   auto context = std::make_unique<grpc::ClientContext>();

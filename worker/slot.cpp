@@ -60,7 +60,7 @@ class Slot {
         heartbeat_(link, std::chrono::milliseconds(static_cast<int64_t>(heartbeatSeconds * 1000))) {}
 
   void run(const std::atomic<bool>& stop) {
-    Backoff backoff;
+    Backoff backoff = link_.backoff();
     while (!stop) {
       LeaseReply reply;
       WorkerSession session;
@@ -129,7 +129,7 @@ class Slot {
   // waited for (it is not the task's fault) until the lease is lost.
   template <class Get>
   void fromScheduler(const ChunkRef& ref, const std::atomic<bool>& abandon, Get get) {
-    Backoff backoff;
+    Backoff backoff = link_.backoff();
     for (;;) {
       const grpc::Status status = get();
       if (status.ok()) return;
@@ -145,7 +145,7 @@ class Slot {
   // waited for until the lease is lost.
   Lease withInputs(const Lease& lease, const std::atomic<bool>& abandon) {
     if (!lease.inputs_streamed()) return lease;
-    Backoff backoff;
+    Backoff backoff = link_.backoff();
     for (;;) {
       Lease full = lease;
       const grpc::Status status = link_.leaseInputs(full);
@@ -210,7 +210,7 @@ class Slot {
   // a refusal, once. Returns the last answer.
   grpc::Status upload(const TaskOutput& output, ChunkRef& stored, const std::atomic<bool>& abandon,
                       const std::atomic<bool>& stop) {
-    Backoff backoff;
+    Backoff backoff = link_.backoff();
     const auto since = Clock::now();
     for (int tries = 1;; ++tries) {
       const grpc::Status status = output.chunkFile ? link_.putChunkFile(output.chunkFile->path(), stored)
@@ -302,7 +302,7 @@ class Slot {
   // to `answer` if given.
   template <class Call>
   bool report(Call call, const std::atomic<bool>& stop, ReportReply* answer = nullptr) {
-    Backoff backoff;
+    Backoff backoff = link_.backoff();
     const auto since = Clock::now();
     for (;;) {
       ReportReply reply;

@@ -37,7 +37,7 @@ void Worker::run(const std::atomic<bool>& stop) {
   installTaskLogSink();
   SchedulerLink link(options_.scheduler, options_.token, options_.tls);
   RegisterReply registration;
-  Backoff backoff;
+  Backoff backoff = link.backoff();
   for (;;) {
     const grpc::Status status = link.registerWorker(options_.name, options_.slots, options_.tags, registration);
     if (status.ok()) break;
@@ -58,6 +58,8 @@ void Worker::run(const std::atomic<bool>& stop) {
   spdlog::info("worker {} ({}) registered with {}: {} slots", workerId, options_.name, options_.scheduler,
                options_.slots);
   ChunkStore cache(options_.cache, ChunkStore::Kind::Cache);
+  if (const size_t removed = cache.removeAbandonedWrites(); removed > 0)
+    spdlog::info("removed {} chunk(s) left half-written in the cache by a worker that was killed", removed);
   CacheBound bound(options_.cache, options_.cacheMaxBytes);
   bound.maybeTrim();
   removeOrphanedScratchFiles(options_.cache / "outgoing");

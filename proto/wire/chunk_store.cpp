@@ -36,6 +36,14 @@ ChunkStore::ChunkStore(std::filesystem::path root, Kind kind)
   std::filesystem::create_directories(root_ / "objects");
 }
 
+size_t ChunkStore::removeAbandonedWrites() {
+  size_t removed = 0;
+  std::error_code error;
+  for (const auto& folder : std::filesystem::directory_iterator(root_ / "objects", error))
+    if (folder.is_directory(error)) removed += removeAbandonedTemporaries(folder.path());
+  return removed;
+}
+
 std::filesystem::path ChunkStore::pathOf(const std::string& sha256) const {
   return root_ / "objects" / sha256.substr(0, 2) / sha256.substr(2);
 }

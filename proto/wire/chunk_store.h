@@ -63,6 +63,9 @@ class ChunkStore {
   // Stores the bytes; if `expected` names a digest or size, the bytes must match it.
   ChunkRef put(const std::string& bytes, const ChunkRef& expected = {});
   bool has(const std::string& sha256) const;
+  // Removes the temporaries of chunks whose writer was killed before it finished (a
+  // scheduler or worker restarted after a crash); returns how many.
+  size_t removeAbandonedWrites();
   // The chunk's bytes, verified; nullopt when absent. A damaged file is removed and
   // reported as absent.
   std::optional<std::string> get(const std::string& sha256) const;

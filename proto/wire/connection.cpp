@@ -34,6 +34,9 @@ std::shared_ptr<grpc::Channel> makeChannel(const std::string& address, const Cli
   grpc::ChannelArguments arguments;
   arguments.SetMaxReceiveMessageSize(kMaxMessageBytes);
   arguments.SetMaxSendMessageSize(kMaxMessageBytes);
+  // gRPC waits up to 2 minutes between connection attempts by default; a farm's parties
+  // retry every 5 s at most themselves (worker/backoff.h), and so does the connection.
+  arguments.SetInt(GRPC_ARG_MAX_RECONNECT_BACKOFF_MS, 5000);
   return grpc::CreateCustomChannel(address, channelCredentials(tls), arguments);
 }
 

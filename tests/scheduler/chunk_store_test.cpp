@@ -1,5 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <csignal>
 #include <fstream>
 #include <iterator>
 
@@ -47,6 +51,39 @@ TEST(ChunkStore, StoresByContentAndVerifiesOnRead) {
   std::ofstream(file, std::ios::binary | std::ios::trunc) << "tampered";
   EXPECT_FALSE(store.get(ref.sha256()).has_value());
   EXPECT_FALSE(store.get("../../etc/passwd").has_value());
+  std::filesystem::remove_all(folder);
+}
+
+// A writer killed mid-chunk (a scheduler or worker host that lost power) leaves its
+// temporary; the next start removes it, and leaves those of writers still running.
+TEST(ChunkStore, TheTemporariesOfKilledWritersAreRemovedAndThoseOfLiveOnesKept) {
+  const auto folder = freshFolder("abandoned");
+  ChunkStore store(folder);
+  const ChunkRef kept = store.put("a whole chunk");
+  const std::string bytes = "a chunk its writer never finished";
+  const auto target = folder / "objects" / sha256Hex(bytes).substr(0, 2) / sha256Hex(bytes).substr(2);
+  std::filesystem::create_directories(target.parent_path());
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    AtomicFileWriter killed(target);
+    killed.append(bytes.substr(0, 8));
+    raise(SIGKILL);
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFSIGNALED(status));
+  AtomicFileWriter running(target);  // this process's: still running
+  running.append(bytes);
+  ASSERT_EQ(partialFiles(folder), 2u);
+
+  EXPECT_EQ(store.removeAbandonedWrites(), 1u);
+  EXPECT_EQ(partialFiles(folder), 1u);
+  running.commit();
+  EXPECT_EQ(store.get(sha256Hex(bytes)).value(), bytes);
+  EXPECT_EQ(store.get(kept.sha256()).value(), "a whole chunk");
+  EXPECT_EQ(partialFiles(folder), 0u);
+  EXPECT_EQ(store.removeAbandonedWrites(), 0u);
   std::filesystem::remove_all(folder);
 }
 
