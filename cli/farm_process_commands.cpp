@@ -156,6 +156,11 @@ std::vector<Command> addFarmProcessCommands(CLI::App& app) {
       ->capture_default_str();
   w->add_option("--token-file", worker->tokenFile, "file holding the farm's access token (or PATHFARM_TOKEN[_FILE])");
   addClientTlsOptions(w, worker->options.tls);
+  w->add_option("--hand-back-after", worker->options.handBackAfterSeconds,
+                "on SIGTERM: a task still running after this many seconds is handed back to the scheduler, which "
+                "gives it to another worker at once (0: at once); one that ends sooner is delivered")
+      ->check(CLI::Range(0.0, 1e6))
+      ->capture_default_str();
   w->add_option("--parent", worker->parent, "stop when process PID ends (`pathfarm local` passes its own)");
 
   return {{s, [scheduler] { return runScheduler(*scheduler); }}, {w, [worker] { return runWorker(*worker); }}};

@@ -72,7 +72,7 @@ std::string prometheusText(const FarmMetrics& m) {
 
   MetricFamily ended = family("attempts_ended_total",
                               "Attempts that did not finish, by cause: failures the worker reported, by class "
-                              "(worker_fault, bad_input, transport), lost (the lease expired), revoked (hung, or "
+                              "(worker_fault, bad_input, transport, released: handed back by a stopping worker), lost (the lease expired), revoked (hung, or "
                               "its shot ended).",
                               MetricType::Counter);
   for (const auto& [cause, count] : m.attemptsEnded) ended.metric.push_back(counter({{"cause", cause}}, static_cast<double>(count)));

@@ -288,6 +288,12 @@ ReportReply FarmState::fail(int64_t attemptId, const std::string& reason, double
     if (!attempt) return refused(kStaleLease);
     endAttempt(*attempt, static_cast<int>(AttemptState::Failed), reason, now, logTail,
                lowerWithout(FailureClass_Name(kind), "FAILURE_"));
+    // A worker leaving (a preempted node) is no fault of the task's, as a vanished one is
+    // not; it only said so before its lease ran out.
+    if (kind == FAILURE_RELEASED) {
+      retryLost(*attempt, reason, now);
+      return accepted();
+    }
     // Bad input fails the shot once a second worker says so too: one worker (broken, or
     // hostile) cannot fail a shot by itself. Until then the task runs again, no one blamed.
     if (kind == FAILURE_BAD_INPUT && anotherWorkerFoundBadInput(*attempt)) {

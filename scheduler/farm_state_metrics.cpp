@@ -50,7 +50,7 @@ FarmMetrics FarmState::metricsLocked(double now) {
 
   // A failed attempt by the class its worker reported (attempts from before classes were
   // kept count as worker faults).
-  for (const char* cause : {"worker_fault", "bad_input", "transport", "lost", "revoked"}) m.attemptsEnded[cause] = 0;
+  for (const char* cause : {"worker_fault", "bad_input", "transport", "released", "lost", "revoked"}) m.attemptsEnded[cause] = 0;
   Statement& ended = db_.query(
       "SELECT CASE state WHEN ?1 THEN CASE failure_class WHEN '' THEN 'worker_fault' ELSE failure_class END "
       "WHEN ?2 THEN 'lost' ELSE 'revoked' END, COUNT(*) FROM attempts WHERE state IN (?1, ?2, ?3) GROUP BY 1");

@@ -4,6 +4,8 @@
 #include <sys/resource.h>
 
 #include <chrono>
+#include <optional>
+#include <stop_token>
 #include <thread>
 #include <type_traits>
 #include <vector>
@@ -51,6 +53,31 @@ double processCpuSeconds() {
   const auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
   return seconds(usage.ru_utime) + seconds(usage.ru_stime);
 }
+
+// While a task runs: a stop request (SIGTERM, as a preempted node or a busy workstation
+// gets) that the task outlasts by `grace` abandons it at its next check and marks it to be
+// handed back, so that the scheduler gives it to another worker at once instead of
+// waiting out its lease on a worker that is about to be killed. A task already abandoned
+// (its lease lost) is left as it is.
+class StopHandsBack {
+ public:
+  StopHandsBack(const std::atomic<bool>& stop, std::chrono::milliseconds grace, std::atomic<bool>& abandon,
+                std::atomic<bool>& handedBack)
+      : watch_([&stop, grace, &abandon, &handedBack](const std::stop_token& taskOver) {
+          std::optional<Clock::time_point> stopSeen;
+          while (!taskOver.stop_requested()) {
+            if (stop && !stopSeen) stopSeen = Clock::now();
+            if (stopSeen && Clock::now() - *stopSeen >= grace) {
+              if (!abandon.exchange(true)) handedBack = true;
+              return;
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(50));
+          }
+        }) {}
+
+ private:
+  std::jthread watch_;
+};
 
 class Slot {
  public:
@@ -166,7 +193,11 @@ class Slot {
     const double cpuBefore = processCpuSeconds();
     const auto started = Clock::now();
     TaskOutput output;
+    std::atomic<bool> handedBack{false};
     try {
+      const StopHandsBack onStop(
+          stop, std::chrono::milliseconds(static_cast<int64_t>(options_.handBackAfterSeconds * 1000)), abandon,
+          handedBack);
       output = whileHeartbeating(lease, progress, abandon, [&] {
         const TaskLog::Capture onRunner(log);
         return runner_.run(
@@ -174,6 +205,11 @@ class Slot {
             abandon, [&](const ChunkRef& ref) { return fetchFile(ref, abandon, inputs); });
       });
     } catch (const TaskAbandoned&) {
+      if (handedBack) {
+        spdlog::warn("task {}: the worker is stopping; handed back to the scheduler", lease.task_id());
+        reportFailure(lease, FAILURE_RELEASED, "its worker was told to stop and handed it back", log, stop);
+        return;
+      }
       spdlog::warn("task {}: lease lost, result dropped", lease.task_id());
       return;
     } catch (const std::exception& e) {

@@ -26,13 +26,16 @@ struct WorkerOptions {
   uint64_t decodedInputMaxBytes = TaskRunner::kDefaultDecodedInputBytes;  // input frames kept decoded (decoded_inputs.h)
   std::vector<std::string> tags;  // the pools this worker serves (shots' required_tags)
   ClientTls tls;  // a CA names: the scheduler is reached over TLS
+  // After a stop request, a task still running this long is abandoned and handed back to
+  // the scheduler (a preempted node's notice is short); one that ends sooner is delivered.
+  double handBackAfterSeconds = 20;
 };
 
 class Worker {
  public:
   explicit Worker(WorkerOptions options);
-  // Works until `stop` turns true, then finishes and delivers the tasks in hand and
-  // returns. Throws std::runtime_error if the scheduler refuses the worker (bad token).
+  // Works until `stop` turns true, then finishes and delivers the tasks in hand (handing
+  // back those that outlast handBackAfterSeconds) and returns. Throws std::runtime_error if the scheduler refuses the worker (bad token).
   void run(const std::atomic<bool>& stop);
 
  private:

@@ -74,6 +74,65 @@ TEST_F(FarmTest, KilledWorkersLeaseExpiresAndAnotherWorkerRedoesItsTile) {
   expectSameFrames(fetched, renderLocally(spec), spec);
 }
 
+// Workers told to stop (SIGTERM) in the middle of a tile: one whose notice is short
+// (--hand-back-after 0, a preempted node) abandons its tile, hands it back and exits, and
+// the next worker takes it at once, long before the lease would have run out; one with
+// the default grace finishes and delivers its tile. Nobody is charged a failure.
+TEST_F(FarmTest, AStoppedWorkerHandsBackATaskThatOutlastsItsGraceAndDeliversOneThatDoesNot) {
+  RenderSpec spec;  // three tiles of about 1 s each on one thread
+  spec.name = "stopped-workers";
+  spec.frameStart = spec.frameEnd = 7;
+  spec.width = 192;
+  spec.height = 64;
+  spec.tile = 64;
+  spec.spp = 768;
+  spec.maxDepth = 4;
+
+  SchedulerConfig config;
+  config.leaseSeconds = 30;  // what a vanished worker would cost
+  startScheduler(config);
+  const int64_t id = client().submit(shotSpec(spec));
+  const FarmDatabase db = database();
+  // Starts a worker, waits until it is inside a tile, stops it; returns the tile's attempt
+  // and task.
+  const auto stopInsideATile = [&](const std::string& name, const std::vector<std::string>& arguments) {
+    farm::ChildProcess& worker = startWorker(name, arguments);
+    std::vector<std::vector<std::string>> running;
+    const bool leased = waitUntil(
+        [&] {
+          running = db.rows("SELECT a.id, a.task_id FROM attempts a JOIN workers w ON w.id = a.worker_id "
+                            "JOIN tasks t ON t.id = a.task_id WHERE w.name = '" + name + "' AND a.state = 0 AND t.kind = 1");
+          return !running.empty();
+        },
+        20s);
+    if (!leased) throw std::runtime_error(name + " never leased a tile");
+    std::this_thread::sleep_for(300ms);  // inside the tile; a 30-s lease sends no progress yet
+    worker.signal(SIGTERM);
+    if (worker.wait(20s) != 0) throw std::runtime_error(name + " did not exit 0 after SIGTERM");
+    return running[0];
+  };
+  const std::vector<std::string> handed = stopInsideATile("preempted", {"--hand-back-after", "0"});
+  const std::vector<std::string> delivered = stopInsideATile("drained", {});
+  startWorker("survivor");
+
+  const farm::ShotSummary summary = waitForShot(id, 20s);
+  ASSERT_EQ(summary.state(), farm::SHOT_DONE) << describe(summary);
+  const auto handedBack = db.rows("SELECT state, failure_class FROM attempts WHERE id = " + handed[0]);
+  ASSERT_EQ(handedBack.size(), 1u);
+  EXPECT_EQ(handedBack[0][0], "2");  // ended by the worker's report, not by expiry (3) or as done (1)
+  EXPECT_EQ(handedBack[0][1], "released");
+  EXPECT_EQ(db.integer("SELECT lost FROM tasks WHERE id = " + handed[1]), 1);
+  EXPECT_EQ(db.integer("SELECT state FROM attempts WHERE id = " + delivered[0]), 1);
+  EXPECT_EQ(db.integer("SELECT COALESCE(SUM(failures), 0) FROM tasks"), 0);
+  const auto redone = db.rows("SELECT w.name FROM attempts a JOIN workers w ON w.id = a.worker_id "
+                              "WHERE a.task_id = " + handed[1] + " AND a.state = 1");
+  ASSERT_EQ(redone.size(), 1u);
+  EXPECT_NE(redone[0][0], "preempted");
+
+  const fs::path fetched = fetchFrames(id, "fetched");
+  expectSameFrames(fetched, renderLocally(spec), spec);
+}
+
 TEST_F(FarmTest, SchedulerKilledMidShotRestartsOnItsDatabaseWithoutRedoingFinishedTasks) {
   // 12 tiles of 32x32 at 256 spp (about a quarter second each) and 3 assemblies.
   RenderSpec spec;
