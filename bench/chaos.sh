@@ -14,6 +14,7 @@
 # Everything listens on 127.0.0.1 only; every wait is bounded by --limit seconds.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source bench/frames_identical.sh
 build=build pipelines="dui tgpt tmlt" frames=0:5 res=96x64 spp=16 workers=3 every=2 schedulerKills=2 limit=600
 soakMinutes=0
 while (($#)); do
@@ -105,13 +106,7 @@ JSON
   identical="no: shot ${state:-unreachable}"
   if [[ ${state,,} == done ]]; then
     "$pathfarm" fetch "$id" --out "$work/chaos-$pipeline" --scheduler "127.0.0.1:$port" > /dev/null
-    same=0 total=0
-    for reference in "$work/undisturbed-$pipeline"/frame_*.exr; do
-      total=$((total + 1))
-      cmp -s "$reference" "$work/chaos-$pipeline/$(basename "$reference")" && same=$((same + 1))
-    done
-    identical="$same of $total"
-    ((same == total && total > 0)) || status=1
+    identical=$(frames_identical "$work/undisturbed-$pipeline" "$work/chaos-$pipeline") || status=1
   else
     status=1
     "$pathfarm" status "$id" --scheduler "127.0.0.1:$port" 2> /dev/null | tail -5 >&2 || true

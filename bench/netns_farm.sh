@@ -38,6 +38,7 @@
 # (ctest: skipped). Every wait is bounded by --limit seconds.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source bench/frames_identical.sh
 build=build pipelines="pt d dui tgpt tmlt auto" faults="worker-cut worker-freeze scheduler-cut power-loss scheduler-restart upload-cut"
 scene=scenes/dolly/scene.json frames=0:11 res=192x108 spp=64 workers=3 lease=3 cut=60 limit=900 keep=0
 while (($#)); do
@@ -150,8 +151,12 @@ state_of() {  # the state word of shot $1, seen from the client (empty while out
   on client timeout 20 "$pathfarm" status "$1" "${farm_options[@]}" 2> /dev/null | head -1 |
     grep -oE 'SHOT_[A-Z]+' | head -1 | sed 's/SHOT_//' || true
 }
-wait_for_log() {  # $1: a log file, $2: a pattern; true once it appears (bounded)
-  for _ in $(seq $((limit * 10))); do grep -q "$2" "$1" 2> /dev/null && return 0; sleep 0.1; done
+wait_for_log() {  # $1: a log file, $2: a pattern; true once it appears, false if the shot ends first (bounded)
+  for _ in $(seq $((limit * 10))); do
+    grep -q "$2" "$1" 2> /dev/null && return 0
+    [ -e "$work/shot-over" ] && return 1
+    sleep 0.1
+  done
   return 1
 }
 submit() {  # prints the shot id; the same key each time, so a second submit is the first shot
@@ -159,23 +164,24 @@ submit() {  # prints the shot id; the same key each time, so a second submit is 
     2>> "$work/client.log" | grep -E '^[0-9]+$' || true
 }
 
-# The fault, played in the background while the shot runs.
+# The fault, played in the background while the shot runs; $work/fault-played says it was.
 play_fault() {
+  touch "$work/fault-played"
   case $1 in
     worker-cut)
-      wait_for_log "$work/w1.log" "started" || return 0
+      wait_for_log "$work/w1.log" "started" || { rm -f "$work/fault-played"; return 0; }
       cut_link w1; sleep "$cut"; heal_link w1 ;;
     worker-freeze)
-      wait_for_log "$work/w1.log" "started" || return 0
+      wait_for_log "$work/w1.log" "started" || { rm -f "$work/fault-played"; return 0; }
       signal_host w1 STOP; sleep "$cut"; signal_host w1 CONT ;;
     scheduler-cut)
-      wait_for_log "$work/w1.log" "started" || return 0
+      wait_for_log "$work/w1.log" "started" || { rm -f "$work/fault-played"; return 0; }
       cut_link scheduler; sleep "$cut"; heal_link scheduler ;;
     power-loss)
-      wait_for_log "$work/w2.log" "started" || return 0
+      wait_for_log "$work/w2.log" "started" || { rm -f "$work/fault-played"; return 0; }
       kill_host w2; rm -rf "$work/cache-w2"; sleep 1; start_worker w2 ;;
     scheduler-restart)
-      wait_for_log "$work/w1.log" "started" || return 0
+      wait_for_log "$work/w1.log" "started" || { rm -f "$work/fault-played"; return 0; }
       kill_host scheduler; start_scheduler ;;
   esac
 }
@@ -201,14 +207,17 @@ for pipeline in $pipelines; do
     run=$((run + 1))
     kill_host scheduler
     for i in $(seq 1 "$workers"); do kill_host "w$i"; done
-    rm -rf "$work/farm.db"* "$work/store" "$work"/cache-* "$work"/*.log "$work/out"
+    rm -rf "$work/farm.db"* "$work/store" "$work"/cache-* "$work"/*.log "$work/out" "$work/shot-over" "$work/fault-played"
+    for host in "${hosts[@]}"; do heal_link "$host"; done
     cat > "$work/shot.json" <<JSON
 {"name": "netns-$pipeline-$fault", "scene": "$scene",
  "frames": {"start": ${frames%:*}, "end": ${frames#*:}}, "resolution": [${res%x*}, ${res#*x}],
  "spp": $spp, "tile": 32, "pipeline": "$pipeline", "max_attempts": 3}
 JSON
     start_scheduler
-    for i in $(seq 1 "$workers"); do start_worker "w$i"; done
+    start_worker w1  # first, so that it leases the first task: the faults aim at it
+    wait_for_log "$work/w1.log" "registered" || true
+    for i in $(seq 2 "$workers"); do start_worker "w$i"; done
     started=$SECONDS fault_pid=""
     if [ "$fault" = upload-cut ]; then
       # The upload is slowed so that the cut finds it under way; the user gives up on the
@@ -233,21 +242,19 @@ JSON
       sleep 1
     done
     seconds=$((SECONDS - started))
+    touch "$work/shot-over"
     [ -z "$fault_pid" ] || wait "$fault_pid" 2> /dev/null || true  # the fault's end
     identical="no: shot ${state:-not submitted}"
-    if [[ $state == DONE ]]; then
+    if [ "$fault" != undisturbed ] && [ "$fault" != upload-cut ] && [ ! -e "$work/fault-played" ]; then
+      identical="no: the shot ended before the fault could be played (a longer shot: --frames, --spp)"
+      status=1
+    elif [[ $state == DONE ]]; then
       on client "$pathfarm" fetch "$id" --out "$work/out" "${farm_options[@]}" > /dev/null 2>> "$work/client.log"
       if [ "$fault" = undisturbed ]; then
         rm -rf "$work/undisturbed"; mv "$work/out" "$work/undisturbed"; baseline=$seconds
         identical="(the reference)"
       else
-        same=0 total=0
-        for reference in "$work/undisturbed"/frame_*.exr; do
-          total=$((total + 1))
-          cmp -s "$reference" "$work/out/$(basename "$reference")" && same=$((same + 1))
-        done
-        identical="$same of $total"
-        ((same == total && total > 0)) || status=1
+        identical=$(frames_identical "$work/undisturbed" "$work/out") || status=1
       fi
     else
       status=1
