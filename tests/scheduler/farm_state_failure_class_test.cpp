@@ -56,6 +56,29 @@ TEST_F(FarmStateTest, ATransferFailureRunsTheTaskAgainAndBlamesNoWorker) {
   EXPECT_EQ(state_->metrics(now_).attemptsEnded.at("transport"), 2);
 }
 
+// A task handed back by a stopping worker (a preempted node) runs again, counted as a
+// lost worker: no attempt charged, no worker blamed, and bounded by --max-lost-workers as
+// a vanishing worker is.
+TEST_F(FarmStateTest, ATaskHandedBackIsCountedAsALostWorkerNotAsAFailure) {
+  const int64_t shot = submitFrame(0, 1);
+  const int64_t leaving = state_->registerWorker("leaving", 1, now_);
+  for (int release = 1; release < settings_.maxLostWorkers; ++release) {
+    const Lease lease = leaseFor(leaving);
+    ASSERT_TRUE(
+        state_->fail(lease.attempt_id(), "its worker was told to stop", now_, "", FAILURE_RELEASED).accepted());
+    EXPECT_EQ(state_->summary(shot, now_).state(), SHOT_RUNNING) << "after " << release << " releases";
+    now_ += settings_.retryBackoffSeconds;
+  }
+  EXPECT_TRUE(state_->blocklist(shot).empty());
+  EXPECT_EQ(state_->metrics(now_).attemptsEnded.at("released"), settings_.maxLostWorkers - 1);
+  EXPECT_EQ(state_->metrics(now_).attemptsEnded.at("worker_fault"), 0);
+  const Lease last = leaseFor(leaving);
+  ASSERT_TRUE(state_->fail(last.attempt_id(), "its worker was told to stop", now_, "", FAILURE_RELEASED).accepted());
+  const ShotSummary summary = state_->summary(shot, now_);
+  EXPECT_EQ(summary.state(), SHOT_FAILED);
+  EXPECT_NE(summary.failure().find("lost its worker"), std::string::npos) << summary.failure();
+}
+
 TEST_F(FarmStateTest, TransferFailuresStillCountTowardTheTasksAttempts) {
   const int64_t shot = submitFrame(0, 2);
   const int64_t worker = state_->registerWorker("w", 1, now_);
