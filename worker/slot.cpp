@@ -4,6 +4,8 @@
 #include <sys/resource.h>
 
 #include <chrono>
+#include <condition_variable>
+#include <mutex>
 #include <optional>
 #include <stop_token>
 #include <thread>
@@ -64,6 +66,9 @@ class StopHandsBack {
   StopHandsBack(const std::atomic<bool>& stop, std::chrono::milliseconds grace, std::atomic<bool>& abandon,
                 std::atomic<bool>& handedBack)
       : watch_([&stop, grace, &abandon, &handedBack](const std::stop_token& taskOver) {
+          std::mutex mutex;
+          std::condition_variable_any wake;
+          std::unique_lock lock(mutex);
           std::optional<Clock::time_point> stopSeen;
           while (!taskOver.stop_requested()) {
             if (stop && !stopSeen) stopSeen = Clock::now();
@@ -71,7 +76,10 @@ class StopHandsBack {
               if (!abandon.exchange(true)) handedBack = true;
               return;
             }
-            std::this_thread::sleep_for(std::chrono::milliseconds(50));
+            // `stop` is set by a signal handler, which cannot notify: it is looked at every
+            // 50 ms. The end of the task wakes the wait at once (a task of a few
+            // milliseconds must not wait for the watch).
+            wake.wait_for(lock, taskOver, std::chrono::milliseconds(50), [] { return false; });
           }
         }) {}
 
