@@ -13,6 +13,7 @@
 #include "renderer/accel/shot_geometry.h"
 #include "renderer/gradient/adaptive_sampling.h"
 #include "renderer/gradient/temporal_correspondence.h"
+#include "renderer/integrators/gradient_estimates.h"
 #include "renderer/integrators/gradient_path_tracer.h"
 #include "renderer/integrators/sample_moments.h"
 
@@ -28,88 +29,11 @@ struct GradientFrameRenderer::Shot {
 
 namespace {
 
-struct PixelSums {
-  uint32_t drawn = 0;             // sample indices used so far
-  uint32_t samples = 0;           // finite samples accumulated
-  uint32_t mixedSamples = 0;      // of which with the temporal offset's spatial offsets
-  SampleMoments direct, own, temporal;  // own: the base's parts of its pixel, averaged over the 4 pairs
-  std::array<SampleMoments, 4> offset, difference;
-  std::array<SampleMoments, 4> mixed;  // the temporal offset's difference minus the base's, per direction
-};
-
-const char* const kChannels[3] = {"R", "G", "B"};
-
 bool isFinite(const GradientSample& g) {
   Rgb total = g.direct + g.radiance;
   for (size_t k = 0; k < 4; ++k) total += g.base[k] + g.offset[k] + g.difference[k];
   return total.isFinite();
 }
-
-// The frame's layers from the per-pixel sums: each pair (p, p + d) is estimated from
-// both pixels' samples, so this is where neighbours meet.
-class FrameLayers {
- public:
-  FrameLayers(const std::vector<PixelSums>& sums, int width, int height)
-      : sums_(sums), width_(width), height_(height) {}
-
-  size_t neighbour(size_t p, size_t k) const {
-    const int x = static_cast<int>(p % static_cast<size_t>(width_)) + kShiftDirections[k][0];
-    const int y = static_cast<int>(p / static_cast<size_t>(width_)) + kShiftDirections[k][1];
-    if (x < 0 || y < 0 || x >= width_ || y >= height_) return SIZE_MAX;
-    return static_cast<size_t>(y) * static_cast<size_t>(width_) + static_cast<size_t>(x);
-  }
-  // The primal estimate: for each of the 4 pairs the pixel is in, its own samples' part
-  // plus the neighbour's offsets' part, averaged over the pairs.
-  double primal(size_t p, size_t c, double* variance) const {
-    const PixelSums& s = sums_[p];
-    double value = s.own.mean(c, s.samples), v = s.own.varianceOfMean(c, s.samples);
-    for (size_t k = 0; k < 4; ++k) {
-      const size_t n = neighbour(p, k);
-      if (n == SIZE_MAX) continue;
-      const SampleMoments& m = sums_[n].offset[k ^ 1];
-      value += 0.25 * m.mean(c, sums_[n].samples);
-      v += 0.0625 * m.varianceOfMean(c, sums_[n].samples);
-    }
-    if (variance) *variance = v;
-    return value;
-  }
-  // I(p + d) - I(p) for d = +x (k = 0) or +y (k = 2): p's forward differences minus the
-  // neighbour's backward ones (which estimate I(p) - I(p + d)).
-  double gradient(size_t p, size_t k, size_t c, double* variance) const {
-    const size_t n = neighbour(p, k);
-    if (n == SIZE_MAX) {
-      if (variance) *variance = 0;
-      return 0;
-    }
-    const SampleMoments& forward = sums_[p].difference[k];
-    const SampleMoments& backward = sums_[n].difference[k ^ 1];
-    if (variance)
-      *variance = forward.varianceOfMean(c, sums_[p].samples) + backward.varianceOfMean(c, sums_[n].samples);
-    return forward.mean(c, sums_[p].samples) - backward.mean(c, sums_[n].samples);
-  }
-  // What adaptive sampling follows: the spatial differences' variance relative to the
-  // squared primal value (relMSE's denominator).
-  std::vector<float> relativeVariance() const {
-    std::vector<float> out(sums_.size());
-    for (size_t p = 0; p < sums_.size(); ++p) {
-      double total = 0;
-      for (size_t c = 0; c < 3; ++c) {
-        double vx = 0, vy = 0;
-        gradient(p, 0, c, &vx);
-        gradient(p, 2, c, &vy);
-        const double value = primal(p, c, nullptr);
-        total += (vx + vy) / (value * value + 0.01);
-      }
-      out[p] = static_cast<float>(total);
-    }
-    return out;
-  }
-
- private:
-  const std::vector<PixelSums>& sums_;
-  int width_, height_;
-};
-
 
 // The camera rays of one sample: through a pixel and through its neighbours, all with
 // the sample's film jitter and lens point.
@@ -182,7 +106,7 @@ struct PixelSampler {
   }
 
   // Adds `count` more samples to pixel (x, y)'s sums.
-  void render(int x, int y, uint32_t count, PixelSums& s, SampleCounters& local) const {
+  void render(int x, int y, uint32_t count, GradientPixelSums& s, SampleCounters& local) const {
     const StratifiedPixel pattern(scene.seed, frame, x, y);
     for (uint32_t i = 0; i < count; ++i) {
       const bool withMixed = (s.drawn + i) % mixedEvery == 0;
@@ -196,7 +120,7 @@ struct PixelSampler {
     s.drawn += count;
   }
 
-  static void accumulate(const TemporalPair& pair, bool withMixed, PixelSums& s) {
+  static void accumulate(const TemporalPair& pair, bool withMixed, GradientPixelSums& s) {
     const GradientSample& g = pair.base;
     s.direct.add(g.direct);
     Rgb own;
@@ -215,10 +139,11 @@ struct PixelSampler {
   }
 };
 
-// The frame cut into square tiles, numbered row by row.
+// A window of the frame cut into square tiles, numbered row by row.
 struct TileGrid {
-  int width, height, tile;
-  int tilesX = (width + tile - 1) / tile, tilesY = (height + tile - 1) / tile;
+  PixelWindow window;
+  int tile;
+  int tilesX = (window.width() + tile - 1) / tile, tilesY = (window.height() + tile - 1) / tile;
 
   size_t count() const { return static_cast<size_t>(tilesX) * static_cast<size_t>(tilesY); }
 };
@@ -239,111 +164,28 @@ class TileProgress {
   std::atomic<size_t> done_{0};
 };
 
-// One batch: every pixel's `allocation` of samples, the tiles in parallel.
+// One batch: every pixel's `allocation` of samples (both per pixel of the window, row by
+// row), the tiles in parallel.
 void renderBatch(tbb::task_arena& arena, const TileGrid& grid, const PixelSampler& sampler,
-                 const std::vector<uint32_t>& allocation, std::vector<PixelSums>& sums,
+                 const std::vector<uint32_t>& allocation, std::vector<GradientPixelSums>& sums,
                  tbb::enumerable_thread_specific<SampleCounters>& counters, TileProgress& progress) {
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, grid.count(), 1), [&](const tbb::blocked_range<size_t>& r) {
       for (size_t index = r.begin(); index != r.end(); ++index) {
         SampleCounters& local = counters.local();
-        const int x0 = static_cast<int>(index % static_cast<size_t>(grid.tilesX)) * grid.tile;
-        const int y0 = static_cast<int>(index / static_cast<size_t>(grid.tilesX)) * grid.tile;
-        for (int y = y0; y < std::min(y0 + grid.tile, grid.height); ++y)
-          for (int x = x0; x < std::min(x0 + grid.tile, grid.width); ++x) {
-            const size_t p = static_cast<size_t>(y) * static_cast<size_t>(grid.width) + static_cast<size_t>(x);
+        const PixelWindow& w = grid.window;
+        const int x0 = w.x0 + static_cast<int>(index % static_cast<size_t>(grid.tilesX)) * grid.tile;
+        const int y0 = w.y0 + static_cast<int>(index / static_cast<size_t>(grid.tilesX)) * grid.tile;
+        for (int y = y0; y < std::min(y0 + grid.tile, w.y1); ++y)
+          for (int x = x0; x < std::min(x0 + grid.tile, w.x1); ++x) {
+            const size_t p = static_cast<size_t>(y - w.y0) * static_cast<size_t>(w.width()) +
+                             static_cast<size_t>(x - w.x0);
             sampler.render(x, y, allocation[p], sums[p], local);
           }
         progress.tileDone();
       }
     });
   });
-}
-
-// The beauty (primal plus direct emission), the primal estimate, the spatial differences
-// and the direct emission, each with its variance.
-void writeSpatialLayers(FrameImage& image, const FrameLayers& layers, const std::vector<PixelSums>& sums) {
-  for (size_t c = 0; c < 3; ++c) {
-    const std::string ch = kChannels[c];
-    auto& beauty = image.addChannel(ch);
-    auto& beautyVariance = image.addChannel("variance." + ch);
-    auto& primal = image.addChannel("primal." + ch);
-    auto& primalVariance = image.addChannel("primal.variance." + ch);
-    auto& gx = image.addChannel("gradient_x." + ch);
-    auto& gxVariance = image.addChannel("gradient_x.variance." + ch);
-    auto& gy = image.addChannel("gradient_y." + ch);
-    auto& gyVariance = image.addChannel("gradient_y.variance." + ch);
-    auto& direct = image.addChannel("direct_emission." + ch);
-    for (size_t p = 0; p < sums.size(); ++p) {
-      double v = 0;
-      primal[p] = static_cast<float>(layers.primal(p, c, &v));
-      primalVariance[p] = static_cast<float>(v);
-      gx[p] = static_cast<float>(layers.gradient(p, 0, c, &v));
-      gxVariance[p] = static_cast<float>(v);
-      gy[p] = static_cast<float>(layers.gradient(p, 2, c, &v));
-      gyVariance[p] = static_cast<float>(v);
-      direct[p] = static_cast<float>(sums[p].direct.mean(c, sums[p].samples));
-      beauty[p] = primal[p] + direct[p];
-      beautyVariance[p] = primalVariance[p] + static_cast<float>(sums[p].direct.varianceOfMean(c, sums[p].samples));
-    }
-  }
-}
-
-void writeTemporalDifferences(FrameImage& image, const std::vector<PixelSums>& sums) {
-  for (size_t c = 0; c < 3; ++c) {
-    const std::string ch = kChannels[c];
-    auto& temporal = image.addChannel("temporal." + ch);
-    auto& variance = image.addChannel("temporal.variance." + ch);
-    for (size_t p = 0; p < sums.size(); ++p) {
-      temporal[p] = static_cast<float>(sums[p].temporal.mean(c, sums[p].samples));
-      variance[p] = static_cast<float>(sums[p].temporal.varianceOfMean(c, sums[p].samples));
-    }
-  }
-}
-
-// Mixed differences where the motion is rigid across the pair: like the spatial
-// differences, p's forward part minus its neighbour's backward part. A pair whose
-// pixel has no sample with mixed offsets (too few samples for mixedEvery) gets NaN:
-// the reconstruction drops it.
-void writeMixedDifferences(FrameImage& image, const FrameLayers& layers, const std::vector<PixelSums>& sums,
-                           const std::vector<int32_t>& correspondence, int width) {
-  const auto rigid = [&](size_t p, size_t k) {
-    const size_t n = layers.neighbour(p, k);
-    const int step = kShiftDirections[k][0] + kShiftDirections[k][1] * width;
-    return n != SIZE_MAX && correspondence[p] >= 0 && correspondence[n] == correspondence[p] + step &&
-           (k != 0 || correspondence[p] % width + 1 < width);
-  };
-  for (size_t k : {size_t{0}, size_t{2}}) {
-    const std::string layer = k == 0 ? "mixed_x." : "mixed_y.";
-    for (size_t c = 0; c < 3; ++c) {
-      auto& mixed = image.addChannel(layer + kChannels[c]);
-      auto& variance = image.addChannel(layer + "variance." + kChannels[c]);
-      for (size_t p = 0; p < sums.size(); ++p) {
-        if (!rigid(p, k)) continue;
-        const PixelSums &a = sums[p], &b = sums[layers.neighbour(p, k)];
-        if (a.mixedSamples == 0 || b.mixedSamples == 0) {
-          mixed[p] = variance[p] = std::numeric_limits<float>::quiet_NaN();
-          continue;
-        }
-        mixed[p] = static_cast<float>(a.mixed[k].mean(c, a.mixedSamples) - b.mixed[k ^ 1].mean(c, b.mixedSamples));
-        variance[p] = static_cast<float>(a.mixed[k].varianceOfMean(c, a.mixedSamples) +
-                                         b.mixed[k ^ 1].varianceOfMean(c, b.mixedSamples));
-      }
-    }
-  }
-}
-
-// Where each pixel's temporal offset went in frame f + 1.
-void writeTemporalTargets(FrameImage& image, const std::vector<int32_t>& correspondence, int width) {
-  auto& tx = image.addChannel("temporal.target.X");
-  auto& ty = image.addChannel("temporal.target.Y");
-  auto& valid = image.addChannel("temporal.valid.Y");
-  for (size_t p = 0; p < image.pixelCount(); ++p) {
-    const int32_t q = correspondence[p];
-    tx[p] = q >= 0 ? static_cast<float>(q % width) : -1.0f;
-    ty[p] = q >= 0 ? static_cast<float>(q / width) : -1.0f;
-    valid[p] = q >= 0 ? 1.0f : 0.0f;
-  }
 }
 
 }  // namespace
@@ -356,61 +198,96 @@ GradientFrameRenderer::GradientFrameRenderer(const Scene& scene, RenderSettings 
 
 GradientFrameRenderer::~GradientFrameRenderer() = default;
 
-FrameImage GradientFrameRenderer::render(int64_t frame, const ProgressCallback& progress, RenderStats* stats) const {
-  const auto start = std::chrono::steady_clock::now();
-  const int width = settings_.width, height = settings_.height;
-  const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
-  const FrameGeometry geometry(shot_->geometry, frame);
-  const Camera camera(scene_.camera, width, height);
-  const PathTracerSettings tracerSettings{settings_.maxDepth};
-  const GradientPathTracer tracer(geometry, shot_->lights, tracerSettings);
-  tbb::task_arena arena(settings_.threads > 0 ? settings_.threads : tbb::task_arena::automatic);
-  std::unique_ptr<const FrameGeometry> nextGeometry;
-  std::optional<GradientPathTracer> nextTracer;
-  std::vector<int32_t> correspondence;
+// What every window of a frame shares: its placed geometry, the next frame's and the
+// temporal correspondence (over the whole frame: a contested target goes to the nearest
+// point, wherever the contenders are).
+struct GradientFrameRenderer::FrameSetup {
+  int64_t frame;
+  std::unique_ptr<const FrameGeometry> geometry, nextGeometry;
+  std::vector<int32_t> correspondence;  // empty without temporal offsets
+};
+
+std::shared_ptr<const GradientFrameRenderer::FrameSetup> GradientFrameRenderer::setupFor(int64_t frame,
+                                                                                          tbb::task_arena& arena) const {
+  const std::lock_guard lock(setupMutex_);
+  if (lastSetup_ && lastSetup_->frame == frame) return lastSetup_;
+  auto setup = std::make_shared<FrameSetup>();
+  setup->frame = frame;
+  setup->geometry = std::make_unique<const FrameGeometry>(shot_->geometry, frame);
   if (gradient_.temporal) {
-    nextGeometry = std::make_unique<const FrameGeometry>(shot_->geometry, frame + 1);
-    nextTracer.emplace(*nextGeometry, shot_->lights, tracerSettings);
+    setup->nextGeometry = std::make_unique<const FrameGeometry>(shot_->geometry, frame + 1);
+    const Camera camera(scene_.camera, settings_.width, settings_.height);
     arena.execute([&] {
-      correspondence = temporalCorrespondence(geometry, *nextGeometry, camera, width, height, gradient_.motionVectors);
+      setup->correspondence = temporalCorrespondence(*setup->geometry, *setup->nextGeometry, camera, settings_.width,
+                                                     settings_.height, gradient_.motionVectors);
     });
   }
+  lastSetup_ = setup;
+  return lastSetup_;
+}
 
-  std::vector<PixelSums> sums(pixels);
+FrameImage GradientFrameRenderer::render(int64_t frame, const ProgressCallback& progress, RenderStats* stats) const {
+  const FrameImage estimates = estimate(frame, {0, 0, settings_.width, settings_.height}, progress, stats);
+  return gradientFrameFromEstimates({{&estimates, 0, 0}}, settings_.width, settings_.height);
+}
+
+FrameImage GradientFrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
+                                               const ProgressCallback& progress, RenderStats* stats) const {
+  if (window.x0 < 0 || window.y0 < 0 || window.x1 > settings_.width || window.y1 > settings_.height ||
+      window.width() <= 0 || window.height() <= 0)
+    throw std::invalid_argument("the pixel window lies outside the frame or is empty");
+  if (gradient_.batches > 1 && (window.width() != settings_.width || window.height() != settings_.height))
+    throw std::invalid_argument("adaptive batches spread samples over the whole frame: it cannot be rendered in windows");
+  return estimate(frame, window, progress, stats);
+}
+
+FrameImage GradientFrameRenderer::estimate(int64_t frame, const PixelWindow& window, const ProgressCallback& progress,
+                                           RenderStats* stats) const {
+  const auto start = std::chrono::steady_clock::now();
+  const int width = settings_.width, height = settings_.height;
+  const size_t pixels = static_cast<size_t>(window.width()) * static_cast<size_t>(window.height());
+  tbb::task_arena arena(settings_.threads > 0 ? settings_.threads : tbb::task_arena::automatic);
+  const std::shared_ptr<const FrameSetup> setup = setupFor(frame, arena);
+  const Camera camera(scene_.camera, width, height);
+  const PathTracerSettings tracerSettings{settings_.maxDepth};
+  const GradientPathTracer tracer(*setup->geometry, shot_->lights, tracerSettings);
+  std::optional<GradientPathTracer> nextTracer;
+  if (gradient_.temporal) nextTracer.emplace(*setup->nextGeometry, shot_->lights, tracerSettings);
+  std::vector<int32_t> targets;  // the window's pixels' correspondence
+  if (gradient_.temporal) {
+    targets.reserve(pixels);
+    for (int y = window.y0; y < window.y1; ++y)
+      for (int x = window.x0; x < window.x1; ++x)
+        targets.push_back(setup->correspondence[static_cast<size_t>(y) * static_cast<size_t>(width) +
+                                                static_cast<size_t>(x)]);
+  }
+
+  std::vector<GradientPixelSums> sums(pixels);
   const PixelSampler sampler{scene_, frame, camera, width, height, tracer, nextTracer ? &*nextTracer : nullptr,
-                             correspondence, static_cast<uint32_t>(gradient_.mixedEvery)};
-  const TileGrid grid{width, height, settings_.tileSize};
+                             setup->correspondence, static_cast<uint32_t>(gradient_.mixedEvery)};
+  const TileGrid grid{window, settings_.tileSize};
   const int batches = gradient_.batches;
   TileProgress tileProgress(progress, grid.count() * static_cast<size_t>(batches));
   tbb::enumerable_thread_specific<SampleCounters> counters;
   std::vector<uint32_t> allocation(pixels, static_cast<uint32_t>(std::max(1, settings_.spp / batches)));
   for (int batch = 0; batch < batches; ++batch) {
     if (batch > 0) {
+      // Only ever the whole frame (renderWindow).
       const uint64_t budget = static_cast<uint64_t>(settings_.spp) * pixels / static_cast<uint64_t>(batches);
-      allocation =
-          allocateSamples(samplingDensity(FrameLayers(sums, width, height).relativeVariance(), width, height), budget);
+      const FrameImage sofar = gradientEstimates(sums, width, height, targets, width);
+      allocation = allocateSamples(samplingDensity(gradientRelativeVariance(sofar), width, height), budget);
     }
     renderBatch(arena, grid, sampler, allocation, sums, counters, tileProgress);
   }
 
-  FrameImage image(width, height);
-  const FrameLayers layers(sums, width, height);
-  writeSpatialLayers(image, layers, sums);
-  if (gradient_.temporal) {
-    writeTemporalDifferences(image, sums);
-    writeMixedDifferences(image, layers, sums, correspondence, width);
-    writeTemporalTargets(image, correspondence, width);
-  }
-  auto& sampleCount = image.addChannel("sample_count.Y");
-  for (size_t p = 0; p < pixels; ++p) sampleCount[p] = static_cast<float>(sums[p].drawn);
-
+  FrameImage estimates = gradientEstimates(sums, window.width(), window.height(), targets, width);
   const RenderStats total = totalOf(counters, start);
-  writeRenderAttributes(image, scene_, frame, settings_, total);
-  auto& attributes = image.attributes();
+  writeRenderAttributes(estimates, scene_, frame, settings_, total);
+  auto& attributes = estimates.attributes();
   attributes["pathfarm.integrator"] = gradient_.temporal ? "tgpt" : "gpt";
   attributes["pathfarm.adaptive_batches"] = std::to_string(batches);
   if (stats) *stats = total;
-  return image;
+  return estimates;
 }
 
 }  // namespace pathfarm

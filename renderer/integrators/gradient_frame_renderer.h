@@ -6,9 +6,13 @@
 // primary-sample-space random numbers at the time of frame f + 1, through the pixel its
 // correspondence names, and the difference of the two is the temporal difference.
 // Tiles render in parallel; each pixel's samples are accumulated in a fixed order and
-// neighbours are combined only afterwards, so the bits do not depend on thread count or
-// tile size. Frames are rendered whole: differences need both pixels of a pair.
+// neighbours are combined only afterwards, from the pixels' estimates
+// (gradient_estimates.h), so the bits do not depend on thread count or tile size, and a
+// frame rendered in windows and joined is the frame rendered whole.
 #include <memory>
+#include <mutex>
+
+#include <tbb/task_arena.h>
 
 #include "renderer/integrators/frame_integrator.h"
 
@@ -31,13 +35,27 @@ class GradientFrameRenderer : public FrameIntegrator {
   ~GradientFrameRenderer() override;
 
   FrameImage render(int64_t frame, const ProgressCallback& progress = {}, RenderStats* stats = nullptr) const override;
+  // The estimates (gradient_estimates.h) of a window's pixels; gradientFrameFromEstimates
+  // joins the windows of a frame. Uniform sampling only (one batch): adaptive batches
+  // spread samples over the whole frame, so a smaller window is std::invalid_argument,
+  // as is one outside the frame. The frame's placement and correspondence are kept
+  // between calls for the same frame, so its windows pay for them once.
+  FrameImage renderWindow(int64_t frame, const PixelWindow& window, const ProgressCallback& progress = {},
+                          RenderStats* stats = nullptr) const;
 
  private:
   struct Shot;
+  struct FrameSetup;
+  std::shared_ptr<const FrameSetup> setupFor(int64_t frame, tbb::task_arena& arena) const;
+  FrameImage estimate(int64_t frame, const PixelWindow& window, const ProgressCallback& progress,
+                      RenderStats* stats) const;
+
   const Scene& scene_;
   RenderSettings settings_;
   GradientSettings gradient_;
   std::unique_ptr<Shot> shot_;
+  mutable std::mutex setupMutex_;
+  mutable std::shared_ptr<const FrameSetup> lastSetup_;
 };
 
 }  // namespace pathfarm

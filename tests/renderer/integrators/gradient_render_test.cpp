@@ -1,14 +1,16 @@
 // Gradient-domain rendering against independent answers: a scene of constant radiance
 // has no differences, the reconstruction's mean is the path tracer's, temporal offsets
 // of a still scene replay their base samples exactly, and the bits do not depend on
-// threads or tiles.
+// threads or tiles, nor on windows rendered apart and joined.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 
 #include "postproc/poisson/screened_poisson.h"
+#include "renderer/integrators/gradient_estimates.h"
 #include "renderer/integrators/gradient_frame_renderer.h"
 #include "test_support.h"
 #include "renderer/scene/scene_loader.h"
@@ -408,6 +410,49 @@ TEST(GradientRender, MixedOffsetsOnFewerSamplesLeaveEveryOtherLayerAlone) {
   EXPECT_GT(mixedDiffer, 0u);
   EXPECT_THROW(GradientFrameRenderer(scene, settings, GradientSettings{.temporal = true, .mixedEvery = 0}),
                std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace pathfarm
+
+namespace pathfarm {
+namespace {
+
+TEST(GradientRender, WindowsRenderedApartAndJoinedAreTheWholeFrameBitForBit) {
+  // A moving scene, so pairs across window borders have temporal and mixed differences;
+  // windows of uneven sizes, each rendered by its own renderer (another worker).
+  const Scene scene = loadScene(test_support::sourceDir() / "scenes/cornell/scene.json");
+  GradientSettings tgpt;
+  tgpt.temporal = true;
+  const RenderSettings settings = small(21, 13, 3, 4);
+  const FrameImage whole = GradientFrameRenderer(scene, settings, tgpt).render(7);
+  const std::vector<PixelWindow> windows = {{0, 0, 8, 5}, {8, 0, 21, 5}, {0, 5, 21, 6}, {0, 6, 13, 13}, {13, 6, 21, 13}};
+  std::vector<FrameImage> estimates;
+  for (const PixelWindow& window : windows)
+    estimates.push_back(GradientFrameRenderer(scene, settings, tgpt).renderWindow(7, window));
+  std::vector<PlacedEstimates> placed;
+  for (size_t i = 0; i < windows.size(); ++i) placed.push_back({&estimates[i], windows[i].x0, windows[i].y0});
+  const FrameImage joined = gradientFrameFromEstimates(placed, 21, 13);
+  ASSERT_TRUE(whole.hasChannel("mixed_x.R"));
+  ASSERT_EQ(joined.channelNames(), whole.channelNames());
+  for (const std::string& name : whole.channelNames()) {
+    const auto &a = whole.channel(name), &b = joined.channel(name);
+    ASSERT_EQ(a.size(), b.size());
+    // Bit for bit, NaN (a mixed pair without samples) included.
+    EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0) << name;
+  }
+  EXPECT_EQ(joined.attributes(), whole.attributes());
+
+  // Windows that leave a pixel out or cover one twice are refused, as is a window of an
+  // adaptive render.
+  placed.pop_back();
+  EXPECT_THROW(gradientFrameFromEstimates(placed, 21, 13), std::invalid_argument);
+  placed.push_back({&estimates[0], 13, 6});
+  EXPECT_THROW(gradientFrameFromEstimates(placed, 21, 13), std::invalid_argument);
+  GradientSettings adaptive = tgpt;
+  adaptive.batches = 2;
+  EXPECT_THROW(GradientFrameRenderer(scene, settings, adaptive).renderWindow(7, windows[0]), std::invalid_argument);
+  EXPECT_THROW(GradientFrameRenderer(scene, settings, tgpt).renderWindow(7, {0, 0, 22, 13}), std::invalid_argument);
 }
 
 }  // namespace
