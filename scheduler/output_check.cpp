@@ -17,7 +17,7 @@ std::string refusalOfOutput(const std::filesystem::path& file, TaskKind kind, co
     return e.what();
   }
   const std::string size = sizeText(image.width, image.height);
-  if (kind == TASK_RENDER_TILE || (kind == TASK_ASSEMBLE_FRAME && params.has_window())) {
+  if (kind == TASK_RENDER_TILE || kind == TASK_GRADIENT_TILE || (kind == TASK_ASSEMBLE_FRAME && params.has_window())) {
     const auto& window = params.window();
     const int width = window.x1() - window.x0(), height = window.y1() - window.y0();
     if (image.width != width || image.height != height)

@@ -270,10 +270,35 @@ void planFiltering(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
   planEvaluation(spec, true, evaluated, plan);
 }
 
+// The edge of a gradient frame's tiles: the shot's tile, doubled until a frame has at most
+// kMaxAssemblyInputs tiles (its gradient_render's inputs).
+int gradientTileEdge(const ShotSpec& spec) {
+  int64_t edge = std::max(spec.tile(), 1);
+  const auto tiles = [&] { return ((spec.width() + edge - 1) / edge) * ((spec.height() + edge - 1) / edge); };
+  while (tiles() > kMaxAssemblyInputs) edge *= 2;
+  return static_cast<int>(edge);
+}
+
+// A frame's gradient render: its tiles sampled apart (each a task a lost worker costs
+// little of) and joined into the frame's layers; one task when a tile is the frame.
+size_t planGradientFrame(const ShotSpec& spec, int64_t frame, std::vector<PlannedTask>& plan) {
+  PlannedTask layers = task(TASK_GRADIENT_RENDER, frame, {});
+  const int edge = gradientTileEdge(spec);
+  if (edge < spec.width() || edge < spec.height()) {
+    for (int y = 0; y < spec.height(); y += edge) {
+      for (int x = 0; x < spec.width(); x += edge) {
+        PlannedTask tile = task(TASK_GRADIENT_TILE, frame, {});
+        setWindow(tile.params, x, y, std::min(x + edge, spec.width()), std::min(y + edge, spec.height()));
+        layers.dependencies.push_back(push(std::move(tile), plan));
+      }
+    }
+  }
+  return push(std::move(layers), plan);
+}
+
 // Temporal gradient-domain path tracing (Manzi et al. 2016): a gradient render per frame
-// (whole frames: differences need both pixels of a pair; the temporal offset of frame f
-// reaches f + 1), a Poisson reconstruction per window of frames, and a blend per frame
-// over the windows covering it.
+// (planGradientFrame; the temporal offset of frame f reaches f + 1), a Poisson
+// reconstruction per window of frames, and a blend per frame over the windows covering it.
 void planGradientDomain(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
   checkRenderSpec(spec);
   if (spec.poisson_window() < 1 || spec.poisson_overlap() < 0 || spec.poisson_overlap() >= spec.poisson_window())
@@ -281,7 +306,7 @@ void planGradientDomain(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
   if (spec.poisson_norm() != "l1" && spec.poisson_norm() != "l2") throw PlanError("poisson_norm: \"l1\" or \"l2\"");
   std::map<int64_t, size_t> rendered;
   for (int64_t frame = spec.frame_start(); frame <= spec.frame_end(); ++frame)
-    rendered[frame] = push(task(TASK_GRADIENT_RENDER, frame, {}), plan);
+    rendered[frame] = planGradientFrame(spec, frame, plan);
   std::map<int64_t, std::vector<size_t>> covering;  // frame -> its windows, in order
   const auto frames = static_cast<size_t>(spec.frame_end() - spec.frame_start() + 1);
   for (const PoissonWindow& window :

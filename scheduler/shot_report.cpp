@@ -42,6 +42,7 @@ std::string stageOf(const TaskRecord& task) {
     case TASK_INTERPOLATE:
       return "interpolate";
     case TASK_GRADIENT_RENDER:
+    case TASK_GRADIENT_TILE:
     case TASK_MLT_SEED_POOL:
     case TASK_MLT_CHAINS:
       return "render";
@@ -99,7 +100,8 @@ TaskTotals addUpTasks(ShotReport& report, const std::vector<TaskRecord>& tasks) 
       cost.set_core_seconds(cost.core_seconds() + task.coreSeconds);
       report.set_core_seconds(report.core_seconds() + task.coreSeconds);
     }
-    if ((task.kind == TASK_RENDER_TILE || task.kind == TASK_GRADIENT_RENDER || task.kind == TASK_MLT_CHAINS) &&
+    if ((task.kind == TASK_RENDER_TILE || task.kind == TASK_GRADIENT_RENDER || task.kind == TASK_GRADIENT_TILE ||
+         task.kind == TASK_MLT_CHAINS) &&
         stage != kMeasurement)
       report.set_samples_traced(report.samples_traced() + metric(task, "samples"));
     if (task.params.role() == ROLE_BASELINE) {

@@ -10,6 +10,7 @@
 #include "image/exr_io.h"
 #include "image/size_text.h"
 #include "renderer/integrators/frame_renderer.h"
+#include "renderer/integrators/gradient_estimates.h"
 #include "renderer/scene/scene_loader.h"
 #include "renderer/setup/auto_decomposition.h"
 #include "renderer/setup/integrator_factory.h"
@@ -37,12 +38,22 @@ RenderSettings settingsOf(const Scene& scene, const ShotSpec& spec, int threads)
   return settings;
 }
 
+// A render's progress callback: reports to `progress`, stops with TaskAbandoned once
+// `abandon` is set.
+ProgressCallback abandonable(std::atomic<double>& progress, const std::atomic<bool>& abandon) {
+  return [&](size_t done, size_t total) {
+    if (abandon) throw TaskAbandoned();
+    progress = static_cast<double>(done) / static_cast<double>(total);
+  };
+}
+
 }  // namespace
 
 struct TaskRunner::ShotRenderer {
   Scene scene;
   std::unique_ptr<FrameRenderer> renderer;
   std::unique_ptr<MetropolisRenderer> metropolis;  // Metropolis pipelines only
+  std::unique_ptr<GradientFrameRenderer> gradient;  // gradient-domain pipelines only
 };
 
 TaskRunner::~TaskRunner() = default;
@@ -62,6 +73,13 @@ std::shared_ptr<TaskRunner::ShotRenderer> TaskRunner::rendererFor(const Lease& l
   shot->renderer = std::make_unique<FrameRenderer>(shot->scene, settingsOf(shot->scene, lease.spec(), threads_));
   if (isMetropolisPipeline(lease.spec().pipeline()))
     shot->metropolis = std::make_unique<MetropolisRenderer>(shot->scene, metropolisSettingsOf(lease.spec(), threads_));
+  if (const IntegratorTraits& integrator = integratorNamed(traitsOf(lease.spec().pipeline()).integrator);
+      integrator.gradient) {
+    RenderSettings settings = shot->renderer->settings();
+    settings.decomposition = nullptr;
+    shot->gradient = std::make_unique<GradientFrameRenderer>(shot->scene, settings,
+                                                             GradientSettings{.temporal = integrator.temporal});
+  }
   renderers_.insert(renderers_.begin(), {lease.shot_id(), shot});
   if (renderers_.size() > kShotsKept) renderers_.pop_back();  // tasks still using it keep their copy
   return shot;
@@ -74,8 +92,11 @@ TaskOutput TaskRunner::run(const Lease& lease, const ChunkFetcher& fetch, std::a
       return renderTile(lease, fetch, progress, abandon);
     case TASK_ASSEMBLE_FRAME:
       return assemble(lease, fetch, files, progress);
+    case TASK_GRADIENT_TILE:
+      return renderGradientTile(lease, fetch, progress, abandon);
     case TASK_GRADIENT_RENDER:
-      return renderGradientFrame(lease, fetch, progress, abandon);
+      return lease.inputs_size() > 0 ? joinGradientTiles(lease, fetch, progress)
+                                     : renderGradientFrame(lease, fetch, progress, abandon);
     case TASK_NOOP:
       return {};
     case TASK_MLT_SEED_POOL:
@@ -137,13 +158,9 @@ TaskOutput TaskRunner::renderTile(const Lease& lease, const ChunkFetcher& fetch,
   const PixelWindow& w = params.window();
   const std::vector<uint8_t> only(params.pixel_mask().begin(), params.pixel_mask().end());
   RenderStats stats;
-  const FrameImage tile = renderer.renderWindow(
-      params.frame(), {w.x0(), w.y0(), w.x1(), w.y1()},
-      [&](size_t done, size_t total) {
-        if (abandon) throw TaskAbandoned();
-        progress = static_cast<double>(done) / static_cast<double>(total);
-      },
-      &stats, only.empty() ? nullptr : &only);
+  const FrameImage tile = renderer.renderWindow(params.frame(), {w.x0(), w.y0(), w.x1(), w.y1()},
+                                                abandonable(progress, abandon), &stats,
+                                                only.empty() ? nullptr : &only);
   TaskOutput output;
   output.chunk = encodeExr(tile, ExrCompression::Fast);
   output.metrics["samples"] = static_cast<double>(stats.samples);
@@ -153,20 +170,52 @@ TaskOutput TaskRunner::renderTile(const Lease& lease, const ChunkFetcher& fetch,
 TaskOutput TaskRunner::renderGradientFrame(const Lease& lease, const ChunkFetcher& fetch,
                                            std::atomic<double>& progress, const std::atomic<bool>& abandon) {
   const auto shot = rendererFor(lease, fetch);
-  RenderSettings settings = shot->renderer->settings();
-  settings.decomposition = nullptr;
-  const auto renderer = makeFrameIntegrator(traitsOf(lease.spec().pipeline()).integrator, shot->scene, settings);
   RenderStats stats;
-  const FrameImage frame = renderer->render(
-      lease.params().frame(),
-      [&](size_t done, size_t total) {
-        if (abandon) throw TaskAbandoned();
-        progress = static_cast<double>(done) / static_cast<double>(total);
-      },
-      &stats);
+  const FrameImage frame = shot->gradient->render(lease.params().frame(), abandonable(progress, abandon), &stats);
   TaskOutput output;
   output.chunk = encodeExr(frame, ExrCompression::Fast);
   output.metrics["samples"] = static_cast<double>(stats.samples);
+  return output;
+}
+
+TaskOutput TaskRunner::renderGradientTile(const Lease& lease, const ChunkFetcher& fetch,
+                                          std::atomic<double>& progress, const std::atomic<bool>& abandon) {
+  const auto shot = rendererFor(lease, fetch);
+  const PixelWindow& w = lease.params().window();
+  RenderStats stats;
+  FrameImage estimates;
+  try {
+    estimates = shot->gradient->renderWindow(lease.params().frame(), {w.x0(), w.y0(), w.x1(), w.y1()},
+                                             abandonable(progress, abandon), &stats);
+  } catch (const std::invalid_argument& e) {
+    throw BadInput(std::string("gradient tile: ") + e.what());
+  }
+  TaskOutput output;
+  output.chunk = encodeExr(estimates, ExrCompression::Fast);
+  output.metrics["samples"] = static_cast<double>(stats.samples);
+  return output;
+}
+
+TaskOutput TaskRunner::joinGradientTiles(const Lease& lease, const ChunkFetcher& fetch,
+                                         std::atomic<double>& progress) {
+  const std::vector<TaskInput> inputs = inputsOf(lease, fetch, progress);
+  std::vector<PlacedEstimates> tiles;
+  for (const TaskInput& input : inputs) {
+    if (input.kind != TASK_GRADIENT_TILE) throw BadInput("a gradient render joins gradient tiles only");
+    const PixelWindow& w = input.params.window();
+    if (input.image().width() != w.x1() - w.x0() || input.image().height() != w.y1() - w.y0())
+      throw BadInput("the gradient tile at (" + std::to_string(w.x0()) + ", " + std::to_string(w.y0()) + ") is " +
+                     sizeText(input.image().width(), input.image().height()) + ", its window " +
+                     sizeText(w.x1() - w.x0(), w.y1() - w.y0()));
+    tiles.push_back({input.frame.get(), w.x0(), w.y0()});
+  }
+  TaskOutput output;
+  try {
+    output.chunk = encodeExr(gradientFrameFromEstimates(tiles, lease.spec().width(), lease.spec().height()),
+                             ExrCompression::Fast);
+  } catch (const std::invalid_argument& e) {
+    throw BadInput(std::string("gradient render of frame ") + std::to_string(lease.params().frame()) + ": " + e.what());
+  }
   return output;
 }
 

@@ -70,6 +70,9 @@ class TaskRunner {
                         const std::atomic<bool>& abandon);
   TaskOutput renderGradientFrame(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,
                                  const std::atomic<bool>& abandon);
+  TaskOutput renderGradientTile(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,
+                                const std::atomic<bool>& abandon);
+  TaskOutput joinGradientTiles(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress);
   TaskOutput filter(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress);
   TaskOutput runMetropolis(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,
                            const std::atomic<bool>& abandon);

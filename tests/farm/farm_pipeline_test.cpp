@@ -101,14 +101,15 @@ TEST_F(FarmTest, DuiShotIsFilteredEndToEndAndAKilledWorkerChangesNoByte) {
   }
 }
 
-// The tgpt pipeline on the farm (gradient renders, Poisson windows, blends) gives the
-// frames that `pathfarm render --integrator tgpt` and `pathfarm poisson` give on one machine.
+// The tgpt pipeline on the farm (gradient renders of 16-pixel tiles joined per frame,
+// Poisson windows, blends) gives the frames that `pathfarm render --integrator tgpt` (whole
+// frames) and `pathfarm poisson` give on one machine.
 TEST_F(FarmTest, TgptShotOnTheFarmEqualsRenderThenPoisson) {
   const fs::path shot = dir() / "tgpt.shot.json";
   writeFile(shot, "{\"name\": \"tgpt\", \"scene\": \"" + cornellScene().string() +
                       "\", \"frames\": {\"start\": 0, \"end\": 6}, \"resolution\": [48, 32], \"spp\": 4,"
                       " \"max_depth\": 5, \"pipeline\": \"tgpt\", \"poisson_window\": 4, \"poisson_overlap\": 2,"
-                      " \"poisson_norm\": \"l1\", \"baseline_core_seconds\": 1}\n");
+                      " \"poisson_norm\": \"l1\", \"tile\": 16, \"baseline_core_seconds\": 1}\n");
   const fs::path farmFrames = dir() / "farm-frames";
   const CommandResult local =
       runPathfarm({"local", shot.string(), "--workers", "2", "--threads", "1", "--out", farmFrames.string()}, {}, 300s);

@@ -358,6 +358,43 @@ TEST(Planner, AKnownReferenceIsHandedOnAndOnlyTheOtherFramesReferenceIsRendered)
   EXPECT_THROW(planShot(spec), PlanError) << "a frame the shot does not evaluate";
 }
 
+TEST(Planner, TgptSamplesEachFrameInTilesThatCoverItOnceAndJoinsThem) {
+  ShotSpec spec = renderSpec();  // 100 x 70, tiles of 32: 4 x 3 per frame
+  spec.set_pipeline(PIPELINE_TGPT);
+  spec.set_poisson_window(2);
+  spec.set_poisson_norm("l1");
+  const auto plan = planShot(spec);
+  std::map<int64_t, int> joins;
+  for (const PlannedTask& task : plan) {
+    if (task.kind != TASK_GRADIENT_RENDER) continue;
+    ++joins[task.params.frame()];
+    std::vector<int> covered(100 * 70, 0);
+    for (const size_t d : task.dependencies) {
+      ASSERT_EQ(plan[d].kind, TASK_GRADIENT_TILE);
+      EXPECT_EQ(plan[d].params.frame(), task.params.frame());
+      const PixelWindow& w = plan[d].params.window();
+      EXPECT_LE(w.x1() - w.x0(), 32);
+      EXPECT_LE(w.y1() - w.y0(), 32);
+      for (int y = w.y0(); y < w.y1(); ++y)
+        for (int x = w.x0(); x < w.x1(); ++x) ++covered[static_cast<size_t>(y * 100 + x)];
+    }
+    EXPECT_EQ(task.dependencies.size(), 12u);
+    EXPECT_EQ(std::count(covered.begin(), covered.end(), 1), 100 * 70) << "every pixel in exactly one tile";
+  }
+  EXPECT_EQ(joins, (std::map<int64_t, int>{{3, 1}, {4, 1}}));
+
+  // A frame of one tile is rendered whole; a frame of more tiles than a join takes gets
+  // larger ones.
+  spec.set_tile(128);
+  for (const PlannedTask& task : planShot(spec)) EXPECT_NE(task.kind, TASK_GRADIENT_TILE);
+  spec.set_width(16384);
+  spec.set_height(16384);
+  spec.set_tile(8);
+  spec.set_frame_end(3);
+  auto counts = countKinds(planShot(spec));
+  EXPECT_EQ(counts[TASK_GRADIENT_TILE], kMaxAssemblyInputs) << "tiles of 256: 64 x 64";
+}
+
 TEST(Planner, TgptRendersEveryFrameSolvesWindowsAndBlendsEachFrameFromItsWindows) {
   ShotSpec spec = renderSpec();  // frames 3..4
   spec.set_pipeline(PIPELINE_TGPT);
