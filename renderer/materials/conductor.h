@@ -5,6 +5,7 @@
 
 #include "renderer/materials/bsdf.h"
 #include "renderer/materials/microfacet.h"
+#include "renderer/materials/multiple_scattering.h"
 
 namespace pathfarm {
 
@@ -22,7 +23,10 @@ class SmoothConductorBsdf {
   const Material& material_;
 };
 
-// Cook-Torrance reflection in the form of Walter et al. 2007, eq. 20.
+// Cook-Torrance reflection in the form of Walter et al. 2007, eq. 20, plus the energy that
+// single scattering loses (multiple_scattering.h), tinted by the Fresnel's average: a white
+// conductor reflects all of a uniform sky at every roughness. Sampling picks the visible
+// normals or, with the compensation's share of the energy at wo, the cosine hemisphere.
 class RoughConductorBsdf {
  public:
   RoughConductorBsdf(const Material& material, float roughnessThreshold);
@@ -34,8 +38,13 @@ class RoughConductorBsdf {
   LobeList lobes() const { return {{{symbol_, false}}, 1}; }
 
  private:
+  // The probability of sampling the cosine hemisphere for wo (wo.z > 0).
+  float compensationShare(float cosO) const;
+
   const Material& material_;
   MicrofacetDistribution distribution_;
+  MultipleScattering multiple_;
+  Rgb multipleTint_;  // F_ms
   LobeSymbol symbol_;
 };
 

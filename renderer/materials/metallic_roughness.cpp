@@ -45,6 +45,8 @@ MetallicRoughnessBsdf::MetallicRoughnessBsdf(const Material& material, const Sur
       ior_(std::clamp(material.ior, 1.0f, kMaxSpecularAlbedoIor)),
       transmission_(std::clamp(surface.transmission, 0.0f, 1.0f)),
       distribution_(MicrofacetType::GGX, alpha_),
+      multiple_(MicrofacetType::GGX, alpha_),
+      metalCompensation_(multiple_.tint(schlickFresnelAverage(baseColor_)) * metallic_),
       delta_(alpha_ < kDeltaAlpha),
       reflectSymbol_(glossyLobeSymbol(alpha_, roughnessThreshold, LobeSymbol::R)),
       transmitSymbol_(glossyLobeSymbol(alpha_, roughnessThreshold, LobeSymbol::T)) {
@@ -88,14 +90,15 @@ Rgb MetallicRoughnessBsdf::averageAlbedoBound() const {
 MetallicRoughnessBsdf::LobeProbabilities MetallicRoughnessBsdf::probabilities(Vec3f wo) const {
   const float dielectric = 1 - metallic_;
   const float reflection = mean(reflectionFresnel(wo.z));
+  const float compensation = delta_ ? 0 : mean(metalCompensation_) * multiple_.lost(wo.z);
   const float diffuse =
       diffuseLobe_ < 0 ? 0 : dielectric * (1 - transmission_) * mean(baseColor_) * factorMean(Rgb(1) - albedoBound(wo.z));
   const float transmission = transmissionLobe_ < 0 ? 0
                                                    : dielectric * transmission_ * mean(baseColor_) *
                                                          factorMean(Rgb(1) - dielectricFresnel(wo.z));
-  const float total = reflection + diffuse + transmission;
+  const float total = reflection + compensation + diffuse + transmission;
   if (!(total > 0)) return {};
-  return {reflection / total, diffuse / total, transmission / total};
+  return {reflection / total, compensation / total, diffuse / total, transmission / total};
 }
 
 Rgb MetallicRoughnessBsdf::transmittance(float cosThetaI, float scale) const {
@@ -108,7 +111,8 @@ LobeValues MetallicRoughnessBsdf::evaluate(Vec3f wo, Vec3f wi) const {
   if (wi.z > 0) {
     if (!delta_) {
       const Vec3f m = normalize(wo + wi);
-      v.value[0] = reflectionFresnel(dot(wo, m)) * distribution_.reflectionEval(wo, wi, m);
+      v.value[0] = reflectionFresnel(dot(wo, m)) * distribution_.reflectionEval(wo, wi, m) +
+                   metalCompensation_ * multiple_.eval(wo.z, wi.z);
     }
     const float weight = (1 - metallic_) * (1 - transmission_);
     if (diffuseLobe_ >= 0 && weight > 0) {
@@ -132,7 +136,7 @@ LobeValues MetallicRoughnessBsdf::evaluate(Vec3f wo, Vec3f wi) const {
 float MetallicRoughnessBsdf::density(Vec3f wo, Vec3f wi) const {
   const LobeProbabilities p = probabilities(wo);
   if (wi.z > 0) {
-    float pdf = p.diffuse * cosineHemispherePdf(wi.z);
+    float pdf = (p.compensation + p.diffuse) * cosineHemispherePdf(wi.z);
     if (!delta_) pdf += p.reflection * distribution_.reflectionPdf(wo, normalize(wo + wi));
     return pdf;
   }
@@ -174,7 +178,12 @@ std::optional<BsdfSample> MetallicRoughnessBsdf::sample(Vec3f woIn, float uLobe,
     if (wi.z <= 0) return std::nullopt;
     symbol = reflectSymbol_;
     lobe = 0;
-  } else if (uLobe < p.reflection + p.diffuse || p.transmission == 0) {
+  } else if (uLobe < p.reflection + p.compensation) {
+    wi = sampleCosineHemisphere(u);
+    if (wi.z <= 0) return std::nullopt;
+    symbol = reflectSymbol_;
+    lobe = 0;
+  } else if (uLobe < p.reflection + p.compensation + p.diffuse || p.transmission == 0) {
     if (diffuseLobe_ < 0) return std::nullopt;  // only rounding of the probabilities gets here
     wi = sampleCosineHemisphere(u);
     if (wi.z <= 0) return std::nullopt;

@@ -26,7 +26,10 @@
 // surface transmits straight through (wi = -wo) and there is no 1 / eta^2. Nothing tracks
 // an inside: the surface is two-sided, and wo below it mirrors both directions.
 //
-// Energy. Metal: Schlick <= 1 and the Smith single-scattering lobe loses energy. Dielectric,
+// Energy. Metal: Schlick <= 1, and what the Smith single-scattering lobe loses is given
+// back by the compensation of multiple_scattering.h, tinted by Schlick's average
+// (20 rho + 1) / 21: m F_ms f_ms joins f_metal in the reflection lobe, and a white metal
+// reflects all of a uniform sky at every roughness. Dielectric,
 // per channel, with E_s the albedo of the specular lobe (of F', bounded by E'): the transmission's albedo is at most
 // integral (1 - F') G1(wi') D_wo(m) dm <= 1 - E_s, and the diffuse one is exactly
 // rho (1 - E'(cos_o)) <= 1 - E_s since E' >= E_s, so with rho <= 1 the dielectric part's
@@ -53,14 +56,16 @@
 // said D: their paths then fall to the components the automaton has for them (often the
 // residual), and the specular chain search ends at such an object as if it were diffuse.
 //
-// Sampling: a lobe with probability proportional to an estimate of its albedo at wo
-// (macro-normal Fresnel for the specular and transmission parts, rho (1 - E) for the
-// diffuse), then visible GGX normals (reflected, or reflected and mirrored) or the cosine
-// hemisphere; the weight is eval over the mixture density of all non-delta lobes.
+// Sampling: a strategy with probability proportional to an estimate of its albedo at wo
+// (macro-normal Fresnel for the specular and transmission parts, m F_ms (1 - E) for the
+// metal's compensation, rho (1 - E') for the diffuse), then visible GGX normals
+// (reflected, or reflected and mirrored) or the cosine hemisphere; the weight is eval over
+// the mixture density of all non-delta strategies.
 #include <optional>
 
 #include "renderer/materials/bsdf.h"
 #include "renderer/materials/microfacet.h"
+#include "renderer/materials/multiple_scattering.h"
 
 namespace pathfarm {
 
@@ -79,8 +84,11 @@ class MetallicRoughnessBsdf {
   LobeList lobes() const;
 
  private:
+  // Sampling strategies: visible normals for the reflection, the cosine hemisphere for the
+  // metal's multiple-scattering compensation (part of the reflection lobe) and for the
+  // diffuse base, mirrored visible normals for the transmission.
   struct LobeProbabilities {
-    float reflection = 1, diffuse = 0, transmission = 0;
+    float reflection = 1, compensation = 0, diffuse = 0, transmission = 0;
   };
   // The methods below assume wo.z > 0 (mirrored by the public ones).
   LobeProbabilities probabilities(Vec3f wo) const;
@@ -101,6 +109,8 @@ class MetallicRoughnessBsdf {
   Rgb specularScale_, specularOffset_, normalReflectance_;  // A, B and s c0: F' = A F + B
   bool excessBound_;  // some channel has B < 0: E' reads the bound on F - F0
   MicrofacetDistribution distribution_;
+  MultipleScattering multiple_;
+  Rgb metalCompensation_;  // m F_ms(Schlick average of rho): the metal's compensation lobe's colour
   bool delta_;
   LobeSymbol reflectSymbol_, transmitSymbol_;
   int diffuseLobe_, transmissionLobe_;  // indices into lobes(), -1 when not listed

@@ -1,8 +1,9 @@
-// Build step: writes specular_albedo.h's table as C++ source (the file named by the one
+// Build step: writes specular_albedo.h's and multiple_scattering.h's tables as C++ source (the file named by the one
 // argument), with hexadecimal float literals so that every node reads back exactly.
 #include <cstdio>
 #include <vector>
 
+#include "renderer/materials/microfacet_albedo_tabulation.h"
 #include "renderer/materials/specular_albedo_tabulation.h"
 
 namespace {
@@ -24,6 +25,7 @@ int main(int argc, char** argv) {
   using pathfarm::specular_albedo::Reflectance;
   const auto table = pathfarm::specular_albedo::tabulate(Reflectance::Fresnel);
   const auto excess = pathfarm::specular_albedo::tabulate(Reflectance::Excess);
+  const auto microfacet = pathfarm::microfacet_albedo::tabulate();
   std::FILE* out = std::fopen(argv[1], "w");
   if (!out) {
     std::perror(argv[1]);
@@ -34,5 +36,7 @@ int main(int argc, char** argv) {
   writeArray(out, "kTabulatedAverage", table.average);
   writeArray(out, "kTabulatedExcessAlbedo", excess.albedo);
   writeArray(out, "kTabulatedExcessAverage", excess.average);
+  writeArray(out, "kTabulatedMicrofacetAlbedo", microfacet.albedo);
+  writeArray(out, "kTabulatedMicrofacetAverage", microfacet.average);
   return std::fclose(out) == 0 ? 0 : 1;
 }

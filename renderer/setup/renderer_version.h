@@ -4,6 +4,7 @@
 // references (client/reference_cache.h) are keyed by it, so a bump renders them anew.
 namespace pathfarm {
 
-inline constexpr int kRendererVersion = 1;
+// 2: rough metals compensated for multiple scattering (materials/multiple_scattering.h).
+inline constexpr int kRendererVersion = 2;
 
 }  // namespace pathfarm

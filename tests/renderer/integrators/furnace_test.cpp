@@ -44,17 +44,24 @@ TEST(WhiteFurnace, PerfectMirrorReflectsEverything) {
 }
 
 TEST(WhiteFurnace, RoughMaterialsNeverCreateEnergy) {
-  // Single-scattering microfacet models lose some energy at high roughness, never gain.
-  for (const char* material :
-       {R"({"type": "rough_conductor", "specular_color": 1, "alpha": 0.3})",
-        R"({"type": "rough_conductor", "specular_color": 1, "alpha": 0.3, "distribution": "beckmann"})",
-        R"({"type": "rough_dielectric", "ior": 1.5, "alpha": 0.2})",
-        R"({"type": "plastic", "reflectance": 1, "ior": 1.5})",
-        R"({"type": "rough_plastic", "reflectance": 1, "ior": 1.5, "alpha": 0.2})"}) {
-    const Scene scene = sceneFromJson(furnaceScene(material));
+  // Rough conductors are compensated for multiple scattering (multiple_scattering.h) and
+  // keep nearly everything; the rough dielectric is single scattering and loses some
+  // energy at high roughness. None gains.
+  struct Case {
+    const char* material;
+    double atLeast;
+  };
+  for (const Case& c :
+       {Case{R"({"type": "rough_conductor", "specular_color": 1, "alpha": 0.3})", 0.97},
+        Case{R"({"type": "rough_conductor", "specular_color": 1, "alpha": 1})", 0.97},
+        Case{R"({"type": "rough_conductor", "specular_color": 1, "alpha": 0.8, "distribution": "beckmann"})", 0.97},
+        Case{R"({"type": "rough_dielectric", "ior": 1.5, "alpha": 0.2})", 0.8},
+        Case{R"({"type": "plastic", "reflectance": 1, "ior": 1.5})", 0.8},
+        Case{R"({"type": "rough_plastic", "reflectance": 1, "ior": 1.5, "alpha": 0.2})", 0.8}}) {
+    const Scene scene = sceneFromJson(furnaceScene(c.material));
     const auto estimate = test_support::renderedMean(scene, 64, 32);
-    EXPECT_LE(estimate.mean, 1.0 + 3 * estimate.standardError) << material;
-    EXPECT_GT(estimate.mean, 0.8) << material;
+    EXPECT_LE(estimate.mean, 1.0 + 3 * estimate.standardError) << c.material;
+    EXPECT_GT(estimate.mean, c.atLeast) << c.material;
   }
 }
 

@@ -1,0 +1,91 @@
+#include "renderer/materials/multiple_scattering.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "renderer/materials/fresnel.h"
+#include "renderer/materials/microfacet_albedo_tabulation.h"
+#include "renderer/materials/specular_albedo_tabulation.h"
+// kTabulatedMicrofacetAlbedo and kTabulatedMicrofacetAverage, written at build time by
+// tabulate_specular_albedo.cpp from microfacet_albedo::tabulate().
+#include "specular_albedo_table.inc"
+
+namespace pathfarm {
+namespace {
+
+using microfacet_albedo::kDistributions;
+using specular_albedo::kMu;
+using specular_albedo::kRoughness;
+using specular_albedo::muNode;
+static_assert(std::size(kTabulatedMicrofacetAlbedo) == size_t(kDistributions) * kRoughness * kMu);
+static_assert(std::size(kTabulatedMicrofacetAverage) == size_t(kDistributions) * kRoughness);
+
+// Below this 1 - E_avg the lobe has nothing to return (a mirror-like surface).
+constexpr float kNothingLost = 1e-6f;
+
+struct RoughnessCell {
+  int index;
+  float t;  // weight of the upper node
+};
+
+RoughnessCell roughnessCell(float alpha) {
+  const float x = std::clamp(std::sqrt(alpha), 0.0f, 1.0f) * (kRoughness - 1);
+  const int index = std::min(int(x), kRoughness - 2);
+  return {index, x - float(index)};
+}
+
+}  // namespace
+
+MultipleScattering::MultipleScattering(MicrofacetType type, float alpha)
+    : distribution_(microfacet_albedo::distributionIndex(type)), alpha_(std::clamp(alpha, 0.0f, 1.0f)) {
+  const RoughnessCell r = roughnessCell(alpha_);
+  const float* average = &kTabulatedMicrofacetAverage[size_t(distribution_) * kRoughness];
+  average_ = (1 - r.t) * average[r.index] + r.t * average[r.index + 1];
+}
+
+float MultipleScattering::albedo(float cosTheta) const {
+  // Linear in cos(theta) between the nodes, as the average assumes; bilinear with the
+  // same roughness weights as the average.
+  const float mu = std::clamp(cosTheta, 0.0f, 1.0f);
+  const int i = std::min(int(std::sqrt(mu) * (kMu - 1)), kMu - 2);
+  const float a = muNode(i), b = muNode(i + 1);
+  const float w = std::clamp((mu - a) / (b - a), 0.0f, 1.0f);
+  const RoughnessCell r = roughnessCell(alpha_);
+  const auto at = [&](int j) {
+    const float* row = &kTabulatedMicrofacetAlbedo[(size_t(distribution_) * kRoughness + j) * kMu];
+    return (1 - w) * row[i] + w * row[i + 1];
+  };
+  return (1 - r.t) * at(r.index) + r.t * at(r.index + 1);
+}
+
+float MultipleScattering::eval(float cosO, float cosI) const {
+  if (cosO <= 0 || cosI <= 0 || !(1 - average_ > kNothingLost)) return 0;
+  return lost(cosO) * lost(cosI) * cosI / (kPi * (1 - average_));
+}
+
+Rgb MultipleScattering::tint(Rgb fresnelAverage) const {
+  const auto channel = [&](int c) {
+    const float f = std::clamp(fresnelAverage[c], 0.0f, 1.0f);
+    return f * f * average_ / (1 - f * (1 - average_));
+  };
+  return {channel(0), channel(1), channel(2)};
+}
+
+Rgb schlickFresnelAverage(Rgb f0) { return f0 + (Rgb(1) - f0) * (1.0f / 21); }
+
+Rgb conductorFresnelAverage(Rgb eta, Rgb k) {
+  // 2 integral F(mu) mu dmu over [0, 1] by 6-point Gauss-Legendre: the integrand is smooth
+  // in mu, and this runs for every rough conductor BSDF built.
+  constexpr float kNodes[3] = {0.2386191861f, 0.6612093865f, 0.9324695142f};
+  constexpr float kWeights[3] = {0.4679139346f, 0.3607615730f, 0.1713244924f};
+  Rgb sum;
+  for (int n = 0; n < 3; ++n) {
+    for (const float side : {-1.0f, 1.0f}) {
+      const float mu = 0.5f * (1 + side * kNodes[n]);
+      sum += fresnelConductor(mu, eta, k) * (kWeights[n] * mu);  // weight w / 2 times 2 mu
+    }
+  }
+  return sum;
+}
+
+}  // namespace pathfarm
