@@ -126,7 +126,7 @@ std::vector<PixelWindow> joinedAlongRows(std::vector<PixelWindow> windows, int m
 
 }  // namespace
 
-TaskOutput runCompositeTask(const Lease& lease, const std::vector<TaskInput>& inputs) {
+TaskOutput runCompositeTask(const Lease& lease, std::vector<TaskInput>& inputs) {
   const int64_t frame = lease.params().frame();
   const TaskInput& stage = findInput(
       inputs, [&](const TaskInput& input) { return input.kind != TASK_RENDER_TILE && input.params.frame() == frame; },

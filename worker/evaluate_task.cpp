@@ -191,7 +191,7 @@ void putErrorRatio(const Evaluation& evaluation, TaskOutput& output) {
 
 }  // namespace
 
-TaskOutput runEvaluateTask(const Lease& /*lease*/, const std::vector<TaskInput>& inputs) {
+TaskOutput runEvaluateTask(const Lease& /*lease*/, std::vector<TaskInput>& inputs) {
   const Evaluation evaluation = sortedInputs(inputs);
   TaskOutput output;
   putRawFigures(evaluation, output);

@@ -2,10 +2,18 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <utility>
 
 #include "worker/failure_class.h"
 
 namespace pathfarm::farm {
+
+FrameImage TaskInput::take() {
+  if (!frame) throw std::logic_error("a task input was taken twice");
+  const std::shared_ptr<FrameImage> held = std::move(frame);
+  if (held.use_count() > 1) return *held;
+  return std::move(*held);
+}
 
 const TaskInput& findInput(const std::vector<TaskInput>& inputs, const std::function<bool(const TaskInput&)>& matches,
                            const std::string& what) {
@@ -18,6 +26,14 @@ const TaskInput& inputOf(const std::vector<TaskInput>& inputs, TaskKind kind, in
   return findInput(
       inputs, [&](const TaskInput& input) { return input.kind == kind && input.params.frame() == frame; },
       TaskKind_Name(kind) + " of frame " + std::to_string(frame));
+}
+
+TaskInput& inputOf(std::vector<TaskInput>& inputs, TaskKind kind, int64_t frame) {
+  return const_cast<TaskInput&>(inputOf(std::as_const(inputs), kind, frame));
+}
+
+TaskInput& filteredKeyframe(std::vector<TaskInput>& inputs, int64_t frame) {
+  return const_cast<TaskInput&>(filteredKeyframe(std::as_const(inputs), frame));
 }
 
 const TaskInput& filteredKeyframe(const std::vector<TaskInput>& inputs, int64_t frame) {

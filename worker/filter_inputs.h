@@ -13,10 +13,12 @@ namespace pathfarm::farm {
 // The first input `matches` accepts; throws std::runtime_error naming `what` when none does.
 const TaskInput& findInput(const std::vector<TaskInput>& inputs, const std::function<bool(const TaskInput&)>& matches,
                            const std::string& what);
-// The output of `kind` for `frame`, as findInput.
+// The output of `kind` for `frame`, as findInput; the mutable one for TaskInput::take.
 const TaskInput& inputOf(const std::vector<TaskInput>& inputs, TaskKind kind, int64_t frame);
+TaskInput& inputOf(std::vector<TaskInput>& inputs, TaskKind kind, int64_t frame);
 // A keyframe's filtered frame (upsample, else denoise output) for `frame`.
 const TaskInput& filteredKeyframe(const std::vector<TaskInput>& inputs, int64_t frame);
+TaskInput& filteredKeyframe(std::vector<TaskInput>& inputs, int64_t frame);
 
 // A motion field stored as `<name>.X`, `<name>.Y`, `<name>.valid`.
 void writeMotionField(FrameImage& image, const std::string& name, const MotionField& field);

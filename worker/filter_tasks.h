@@ -14,14 +14,19 @@
 
 namespace pathfarm::farm {
 
-// One input chunk: what made it and its image. The image is shared with the worker's
-// decoded inputs (worker/decoded_inputs.h) and other tasks: a task that changes it copies it.
+// One input chunk: what made it and its image. The image may be shared with the worker's
+// decoded inputs (worker/decoded_inputs.h) and other tasks, so a task changes only what
+// take() gives it.
 struct TaskInput {
   TaskKind kind;
   TaskParams params;
-  std::shared_ptr<const FrameImage> frame;
+  std::shared_ptr<FrameImage> frame;  // shared: change only what take() gives
 
   const FrameImage& image() const { return *frame; }
+  // The image, to change: moved out when this input alone holds it (a frame too large for
+  // the decoded inputs' budget: a 1080p keyframe of 150 channels is 1.2 GB, and copying it
+  // would double a filter task's memory), else copied. The input is empty afterwards.
+  FrameImage take();
 };
 
 struct TaskOutput {
@@ -32,21 +37,21 @@ struct TaskOutput {
 };
 
 // A keyframe denoised with its neighbouring keyframes (at half resolution when upsampling).
-TaskOutput runDenoiseTask(const Lease& lease, const std::vector<TaskInput>& inputs);
+TaskOutput runDenoiseTask(const Lease& lease, std::vector<TaskInput>& inputs);
 // The denoised keyframe upsampled under its full-resolution features; negative pixels are
 // re-rendered.
-TaskOutput runUpsampleTask(const Lease& lease, const std::vector<TaskInput>& inputs);
+TaskOutput runUpsampleTask(const Lease& lease, std::vector<TaskInput>& inputs);
 // One component's irradiance flow between two filtered keyframes.
-TaskOutput runFlowTask(const Lease& lease, const std::vector<TaskInput>& inputs);
+TaskOutput runFlowTask(const Lease& lease, std::vector<TaskInput>& inputs);
 // An in-between frame from its keyframes; its re-render mask becomes render tiles.
-TaskOutput runInterpolateTask(const Lease& lease, const std::vector<TaskInput>& inputs);
+TaskOutput runInterpolateTask(const Lease& lease, std::vector<TaskInput>& inputs);
 // A frame's final image: its stage output with the re-rendered pixels, denoised.
-TaskOutput runCompositeTask(const Lease& lease, const std::vector<TaskInput>& inputs);
+TaskOutput runCompositeTask(const Lease& lease, std::vector<TaskInput>& inputs);
 // tgpt: the screened Poisson reconstruction of a window of gradient frames.
-TaskOutput runPoissonWindowTask(const Lease& lease, const std::vector<TaskInput>& inputs);
+TaskOutput runPoissonWindowTask(const Lease& lease, std::vector<TaskInput>& inputs);
 // tgpt: a frame blended (Hann weights) from the windows covering it, plus its direct emission.
-TaskOutput runPoissonBlendTask(const Lease& lease, const std::vector<TaskInput>& inputs);
+TaskOutput runPoissonBlendTask(const Lease& lease, std::vector<TaskInput>& inputs);
 // relMSE and temporal error of every stage of the evaluation frames against the reference.
-TaskOutput runEvaluateTask(const Lease& lease, const std::vector<TaskInput>& inputs);
+TaskOutput runEvaluateTask(const Lease& lease, std::vector<TaskInput>& inputs);
 
 }  // namespace pathfarm::farm

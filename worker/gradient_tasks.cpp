@@ -20,7 +20,7 @@ PoissonSettings settingsOf(const ShotSpec& spec) {
 
 }  // namespace
 
-TaskOutput runPoissonWindowTask(const Lease& lease, const std::vector<TaskInput>& inputs) {
+TaskOutput runPoissonWindowTask(const Lease& lease, std::vector<TaskInput>& inputs) {
   const int64_t first = lease.params().window_first();
   const int count = lease.params().window_frames();
   std::vector<GradientFrame> frames;
@@ -41,7 +41,7 @@ TaskOutput runPoissonWindowTask(const Lease& lease, const std::vector<TaskInput>
   return output;
 }
 
-TaskOutput runPoissonBlendTask(const Lease& lease, const std::vector<TaskInput>& inputs) {
+TaskOutput runPoissonBlendTask(const Lease& lease, std::vector<TaskInput>& inputs) {
   const int64_t frame = lease.params().frame();
   const FrameImage& rendered = inputOf(inputs, TASK_GRADIENT_RENDER, frame).image();
   WindowBlend blend;

@@ -41,7 +41,7 @@ bool componentIsEmpty(const FrameImage& frame, const std::string& component) {
 
 }  // namespace
 
-TaskOutput runFlowTask(const Lease& lease, const std::vector<TaskInput>& inputs) {
+TaskOutput runFlowTask(const Lease& lease, std::vector<TaskInput>& inputs) {
   const TaskParams& params = lease.params();
   const std::string& component = params.component();
   const FrameImage& k0 = filteredKeyframe(inputs, params.keyframe_before()).image();
@@ -74,11 +74,11 @@ TaskOutput runFlowTask(const Lease& lease, const std::vector<TaskInput>& inputs)
   return output;
 }
 
-TaskOutput runInterpolateTask(const Lease& lease, const std::vector<TaskInput>& inputs) {
+TaskOutput runInterpolateTask(const Lease& lease, std::vector<TaskInput>& inputs) {
   const TaskParams& params = lease.params();
   const int64_t before = params.keyframe_before(), after = params.keyframe_after();
   // Directly seen light is not interpolated: the frame's own feature render has it exactly.
-  FrameImage k0 = filteredKeyframe(inputs, before).image(), k1 = filteredKeyframe(inputs, after).image();
+  FrameImage k0 = filteredKeyframe(inputs, before).take(), k1 = filteredKeyframe(inputs, after).take();
   takeDirectEmission(k0);
   takeDirectEmission(k1);
   const FrameImage& features = inputOf(inputs, TASK_ASSEMBLE_FRAME, params.frame()).image();

@@ -26,7 +26,7 @@ constexpr float kFullSampleCancellation = 1.0f;
 
 }  // namespace
 
-TaskOutput runDenoiseTask(const Lease& lease, const std::vector<TaskInput>& inputs) {
+TaskOutput runDenoiseTask(const Lease& lease, std::vector<TaskInput>& inputs) {
   const int64_t frame = lease.params().frame();
   const bool upsample = stagesOf(lease.spec().pipeline()).upsample;
   const std::vector<int64_t> keyframes = keyframesOf(lease.spec());
@@ -34,10 +34,10 @@ TaskOutput runDenoiseTask(const Lease& lease, const std::vector<TaskInput>& inpu
   if (at == keyframes.end()) throw BadInput("frame " + std::to_string(frame) + " is not a keyframe");
 
   // The keyframe's motion vectors reach its neighbouring keyframes (planner.h).
-  FrameImage current = inputOf(inputs, TASK_ASSEMBLE_FRAME, frame).image();
+  FrameImage current = inputOf(inputs, TASK_ASSEMBLE_FRAME, frame).take();
   std::optional<FrameImage> previous, next;
-  if (at != keyframes.begin()) previous = inputOf(inputs, TASK_ASSEMBLE_FRAME, *(at - 1)).image();
-  if (at + 1 != keyframes.end()) next = inputOf(inputs, TASK_ASSEMBLE_FRAME, *(at + 1)).image();
+  if (at != keyframes.begin()) previous = inputOf(inputs, TASK_ASSEMBLE_FRAME, *(at - 1)).take();
+  if (at + 1 != keyframes.end()) next = inputOf(inputs, TASK_ASSEMBLE_FRAME, *(at + 1)).take();
   const FrameImage emission = takeDirectEmission(current);
   if (previous) takeDirectEmission(*previous);
   if (next) takeDirectEmission(*next);
@@ -68,10 +68,10 @@ TaskOutput runDenoiseTask(const Lease& lease, const std::vector<TaskInput>& inpu
   return output;
 }
 
-TaskOutput runUpsampleTask(const Lease& lease, const std::vector<TaskInput>& inputs) {
+TaskOutput runUpsampleTask(const Lease& lease, std::vector<TaskInput>& inputs) {
   const int64_t frame = lease.params().frame();
   const FrameImage& low = inputOf(inputs, TASK_DENOISE, frame).image();
-  FrameImage high = inputOf(inputs, TASK_ASSEMBLE_FRAME, frame).image();
+  FrameImage high = inputOf(inputs, TASK_ASSEMBLE_FRAME, frame).take();
   // A moving caustic spread by the half-resolution filtering is rendered again at full spp.
   const std::vector<uint8_t> caustics = movingCausticPixels(high);
   // The directly seen light is added back unfiltered from the keyframe's own render, which

@@ -220,7 +220,7 @@ TaskOutput TaskRunner::joinGradientTiles(const Lease& lease, const ChunkFetcher&
 }
 
 TaskOutput TaskRunner::filter(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress) {
-  using Filter = TaskOutput (*)(const Lease&, const std::vector<TaskInput>&);
+  using Filter = TaskOutput (*)(const Lease&, std::vector<TaskInput>&);
   const std::map<TaskKind, Filter> filters = {
       {TASK_DENOISE, runDenoiseTask},     {TASK_UPSAMPLE, runUpsampleTask},   {TASK_FLOW, runFlowTask},
       {TASK_INTERPOLATE, runInterpolateTask}, {TASK_COMPOSITE, runCompositeTask}, {TASK_EVALUATE, runEvaluateTask},
@@ -228,7 +228,7 @@ TaskOutput TaskRunner::filter(const Lease& lease, const ChunkFetcher& fetch, std
   const auto found = filters.find(lease.kind());
   if (found == filters.end())
     throw std::runtime_error("this worker cannot run tasks of kind " + std::to_string(lease.kind()));
-  const std::vector<TaskInput> inputs = inputsOf(lease, fetch, progress);
+  std::vector<TaskInput> inputs = inputsOf(lease, fetch, progress);
   tbb::task_arena arena(threads_ > 0 ? threads_ : tbb::task_arena::automatic);
   TaskOutput output = arena.execute([&] { return found->second(lease, inputs); });
   progress = 1.0;
@@ -243,16 +243,18 @@ std::vector<TaskInput> TaskRunner::inputsOf(const Lease& lease, const ChunkFetch
   for (int i = 0; i < lease.inputs_size(); ++i) {
     const bool image = lease.input_kinds(i) != TASK_EVALUATE;
     inputs.push_back({lease.input_kinds(i), lease.input_params(i),
-                      image ? decodedInput(lease.inputs(i), fetch) : std::make_shared<const FrameImage>()});
+                      image ? decodedInput(lease.inputs(i), fetch) : std::make_shared<FrameImage>()});
     // Fetching and decoding is the first half of a filter task's work, as far as anyone can tell.
     progress = 0.5 * static_cast<double>(i + 1) / static_cast<double>(lease.inputs_size());
   }
   return inputs;
 }
 
-std::shared_ptr<const FrameImage> TaskRunner::decodedInput(const ChunkRef& ref, const ChunkFetcher& fetch) {
-  if (auto kept = decoded_.find(ref.sha256())) return kept;
-  auto frame = std::make_shared<const FrameImage>(decodeExr(fetch(ref), "input chunk " + ref.sha256()));
+std::shared_ptr<FrameImage> TaskRunner::decodedInput(const ChunkRef& ref, const ChunkFetcher& fetch) {
+  // Every kept frame was made below, mutable; a kept one is shared with the cache, so
+  // TaskInput::take copies it rather than change it.
+  if (auto kept = decoded_.find(ref.sha256())) return std::const_pointer_cast<FrameImage>(kept);
+  auto frame = std::make_shared<FrameImage>(decodeExr(fetch(ref), "input chunk " + ref.sha256()));
   if (const std::string bad = frame->firstNonFinite(); !bad.empty())
     throw BadInput("input chunk " + ref.sha256() + " holds a non-finite value (" + bad + ")");
   decoded_.keep(ref.sha256(), frame);

@@ -79,7 +79,7 @@ class TaskRunner {
   // The lease's input chunks, decoded; `progress` goes to 0.5 as they arrive.
   std::vector<TaskInput> inputsOf(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress);
   // An input chunk's frame: decoded and checked once, then kept in decoded_.
-  std::shared_ptr<const FrameImage> decodedInput(const ChunkRef& ref, const ChunkFetcher& fetch);
+  std::shared_ptr<FrameImage> decodedInput(const ChunkRef& ref, const ChunkFetcher& fetch);
 
   int threads_;
   std::filesystem::path scenesRoot_;

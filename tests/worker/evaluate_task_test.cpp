@@ -16,7 +16,7 @@ constexpr int kEvaluatedSize = 48;
 constexpr double kPtSigma = 0.05;
 
 TaskInput evaluationInput(TaskKind kind, TaskRole role, int64_t frame, FrameImage image) {
-  TaskInput input{kind, {}, std::make_shared<const FrameImage>(std::move(image))};
+  TaskInput input{kind, {}, std::make_shared<FrameImage>(std::move(image))};
   input.params.set_frame(frame);
   input.params.set_role(role);
   return input;

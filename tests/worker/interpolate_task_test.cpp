@@ -35,7 +35,7 @@ FrameImage withBrighterStrip(FrameImage frame, float factor) {
 }
 
 // The share of the strip's pixels the task sends to re-rendering.
-double stripFlagged(const std::shared_ptr<const FrameImage>& k0, const std::shared_ptr<const FrameImage>& k1,
+double stripFlagged(const std::shared_ptr<FrameImage>& k0, const std::shared_ptr<FrameImage>& k1,
                     const FrameImage& features) {
   Lease lease;
   lease.set_kind(TASK_INTERPOLATE);
@@ -48,13 +48,13 @@ double stripFlagged(const std::shared_ptr<const FrameImage>& k0, const std::shar
   lease.mutable_params()->set_frame(kFrame);
   lease.mutable_params()->set_keyframe_before(kBefore);
   lease.mutable_params()->set_keyframe_after(kAfter);
-  auto input = [](TaskKind kind, int64_t frame, std::shared_ptr<const FrameImage> image) {
+  auto input = [](TaskKind kind, int64_t frame, std::shared_ptr<FrameImage> image) {
     TaskParams params;
     params.set_frame(frame);
     return TaskInput{kind, params, std::move(image)};
   };
-  const std::vector<TaskInput> inputs = {input(TASK_UPSAMPLE, kBefore, k0), input(TASK_UPSAMPLE, kAfter, k1),
-                                         input(TASK_ASSEMBLE_FRAME, kFrame, std::make_shared<FrameImage>(features))};
+  std::vector<TaskInput> inputs = {input(TASK_UPSAMPLE, kBefore, k0), input(TASK_UPSAMPLE, kAfter, k1),
+                                   input(TASK_ASSEMBLE_FRAME, kFrame, std::make_shared<FrameImage>(features))};
   const FrameImage result = decodeExr(runInterpolateTask(lease, inputs).chunk, "interpolated frame");
   const std::vector<float>& flagged = result.channel("rerender.Y");
   size_t count = 0;
@@ -65,8 +65,8 @@ double stripFlagged(const std::shared_ptr<const FrameImage>& k0, const std::shar
 
 TEST(InterpolateTask, LightThatChangedAtTheEdgeTheCameraTurnsToIsReRendered) {
   const MotionSpan span{kAfter - kBefore, kAfter - kBefore};
-  const auto k0 = std::make_shared<const FrameImage>(render(kBefore, 64, span));
-  const auto k1 = std::make_shared<const FrameImage>(render(kAfter, 64, span));
+  const auto k0 = std::make_shared<FrameImage>(render(kBefore, 64, span));
+  const auto k1 = std::make_shared<FrameImage>(render(kAfter, 64, span));
   // The pipeline's feature render has 4 spp. On these walls that is too few to see a light
   // tripled over the strip (window noise above the change: 3 % of the strip flagged, as
   // with no change; 8 spp: 32 %, 16 spp: 94 %). This test checks that the task compares

@@ -36,8 +36,8 @@ std::vector<float> directLightLuminance(const FrameImage& frame) {
 }
 
 TEST(UpsampleTask, DirectlySeenLightThatTheKeyframesFewSamplesGetWrongIsReRendered) {
-  const auto keyframe = std::make_shared<const FrameImage>(renderKeyframe(kUpsampleShotSpp / 4));
-  const auto low = std::make_shared<const FrameImage>(boxDownsample(*keyframe, 2));
+  const auto keyframe = std::make_shared<FrameImage>(renderKeyframe(kUpsampleShotSpp / 4));
+  const auto low = std::make_shared<FrameImage>(boxDownsample(*keyframe, 2));
   Lease lease;
   lease.set_kind(TASK_UPSAMPLE);
   ShotSpec& spec = *lease.mutable_spec();
@@ -49,7 +49,7 @@ TEST(UpsampleTask, DirectlySeenLightThatTheKeyframesFewSamplesGetWrongIsReRender
   lease.mutable_params()->set_frame(kUpsampleFrame);
   TaskParams params;
   params.set_frame(kUpsampleFrame);
-  const std::vector<TaskInput> inputs = {{TASK_DENOISE, params, low}, {TASK_ASSEMBLE_FRAME, params, keyframe}};
+  std::vector<TaskInput> inputs = {{TASK_DENOISE, params, low}, {TASK_ASSEMBLE_FRAME, params, keyframe}};
   const TaskOutput output = runUpsampleTask(lease, inputs);
   const FrameImage result = decodeExr(output.chunk, "upsampled keyframe");
   const std::vector<float>& flagged = result.channel("rerender.Y");
