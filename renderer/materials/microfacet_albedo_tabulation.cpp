@@ -56,15 +56,9 @@ Table tabulate() {
       for (int i = 1; i < kMu; ++i)
         row[i] = std::min(1.0f, float(integrate(type, muNode(i), alphaNode(j))) + kMargin);
       row[0] = row[1];
-      // 2 integral E mu dmu of the piecewise linear interpolant, exact per segment (as in
-      // specular_albedo_tabulation.cpp), so that the compensation lobe's albedo identity
-      // holds for the interpolated E.
-      double sum = 0;
-      for (int i = 0; i + 1 < kMu; ++i) {
-        const double a = muNode(i), b = muNode(i + 1);
-        sum += (b - a) / 3 * (row[i] * (2 * a + b) + row[i + 1] * (a + 2 * b));
-      }
-      table.average[size_t(d) * kRoughness + j] = float(sum);
+      // Exact for the interpolant, so that the compensation lobe's albedo identity holds
+      // for the interpolated E.
+      table.average[size_t(d) * kRoughness + j] = specular_albedo::cosineWeightedAverage(row);
     }
   }
   return table;

@@ -42,6 +42,16 @@ double integrate(float mu, float alpha, float eta, Reflectance reflectance) {
 
 }  // namespace
 
+float cosineWeightedAverage(const float* row) {
+  // Exact per segment: 2 integral_a^b L(mu) mu dmu = (b - a) / 3 (y_a (2a + b) + y_b (a + 2b)).
+  double sum = 0;
+  for (int i = 0; i + 1 < kMu; ++i) {
+    const double a = muNode(i), b = muNode(i + 1);
+    sum += (b - a) / 3 * (row[i] * (2 * a + b) + row[i + 1] * (a + 2 * b));
+  }
+  return float(sum);
+}
+
 Table tabulate(Reflectance reflectance) {
   Table table{std::vector<float>(size_t(kIor) * kRoughness * kMu), std::vector<float>(size_t(kIor) * kRoughness)};
   for (int k = 0; k < kIor; ++k) {
@@ -55,14 +65,7 @@ Table tabulate(Reflectance reflectance) {
         const float chord = 1 - (1 - row[kGrazingNode]) * muNode(i) / muNode(kGrazingNode);
         row[i] = std::max(row[i], chord);
       }
-      // 2 integral E mu dmu of the piecewise linear interpolant, exact per segment:
-      // 2 integral_a^b L(mu) mu dmu = (b - a) / 3 (y_a (2a + b) + y_b (a + 2b)).
-      double sum = 0;
-      for (int i = 0; i + 1 < kMu; ++i) {
-        const double a = muNode(i), b = muNode(i + 1);
-        sum += (b - a) / 3 * (row[i] * (2 * a + b) + row[i + 1] * (a + 2 * b));
-      }
-      table.average[size_t(k) * kRoughness + j] = float(sum);
+      table.average[size_t(k) * kRoughness + j] = cosineWeightedAverage(row);
     }
   }
   return table;

@@ -38,4 +38,9 @@ enum class Reflectance { Fresnel, Excess };
 // Integrates every node; deterministic, so the build's table and this agree bit for bit.
 Table tabulate(Reflectance reflectance = Reflectance::Fresnel);
 
+// 2 integral L(mu) mu dmu over [0, 1] of the piecewise linear interpolant L of a row of
+// kMu values on the mu nodes, exactly: the average that keeps a table's albedo identities
+// exact for the interpolated values.
+float cosineWeightedAverage(const float* row);
+
 }  // namespace pathfarm::specular_albedo
