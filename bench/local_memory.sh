@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# Peak resident memory of a shot on the local farm (issue 43, "Production resolution"):
+# runs `pathfarm local SHOT --workers N` with the arguments given after `--`, samples the
+# resident set of `pathfarm local` and of each worker process every second (ps), and
+# prints one markdown row: wall time, the peaks (the largest worker's and `pathfarm
+# local`'s) and the size of the farm's chunk store at the end (every intermediate chunk
+# and the frames; kept with --keep-farm for the count, then removed with the run's folder).
+#
+#   bench/local_memory.sh [--build DIR] [--workers 2] [--label TEXT] SHOT [-- LOCAL-ARGS...]
+#   e.g. bench/local_memory.sh scenes/suite/dolly/shot.json -- --res 1920x1080 --spp 4 --frames 0:2 --pipeline tgpt
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=build workers=2 label="" shot=""
+while (($#)); do
+  case "$1" in
+    --build) build=$2; shift 2 ;;
+    --workers) workers=$2; shift 2 ;;
+    --label) label=$2; shift 2 ;;
+    --) shift; break ;;
+    *) shot=$1; shift ;;
+  esac
+done
+[ -n "$shot" ] || { echo "usage: bench/local_memory.sh [--build DIR] [--workers N] [--label TEXT] SHOT [-- ARGS...]" >&2; exit 2; }
+work=$(mktemp -d)
+trap 'kill "$pid" 2> /dev/null || true; rm -rf "$work"' EXIT
+
+start=$SECONDS
+"$build/bin/pathfarm" local "$shot" --workers "$workers" --out "$work/frames" --keep-farm "$@" > "$work/local.log" 2>&1 &
+pid=$!
+declare -A peak  # pid -> peak resident KiB
+while kill -0 "$pid" 2> /dev/null; do
+  for p in $pid $(pgrep -P "$pid" || true); do
+    rss=$(ps -o rss= -p "$p" 2> /dev/null | tr -d ' ' || true)
+    [ -n "$rss" ] && ((rss > ${peak[$p]:-0})) && peak[$p]=$rss
+  done
+  sleep 1
+done
+status=0
+wait "$pid" || status=$?
+seconds=$((SECONDS - start))
+if ((status != 0)); then
+  echo "local_memory: the shot failed:" >&2
+  tail -20 "$work/local.log" >&2
+  exit 1
+fi
+worker=0
+for p in "${!peak[@]}"; do [ "$p" != "$pid" ] && ((peak[$p] > worker)) && worker=${peak[$p]}; done
+gib() { awk -v k="$1" 'BEGIN { printf "%.2f", k / 1048576 }'; }
+store=$(du -sk "$work/frames/farm/store" | cut -f1)
+echo "| ${label:-$shot $*} | $seconds | $(gib "$worker") | $(gib "${peak[$pid]:-0}") | $(gib "$store") |"
