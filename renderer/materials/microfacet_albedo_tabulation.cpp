@@ -11,6 +11,7 @@ namespace {
 
 using specular_albedo::alphaNode;
 using specular_albedo::kMu;
+using specular_albedo::meanOverSampledNormals;
 using specular_albedo::kRoughness;
 using specular_albedo::muNode;
 
@@ -27,20 +28,10 @@ constexpr float kMargin = 0.0095f;
 
 double integrate(MicrofacetType type, float mu, float alpha) {
   const MicrofacetDistribution distribution(type, alpha);
-  const Vec3f wo{std::sqrt(std::max(0.0f, 1 - mu * mu)), 0, mu};
-  double sum = 0;
-  for (int a = 0; a < kQuadrature; ++a) {
-    for (int b = 0; b < kQuadrature; ++b) {
-      const Vec2f u{(a + 0.5f) / kQuadrature, (b + 0.5f) / kQuadrature};
-      const Vec3f m = distribution.sampleNormal(wo, u);
-      if (dot(wo, m) <= 0) continue;
-      const Vec3f wi = reflect(wo, m);
-      if (wi.z <= 0) continue;
-      const float pdf = distribution.reflectionPdf(wo, m);
-      if (pdf > 0) sum += distribution.reflectionEval(wo, wi, m) / pdf;
-    }
-  }
-  return sum / (kQuadrature * kQuadrature);
+  return meanOverSampledNormals(distribution, mu, kQuadrature, [&](Vec3f wo, Vec3f m, Vec3f wi) {
+    const float pdf = distribution.reflectionPdf(wo, m);
+    return pdf > 0 ? distribution.reflectionEval(wo, wi, m) / pdf : 0.0f;
+  });
 }
 
 }  // namespace

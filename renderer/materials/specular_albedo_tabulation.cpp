@@ -24,20 +24,10 @@ constexpr int kGrazingNode = 9;
 double integrate(float mu, float alpha, float eta, Reflectance reflectance) {
   const MicrofacetDistribution distribution(MicrofacetType::GGX, alpha);
   const float subtracted = reflectance == Reflectance::Excess ? fresnelDielectric(1, eta).reflectance : 0.0f;
-  const Vec3f wo{std::sqrt(std::max(0.0f, 1 - mu * mu)), 0, mu};
-  double sum = 0;
-  for (int a = 0; a < kQuadrature; ++a) {
-    for (int b = 0; b < kQuadrature; ++b) {
-      const Vec2f u{(a + 0.5f) / kQuadrature, (b + 0.5f) / kQuadrature};
-      const Vec3f m = distribution.sampleNormal(wo, u);
-      const float cosOM = dot(wo, m);
-      if (cosOM <= 0) continue;
-      const Vec3f wi = reflect(wo, m);
-      if (wi.z <= 0) continue;
-      sum += (fresnelDielectric(cosOM, eta).reflectance - subtracted) * distribution.G1(wi, m);
-    }
-  }
-  return sum / (kQuadrature * kQuadrature);
+  // The visible-normal sampler's weight for a reflection is F G1(wi) (microfacet.h).
+  return meanOverSampledNormals(distribution, mu, kQuadrature, [&](Vec3f wo, Vec3f m, Vec3f wi) {
+    return (fresnelDielectric(dot(wo, m), eta).reflectance - subtracted) * distribution.G1(wi, m);
+  });
 }
 
 }  // namespace

@@ -2,8 +2,10 @@
 // The nodes and the integration behind specular_albedo.h's table. The table is integrated
 // once at build time (tabulate_specular_albedo.cpp writes it as source), not in every
 // process that meets a metallic-roughness material: the integration takes about 0.35 s.
+#include <cmath>
 #include <vector>
 
+#include "renderer/materials/microfacet.h"
 #include "renderer/materials/specular_albedo.h"
 
 namespace pathfarm::specular_albedo {
@@ -37,6 +39,26 @@ enum class Reflectance { Fresnel, Excess };
 
 // Integrates every node; deterministic, so the build's table and this agree bit for bit.
 Table tabulate(Reflectance reflectance = Reflectance::Fresnel);
+
+// The mean over a quadrature x quadrature midpoint grid of the normal sampler's unit square
+// of weight(wo, m, wi), for wo at cos(theta) = mu and wi its reflection about the sampled
+// facet normal m; samples with wo below the facet or wi below the surface count as zero.
+template <typename Weight>
+double meanOverSampledNormals(const MicrofacetDistribution& distribution, float mu, int quadrature, Weight weight) {
+  const Vec3f wo{std::sqrt(std::max(0.0f, 1 - mu * mu)), 0, mu};
+  double sum = 0;
+  for (int a = 0; a < quadrature; ++a) {
+    for (int b = 0; b < quadrature; ++b) {
+      const Vec2f u{(a + 0.5f) / quadrature, (b + 0.5f) / quadrature};
+      const Vec3f m = distribution.sampleNormal(wo, u);
+      if (dot(wo, m) <= 0) continue;
+      const Vec3f wi = reflect(wo, m);
+      if (wi.z <= 0) continue;
+      sum += weight(wo, m, wi);
+    }
+  }
+  return sum / (double(quadrature) * quadrature);
+}
 
 // 2 integral L(mu) mu dmu over [0, 1] of the piecewise linear interpolant L of a row of
 // kMu values on the mu nodes, exactly: the average that keeps a table's albedo identities
