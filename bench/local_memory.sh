@@ -3,7 +3,7 @@
 # runs `pathfarm local SHOT --workers N` with the arguments given after `--`, samples the
 # resident set of `pathfarm local` and of each worker process every second (ps), and
 # prints one markdown row: wall time, the peaks (the largest worker's and `pathfarm
-# local`'s) and the size of the farm's chunk store at the end (every intermediate chunk
+# local`'s), all in GiB, and the size of the farm's chunk store at the end (every intermediate chunk
 # and the frames; kept with --keep-farm for the count, then removed with the run's folder).
 #
 #   bench/local_memory.sh [--build DIR] [--workers 2] [--label TEXT] SHOT [-- LOCAL-ARGS...]
@@ -46,5 +46,5 @@ fi
 worker=0
 for p in "${!peak[@]}"; do [ "$p" != "$pid" ] && ((peak[$p] > worker)) && worker=${peak[$p]}; done
 gib() { awk -v k="$1" 'BEGIN { printf "%.2f", k / 1048576 }'; }
-store=$(du -sk "$work/frames/farm/store" | cut -f1)
+store=$(du -sk "$work/frames/farm/chunks" | cut -f1)
 echo "| ${label:-$shot $*} | $seconds | $(gib "$worker") | $(gib "${peak[$pid]:-0}") | $(gib "$store") |"
