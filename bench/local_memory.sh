@@ -7,7 +7,7 @@
 # and the frames; kept with --keep-farm for the count, then removed with the run's folder).
 #
 #   bench/local_memory.sh [--build DIR] [--workers 2] [--label TEXT] SHOT [-- LOCAL-ARGS...]
-#   e.g. bench/local_memory.sh scenes/suite/dolly/shot.json -- --res 1920x1080 --spp 4 --frames 0:2 --pipeline tgpt
+#   e.g. bench/local_memory.sh scenes/walkthrough/shot.json -- --res 1920x1080 --spp 16 --frames 0:4 --pipeline dui
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=build workers=2 label="" shot=""
