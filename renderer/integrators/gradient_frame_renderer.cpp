@@ -7,7 +7,6 @@
 #include <array>
 #include <atomic>
 #include <chrono>
-#include <limits>
 #include <stdexcept>
 
 #include "renderer/accel/shot_geometry.h"
