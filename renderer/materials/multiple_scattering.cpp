@@ -16,29 +16,20 @@ namespace {
 using microfacet_albedo::kDistributions;
 using specular_albedo::kMu;
 using specular_albedo::kRoughness;
-using specular_albedo::muNode;
+using specular_albedo::Cell;
+using specular_albedo::muCell;
+using specular_albedo::roughnessCell;
 static_assert(std::size(kTabulatedMicrofacetAlbedo) == size_t(kDistributions) * kRoughness * kMu);
 static_assert(std::size(kTabulatedMicrofacetAverage) == size_t(kDistributions) * kRoughness);
 
 // Below this 1 - E_avg the lobe has nothing to return (a mirror-like surface).
 constexpr float kNothingLost = 1e-6f;
 
-struct RoughnessCell {
-  int index;
-  float t;  // weight of the upper node
-};
-
-RoughnessCell roughnessCell(float alpha) {
-  const float x = std::clamp(std::sqrt(alpha), 0.0f, 1.0f) * (kRoughness - 1);
-  const int index = std::min(int(x), kRoughness - 2);
-  return {index, x - float(index)};
-}
-
 }  // namespace
 
 MultipleScattering::MultipleScattering(MicrofacetType type, float alpha)
     : distribution_(microfacet_albedo::distributionIndex(type)), alpha_(std::clamp(alpha, 0.0f, 1.0f)) {
-  const RoughnessCell r = roughnessCell(alpha_);
+  const Cell r = roughnessCell(alpha_);
   const float* average = &kTabulatedMicrofacetAverage[size_t(distribution_) * kRoughness];
   average_ = (1 - r.t) * average[r.index] + r.t * average[r.index + 1];
 }
@@ -46,14 +37,10 @@ MultipleScattering::MultipleScattering(MicrofacetType type, float alpha)
 float MultipleScattering::albedo(float cosTheta) const {
   // Linear in cos(theta) between the nodes, as the average assumes; bilinear with the
   // same roughness weights as the average.
-  const float mu = std::clamp(cosTheta, 0.0f, 1.0f);
-  const int i = std::min(int(std::sqrt(mu) * (kMu - 1)), kMu - 2);
-  const float a = muNode(i), b = muNode(i + 1);
-  const float w = std::clamp((mu - a) / (b - a), 0.0f, 1.0f);
-  const RoughnessCell r = roughnessCell(alpha_);
+  const Cell m = muCell(cosTheta), r = roughnessCell(alpha_);
   const auto at = [&](int j) {
     const float* row = &kTabulatedMicrofacetAlbedo[(size_t(distribution_) * kRoughness + j) * kMu];
-    return (1 - w) * row[i] + w * row[i + 1];
+    return (1 - m.t) * row[m.index] + m.t * row[m.index + 1];
   };
   return (1 - r.t) * at(r.index) + r.t * at(r.index + 1);
 }

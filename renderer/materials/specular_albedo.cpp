@@ -14,24 +14,15 @@ namespace {
 using specular_albedo::kIor;
 using specular_albedo::kMu;
 using specular_albedo::kRoughness;
-using specular_albedo::muNode;
+using specular_albedo::Cell;
+using specular_albedo::cell;
+using specular_albedo::muCell;
+using specular_albedo::roughnessCell;
 static_assert(std::size(kTabulatedAlbedo) == size_t(kIor) * kRoughness * kMu);
 static_assert(std::size(kTabulatedAverage) == size_t(kIor) * kRoughness);
 static_assert(std::size(kTabulatedExcessAlbedo) == std::size(kTabulatedAlbedo));
 static_assert(std::size(kTabulatedExcessAverage) == std::size(kTabulatedAverage));
 
-// Cell index and weight of the upper node for x in [0, n - 1].
-struct Cell {
-  int index;
-  float t;
-};
-Cell cell(float x, int n) {
-  x = std::clamp(x, 0.0f, float(n - 1));
-  const int index = std::min(int(x), n - 2);
-  return {index, x - float(index)};
-}
-
-Cell roughnessCell(float alpha) { return cell(std::sqrt(std::max(0.0f, alpha)) * (kRoughness - 1), kRoughness); }
 Cell iorCell(float eta) {
   return cell(std::cbrt(std::max(0.0f, (eta - 1) / (kMaxSpecularAlbedoIor - 1))) * (kIor - 1), kIor);
 }
@@ -45,15 +36,10 @@ float interpolate(Cell r, Cell n, const F& f) {
 }
 
 float lookUp(const float* albedo, float cosTheta, float alpha, float eta) {
-  // Linear in cos(theta) between the nodes, as the average assumes; the node spacing is
-  // what is quadratic.
-  const float mu = std::clamp(cosTheta, 0.0f, 1.0f);
-  const int i = cell(std::sqrt(mu) * (kMu - 1), kMu).index;
-  const float a = muNode(i), b = muNode(i + 1);
-  const float w = std::clamp((mu - a) / (b - a), 0.0f, 1.0f);
+  const Cell m = muCell(cosTheta);
   return interpolate(roughnessCell(alpha), iorCell(eta), [&](int k, int j) {
     const float* row = &albedo[(size_t(k) * kRoughness + j) * kMu];
-    return (1 - w) * row[i] + w * row[i + 1];
+    return (1 - m.t) * row[m.index] + m.t * row[m.index + 1];
   });
 }
 

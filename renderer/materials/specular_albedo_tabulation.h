@@ -2,6 +2,7 @@
 // The nodes and the integration behind specular_albedo.h's table. The table is integrated
 // once at build time (tabulate_specular_albedo.cpp writes it as source), not in every
 // process that meets a metallic-roughness material: the integration takes about 0.35 s.
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -26,6 +27,28 @@ constexpr float alphaNode(int j) {
 constexpr float iorNode(int k) {
   const float s = float(k) / (kIor - 1);
   return 1 + (kMaxSpecularAlbedoIor - 1) * s * s * s;
+}
+
+// Where a value falls between the nodes: the lower node's index and the upper node's
+// weight.
+struct Cell {
+  int index;
+  float t;
+};
+// The cell of x in [0, n - 1] (clamped) among n nodes.
+inline Cell cell(float x, int n) {
+  x = std::clamp(x, 0.0f, float(n - 1));
+  const int index = std::min(int(x), n - 2);
+  return {index, x - float(index)};
+}
+inline Cell roughnessCell(float alpha) { return cell(std::sqrt(std::max(0.0f, alpha)) * (kRoughness - 1), kRoughness); }
+// The cell of cos(theta) among the mu nodes, its weight linear in cos(theta) between them
+// (as the tables' averages assume; the node spacing is what is quadratic).
+inline Cell muCell(float cosTheta) {
+  const float mu = std::clamp(cosTheta, 0.0f, 1.0f);
+  const int i = cell(std::sqrt(mu) * (kMu - 1), kMu).index;
+  const float a = muNode(i), b = muNode(i + 1);
+  return {i, std::clamp((mu - a) / (b - a), 0.0f, 1.0f)};
 }
 
 struct Table {
