@@ -31,7 +31,7 @@ TEST_F(FarmTest, AFrameOfManySmallTilesIsAssembledThroughRegions) {
   expectSameFrames(fetchFrames(id, "fetched"), renderLocally(spec), spec);
 }
 
-// The scheduler checks an output before it answers the completion. A 4096x4096 tile takes
+// The scheduler checks an output before it answers the completion. A 2896x2896 tile takes
 // longer to check than a lease of half a second lives; the worker renews the lease until
 // the answer comes, so no lease expires and nothing runs twice. (Before, the lease expired
 // during every check, the completion was refused and the tile rendered again forever.)
@@ -40,7 +40,7 @@ TEST_F(FarmTest, AnOutputWhoseCheckOutlastsTheLeaseIsAccepted) {
   config.leaseSeconds = 0.5;
   startScheduler(config);
   startWorker("w");
-  const int64_t id = client().submit(shotSpec(squareFrame("one-large-tile", 4096, 4096, 1)));
+  const int64_t id = client().submit(shotSpec(squareFrame("one-large-tile", 2896, 2896, 1)));
   const farm::ShotSummary summary = waitForShot(id, 240s);
   ASSERT_EQ(summary.state(), farm::SHOT_DONE) << describe(summary);
   const FarmDatabase db = database();
