@@ -26,6 +26,15 @@ class FrameImage {
   const std::vector<float>& channel(const std::string& name) const;
   std::vector<float>& channel(const std::string& name);
   const std::vector<std::string>& channelNames() const { return names_; }
+  // Removes the channels `drop` names (name -> true) and frees their memory; the others keep their order.
+  template <typename Predicate>
+  void removeChannels(Predicate drop) {
+    std::erase_if(names_, [&](const std::string& name) {
+      if (!drop(name)) return false;
+      planes_.erase(name);
+      return true;
+    });
+  }
 
   // Copies every channel of `part` into this frame with its corner at (x0, y0), adding
   // channels this frame lacks; throws std::invalid_argument if it does not fit.

@@ -8,6 +8,7 @@
 #include "postproc/filters/component_upsampler.h"
 #include "postproc/filters/decomposed_frame.h"
 #include "postproc/interpolation/caustic_check.h"
+#include "worker/chunk_channels.h"
 #include "worker/direct_emission.h"
 #include "worker/failure_class.h"
 #include "worker/filter_inputs.h"
@@ -63,6 +64,8 @@ TaskOutput runDenoiseTask(const Lease& lease, std::vector<TaskInput>& inputs) {
   deriveIrradiance(current);
   // Upsampling adds the light back at full resolution (runUpsampleTask).
   if (!upsample) addDirectEmission(current, emission);
+  keepReadChannels(upsample ? ChunkContent::HalfResolutionDenoised : ChunkContent::FilteredKeyframe,
+                   stagesOf(lease.spec().pipeline()), current);
   TaskOutput output;
   output.chunk = encodeExr(current, ExrCompression::Fast);
   return output;
@@ -97,6 +100,7 @@ TaskOutput runUpsampleTask(const Lease& lease, std::vector<TaskInput>& inputs) {
   requestRerender(lease.spec(), frame, mask, output);
   output.metrics["rerender_moving_caustics"] = static_cast<double>(causticPixels);
   output.metrics["rerender_light_edges"] = static_cast<double>(edgePixels);
+  keepReadChannels(ChunkContent::FilteredKeyframe, stagesOf(lease.spec().pipeline()), high);
   output.chunk = encodeExr(high, ExrCompression::Fast);
   return output;
 }

@@ -13,6 +13,7 @@
 #include "renderer/integrators/gradient_estimates.h"
 #include "renderer/scene/scene_loader.h"
 #include "renderer/setup/auto_decomposition.h"
+#include "worker/chunk_channels.h"
 #include "renderer/setup/integrator_factory.h"
 #include "worker/failure_class.h"
 #include "worker/metropolis_tasks.h"
@@ -158,9 +159,11 @@ TaskOutput TaskRunner::renderTile(const Lease& lease, const ChunkFetcher& fetch,
   const PixelWindow& w = params.window();
   const std::vector<uint8_t> only(params.pixel_mask().begin(), params.pixel_mask().end());
   RenderStats stats;
-  const FrameImage tile = renderer.renderWindow(params.frame(), {w.x0(), w.y0(), w.x1(), w.y1()},
-                                                abandonable(progress, abandon), &stats,
-                                                only.empty() ? nullptr : &only);
+  FrameImage tile = renderer.renderWindow(params.frame(), {w.x0(), w.y0(), w.x1(), w.y1()},
+                                          abandonable(progress, abandon), &stats, only.empty() ? nullptr : &only);
+  const std::optional<ChunkContent> content = renderedContent(params.role());
+  if (settings.decomposition && content && isFilteringPipeline(lease.spec().pipeline()))
+    keepReadChannels(*content, stagesOf(lease.spec().pipeline()), tile);
   TaskOutput output;
   output.chunk = encodeExr(tile, ExrCompression::Fast);
   output.metrics["samples"] = static_cast<double>(stats.samples);
