@@ -318,18 +318,27 @@ auto readFile(const std::filesystem::path& file, const std::string& label, Read 
 
 }  // namespace
 
-FrameImage decodeExr(const std::string& bytes, const std::string& label) {
-  return readBytes(bytes, label, [](Imf::InputFile& in) {
-    const Imath::Box2i window = in.header().dataWindow();
-    FrameImage frame(window.max.x - window.min.x + 1, window.max.y - window.min.y + 1);
-    const std::vector<std::string> names = channelNames(in.header());
-    std::vector<float*> planes;
-    for (const std::string& name : names) planes.push_back(frame.addChannel(name).data());
-    frame.attributes() = stringAttributes(in.header());
-    in.setFrameBuffer(frameBufferOf(window, names, planes, window.min.y));
-    in.readPixels(window.min.y, window.max.y);
-    return frame;
-  });
+namespace {
+
+// Every channel and attribute of the reader's frame.
+FrameImage wholeFrame(Imf::InputFile& in) {
+  const Imath::Box2i window = in.header().dataWindow();
+  FrameImage frame(window.max.x - window.min.x + 1, window.max.y - window.min.y + 1);
+  const std::vector<std::string> names = channelNames(in.header());
+  std::vector<float*> planes;
+  for (const std::string& name : names) planes.push_back(frame.addChannel(name).data());
+  frame.attributes() = stringAttributes(in.header());
+  in.setFrameBuffer(frameBufferOf(window, names, planes, window.min.y));
+  in.readPixels(window.min.y, window.max.y);
+  return frame;
+}
+
+}  // namespace
+
+FrameImage decodeExr(const std::string& bytes, const std::string& label) { return readBytes(bytes, label, wholeFrame); }
+
+FrameImage decodeExrFile(const std::filesystem::path& file, const std::string& label) {
+  return readFile(file, label, wholeFrame);
 }
 
 std::pair<int, int> readExrStrips(const std::filesystem::path& file, const std::string& label,

@@ -30,6 +30,9 @@ enum class ExrCompression { Small, Fast };
 std::string encodeExr(const FrameImage& frame, ExrCompression compression = ExrCompression::Small);
 // `label` names the bytes' origin (a file, a chunk) in error messages.
 FrameImage decodeExr(const std::string& bytes, const std::string& label);
+// decodeExr of a file's bytes, read in place: the file is never held in memory besides
+// its frame (a 1080p keyframe chunk is about half a gigabyte).
+FrameImage decodeExrFile(const std::filesystem::path& file, const std::string& label);
 
 
 // What checking a chunk finds without holding it: its size, and its first non-finite

@@ -8,8 +8,17 @@
 
 namespace pathfarm::farm {
 
+const FrameImage& TaskInput::image() const {
+  if (!frame && decode) {
+    frame = decode();
+    decode = nullptr;
+  }
+  if (!frame) throw std::logic_error("a task input was read after it was taken");
+  return *frame;
+}
+
 FrameImage TaskInput::take() {
-  if (!frame) throw std::logic_error("a task input was taken twice");
+  image();
   const std::shared_ptr<FrameImage> held = std::move(frame);
   if (held.use_count() > 1) return *held;
   return std::move(*held);

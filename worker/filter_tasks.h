@@ -3,6 +3,7 @@
 // its decoded inputs: the postproc library does the work, these functions pick the inputs,
 // join the results into the task's output frame and say which pixels need re-rendering.
 // Channel layout of the intermediate chunks: docs/farm.md, "Task graphs".
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -16,13 +17,17 @@ namespace pathfarm::farm {
 
 // One input chunk: what made it and its image. The image may be shared with the worker's
 // decoded inputs (worker/decoded_inputs.h) and other tasks, so a task changes only what
-// take() gives it.
+// take() gives it. A worker's inputs are decoded when the task first asks for them, so that
+// a task that reduces each frame as it gets it (dui's denoise, to half resolution) never
+// holds its inputs whole at once.
 struct TaskInput {
   TaskKind kind;
   TaskParams params;
-  std::shared_ptr<FrameImage> frame;  // shared: change only what take() gives
+  mutable std::shared_ptr<FrameImage> frame;  // shared: change only what take() gives
+  // Makes `frame` when it is first asked for; empty when `frame` was given.
+  mutable std::function<std::shared_ptr<FrameImage>()> decode = {};
 
-  const FrameImage& image() const { return *frame; }
+  const FrameImage& image() const;
   // The image, to change: moved out when this input alone holds it (a frame too large for
   // the decoded inputs' budget: a 1080p keyframe of 150 channels is 1.2 GB, and copying it
   // would double a filter task's memory), else copied. The input is empty afterwards.

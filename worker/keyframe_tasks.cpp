@@ -34,19 +34,20 @@ TaskOutput runDenoiseTask(const Lease& lease, std::vector<TaskInput>& inputs) {
   const auto at = std::find(keyframes.begin(), keyframes.end(), frame);
   if (at == keyframes.end()) throw BadInput("frame " + std::to_string(frame) + " is not a keyframe");
 
-  // The keyframe's motion vectors reach its neighbouring keyframes (planner.h).
-  FrameImage current = inputOf(inputs, TASK_ASSEMBLE_FRAME, frame).take();
+  // The keyframe's motion vectors reach its neighbouring keyframes (planner.h). Each frame
+  // is reduced (its directly seen light out; with u, to half resolution) before the next
+  // is decoded: a 1080p keyframe is more than a gigabyte.
+  FrameImage emission;
+  const auto reduced = [&](int64_t keyframe, FrameImage* light) {
+    FrameImage image = inputOf(inputs, TASK_ASSEMBLE_FRAME, keyframe).take();
+    FrameImage taken = takeDirectEmission(image);
+    if (light) *light = std::move(taken);
+    return upsample ? boxDownsample(image, kUpsampleFactor) : image;
+  };
+  FrameImage current = reduced(frame, &emission);
   std::optional<FrameImage> previous, next;
-  if (at != keyframes.begin()) previous = inputOf(inputs, TASK_ASSEMBLE_FRAME, *(at - 1)).take();
-  if (at + 1 != keyframes.end()) next = inputOf(inputs, TASK_ASSEMBLE_FRAME, *(at + 1)).take();
-  const FrameImage emission = takeDirectEmission(current);
-  if (previous) takeDirectEmission(*previous);
-  if (next) takeDirectEmission(*next);
-  if (upsample) {
-    current = boxDownsample(current, kUpsampleFactor);
-    if (previous) previous = boxDownsample(*previous, kUpsampleFactor);
-    if (next) next = boxDownsample(*next, kUpsampleFactor);
-  }
+  if (at != keyframes.begin()) previous = reduced(*(at - 1), nullptr);
+  if (at + 1 != keyframes.end()) next = reduced(*(at + 1), nullptr);
   DenoiseSettings settings;
   settings.label = "keyframe " + std::to_string(frame);
   if (!upsample) settings.alpha = kFullSampleCancellation;

@@ -15,6 +15,7 @@
 #include "worker/backoff.h"
 #include "worker/failure_class.h"
 #include "worker/lease_heartbeat.h"
+#include "worker/peak_memory.h"
 #include "worker/scratch_file.h"
 #include "worker/task_log.h"
 
@@ -199,6 +200,8 @@ class Slot {
     std::atomic<bool> abandon{false};
     InputCount inputs;
     const double cpuBefore = processCpuSeconds();
+    // With one slot the process's peak while the task runs is the task's own.
+    const bool measuresPeak = options_.slots == 1 && restartPeakResident();
     const auto started = Clock::now();
     TaskOutput output;
     std::atomic<bool> handedBack{false};
@@ -226,9 +229,12 @@ class Slot {
       reportFailure(lease, kind, e.what(), log, stop);
       return;
     }
-    spdlog::info("task {}: ran {:.2f} s; read {} input chunk(s), {:.2f} MB ({} from the cache){}", lease.task_id(),
+    const std::optional<uint64_t> peak = measuresPeak ? peakResidentBytes() : std::nullopt;
+    spdlog::info("task {}: ran {:.2f} s; read {} input chunk(s), {:.2f} MB ({} from the cache){}{}", lease.task_id(),
                  std::chrono::duration<double>(Clock::now() - started).count(), inputs.chunks.load(),
-                 1e-6 * static_cast<double>(inputs.bytes.load()), inputs.cached.load(), describe(output.metrics));
+                 1e-6 * static_cast<double>(inputs.bytes.load()), inputs.cached.load(),
+                 peak ? fmt::format("; peak resident {:.2f} GiB", static_cast<double>(*peak) / (1u << 30)) : "",
+                 describe(output.metrics));
     deliver(lease, output, processCpuSeconds() - cpuBefore, log, stop);
   }
 

@@ -105,7 +105,7 @@ TaskOutput TaskRunner::run(const Lease& lease, const ChunkFetcher& fetch, std::a
     case TASK_MLT_MERGE:
       return runMetropolis(lease, fetch, progress, abandon);
     default:
-      return filter(lease, fetch, progress);
+      return filter(lease, fetch, files, progress);
   }
 }
 
@@ -210,7 +210,7 @@ TaskOutput TaskRunner::joinGradientTiles(const Lease& lease, const ChunkFetcher&
       throw BadInput("the gradient tile at (" + std::to_string(w.x0()) + ", " + std::to_string(w.y0()) + ") is " +
                      sizeText(input.image().width(), input.image().height()) + ", its window " +
                      sizeText(w.x1() - w.x0(), w.y1() - w.y0()));
-    tiles.push_back({input.frame.get(), w.x0(), w.y0()});
+    tiles.push_back({&input.image(), w.x0(), w.y0()});
   }
   TaskOutput output;
   try {
@@ -222,7 +222,8 @@ TaskOutput TaskRunner::joinGradientTiles(const Lease& lease, const ChunkFetcher&
   return output;
 }
 
-TaskOutput TaskRunner::filter(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress) {
+TaskOutput TaskRunner::filter(const Lease& lease, const ChunkFetcher& fetch, const ChunkFileFetcher& files,
+                              std::atomic<double>& progress) {
   using Filter = TaskOutput (*)(const Lease&, std::vector<TaskInput>&);
   const std::map<TaskKind, Filter> filters = {
       {TASK_DENOISE, runDenoiseTask},     {TASK_UPSAMPLE, runUpsampleTask},   {TASK_FLOW, runFlowTask},
@@ -231,7 +232,7 @@ TaskOutput TaskRunner::filter(const Lease& lease, const ChunkFetcher& fetch, std
   const auto found = filters.find(lease.kind());
   if (found == filters.end())
     throw std::runtime_error("this worker cannot run tasks of kind " + std::to_string(lease.kind()));
-  std::vector<TaskInput> inputs = inputsOf(lease, fetch, progress);
+  std::vector<TaskInput> inputs = inputsOf(lease, fetch, progress, files);
   tbb::task_arena arena(threads_ > 0 ? threads_ : tbb::task_arena::automatic);
   TaskOutput output = arena.execute([&] { return found->second(lease, inputs); });
   progress = 1.0;
@@ -239,25 +240,35 @@ TaskOutput TaskRunner::filter(const Lease& lease, const ChunkFetcher& fetch, std
 }
 
 std::vector<TaskInput> TaskRunner::inputsOf(const Lease& lease, const ChunkFetcher& fetch,
-                                            std::atomic<double>& progress) {
+                                            std::atomic<double>& progress, const ChunkFileFetcher& files) {
   if (lease.input_kinds_size() != lease.inputs_size() || lease.input_params_size() != lease.inputs_size())
     throw BadInput("the lease's inputs are incomplete (kinds or parameters missing)");
   std::vector<TaskInput> inputs;
   for (int i = 0; i < lease.inputs_size(); ++i) {
-    const bool image = lease.input_kinds(i) != TASK_EVALUATE;
-    inputs.push_back({lease.input_kinds(i), lease.input_params(i),
-                      image ? decodedInput(lease.inputs(i), fetch) : std::make_shared<FrameImage>()});
-    // Fetching and decoding is the first half of a filter task's work, as far as anyone can tell.
+    TaskInput& input = inputs.emplace_back(TaskInput{lease.input_kinds(i), lease.input_params(i), nullptr});
+    const ChunkRef& ref = lease.inputs(i);
+    const std::string label = "input chunk " + ref.sha256();
+    if (input.kind == TASK_EVALUATE) {
+      input.frame = std::make_shared<FrameImage>();
+    } else if (files) {
+      // Fetched now, so that a task whose inputs cannot be had fails before its work.
+      input.decode = [this, ref, label, file = files(ref)] {
+        return decodedInput(ref, [&] { return decodeExrFile(file, label); });
+      };
+    } else {
+      input.decode = [this, ref, label, fetch] { return decodedInput(ref, [&] { return decodeExr(fetch(ref), label); }); };
+    }
+    // Fetching the inputs is the first half of a filter task's work, as far as anyone can tell.
     progress = 0.5 * static_cast<double>(i + 1) / static_cast<double>(lease.inputs_size());
   }
   return inputs;
 }
 
-std::shared_ptr<FrameImage> TaskRunner::decodedInput(const ChunkRef& ref, const ChunkFetcher& fetch) {
+std::shared_ptr<FrameImage> TaskRunner::decodedInput(const ChunkRef& ref, const std::function<FrameImage()>& decode) {
   // Every kept frame was made below, mutable; a kept one is shared with the cache, so
   // TaskInput::take copies it rather than change it.
   if (auto kept = decoded_.find(ref.sha256())) return std::const_pointer_cast<FrameImage>(kept);
-  auto frame = std::make_shared<FrameImage>(decodeExr(fetch(ref), "input chunk " + ref.sha256()));
+  auto frame = std::make_shared<FrameImage>(decode());
   if (const std::string bad = frame->firstNonFinite(); !bad.empty())
     throw BadInput("input chunk " + ref.sha256() + " holds a non-finite value (" + bad + ")");
   decoded_.keep(ref.sha256(), frame);

@@ -73,13 +73,16 @@ class TaskRunner {
   TaskOutput renderGradientTile(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,
                                 const std::atomic<bool>& abandon);
   TaskOutput joinGradientTiles(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress);
-  TaskOutput filter(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress);
+  TaskOutput filter(const Lease& lease, const ChunkFetcher& fetch, const ChunkFileFetcher& files,
+                    std::atomic<double>& progress);
   TaskOutput runMetropolis(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,
                            const std::atomic<bool>& abandon);
-  // The lease's input chunks, decoded; `progress` goes to 0.5 as they arrive.
-  std::vector<TaskInput> inputsOf(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress);
-  // An input chunk's frame: decoded and checked once, then kept in decoded_.
-  std::shared_ptr<FrameImage> decodedInput(const ChunkRef& ref, const ChunkFetcher& fetch);
+  // The lease's input chunks, fetched (with `files`, into the worker's cache), each decoded
+  // when the task first asks for it; `progress` goes to 0.5 as they arrive.
+  std::vector<TaskInput> inputsOf(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,
+                                  const ChunkFileFetcher& files = {});
+  // An input chunk's frame: made by `decode` and checked once, then kept in decoded_.
+  std::shared_ptr<FrameImage> decodedInput(const ChunkRef& ref, const std::function<FrameImage()>& decode);
 
   int threads_;
   std::filesystem::path scenesRoot_;

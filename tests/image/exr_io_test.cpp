@@ -228,6 +228,28 @@ TEST(ExrIo, AFilesHeaderAndRowsReadInPlaceAreWhatDecodingItWholeGives) {
   EXPECT_THROW(readExrHeader(temporaryFile("absent.exr"), "chunk"), ExrError);
 }
 
+// decodeExrFile reads the file in place and gives what decodeExr gives of its bytes; a
+// truncated or widened file is an error naming its label.
+TEST(ExrIo, AFileDecodedInPlaceIsItsBytesDecoded) {
+  const std::filesystem::path file = temporaryFile("in_place.exr");
+  writeExr(file, sampleFrame());
+  const FrameImage inPlace = decodeExrFile(file, "chunk 51ab"), fromBytes = decodeExr(fileBytes(file), "bytes");
+  ASSERT_EQ(inPlace.channelNames(), fromBytes.channelNames());
+  for (const std::string& name : inPlace.channelNames()) EXPECT_EQ(inPlace.channel(name), fromBytes.channel(name)) << name;
+  EXPECT_EQ(inPlace.attributes(), fromBytes.attributes());
+  const std::string bytes = fileBytes(file);
+  for (const std::string& damaged : {bytes.substr(0, bytes.size() / 2), widenedChunk()}) {
+    std::ofstream(file, std::ios::binary | std::ios::trunc) << damaged;
+    try {
+      decodeExrFile(file, "chunk 51ab");
+      FAIL() << "a damaged file was decoded";
+    } catch (const ExrError& e) {
+      EXPECT_NE(std::string(e.what()).find("chunk 51ab"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_THROW(decodeExrFile(temporaryFile("absent.exr"), "chunk"), ExrError);
+}
+
 // The scan walks the headers before OpenEXR does, as decodeExr does: a damaged size is
 // refused before anything is allocated.
 TEST(ExrIo, AScannedFileClaimingMorePixelsThanItsBytesCanHoldIsRefused) {

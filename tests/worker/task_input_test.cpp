@@ -29,5 +29,25 @@ TEST(TaskInput, ASoleOwnerMovesTheFrameOutAndASharedOneCopiesIt) {
   EXPECT_EQ(kept->channel("R")[0], 3.0f) << "the shared frame is untouched";
 }
 
+// A worker's input is decoded when the task first reads it, once.
+TEST(TaskInput, AnInputIsDecodedWhenFirstReadAndOnlyOnce) {
+  int decodes = 0;
+  TaskInput lazy{TASK_ASSEMBLE_FRAME, {}, nullptr, [&] {
+                   ++decodes;
+                   return frameOf(5.0f);
+                 }};
+  EXPECT_EQ(decodes, 0);
+  EXPECT_EQ(lazy.image().channel("R")[0], 5.0f);
+  EXPECT_EQ(lazy.image().channel("R")[1], 5.0f);
+  EXPECT_EQ(decodes, 1);
+  const FrameImage taken = lazy.take();
+  EXPECT_EQ(taken.channel("R")[0], 5.0f);
+  EXPECT_EQ(decodes, 1);
+  EXPECT_THROW(lazy.image(), std::logic_error);
+
+  TaskInput takenFirst{TASK_ASSEMBLE_FRAME, {}, nullptr, [] { return frameOf(6.0f); }};
+  EXPECT_EQ(takenFirst.take().channel("R")[0], 6.0f) << "taking decodes too";
+}
+
 }  // namespace
 }  // namespace pathfarm::farm

@@ -1,0 +1,38 @@
+// The worker's per-task peak memory: restarting the count forgets an earlier, larger peak,
+// and a block touched after the restart shows in the peak.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <memory>
+
+#include "worker/peak_memory.h"
+
+namespace pathfarm::farm {
+namespace {
+
+constexpr size_t kBlock = size_t{256} << 20;
+
+// Allocates and touches `bytes`, then frees them.
+void touchAndFree(size_t bytes) {
+  const std::unique_ptr<char[]> block(new char[bytes]);
+  std::memset(block.get(), 1, bytes);
+  volatile char sink = block[bytes - 1];
+  (void)sink;
+}
+
+TEST(PeakMemory, ARestartForgetsAnEarlierPeakAndSeesALaterOne) {
+  if (!restartPeakResident()) GTEST_SKIP() << "this kernel does not let a process restart its peak (clear_refs)";
+  const std::optional<uint64_t> idle = peakResidentBytes();
+  ASSERT_TRUE(idle);
+  touchAndFree(kBlock);
+  const std::optional<uint64_t> afterBlock = peakResidentBytes();
+  ASSERT_TRUE(afterBlock);
+  EXPECT_GE(*afterBlock, *idle + kBlock * 9 / 10);
+  ASSERT_TRUE(restartPeakResident());
+  const std::optional<uint64_t> restarted = peakResidentBytes();
+  ASSERT_TRUE(restarted);
+  EXPECT_LT(*restarted, *afterBlock - kBlock / 2) << "the freed block still counts after the restart";
+}
+
+}  // namespace
+}  // namespace pathfarm::farm
