@@ -4,7 +4,8 @@
 # resident set of `pathfarm local` and of each worker process every second (ps), and
 # prints one markdown row: wall time, the peaks (the largest worker's and `pathfarm
 # local`'s), all in GiB, and the size of the farm's chunk store at the end (every intermediate chunk
-# and the frames; kept with --keep-farm for the count, then removed with the run's folder).
+# and the frames; kept with --keep-farm for the count, then removed with the run's folder);
+# then the largest peak of each kind of task, from the workers' logs.
 #
 #   bench/local_memory.sh [--build DIR] [--workers 2] [--label TEXT] SHOT [-- LOCAL-ARGS...]
 #   e.g. bench/local_memory.sh scenes/walkthrough/shot.json -- --res 1920x1080 --spp 16 --frames 0:4 --pipeline dui
@@ -48,3 +49,17 @@ for p in "${!peak[@]}"; do [ "$p" != "$pid" ] && ((peak[$p] > worker)) && worker
 gib() { awk -v k="$1" 'BEGIN { printf "%.2f", k / 1048576 }'; }
 store=$(du -sk "$work/frames/farm/chunks" | cut -f1)
 echo "| ${label:-$shot $*} | $seconds | $(gib "$worker") | $(gib "${peak[$pid]:-0}") | $(gib "$store") |"
+# Each task's own peak, as its worker logged it ("peak resident X GiB": one-slot workers),
+# the largest per kind of task.
+cat "$work"/frames/farm/logs/local-*.log | python3 -c '
+import re, sys
+kinds, peaks = {}, {}
+for line in sys.stdin:
+    started = re.search(r"task (\d+) \((TASK_\w+)\)", line)
+    if started: kinds[started.group(1)] = started.group(2)[5:].lower()
+    ran = re.search(r"task (\d+): ran .*peak resident ([\d.]+) GiB", line)
+    if ran:
+        kind = kinds.get(ran.group(1), "?")
+        peaks[kind] = max(peaks.get(kind, 0.0), float(ran.group(2)))
+print("largest peak per task kind (GiB): " + ", ".join(f"{k} {v:.2f}" for k, v in sorted(peaks.items())))
+'

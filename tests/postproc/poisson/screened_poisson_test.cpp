@@ -143,7 +143,7 @@ Confidence confidenceOf(const std::vector<const GradientFrame*>& frames) {
       const std::vector<float>& variance = frames[id.frame]->variance[id.layer];
       if (!variance.empty() && variance[id.pixel] > 0) nonZero[id.layer].push_back(variance[id.pixel]);
     }
-  } medians{frames};
+  } medians{frames, {}};
   addRows(frames, 0, 1.0, medians);
   Confidence confidence{frames};
   for (size_t k = 0; k < GradientFrame::kLayers; ++k) {

@@ -38,7 +38,7 @@ TEST(DeformingIntegrators, EveryIntegratorRendersTheCreatureFinite) {
       const MetropolisMethod method = parseMetropolisMethod(std::string(traits.name));
       MetropolisSettings metropolis = test_support::smallMetropolisSettings(method, 2);
       metropolis.bootstrapSamples = 1000;
-      const int64_t frames = method == MetropolisMethod::PathSpace ? 1 : 2;  // mlt renders frame by frame
+      const int frames = method == MetropolisMethod::PathSpace ? 1 : 2;  // mlt renders frame by frame
       for (const FrameImage& frame : MetropolisRenderer(scene, metropolis).render({6, frames}))
         expectFiniteAndLit(frame, traits.name);
     } else {

@@ -219,7 +219,9 @@ void expectTemporalDifferencesUnbiased(Scene scene, int64_t frameIndex, uint64_t
     scene.seed = seedBase + static_cast<uint64_t>(seed);
     const GradientFrame frame =
         GradientFrame::fromImage(GradientFrameRenderer(scene, settings, tgpt).render(frameIndex), "tgpt");
-    if (seed > 0) ASSERT_EQ(frame.temporalTarget, target) << "the correspondence does not depend on the seed";
+    if (seed > 0) {
+      ASSERT_EQ(frame.temporalTarget, target) << "the correspondence does not depend on the seed";
+    }
     target = frame.temporalTarget;
     for (size_t l = 0; l < 3; ++l)
       for (size_t c = 0; c < 3; ++c)
