@@ -81,9 +81,6 @@ TaskOutput runInterpolateTask(const Lease& lease, std::vector<TaskInput>& inputs
   FrameImage k0 = filteredKeyframe(inputs, before).take(), k1 = filteredKeyframe(inputs, after).take();
   takeDirectEmission(k0);
   takeDirectEmission(k1);
-  const FrameImage& features = inputOf(inputs, TASK_ASSEMBLE_FRAME, params.frame()).image();
-  const FrameImage directLight = directEmissionOf(features);
-
   ComponentMotions motions = keyframeMotions(k0, k1);
   for (const TaskInput& input : inputs) {
     if (input.kind != TASK_FLOW) continue;
@@ -102,6 +99,13 @@ TaskOutput runInterpolateTask(const Lease& lease, std::vector<TaskInput>& inputs
   result.frame.attributes()["pathfarm.frame"] = std::to_string(params.frame());
   result.frame.attributes()["pathfarm.interpolated"] =
       "between keyframes " + std::to_string(before) + " and " + std::to_string(after);
+  // The keyframes are let go before the frame's feature render is decoded (a 1080p
+  // keyframe is most of a gigabyte).
+  k0 = FrameImage();
+  k1 = FrameImage();
+  motions = ComponentMotions();
+  const FrameImage& features = inputOf(inputs, TASK_ASSEMBLE_FRAME, params.frame()).image();
+  const FrameImage directLight = directEmissionOf(features);
   addDirectEmission(result.frame, directLight);
   // Where the frame's own features or their light disagree, the interpolation is wrong;
   // where its directly seen light has an edge, the feature render's few samples are; a
