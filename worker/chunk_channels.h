@@ -1,7 +1,7 @@
 #pragma once
 // The channels an intermediate chunk of the filtering pipelines keeps: those the tasks that
-// read it use, and no others. A decomposed render carries 29 buffers per component (158
-// channels with five components, 1.3 GB decoded at 1080p); which task reads which is the
+// read it use, and no others. A decomposed render carries 29 channels per component (158
+// with five components, 1.3 GB decoded at 1080p); which task reads which is the
 // table in docs/farm.md, "Channels of the intermediate chunks". Every chunk keeps its
 // attributes.
 #include <optional>
@@ -14,11 +14,11 @@ namespace pathfarm::farm {
 
 // What a chunk is, as far as its readers go.
 enum class ChunkContent {
-  KeyframeRender,         // a keyframe's tiles and assembled frame: denoise, upsample, through them flow and interpolation
-  FeatureRender,          // an in-between frame's tiles and assembled frame: interpolation's checks
-  RerenderedPixels,       // re-render tiles: the composite's denoise
-  HalfResolutionDenoised, // du, dui: the denoised keyframe the upsampler reads
-  FilteredKeyframe,       // di's denoise or du's, dui's upsample output: the composite, flow, interpolation
+  KeyframeRender,          // a keyframe's tiles and frame: denoise, upsample, through them flow and interpolation
+  FeatureRender,           // an in-between frame's tiles and frame: interpolation's checks
+  RerenderedPixels,        // re-render tiles: the composite's denoise
+  HalfResolutionDenoised,  // du, dui: the denoised keyframe the upsampler reads
+  FilteredKeyframe,        // di's denoise, du's and dui's upsample output: the composite, flow, interpolation
 };
 
 // What a decomposed render tile of a filtering pipeline is for, by its role: nothing for the
