@@ -25,4 +25,10 @@ Rgb fresnelSchlick(float cosThetaI, Rgb f0);
 // uniformly from the incident side: Fdr = integral of F(cos, eta) 2 cos dcos.
 float fresnelDiffuseReflectance(float eta);
 
+// Snell refraction of wo (wo.m > 0) through the facet normal m, eta = n_transmitted /
+// n_incident, given the refracted cosine fresnelDielectric returned.
+inline Vec3f refract(Vec3f wo, Vec3f m, float eta, float cosThetaT) {
+  return -wo / eta + m * (dot(wo, m) / eta - cosThetaT);
+}
+
 }  // namespace pathfarm

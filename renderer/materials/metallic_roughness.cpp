@@ -46,12 +46,20 @@ MetallicRoughnessBsdf::MetallicRoughnessBsdf(const Material& material, const Sur
       transmission_(std::clamp(surface.transmission, 0.0f, 1.0f)),
       distribution_(MicrofacetType::GGX, alpha_),
       multiple_(MicrofacetType::GGX, alpha_),
-      metalCompensation_(multiple_.tint(schlickFresnelAverage(baseColor_)) * metallic_),
+      reflectionCompensation_(multiple_.tint(schlickFresnelAverage(baseColor_)) * metallic_),
       delta_(alpha_ < kDeltaAlpha),
       reflectSymbol_(glossyLobeSymbol(alpha_, roughnessThreshold, LobeSymbol::R)),
       transmitSymbol_(glossyLobeSymbol(alpha_, roughnessThreshold, LobeSymbol::T)) {
   std::tie(specularScale_, specularOffset_, normalReflectance_) = specularRemap(material, ior_);
   excessBound_ = specularOffset_.r < 0 || specularOffset_.g < 0 || specularOffset_.b < 0;
+  // What the transmitting part's facets lose leaves on either side: reflected with the
+  // average of F', refracted (and tinted) with the rest.
+  const float fresnelAverage = fresnelDiffuseReflectance(ior_);
+  const Rgb reflectedShare =
+      perChannel([&](int c) { return std::clamp(specularScale_[c] * fresnelAverage + specularOffset_[c], 0.0f, 1.0f); });
+  const float transmitting = (1 - metallic_) * transmission_;
+  reflectionCompensation_ += reflectedShare * transmitting;
+  transmissionCompensation_ = baseColor_ * (Rgb(1) - reflectedShare) * transmitting;
   // Listed from the material, not the point, so that every point agrees (see the header).
   const bool dielectricAnywhere = material.metallic < 1 || material.metallicRoughnessTexture >= 0;
   int next = 1;
@@ -90,15 +98,18 @@ Rgb MetallicRoughnessBsdf::averageAlbedoBound() const {
 MetallicRoughnessBsdf::LobeProbabilities MetallicRoughnessBsdf::probabilities(Vec3f wo) const {
   const float dielectric = 1 - metallic_;
   const float reflection = mean(reflectionFresnel(wo.z));
-  const float compensation = delta_ ? 0 : mean(metalCompensation_) * multiple_.lost(wo.z);
+  const float lost = delta_ ? 0 : multiple_.lost(wo.z);
+  const float compensation = mean(reflectionCompensation_) * lost;
+  const float transmittedCompensation = transmissionLobe_ < 0 ? 0 : mean(transmissionCompensation_) * lost;
   const float diffuse =
       diffuseLobe_ < 0 ? 0 : dielectric * (1 - transmission_) * mean(baseColor_) * factorMean(Rgb(1) - albedoBound(wo.z));
   const float transmission = transmissionLobe_ < 0 ? 0
                                                    : dielectric * transmission_ * mean(baseColor_) *
                                                          factorMean(Rgb(1) - dielectricFresnel(wo.z));
-  const float total = reflection + compensation + diffuse + transmission;
+  const float total = reflection + compensation + diffuse + transmission + transmittedCompensation;
   if (!(total > 0)) return {};
-  return {reflection / total, compensation / total, diffuse / total, transmission / total};
+  return {reflection / total, compensation / total, diffuse / total, transmission / total,
+          transmittedCompensation / total};
 }
 
 Rgb MetallicRoughnessBsdf::transmittance(float cosThetaI, float scale) const {
@@ -112,7 +123,7 @@ LobeValues MetallicRoughnessBsdf::evaluate(Vec3f wo, Vec3f wi) const {
     if (!delta_) {
       const Vec3f m = normalize(wo + wi);
       v.value[0] = reflectionFresnel(dot(wo, m)) * distribution_.reflectionEval(wo, wi, m) +
-                   metalCompensation_ * multiple_.eval(wo.z, wi.z);
+                   reflectionCompensation_ * multiple_.eval(wo.z, wi.z);
     }
     const float weight = (1 - metallic_) * (1 - transmission_);
     if (diffuseLobe_ >= 0 && weight > 0) {
@@ -128,7 +139,8 @@ LobeValues MetallicRoughnessBsdf::evaluate(Vec3f wo, Vec3f wi) const {
     const Vec3f wiMirrored = mirrored(wi);
     const Vec3f m = normalize(wo + wiMirrored);
     const float eval = distribution_.reflectionEval(wo, wiMirrored, m);
-    v.value[transmissionLobe_] = baseColor_ * transmittance(dot(wo, m), eval);
+    v.value[transmissionLobe_] = baseColor_ * transmittance(dot(wo, m), eval) +
+                                 transmissionCompensation_ * multiple_.eval(wo.z, wiMirrored.z);
   }
   return v;
 }
@@ -140,8 +152,11 @@ float MetallicRoughnessBsdf::density(Vec3f wo, Vec3f wi) const {
     if (!delta_) pdf += p.reflection * distribution_.reflectionPdf(wo, normalize(wo + wi));
     return pdf;
   }
-  if (wi.z == 0 || delta_ || p.transmission == 0) return 0;
-  return p.transmission * distribution_.reflectionPdf(wo, normalize(wo + mirrored(wi)));
+  if (wi.z == 0 || delta_) return 0;
+  const Vec3f wiMirrored = mirrored(wi);
+  float pdf = p.transmittedCompensation * cosineHemispherePdf(wiMirrored.z);
+  if (p.transmission > 0) pdf += p.transmission * distribution_.reflectionPdf(wo, normalize(wo + wiMirrored));
+  return pdf;
 }
 
 LobeValues MetallicRoughnessBsdf::evalLobes(Vec3f wo, Vec3f wi) const {
@@ -183,12 +198,18 @@ std::optional<BsdfSample> MetallicRoughnessBsdf::sample(Vec3f woIn, float uLobe,
     if (wi.z <= 0) return std::nullopt;
     symbol = reflectSymbol_;
     lobe = 0;
-  } else if (uLobe < p.reflection + p.compensation + p.diffuse || p.transmission == 0) {
+  } else if (uLobe < p.reflection + p.compensation + p.diffuse ||
+             p.transmission + p.transmittedCompensation == 0) {
     if (diffuseLobe_ < 0) return std::nullopt;  // only rounding of the probabilities gets here
     wi = sampleCosineHemisphere(u);
     if (wi.z <= 0) return std::nullopt;
     symbol = LobeSymbol::D;
     lobe = diffuseLobe_;
+  } else if (uLobe < p.reflection + p.compensation + p.diffuse + p.transmittedCompensation) {
+    wi = mirrored(sampleCosineHemisphere(u));
+    if (wi.z >= 0) return std::nullopt;
+    symbol = transmitSymbol_;
+    lobe = transmissionLobe_;
   } else {
     if (delta_) {
       const Rgb value = baseColor_ * transmittance(wo.z, 1);

@@ -8,6 +8,7 @@
 //   f_dielectric = F'(wo.h) D G / (4 cos_o cos_i)                             specular
 //                + (1 - t) rho (1 - E'(cos_o)) (1 - E'(cos_i)) / (pi (1 - E'_avg)) diffuse
 //                + t rho (1 - F'(wo.h')) D G / (4 cos_o |cos_i|)              transmission
+//                + t (F'_avg, or rho (1 - F'_avg) for wi below) f_ms         its compensation
 //
 // with D and G the GGX distribution and Smith shadowing of microfacet.h. F' is the exact
 // dielectric Fresnel F of eta, F0 = F(1), remapped per channel as KHR_materials_specular
@@ -27,15 +28,20 @@
 // an inside: the surface is two-sided, and wo below it mirrors both directions.
 //
 // Energy. Metal: Schlick <= 1, and what the Smith single-scattering lobe loses is given
-// back by the compensation of multiple_scattering.h, tinted by Schlick's average
+// back by the compensation f_ms of multiple_scattering.h, tinted by Schlick's average
 // (20 rho + 1) / 21: m F_ms f_ms joins f_metal in the reflection lobe, and a white metal
-// reflects all of a uniform sky at every roughness. Dielectric,
-// per channel, with E_s the albedo of the specular lobe (of F', bounded by E'): the transmission's albedo is at most
-// integral (1 - F') G1(wi') D_wo(m) dm <= 1 - E_s, and the diffuse one is exactly
-// rho (1 - E'(cos_o)) <= 1 - E_s since E' >= E_s, so with rho <= 1 the dielectric part's
-// albedo is at most E_s + t (1 - E_s) + (1 - t) (1 - E_s) = 1, and so is the mix. The
-// bound's slack (0.006 to 0.015 away from grazing) costs the diffuse lobe about 1 % of
-// rho. Every term is symmetric in wo and wi (wo.h = wi.h, and the mirrored transmission
+// reflects all of a uniform sky at every roughness. Dielectric, per channel, with E_s the
+// albedo of the specular lobe (of F', bounded by E') and E that of the facets with Fresnel 1
+// (multiple_scattering.h's table, which bounds it from above): the mirrored transmission
+// leaves the facets along the reflected direction, so specular plus transmission reflect
+// E_s + T = integral (F' + (1 - F')) G1(wi) D_wo(m) dm = E_true <= E, and the compensation
+// f_ms (of the same table) returns 1 - E, split between the two sides by F'_avg (the
+// average of F' for uniform light, as multiply scattered light is). The diffuse lobe
+// reflects exactly rho (1 - E'(cos_o)) <= 1 - E_s since E' >= E_s. With rho <= 1 the
+// dielectric part's albedo is at most E_s + t (E - E_s) + t (1 - E) + (1 - t) (1 - E_s) = 1,
+// and so is the mix; a white sheet with t = 1 keeps all but the table's margin at every
+// roughness. The bound's slack (0.006 to 0.015 away from grazing) costs the diffuse lobe
+// about 1 % of rho. Every term is symmetric in wo and wi (wo.h = wi.h, and the mirrored transmission
 // is symmetric in wo and wi'), so the BSDF is reciprocal.
 //
 // Delta lobes: when alpha < kDeltaAlpha the specular reflection is a mirror and the
@@ -57,10 +63,10 @@
 // residual), and the specular chain search ends at such an object as if it were diffuse.
 //
 // Sampling: a strategy with probability proportional to an estimate of its albedo at wo
-// (macro-normal Fresnel for the specular and transmission parts, m F_ms (1 - E) for the
-// metal's compensation, rho (1 - E') for the diffuse), then visible GGX normals
-// (reflected, or reflected and mirrored) or the cosine hemisphere; the weight is eval over
-// the mixture density of all non-delta strategies.
+// (macro-normal Fresnel for the specular and transmission parts, each compensation's colour
+// times 1 - E, rho (1 - E') for the diffuse), then visible GGX normals (reflected, or
+// reflected and mirrored) or the cosine hemisphere (mirrored for the transmission's
+// compensation); the weight is eval over the mixture density of all non-delta strategies.
 #include <optional>
 
 #include "renderer/materials/bsdf.h"
@@ -85,10 +91,11 @@ class MetallicRoughnessBsdf {
 
  private:
   // Sampling strategies: visible normals for the reflection, the cosine hemisphere for the
-  // metal's multiple-scattering compensation (part of the reflection lobe) and for the
-  // diffuse base, mirrored visible normals for the transmission.
+  // multiple-scattering compensation (part of the reflection lobe) and for the diffuse
+  // base, mirrored visible normals for the transmission and the mirrored cosine hemisphere
+  // for its compensation (part of the transmission lobe).
   struct LobeProbabilities {
-    float reflection = 1, compensation = 0, diffuse = 0, transmission = 0;
+    float reflection = 1, compensation = 0, diffuse = 0, transmission = 0, transmittedCompensation = 0;
   };
   // The methods below assume wo.z > 0 (mirrored by the public ones).
   LobeProbabilities probabilities(Vec3f wo) const;
@@ -110,7 +117,9 @@ class MetallicRoughnessBsdf {
   bool excessBound_;  // some channel has B < 0: E' reads the bound on F - F0
   MicrofacetDistribution distribution_;
   MultipleScattering multiple_;
-  Rgb metalCompensation_;  // m F_ms(Schlick average of rho): the metal's compensation lobe's colour
+  // The compensation lobe's colours (the header): m F_ms + (1 - m) t F'_avg reflected and
+  // (1 - m) t rho (1 - F'_avg) transmitted.
+  Rgb reflectionCompensation_, transmissionCompensation_;
   bool delta_;
   LobeSymbol reflectSymbol_, transmitSymbol_;
   int diffuseLobe_, transmissionLobe_;  // indices into lobes(), -1 when not listed

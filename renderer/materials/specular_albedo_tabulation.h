@@ -51,6 +51,30 @@ inline Cell muCell(float cosTheta) {
   return {i, std::clamp((mu - a) / (b - a), 0.0f, 1.0f)};
 }
 
+inline Cell iorCell(float eta) {
+  return cell(std::cbrt(std::max(0.0f, (eta - 1) / (kMaxSpecularAlbedoIor - 1))) * (kIor - 1), kIor);
+}
+
+// The interpolated value of a table laid out [ior][roughness][mu] (from `table`): linear in
+// cos(theta), bilinear in roughness and ior. Its average (laid out [ior][roughness]) uses the
+// same roughness and ior weights, which keeps the average exact for the interpolant.
+template <typename Node>
+float interpolateInRoughnessAndIor(float alpha, float eta, const Node& node) {
+  const Cell r = roughnessCell(alpha), n = iorCell(eta);
+  const auto along = [&](int k) { return (1 - r.t) * node(k, r.index) + r.t * node(k, r.index + 1); };
+  return (1 - n.t) * along(n.index) + n.t * along(n.index + 1);
+}
+inline float tableAlbedo(const float* table, float cosTheta, float alpha, float eta) {
+  const Cell m = muCell(cosTheta);
+  return interpolateInRoughnessAndIor(alpha, eta, [&](int k, int j) {
+    const float* row = &table[(size_t(k) * kRoughness + j) * kMu];
+    return (1 - m.t) * row[m.index] + m.t * row[m.index + 1];
+  });
+}
+inline float tableAverage(const float* average, float alpha, float eta) {
+  return interpolateInRoughnessAndIor(alpha, eta, [&](int k, int j) { return average[size_t(k) * kRoughness + j]; });
+}
+
 struct Table {
   std::vector<float> albedo;   // [ior][roughness][mu], kIor * kRoughness * kMu nodes
   std::vector<float> average;  // [ior][roughness]

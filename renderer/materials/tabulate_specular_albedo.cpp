@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   const auto table = pathfarm::specular_albedo::tabulate(Reflectance::Fresnel);
   const auto excess = pathfarm::specular_albedo::tabulate(Reflectance::Excess);
   const auto microfacet = pathfarm::microfacet_albedo::tabulate();
+  const auto dielectric = pathfarm::microfacet_albedo::tabulateDielectric();
   std::FILE* out = std::fopen(argv[1], "w");
   if (!out) {
     std::perror(argv[1]);
@@ -38,5 +39,7 @@ int main(int argc, char** argv) {
   writeArray(out, "kTabulatedExcessAverage", excess.average);
   writeArray(out, "kTabulatedMicrofacetAlbedo", microfacet.albedo);
   writeArray(out, "kTabulatedMicrofacetAverage", microfacet.average);
+  writeArray(out, "kTabulatedDielectricAlbedo", dielectric.albedo);
+  writeArray(out, "kTabulatedDielectricAverage", dielectric.average);
   return std::fclose(out) == 0 ? 0 : 1;
 }

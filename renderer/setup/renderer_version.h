@@ -5,6 +5,7 @@
 namespace pathfarm {
 
 // 2: rough metals compensated for multiple scattering (materials/multiple_scattering.h).
-inline constexpr int kRendererVersion = 2;
+// 3: rough glass and glTF's thin-walled transmission compensated too.
+inline constexpr int kRendererVersion = 3;
 
 }  // namespace pathfarm

@@ -13,41 +13,6 @@
 namespace pathfarm::bsdftest {
 namespace {
 
-// The relative index across the interface for a refracted pair seen from wo.
-float refractionEta(const Material& m, Vec3f wo) { return wo.z > 0 ? m.ior : 1 / m.ior; }
-
-// The sample weight as a flux ratio: transmitted radiance weights carry 1 / eta^2, which
-// is a change of units between media, not energy created or lost. The thin-walled
-// metallic-roughness transmission stays in the same medium.
-Rgb fluxWeight(const Material& m, Vec3f wo, const BsdfSample& s) {
-  if (wo.z * s.wi.z >= 0 || m.type == MaterialType::MetallicRoughness) return s.weight;
-  const float eta = refractionEta(m, wo);
-  return s.weight * (eta * eta);
-}
-
-// Directional albedo E[weight] from n samples, with its standard error per channel.
-Estimate directionalAlbedo(const Material& m, Rgb albedo, Vec3f wo, int n, uint32_t seed) {
-  const Bsdf bsdf(m, albedo, kRoughnessThreshold);
-  Uniform rng(seed);
-  double sum[3] = {}, sum2[3] = {};
-  for (int i = 0; i < n; ++i) {
-    const float uLobe = rng.next();
-    const auto s = bsdf.sample(wo, uLobe, rng.next2());
-    if (!s) continue;
-    const Rgb w = fluxWeight(m, wo, *s);
-    for (int c = 0; c < 3; ++c) {
-      sum[c] += w[c];
-      sum2[c] += double(w[c]) * w[c];
-    }
-  }
-  float mean[3], se[3];
-  for (int c = 0; c < 3; ++c) {
-    mean[c] = float(sum[c] / n);
-    se[c] = float(std::sqrt(std::max(0.0, sum2[c] / n - mean[c] * double(mean[c])) / n));
-  }
-  return {{mean[0], mean[1], mean[2]}, {se[0], se[1], se[2]}};
-}
-
 class BsdfNonDeltaMaterial : public ::testing::TestWithParam<MaterialCase> {};
 
 // (1) Whatever sample() returns for a non-delta lobe must be reproducible by eval and pdf,
