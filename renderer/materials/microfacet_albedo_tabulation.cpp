@@ -15,6 +15,7 @@ using specular_albedo::alphaNode;
 using specular_albedo::iorNode;
 using specular_albedo::kIor;
 using specular_albedo::kMu;
+using specular_albedo::meanOverReflections;
 using specular_albedo::meanOverSampledNormals;
 using specular_albedo::kRoughness;
 using specular_albedo::muNode;
@@ -32,7 +33,7 @@ constexpr float kMargin = 0.0095f;
 
 double integrate(MicrofacetType type, float mu, float alpha) {
   const MicrofacetDistribution distribution(type, alpha);
-  return meanOverSampledNormals(distribution, mu, kQuadrature, [&](Vec3f wo, Vec3f m, Vec3f wi) {
+  return meanOverReflections(distribution, mu, kQuadrature, [&](Vec3f wo, Vec3f m, Vec3f wi) {
     const float pdf = distribution.reflectionPdf(wo, m);
     return pdf > 0 ? distribution.reflectionEval(wo, wi, m) / pdf : 0.0f;
   });
@@ -50,25 +51,20 @@ constexpr float kDielectricMargin = 0.0095f;
 // weights of dielectric.h without the 1 / eta^2 of refraction.
 double integrateDielectric(MicrofacetType type, float mu, float alpha, float eta) {
   const MicrofacetDistribution distribution(type, alpha);
-  const Vec3f wo{std::sqrt(std::max(0.0f, 1 - mu * mu)), 0, mu};
-  double sum = 0;
-  for (int a = 0; a < kDielectricQuadrature; ++a) {
-    for (int b = 0; b < kDielectricQuadrature; ++b) {
-      const Vec2f u{(a + 0.5f) / kDielectricQuadrature, (b + 0.5f) / kDielectricQuadrature};
-      const Vec3f m = distribution.sampleNormal(wo, u);
-      const float cosOM = dot(wo, m), pdf = distribution.normalPdf(wo, m);
-      if (cosOM <= 0 || !(pdf > 0)) continue;
-      const float common = distribution.D(m) * cosOM / (wo.z * pdf);
-      const DielectricFresnel fresnel = fresnelDielectric(cosOM, eta);
-      const Vec3f reflected = reflect(wo, m);
-      if (reflected.z > 0) sum += fresnel.reflectance * common * distribution.G(wo, reflected, m);
-      if (fresnel.reflectance < 1) {
-        const Vec3f refracted = refract(wo, m, eta, fresnel.cosThetaT);
-        if (refracted.z < 0) sum += (1 - fresnel.reflectance) * common * distribution.G(wo, refracted, m);
-      }
+  return meanOverSampledNormals(distribution, mu, kDielectricQuadrature, [&](Vec3f wo, Vec3f m) {
+    const float cosOM = dot(wo, m), pdf = distribution.normalPdf(wo, m);
+    if (!(pdf > 0)) return 0.0;
+    const float common = distribution.D(m) * cosOM / (wo.z * pdf);
+    const DielectricFresnel fresnel = fresnelDielectric(cosOM, eta);
+    double sum = 0;
+    const Vec3f reflected = reflect(wo, m);
+    if (reflected.z > 0) sum += fresnel.reflectance * common * distribution.G(wo, reflected, m);
+    if (fresnel.reflectance < 1) {
+      const Vec3f refracted = refract(wo, m, eta, fresnel.cosThetaT);
+      if (refracted.z < 0) sum += (1 - fresnel.reflectance) * common * distribution.G(wo, refracted, m);
     }
-  }
-  return sum / (double(kDielectricQuadrature) * kDielectricQuadrature);
+    return sum;
+  });
 }
 
 // Fills a row from the albedo at its nodes: raised by the margin, one at most, the grazing

@@ -25,7 +25,7 @@ double integrate(float mu, float alpha, float eta, Reflectance reflectance) {
   const MicrofacetDistribution distribution(MicrofacetType::GGX, alpha);
   const float subtracted = reflectance == Reflectance::Excess ? fresnelDielectric(1, eta).reflectance : 0.0f;
   // The visible-normal sampler's weight for a reflection is F G1(wi) (microfacet.h).
-  return meanOverSampledNormals(distribution, mu, kQuadrature, [&](Vec3f wo, Vec3f m, Vec3f wi) {
+  return meanOverReflections(distribution, mu, kQuadrature, [&](Vec3f wo, Vec3f m, Vec3f wi) {
     return (fresnelDielectric(dot(wo, m), eta).reflectance - subtracted) * distribution.G1(wi, m);
   });
 }

@@ -88,8 +88,8 @@ enum class Reflectance { Fresnel, Excess };
 Table tabulate(Reflectance reflectance = Reflectance::Fresnel);
 
 // The mean over a quadrature x quadrature midpoint grid of the normal sampler's unit square
-// of weight(wo, m, wi), for wo at cos(theta) = mu and wi its reflection about the sampled
-// facet normal m; samples with wo below the facet or wi below the surface count as zero.
+// of weight(wo, m), for wo at cos(theta) = mu and m the sampled facet normal; samples with wo
+// below the facet count as zero.
 template <typename Weight>
 double meanOverSampledNormals(const MicrofacetDistribution& distribution, float mu, int quadrature, Weight weight) {
   const Vec3f wo{std::sqrt(std::max(0.0f, 1 - mu * mu)), 0, mu};
@@ -98,13 +98,20 @@ double meanOverSampledNormals(const MicrofacetDistribution& distribution, float 
     for (int b = 0; b < quadrature; ++b) {
       const Vec2f u{(a + 0.5f) / quadrature, (b + 0.5f) / quadrature};
       const Vec3f m = distribution.sampleNormal(wo, u);
-      if (dot(wo, m) <= 0) continue;
-      const Vec3f wi = reflect(wo, m);
-      if (wi.z <= 0) continue;
-      sum += weight(wo, m, wi);
+      if (dot(wo, m) > 0) sum += weight(wo, m);
     }
   }
   return sum / (double(quadrature) * quadrature);
+}
+
+// The same mean of weight(wo, m, wi) with wi the reflection of wo about m; samples with wi
+// below the surface count as zero.
+template <typename Weight>
+double meanOverReflections(const MicrofacetDistribution& distribution, float mu, int quadrature, Weight weight) {
+  return meanOverSampledNormals(distribution, mu, quadrature, [&](Vec3f wo, Vec3f m) {
+    const Vec3f wi = reflect(wo, m);
+    return wi.z > 0 ? double(weight(wo, m, wi)) : 0.0;
+  });
 }
 
 // 2 integral L(mu) mu dmu over [0, 1] of the piecewise linear interpolant L of a row of
