@@ -16,13 +16,13 @@
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStdIO.h>
 
-#include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "bench/command_line.h"
 #include "bench/median.h"
 #include "image/exr_io.h"
 #include "renderer/integrators/frame_renderer.h"
@@ -90,15 +90,15 @@ Measured measureOnce(FrameImage& frame, const Codec& codec) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"pathfarm chunk compression benchmark"};
+  bench::CommandLine app("pathfarm chunk compression benchmark");
   std::string scenePath = "scenes/walkthrough/scene.json", resolution = "480x270";
   int spp = 16, frame = 0, repeat = 5;
-  app.add_option("--scene", scenePath);
-  app.add_option("--res", resolution);
-  app.add_option("--spp", spp);
-  app.add_option("--frame", frame);
-  app.add_option("--repeat", repeat)->check(CLI::PositiveNumber);
-  CLI11_PARSE(app, argc, argv);
+  app.option("--scene", scenePath);
+  app.option("--res", resolution);
+  app.option("--spp", spp);
+  app.option("--frame", frame);
+  app.option("--repeat", repeat).positive();
+  if (const auto exit = app.parse(argc, argv)) return *exit;
 
   const Scene scene = loadScene(scenePath);
   RenderSettings settings = RenderSettings::defaultsOf(scene);

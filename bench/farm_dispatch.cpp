@@ -8,7 +8,6 @@
 #include <spdlog/spdlog.h>
 #include <sqlite3.h>
 
-#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -16,6 +15,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench/command_line.h"
 #include "bench/median.h"
 #include "client/farm_client.h"
 #include "client/local_farm.h"
@@ -42,12 +42,12 @@ std::vector<double> leaseToCompleteSeconds(const std::filesystem::path& database
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"pathfarm dispatch throughput benchmark"};
+  pathfarm::bench::CommandLine app("pathfarm dispatch throughput benchmark");
   int workers = 8, tasks = 20000, repeat = 3;
-  app.add_option("--workers", workers);
-  app.add_option("--tasks", tasks);
-  app.add_option("--repeat", repeat);
-  CLI11_PARSE(app, argc, argv);
+  app.option("--workers", workers);
+  app.option("--tasks", tasks);
+  app.option("--repeat", repeat);
+  if (const auto exit = app.parse(argc, argv)) return *exit;
   spdlog::set_level(spdlog::level::warn);
 
   std::vector<double> throughput, latency;

@@ -8,12 +8,12 @@
 #include <poll.h>
 #include <unistd.h>
 
-#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <vector>
 
+#include "bench/command_line.h"
 #include "proto/wire/connection.h"
 #include "worker/scheduler_link.h"
 
@@ -38,14 +38,14 @@ double quantile(std::vector<double> values, double q) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"heartbeat latency probe"};
+  pathfarm::bench::CommandLine app("heartbeat latency probe");
   std::string scheduler, tokenFile;
   double period = 0.05, seconds = 600;
-  app.add_option("--scheduler", scheduler)->required();
-  app.add_option("--token-file", tokenFile);
-  app.add_option("--period", period);
-  app.add_option("--seconds", seconds);
-  CLI11_PARSE(app, argc, argv);
+  app.option("--scheduler", scheduler).required();
+  app.option("--token-file", tokenFile);
+  app.option("--period", period);
+  app.option("--seconds", seconds);
+  if (const auto exit = app.parse(argc, argv)) return *exit;
 
   using namespace pathfarm::farm;
   SchedulerLink link(scheduler, loadToken(tokenFile));

@@ -14,12 +14,12 @@
 // keyframe's two filters on that frame and its neighbours: the paper's (2x2 box-downsampled,
 // denoised at half resolution, upsampled under the full-resolution features) and a denoise
 // at full resolution, with their relMSE, worst 16x16 tile and seconds.
-#include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
 #include <functional>
 #include <utility>
 
+#include "bench/command_line.h"
 #include "postproc/filters/component_denoiser.h"
 #include "postproc/filters/component_upsampler.h"
 #include "postproc/filters/decomposed_frame.h"
@@ -58,17 +58,17 @@ void speedAt720p(const Scene& scene, int frame) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"pathfarm filter benchmark"};
+  bench::CommandLine app("pathfarm filter benchmark");
   std::string scenePath = "scenes/cornell/scene.json";
   int frame = 5, spp = 16, referenceSpp = 2048, size = 256;
-  app.add_option("--scene", scenePath);
-  app.add_option("--frame", frame);
-  app.add_option("--spp", spp);
-  app.add_option("--reference-spp", referenceSpp);
-  app.add_option("--size", size);
+  app.option("--scene", scenePath);
+  app.option("--frame", frame);
+  app.option("--spp", spp);
+  app.option("--reference-spp", referenceSpp);
+  app.option("--size", size);
   bool errorOnly = false;
-  app.add_flag("--error-only", errorOnly, "skip the speed part");
-  CLI11_PARSE(app, argc, argv);
+  app.flag("--error-only", errorOnly, "skip the speed part");
+  if (const auto exit = app.parse(argc, argv)) return *exit;
   const Scene scene = loadScene(scenePath);
   if (!errorOnly) speedAt720p(scene, frame);
 

@@ -23,7 +23,6 @@
 // reference as a Markdown table; with --svg it also writes the table as a bar chart.
 #include <sys/resource.h>
 
-#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -34,6 +33,7 @@
 #include <map>
 #include <regex>
 
+#include "bench/command_line.h"
 #include "bench/bench_support.h"
 #include "bench/median.h"
 #include "image/exr_io.h"
@@ -395,38 +395,37 @@ int equalTime(const std::string& scenePath, const std::string& frames, int width
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"pathfarm gradient-domain benchmark"};
-  app.require_subcommand(1);
+  bench::CommandLine app("pathfarm gradient-domain benchmark");
   std::string norm = "l2", input, resolution = "1280x720";
   int frames = 10, repeat = 1;
-  CLI::App* solve = app.add_subcommand("reconstruction", "seconds and peak memory of one window's reconstruction");
-  solve->add_option("--norm", norm);
-  solve->add_option("--input", input, "folder of frame_NNNN.exr from render --integrator tgpt");
-  solve->add_option("--res", resolution);
-  solve->add_option("--frames", frames);
-  solve->add_option("--repeat", repeat, "solves this many times; prints the medians")->check(CLI::PositiveNumber);
+  bench::CommandLine& solve = app.subcommand("reconstruction", "seconds and peak memory of one window's reconstruction");
+  solve.option("--norm", norm);
+  solve.option("--input", input, "folder of frame_NNNN.exr from render --integrator tgpt");
+  solve.option("--res", resolution);
+  solve.option("--frames", frames);
+  solve.option("--repeat", repeat, "solves this many times; prints the medians").positive();
   PoissonSettings poisson;
-  solve->add_option("--irls-rounds", poisson.irlsRounds, "L1: rounds, the first being the L2 solve");
-  solve->add_option("--irls-iterations", poisson.irlsIterations, "L1: CG iterations per round");
-  solve->add_option("--irls-start-epsilon", poisson.irlsStartEpsilon, "L1: epsilon of the first reweighted round");
-  solve->add_option("--irls-epsilon", poisson.irlsEpsilon, "L1: epsilon of the last round");
+  solve.option("--irls-rounds", poisson.irlsRounds, "L1: rounds, the first being the L2 solve");
+  solve.option("--irls-iterations", poisson.irlsIterations, "L1: CG iterations per round");
+  solve.option("--irls-start-epsilon", poisson.irlsStartEpsilon, "L1: epsilon of the first reweighted round");
+  solve.option("--irls-epsilon", poisson.irlsEpsilon, "L1: epsilon of the last round");
   std::string saveFile, compareFile;
-  solve->add_option("--save", saveFile, "writes the reconstruction here (raw floats)");
-  solve->add_option("--compare", compareFile, "a reconstruction saved with --save to compare with");
+  solve.option("--save", saveFile, "writes the reconstruction here (raw floats)");
+  solve.option("--compare", compareFile, "a reconstruction saved with --save to compare with");
   std::string scene = "scenes/cornell/scene.json", range = "0:23", svg, equalResolution = "128x128";
   int ptSpp = 16, referenceSpp = 1024;
-  CLI::App* compare = app.add_subcommand("equal-time", "PT, GPT and TGPT at equal render time");
-  compare->add_option("--scene", scene);
-  compare->add_option("--frames", range);
-  compare->add_option("--res", equalResolution);
-  compare->add_option("--pt-spp", ptSpp);
-  compare->add_option("--reference-spp", referenceSpp);
-  compare->add_option("--svg", svg);
+  bench::CommandLine& compare = app.subcommand("equal-time", "PT, GPT and TGPT at equal render time");
+  compare.option("--scene", scene);
+  compare.option("--frames", range);
+  compare.option("--res", equalResolution);
+  compare.option("--pt-spp", ptSpp);
+  compare.option("--reference-spp", referenceSpp);
+  compare.option("--svg", svg);
   std::string referenceDir;
-  compare->add_option("--reference-dir", referenceDir, "keeps the reference frames here and reuses them");
-  CLI11_PARSE(app, argc, argv);
+  compare.option("--reference-dir", referenceDir, "keeps the reference frames here and reuses them");
+  if (const auto exit = app.parse(argc, argv)) return *exit;
   int width = 0, height = 0;
-  if (std::sscanf((solve->parsed() ? resolution : equalResolution).c_str(), "%dx%d", &width, &height) != 2) return 2;
-  if (solve->parsed()) return reconstruction(norm, input, width, height, frames, repeat, poisson, saveFile, compareFile);
+  if (std::sscanf((solve.given() ? resolution : equalResolution).c_str(), "%dx%d", &width, &height) != 2) return 2;
+  if (solve.given()) return reconstruction(norm, input, width, height, frames, repeat, poisson, saveFile, compareFile);
   return equalTime(scene, range, width, height, ptSpp, referenceSpp, referenceDir, svg);
 }

@@ -10,10 +10,10 @@
 // from its keyframes per component and color-only, re-renders each method's masked
 // pixels (from a render at --spp), and prints per frame the relMSE of both against a
 // --reference-spp render, and the re-render rates.
-#include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
 
+#include "bench/command_line.h"
 #include "postproc/flow/optical_flow.h"
 #include "postproc/interpolation/frame_interpolation.h"
 #include "postproc/metrics/image_metrics.h"
@@ -48,15 +48,15 @@ Planes irradiance(const FrameImage& frame) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"pathfarm interpolation benchmark"};
+  bench::CommandLine app("pathfarm interpolation benchmark");
   std::string scenePath = "scenes/cornell/scene.json";
   int keyframes = 4, spp = 16, referenceSpp = 512, size = 128;
-  app.add_option("--scene", scenePath);
-  app.add_option("--keyframes", keyframes);
-  app.add_option("--spp", spp);
-  app.add_option("--reference-spp", referenceSpp);
-  app.add_option("--size", size);
-  CLI11_PARSE(app, argc, argv);
+  app.option("--scene", scenePath);
+  app.option("--keyframes", keyframes);
+  app.option("--spp", spp);
+  app.option("--reference-spp", referenceSpp);
+  app.option("--size", size);
+  if (const auto exit = app.parse(argc, argv)) return *exit;
   const Scene scene = loadScene(scenePath);
 
   // Part 1: speed at 1280x720.

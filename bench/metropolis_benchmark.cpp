@@ -7,7 +7,6 @@
 // table of mean relMSE, temporal error (relMSE of frame-to-frame differences) and
 // brightness variation (RMS frame-to-frame change of the frame's mean luminance over the
 // reference's), and writes per-frame relMSE and brightness to an SVG plot.
-#include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -17,6 +16,7 @@
 #include <functional>
 #include <sstream>
 
+#include "bench/command_line.h"
 #include "bench/bench_support.h"
 #include "image/exr_io.h"
 #include "postproc/metrics/image_metrics.h"
@@ -239,21 +239,21 @@ int run(const std::string& scenePath, const std::string& frameRange, int width, 
 }  // namespace pathfarm
 
 int main(int argc, char** argv) {
-  CLI::App app{"equal-time comparison of the Metropolis integrators on an animation"};
+  pathfarm::bench::CommandLine app("equal-time comparison of the Metropolis integrators on an animation");
   std::string scene = "scenes/ajar_door/scene.json", frames = "0:23", referenceDir = "out/mlt-reference", svg,
               methods = "pt,bdpt,mlt,pssmlt,tmlt";
   int width = 96, height = 72, referenceSpp = 4096;
   double secondsPerFrame = 2;
-  app.add_option("--scene", scene, "scene file");
-  app.add_option("--frames", frames, "first:last");
-  app.add_option("--width", width);
-  app.add_option("--height", height);
-  app.add_option("--seconds-per-frame", secondsPerFrame, "each method's wall-clock budget per frame");
-  app.add_option("--reference-spp", referenceSpp, "path-traced reference samples per pixel");
-  app.add_option("--reference-dir", referenceDir, "where the reference frames are cached");
-  app.add_option("--svg", svg, "plot of per-frame relMSE and brightness");
-  app.add_option("--methods", methods, "comma-separated: pt, bdpt, mlt, pssmlt, tmlt");
-  CLI11_PARSE(app, argc, argv);
+  app.option("--scene", scene, "scene file");
+  app.option("--frames", frames, "first:last");
+  app.option("--width", width);
+  app.option("--height", height);
+  app.option("--seconds-per-frame", secondsPerFrame, "each method's wall-clock budget per frame");
+  app.option("--reference-spp", referenceSpp, "path-traced reference samples per pixel");
+  app.option("--reference-dir", referenceDir, "where the reference frames are cached");
+  app.option("--svg", svg, "plot of per-frame relMSE and brightness");
+  app.option("--methods", methods, "comma-separated: pt, bdpt, mlt, pssmlt, tmlt");
+  if (const auto exit = app.parse(argc, argv)) return *exit;
   try {
     return pathfarm::run(scene, frames, width, height, secondsPerFrame, referenceSpp, referenceDir, svg, methods);
   } catch (const std::exception& e) {

@@ -10,11 +10,11 @@
 // geometry, and the ratio of the two ray rates. With --decompose, also the time of a
 // decomposed render against the plain one at equal spp, interleaved run by run, with the
 // lowest and highest ratio of a plain render and the decomposed one run right after it.
-#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
 #include <vector>
 
+#include "bench/command_line.h"
 #include "bench/embree_rays.h"
 #include "bench/median.h"
 #include "renderer/accel/frame_geometry.h"
@@ -31,18 +31,18 @@ using bench::median;
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"pathfarm render throughput benchmark"};
+  bench::CommandLine app("pathfarm render throughput benchmark");
   std::string scenePath = "scenes/cornell/scene.json", resolution = "256x256";
   int spp = 16, maxDepth = 13, frame = 0, repeat = 5;
   std::string decompose;
-  app.add_option("--scene", scenePath);
-  app.add_option("--res", resolution);
-  app.add_option("--spp", spp);
-  app.add_option("--max-depth", maxDepth, "13 scattering events = 12 bounces after direct light, as Cycles counts");
-  app.add_option("--frame", frame);
-  app.add_option("--repeat", repeat);
-  app.add_option("--decompose", decompose, "also measure this decomposition's overhead (e.g. default, auto)");
-  CLI11_PARSE(app, argc, argv);
+  app.option("--scene", scenePath);
+  app.option("--res", resolution);
+  app.option("--spp", spp);
+  app.option("--max-depth", maxDepth, "13 scattering events = 12 bounces after direct light, as Cycles counts");
+  app.option("--frame", frame);
+  app.option("--repeat", repeat);
+  app.option("--decompose", decompose, "also measure this decomposition's overhead (e.g. default, auto)");
+  if (const auto exit = app.parse(argc, argv)) return *exit;
 
   const Scene scene = loadScene(scenePath);
   RenderSettings settings = RenderSettings::defaultsOf(scene);

@@ -15,12 +15,12 @@
 // random rays on the same frame geometry.
 #include <sys/resource.h>
 
-#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <memory>
 #include <set>
 #include <vector>
 
+#include "bench/command_line.h"
 #include "bench/bench_support.h"
 #include "bench/embree_rays.h"
 #include "bench/median.h"
@@ -39,15 +39,15 @@ double peakResidentMiB() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"pathfarm scene scale benchmark"};
+  bench::CommandLine app("pathfarm scene scale benchmark");
   std::string scenePath, resolution = "320x180";
   int spp = 4, frame = 0, repeat = 3;
-  app.add_option("--scene", scenePath)->required();
-  app.add_option("--res", resolution);
-  app.add_option("--spp", spp);
-  app.add_option("--frame", frame);
-  app.add_option("--repeat", repeat);
-  CLI11_PARSE(app, argc, argv);
+  app.option("--scene", scenePath).required();
+  app.option("--res", resolution);
+  app.option("--spp", spp);
+  app.option("--frame", frame);
+  app.option("--repeat", repeat);
+  if (const auto exit = app.parse(argc, argv)) return *exit;
 
   const double startMiB = peakResidentMiB();
   std::unique_ptr<Scene> scene;

@@ -17,12 +17,12 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
-#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
 #include <ctime>
 #include <vector>
 
+#include "bench/command_line.h"
 #include "bench/bench_support.h"
 #include "bench/median.h"
 #include "renderer/accel/shot_geometry.h"
@@ -79,15 +79,15 @@ Tally trackFrame(const SpecularMotion& motion, int components, int width, int he
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"pathfarm specular motion benchmark"};
+  bench::CommandLine app("pathfarm specular motion benchmark");
   std::vector<std::string> scenes{"scenes/cornell/scene.json", "scenes/materials/scene.json"};
   std::string resolution = "1280x720";
   int frame = 6, repeat = 3;
-  app.add_option("--scene", scenes);
-  app.add_option("--res", resolution);
-  app.add_option("--frame", frame);
-  app.add_option("--repeat", repeat)->check(CLI::PositiveNumber);
-  CLI11_PARSE(app, argc, argv);
+  app.option("--scene", scenes);
+  app.option("--res", resolution);
+  app.option("--frame", frame);
+  app.option("--repeat", repeat).positive();
+  if (const auto exit = app.parse(argc, argv)) return *exit;
   int width = 0, height = 0;
   if (std::sscanf(resolution.c_str(), "%dx%d", &width, &height) != 2 || width <= 0 || height <= 0) {
     std::fprintf(stderr, "--res must be WIDTHxHEIGHT\n");

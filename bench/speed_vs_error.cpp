@@ -8,7 +8,6 @@
 //
 //   speed_vs_error [--shot scenes/cornell/shot.json] [--spp 128] [--pt-spp 32,64,...]
 //                  [--reference-spp 2048] [--workers 2] [--svg FILE] [--out DIR]
-#include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -18,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/command_line.h"
 #include "bench/bench_support.h"
 #include "image/exr_io.h"
 #include "postproc/metrics/image_metrics.h"
@@ -211,16 +211,16 @@ int run(const Options& options) {
 
 int main(int argc, char** argv) {
   pathfarm::bench::Options options;
-  CLI::App app("speed against error of pt and the filtering pipelines on a shot");
-  app.add_option("--shot", options.shot, "the shot (its scene, frames, resolution, evaluation frames)");
-  app.add_option("--spp", options.spp, "the baseline spp: d, du, di, dui run at it");
-  app.add_option("--pt-spp", options.ptSpp, "plain pt sample counts (ascending, with --spp)")->delimiter(',');
-  app.add_option("--dui-spp", options.duiSpp, "further dui sample counts")->delimiter(',');
-  app.add_option("--reference-spp", options.referenceSpp, "samples of the reference");
-  app.add_option("--workers", options.workers, "worker processes (one thread each)");
-  app.add_option("--out", options.out, "where the farm and the frames go");
-  app.add_option("--svg", options.svg, "the plot");
-  CLI11_PARSE(app, argc, argv);
+  pathfarm::bench::CommandLine app("speed against error of pt and the filtering pipelines on a shot");
+  app.option("--shot", options.shot, "the shot (its scene, frames, resolution, evaluation frames)");
+  app.option("--spp", options.spp, "the baseline spp: d, du, di, dui run at it");
+  app.option("--pt-spp", options.ptSpp, "plain pt sample counts (ascending, with --spp)").commaSeparated();
+  app.option("--dui-spp", options.duiSpp, "further dui sample counts").commaSeparated();
+  app.option("--reference-spp", options.referenceSpp, "samples of the reference");
+  app.option("--workers", options.workers, "worker processes (one thread each)");
+  app.option("--out", options.out, "where the farm and the frames go");
+  app.option("--svg", options.svg, "the plot");
+  if (const auto exit = app.parse(argc, argv)) return *exit;
   try {
     return pathfarm::bench::run(options);
   } catch (const std::exception& e) {

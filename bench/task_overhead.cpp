@@ -7,13 +7,13 @@
 //
 // Prints the first tile's time, the median of the later tiles, and the median per tile
 // with a fresh runner each time; --upload serves the scene as uploaded files.
-#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <vector>
 
+#include "bench/command_line.h"
 #include "bench/bench_support.h"
 #include "bench/median.h"
 #include "client/scene_upload.h"
@@ -46,18 +46,18 @@ UploadedScene upload(ShotSpec& spec) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"pathfarm per-task scene overhead"};
+  bench::CommandLine app("pathfarm per-task scene overhead");
   std::string scenePath, resolution = "320x180";
   int spp = 1, tile = 32, tiles = 8, threads = 0;
   bool uploaded = false;
-  app.add_option("--scene", scenePath)->required();
-  app.add_option("--res", resolution);
-  app.add_option("--spp", spp);
-  app.add_option("--tile", tile);
-  app.add_option("--tiles", tiles)->check(CLI::Range(2, 10000));
-  app.add_option("--threads", threads);
-  app.add_flag("--upload", uploaded, "serve the scene as uploaded files rebuilt in a cache folder");
-  CLI11_PARSE(app, argc, argv);
+  app.option("--scene", scenePath).required();
+  app.option("--res", resolution);
+  app.option("--spp", spp);
+  app.option("--tile", tile);
+  app.option("--tiles", tiles).range(2, 10000);
+  app.option("--threads", threads);
+  app.flag("--upload", uploaded, "serve the scene as uploaded files rebuilt in a cache folder");
+  if (const auto exit = app.parse(argc, argv)) return *exit;
   int width = 0, height = 0;
   if (std::sscanf(resolution.c_str(), "%dx%d", &width, &height) != 2) return 2;
 
