@@ -1,7 +1,8 @@
 #pragma once
 // Glass: Fresnel-weighted reflection and refraction, smooth (two delta lobes) or rough
-// (Walter et al. 2007, with multiple-scattering compensation). wo may lie on either side: eta = ior when wo.z > 0 (entering),
-// 1 / ior otherwise. Transmission carries the radiance scaling 1 / eta^2.
+// (Walter et al. 2007, with multiple-scattering compensation). wo may lie on either side:
+// eta = ior when wo.z > 0 (entering), 1 / ior otherwise. Transmission carries the radiance
+// scaling 1 / eta^2.
 #include <optional>
 
 #include "renderer/materials/bsdf.h"

@@ -55,8 +55,8 @@ MetallicRoughnessBsdf::MetallicRoughnessBsdf(const Material& material, const Sur
   // What the transmitting part's facets lose leaves on either side: reflected with the
   // average of F', refracted (and tinted) with the rest.
   const float fresnelAverage = fresnelDiffuseReflectance(ior_);
-  const Rgb reflectedShare =
-      perChannel([&](int c) { return std::clamp(specularScale_[c] * fresnelAverage + specularOffset_[c], 0.0f, 1.0f); });
+  const Rgb reflectedShare = perChannel(
+      [&](int c) { return std::clamp(specularScale_[c] * fresnelAverage + specularOffset_[c], 0.0f, 1.0f); });
   const float transmitting = (1 - metallic_) * transmission_;
   reflectionCompensation_ += reflectedShare * transmitting;
   transmissionCompensation_ = baseColor_ * (Rgb(1) - reflectedShare) * transmitting;
