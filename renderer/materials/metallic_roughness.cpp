@@ -53,13 +53,16 @@ MetallicRoughnessBsdf::MetallicRoughnessBsdf(const Material& material, const Sur
   std::tie(specularScale_, specularOffset_, normalReflectance_) = specularRemap(material, ior_);
   excessBound_ = specularOffset_.r < 0 || specularOffset_.g < 0 || specularOffset_.b < 0;
   // What the transmitting part's facets lose leaves on either side: reflected with the
-  // average of F', refracted (and tinted) with the rest.
-  const float fresnelAverage = fresnelDiffuseReflectance(ior_);
-  const Rgb reflectedShare = perChannel(
-      [&](int c) { return std::clamp(specularScale_[c] * fresnelAverage + specularOffset_[c], 0.0f, 1.0f); });
+  // average of F', refracted (and tinted) with the rest. A BSDF is built at every hit, so
+  // the average (logarithms) is computed only where something transmits.
   const float transmitting = (1 - metallic_) * transmission_;
-  reflectionCompensation_ += reflectedShare * transmitting;
-  transmissionCompensation_ = baseColor_ * (Rgb(1) - reflectedShare) * transmitting;
+  if (transmitting > 0 && !delta_) {
+    const float fresnelAverage = fresnelDiffuseReflectance(ior_);
+    const Rgb reflectedShare = perChannel(
+        [&](int c) { return std::clamp(specularScale_[c] * fresnelAverage + specularOffset_[c], 0.0f, 1.0f); });
+    reflectionCompensation_ += reflectedShare * transmitting;
+    transmissionCompensation_ = baseColor_ * (Rgb(1) - reflectedShare) * transmitting;
+  }
   // Listed from the material, not the point, so that every point agrees (see the header).
   const bool dielectricAnywhere = material.metallic < 1 || material.metallicRoughnessTexture >= 0;
   int next = 1;
