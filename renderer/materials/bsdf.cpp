@@ -1,55 +1,43 @@
 #include "renderer/materials/bsdf.h"
 
-#include "renderer/materials/conductor.h"
-#include "renderer/materials/dielectric.h"
-#include "renderer/materials/diffuse.h"
-#include "renderer/materials/metallic_roughness.h"
-#include "renderer/materials/plastic.h"
-
 namespace pathfarm {
 
-namespace {
-
-// Builds the lobe implementation of the material on the stack and hands it to `f`. Each
-// implementation offers eval, evalLobes, pdf, sample(wo, uLobe, u) and lobes() with the
-// semantics of Bsdf. The switch compiles to direct calls: no
-// virtual dispatch and no allocation per hit.
-template <typename F>
-auto visit(const Material& material, const SurfaceParameters& surface, float roughnessThreshold, F&& f) {
+Bsdf::Lobes Bsdf::lobesOf(const Material& material, const SurfaceParameters& surface, float roughnessThreshold) {
   const Rgb albedo = surface.albedo;
   switch (material.type) {
-    case MaterialType::Conductor: return f(SmoothConductorBsdf(material));
-    case MaterialType::RoughConductor: return f(RoughConductorBsdf(material, roughnessThreshold));
-    case MaterialType::Dielectric: return f(SmoothDielectricBsdf(material.ior));
-    case MaterialType::RoughDielectric: return f(RoughDielectricBsdf(material, roughnessThreshold));
-    case MaterialType::Plastic: return f(SmoothPlasticBsdf(material, albedo));
-    case MaterialType::RoughPlastic: return f(RoughPlasticBsdf(material, albedo, roughnessThreshold));
-    case MaterialType::MetallicRoughness: return f(MetallicRoughnessBsdf(material, surface, roughnessThreshold));
+    case MaterialType::Conductor: return Lobes(std::in_place_type<SmoothConductorBsdf>, material);
+    case MaterialType::RoughConductor:
+      return Lobes(std::in_place_type<RoughConductorBsdf>, material, roughnessThreshold);
+    case MaterialType::Dielectric: return Lobes(std::in_place_type<SmoothDielectricBsdf>, material.ior);
+    case MaterialType::RoughDielectric:
+      return Lobes(std::in_place_type<RoughDielectricBsdf>, material, roughnessThreshold);
+    case MaterialType::Plastic: return Lobes(std::in_place_type<SmoothPlasticBsdf>, material, albedo);
+    case MaterialType::RoughPlastic:
+      return Lobes(std::in_place_type<RoughPlasticBsdf>, material, albedo, roughnessThreshold);
+    case MaterialType::MetallicRoughness:
+      return Lobes(std::in_place_type<MetallicRoughnessBsdf>, material, surface, roughnessThreshold);
     case MaterialType::Diffuse: break;
   }
-  return f(DiffuseBsdf(albedo));
+  return Lobes(std::in_place_type<DiffuseBsdf>, albedo);
 }
 
-}  // namespace
-
 Bsdf::Bsdf(const Material& material, const SurfaceParameters& surface, float roughnessThreshold)
-    : material_(material), surface_(surface), roughnessThreshold_(roughnessThreshold) {}
+    : lobes_(lobesOf(material, surface, roughnessThreshold)) {}
 
 Rgb Bsdf::eval(Vec3f wo, Vec3f wi) const {
-  return visit(material_, surface_, roughnessThreshold_, [&](const auto& b) { return b.eval(wo, wi); });
+  return std::visit([&](const auto& b) { return b.eval(wo, wi); }, lobes_);
 }
 
 LobeValues Bsdf::evalLobes(Vec3f wo, Vec3f wi) const {
-  return visit(material_, surface_, roughnessThreshold_, [&](const auto& b) { return b.evalLobes(wo, wi); });
+  return std::visit([&](const auto& b) { return b.evalLobes(wo, wi); }, lobes_);
 }
 
 float Bsdf::pdf(Vec3f wo, Vec3f wi) const {
-  return visit(material_, surface_, roughnessThreshold_, [&](const auto& b) { return b.pdf(wo, wi); });
+  return std::visit([&](const auto& b) { return b.pdf(wo, wi); }, lobes_);
 }
 
 std::optional<BsdfSample> Bsdf::sample(Vec3f wo, float uLobe, Vec2f u) const {
-  const std::optional<BsdfSample> s =
-      visit(material_, surface_, roughnessThreshold_, [&](const auto& b) { return b.sample(wo, uLobe, u); });
+  const std::optional<BsdfSample> s = std::visit([&](const auto& b) { return b.sample(wo, uLobe, u); }, lobes_);
   // One net for every lobe: zero-density or non-finite samples (grazing facets, a
   // numerically degenerate refraction) end the path instead of poisoning the image.
   if (!s || !(s->pdf > 0) || !s->weight.isFinite() || !isFinite(s->wi)) return std::nullopt;
@@ -65,7 +53,7 @@ bool Bsdf::hasNonDeltaLobe() const {
 }
 
 LobeList Bsdf::lobes() const {
-  return visit(material_, surface_, roughnessThreshold_, [](const auto& b) { return b.lobes(); });
+  return std::visit([](const auto& b) { return b.lobes(); }, lobes_);
 }
 
 }  // namespace pathfarm

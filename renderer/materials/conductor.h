@@ -3,7 +3,7 @@
 // Fresnel (complex IOR per channel) or, with useSpecularColor, Schlick's approximation.
 #include <optional>
 
-#include "renderer/materials/bsdf.h"
+#include "renderer/materials/lobe_interface.h"
 #include "renderer/materials/microfacet.h"
 #include "renderer/materials/multiple_scattering.h"
 

@@ -5,7 +5,7 @@
 // scaling 1 / eta^2.
 #include <optional>
 
-#include "renderer/materials/bsdf.h"
+#include "renderer/materials/lobe_interface.h"
 #include "renderer/materials/microfacet.h"
 #include "renderer/materials/multiple_scattering.h"
 

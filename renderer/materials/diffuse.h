@@ -2,7 +2,7 @@
 // Lambertian reflection.
 #include <optional>
 
-#include "renderer/materials/bsdf.h"
+#include "renderer/materials/lobe_interface.h"
 
 namespace pathfarm {
 

@@ -69,7 +69,7 @@
 // compensation); the weight is eval over the mixture density of all non-delta strategies.
 #include <optional>
 
-#include "renderer/materials/bsdf.h"
+#include "renderer/materials/lobe_interface.h"
 #include "renderer/materials/microfacet.h"
 #include "renderer/materials/multiple_scattering.h"
 

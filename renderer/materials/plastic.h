@@ -16,7 +16,7 @@
 // weight f cos / (P pdf_coating + (1 - P) pdf_base), since both its lobes are non-delta.
 #include <optional>
 
-#include "renderer/materials/bsdf.h"
+#include "renderer/materials/lobe_interface.h"
 #include "renderer/materials/microfacet.h"
 
 namespace pathfarm {
