@@ -14,28 +14,54 @@ PACKAGES=(
   clang libclang-rt-14-dev libcpp-httplib-dev prometheus-cpp-dev
   chromium nodejs
 )
-# Blender, for the add-on in clients/blender, its test and its screenshots (Xvfb; docs/blender.md): opt-in, since
-# it is a minute of installing that CI's budget does not have.
-if [ "${PATHFARM_BLENDER:-0}" = 1 ]; then PACKAGES+=(blender python3-numpy xvfb xauth); fi
+# Blender, for the add-on in clients/blender, its test and its screenshots (Xvfb; docs/blender.md):
+# wanted by deploy/test.sh (PATHFARM_BLENDER=1), not by the demo.
+BLENDER_PACKAGES=(blender python3-numpy xvfb xauth)
+
+installed() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q "install ok installed"; }
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+export DEBIAN_FRONTEND=noninteractive
 
 missing=()
-for package in "${PACKAGES[@]}"; do
-  dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" || missing+=("$package")
-done
+for package in "${PACKAGES[@]}"; do installed "$package" || missing+=("$package"); done
 # Debian's nodejs comes without npm; a Node.js installed another way may bring its own.
 command -v npm > /dev/null || missing+=(npm)
 if ((${#missing[@]})); then
   echo "setup: installing ${missing[*]}"
-  SUDO=""
-  [ "$(id -u)" -eq 0 ] || SUDO="sudo"
-  export DEBIAN_FRONTEND=noninteractive
   $SUDO apt-get update -qq
   $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+# Blender installs while pathfarm compiles: its minute of downloading and unpacking would
+# otherwise add to every CI run.
+blender_missing=()
+if [ "${PATHFARM_BLENDER:-0}" = 1 ]; then
+  for package in "${BLENDER_PACKAGES[@]}"; do installed "$package" || blender_missing+=("$package"); done
+fi
+blender_install="" blender_log=""
+if ((${#blender_missing[@]})); then
+  echo "setup: installing ${blender_missing[*]} beside the build"
+  blender_log=$(mktemp)
+  ($SUDO apt-get update -qq && $SUDO apt-get install -y -qq --no-install-recommends "${blender_missing[@]}") \
+    > "$blender_log" 2>&1 &
+  blender_install=$!
 fi
 
 BUILD_DIR=${PATHFARM_BUILD_DIR:-build}
 cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release
 cmake --build "$BUILD_DIR" --parallel "$(nproc)"
+
+if [ -n "$blender_install" ]; then
+  if ! wait "$blender_install"; then
+    cat "$blender_log" >&2
+    echo "setup: installing ${blender_missing[*]} failed (above)" >&2
+    exit 1
+  fi
+  rm -f "$blender_log"
+  # Configured again, so that CMake finds Blender and registers the add-on's test.
+  cmake -S . -B "$BUILD_DIR" > /dev/null
+fi
 
 # The browser test's driver, playwright-core, as pinned in its package-lock.json; it runs
 # the system's Chromium and downloads no browser.

@@ -19,7 +19,7 @@ import blender_scene  # noqa: E402
 PATHFARM, REPOSITORY, WORK = sys.argv[sys.argv.index("--") + 1:]
 SPP, MAX_DEPTH = 128, 3
 REGIONS = (3, 3)  # columns x rows of the image, each compared on its own
-TOLERANCE = 0.08  # the target is 5 %; the materials differ by up to 7 % at grazing views (docs/blender.md)
+TOLERANCE = 0.05  # at Principled's default roughness (blender_scene.py; docs/blender.md)
 failures = []
 
 
@@ -65,9 +65,10 @@ def region_means(rgb):
 def compare_regions(label, ours, cycles):
     a, b = region_means(ours), region_means(cycles)
     lit = b > 0.2 * b.max()  # where a light grazes the floor, the materials differ (docs/blender.md)
-    worst = float(numpy.max(numpy.abs(a[lit] / b[lit] - 1)))
-    check(worst <= TOLERANCE, f"{label}: brightness within {TOLERANCE:.0%} of Cycles in every lit region "
-                              f"(worst {worst:.1%}; pathfarm {numpy.round(a, 3).tolist()}, "
+    deviations = a[lit] / b[lit] - 1
+    worst = float(deviations[numpy.argmax(numpy.abs(deviations))])
+    check(abs(worst) <= TOLERANCE, f"{label}: brightness within {TOLERANCE:.0%} of Cycles in every lit region "
+                                   f"(worst {worst:+.1%}; pathfarm {numpy.round(a, 3).tolist()}, "
                               f"Cycles {numpy.round(b, 3).tolist()})")
 
 

@@ -1,6 +1,7 @@
 """The test scene, built in Blender's Python: a dolly camera, a cube that moves, a
 textured floor, a point light, a spot, a sun, an emissive panel and a coloured World,
-every surface diffuse (Principled, roughness 1) so that pathfarm and Cycles agree on it."""
+every surface diffuse: Principled with Specular 0 at Blender's default roughness, 0.5, where
+Cycles' Burley diffuse lobe stays nearest Lambert's (docs/blender.md)."""
 
 import math
 import os
@@ -16,7 +17,7 @@ def diffuse_material(name, color, image=None):
     material.use_nodes = True
     principled = material.node_tree.nodes["Principled BSDF"]
     principled.inputs["Base Color"].default_value = (*color, 1)
-    principled.inputs["Roughness"].default_value = 1.0
+    principled.inputs["Roughness"].default_value = 0.5
     principled.inputs["Specular"].default_value = 0.0
     if image is not None:
         texture = material.node_tree.nodes.new("ShaderNodeTexImage")
