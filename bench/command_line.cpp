@@ -2,6 +2,8 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdint>
+#include <cstdio>
+#include <exception>
 #include <vector>
 
 namespace pathfarm::bench {
@@ -78,6 +80,15 @@ std::optional<int> CommandLine::parse(int argc, char** argv) {
     return state_->app->exit(error);
   }
   return std::nullopt;
+}
+
+int CommandLine::run(const std::function<int()>& body) const {
+  try {
+    return body();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: %s\n", state_->app->get_name().c_str(), e.what());
+    return 1;
+  }
 }
 
 }  // namespace pathfarm::bench

@@ -6,6 +6,8 @@
 //   bench::CommandLine app("what the program measures");
 //   app.option("--spp", spp).option("--repeat", repeat, "runs").positive();
 //   if (const auto exit = app.parse(argc, argv)) return *exit;
+//   return app.run([&] { return measure(spp, repeat); });
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -40,6 +42,11 @@ class CommandLine {
   // Parses the command line. After --help or an error (printed as CLI11 prints them) it
   // returns the exit status the program should end with, and nothing otherwise.
   std::optional<int> parse(int argc, char** argv);
+
+  // Runs the program's body after parse(): an exception out of it (a folder that does not
+  // exist, a frame that cannot be read) ends the program with "NAME: message" and status 1
+  // instead of std::terminate.
+  int run(const std::function<int()>& body) const;
 
  private:
   struct State;

@@ -102,6 +102,7 @@ std::vector<GradientFrame> syntheticWindow(int w, int h, int frames) {
 }
 
 std::vector<GradientFrame> windowFrom(const std::filesystem::path& folder, int frames) {
+  if (!std::filesystem::is_directory(folder)) throw std::runtime_error(folder.string() + ": not a folder");
   std::vector<std::filesystem::path> files;
   for (const auto& entry : std::filesystem::directory_iterator(folder))
     if (std::regex_match(entry.path().filename().string(), std::regex("frame_[0-9]+\\.exr")))
@@ -426,6 +427,8 @@ int main(int argc, char** argv) {
   if (const auto exit = app.parse(argc, argv)) return *exit;
   int width = 0, height = 0;
   if (std::sscanf((solve.given() ? resolution : equalResolution).c_str(), "%dx%d", &width, &height) != 2) return 2;
-  if (solve.given()) return reconstruction(norm, input, width, height, frames, repeat, poisson, saveFile, compareFile);
-  return equalTime(scene, range, width, height, ptSpp, referenceSpp, referenceDir, svg);
+  return app.run([&] {
+    if (solve.given()) return reconstruction(norm, input, width, height, frames, repeat, poisson, saveFile, compareFile);
+    return equalTime(scene, range, width, height, ptSpp, referenceSpp, referenceDir, svg);
+  });
 }

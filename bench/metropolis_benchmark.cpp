@@ -254,10 +254,6 @@ int main(int argc, char** argv) {
   app.option("--svg", svg, "plot of per-frame relMSE and brightness");
   app.option("--methods", methods, "comma-separated: pt, bdpt, mlt, pssmlt, tmlt");
   if (const auto exit = app.parse(argc, argv)) return *exit;
-  try {
-    return pathfarm::run(scene, frames, width, height, secondsPerFrame, referenceSpp, referenceDir, svg, methods);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "metropolis_benchmark: %s\n", e.what());
-    return 1;
-  }
+  return app.run(
+      [&] { return pathfarm::run(scene, frames, width, height, secondsPerFrame, referenceSpp, referenceDir, svg, methods); });
 }

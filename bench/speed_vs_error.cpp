@@ -221,10 +221,5 @@ int main(int argc, char** argv) {
   app.option("--out", options.out, "where the farm and the frames go");
   app.option("--svg", options.svg, "the plot");
   if (const auto exit = app.parse(argc, argv)) return *exit;
-  try {
-    return pathfarm::bench::run(options);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "speed_vs_error: %s\n", e.what());
-    return 1;
-  }
+  return app.run([&] { return pathfarm::bench::run(options); });
 }

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -72,6 +73,17 @@ TEST(BenchCommandLine, ExactlyOneSubcommandIsGivenAndKnowsIt) {
   const auto exit = parseWords(none, {});
   ASSERT_TRUE(exit);
   EXPECT_NE(*exit, 0);
+}
+
+TEST(BenchCommandLine, AnExceptionOutOfTheBodyEndsTheProgramWithItsMessage) {
+  CommandLine app("test");
+  ASSERT_FALSE(parseWords(app, {}));
+  EXPECT_EQ(app.run([] { return 3; }), 3) << "the body's own status";
+  testing::internal::CaptureStderr();
+  const int status = app.run([]() -> int { throw std::runtime_error("frames/: not a folder"); });
+  const std::string printed = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(status, 1);
+  EXPECT_EQ(printed, "benchmark: frames/: not a folder\n");
 }
 
 }  // namespace
