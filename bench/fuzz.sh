@@ -84,7 +84,9 @@ shot=("${scene[@]}" client/shot_file.cpp client/shot_preparation.cpp client/refe
       renderer/decomposition/decomposition.cpp renderer/decomposition/lpe_automaton.cpp
       "$generated/pathfarm/shot.pb.cc" "$generated/pathfarm/chunk.pb.cc")
 # The RPC handlers and what they call into are instrumented; the renderer, the filters and
-# the generated protocol code they reach are linked from the CMake build's libraries.
+# the generated protocol code they reach are linked from the CMake build's libraries (and
+# the glTF and OBJ readers with the renderer: its files are compiled in groups, so the
+# loaders come along with the scene code the handlers reach).
 rpc=(fuzz/rpc_handlers_fuzzer.cpp fuzz/rpc_fuzz_calls.cpp
      scheduler/worker_service.cpp scheduler/client_service.cpp scheduler/client_service_inputs.cpp
      scheduler/service_chunks.cpp scheduler/worker_sessions.cpp scheduler/farm_state.cpp
@@ -115,7 +117,7 @@ libs_of() {
     rpc_handlers) echo "$build/postproc/libpathfarm_postproc.a $build/renderer/libpathfarm_renderer.a" \
                        "$build/image/libpathfarm_image.a $build/proto/libpathfarm_proto.a" \
                        "$(pkg-config --libs grpc++ protobuf sqlite3 openssl) $exr_libs $stb_libs" \
-                       "-lembree3 -ltbb -lspdlog -lfmt -lpthread" ;;
+                       "-lembree3 -ltbb -ltinygltf -ltinyobjloader -lspdlog -lfmt -lpthread" ;;
   esac
 }
 max_len_of() {

@@ -33,6 +33,18 @@ const std::vector<float>& channelOf(const FrameImage& frame, const std::string& 
   return frame.channel(name);
 }
 
+const std::vector<float>& requireChannel(const FrameImage& frame, const std::string& name, const std::string& file) {
+  if (!frame.hasChannel(name)) throw std::invalid_argument(file + ": missing channel \"" + name + "\"");
+  return frame.channel(name);
+}
+
+void requireSameSize(const FrameImage& a, const FrameImage& b) {
+  if (a.width() != b.width() || a.height() != b.height())
+    throw std::invalid_argument("the frames differ in size: " + std::to_string(a.width()) + "x" +
+                                std::to_string(a.height()) + " against " + std::to_string(b.width()) + "x" +
+                                std::to_string(b.height()));
+}
+
 void FrameImage::paste(const FrameImage& part, int x0, int y0) {
   if (x0 < 0 || y0 < 0 || x0 + part.width() > width_ || y0 + part.height() > height_)
     throw std::invalid_argument("a " + std::to_string(part.width()) + "x" + std::to_string(part.height()) +

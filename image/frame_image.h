@@ -62,5 +62,15 @@ class FrameImage {
 // reader ("radiance check: the features' frame"). A missing channel of such a frame is bad
 // input, where FrameImage::channel's std::out_of_range would read as a bug.
 const std::vector<float>& channelOf(const FrameImage& frame, const std::string& name, const std::string& whose);
+// The same for a frame read from a file: "<file>: missing channel \"<name>\"", `file` as
+// the reader knows it ("frame_0009.exr").
+const std::vector<float>& requireChannel(const FrameImage& frame, const std::string& name, const std::string& file);
+
+// std::invalid_argument "the frames differ in size: WxH against WxH" unless a and b have
+// the same resolution.
+void requireSameSize(const FrameImage& a, const FrameImage& b);
+
+// The beauty's channels, in order.
+inline constexpr const char* kRgbChannels[3] = {"R", "G", "B"};
 
 }  // namespace pathfarm

@@ -12,7 +12,6 @@
 namespace pathfarm {
 namespace {
 
-const char* const kRgb[] = {"R", "G", "B"};
 const char* const kXyz[] = {"X", "Y", "Z"};
 
 // One filtered layer: the beauty, or a component.
@@ -31,7 +30,7 @@ struct Buffer {
   std::string name(size_t i) const { return prefix.empty() ? channels[i] : prefix + "." + channels[i]; }
 };
 
-Buffer rgb(const std::string& prefix) { return {prefix, {kRgb[0], kRgb[1], kRgb[2]}}; }
+Buffer rgb(const std::string& prefix) { return {prefix, {kRgbChannels[0], kRgbChannels[1], kRgbChannels[2]}}; }
 
 std::vector<Buffer> featureBuffers(const LayerSpec& layer, const DenoiseSettings& s) {
   if (layer.featureComponent.empty()) return {};
@@ -48,10 +47,6 @@ std::vector<Buffer> colorBuffers(const LayerSpec& layer) {
   if (layer.component.empty()) return {rgb(""), rgb("variance")};
   return {rgb(layer.component + ".irradiance"), rgb(layer.component + ".variance"),
           rgb(layer.component + ".reflectance")};
-}
-
-void requireChannel(const FrameImage& frame, const std::string& name, const std::string& label) {
-  if (!frame.hasChannel(name)) throw std::invalid_argument(label + ": missing channel \"" + name + "\"");
 }
 
 void requireBuffers(const FrameImage& frame, const std::vector<Buffer>& buffers, const std::string& label) {
@@ -306,7 +301,7 @@ FrameImage denoiseFrame(const FrameImage& current, const FrameImage* previous, c
   }
 
   FrameImage out(current.width(), current.height());
-  for (const char* c : kRgb) out.addChannel(c);
+  for (const char* c : kRgbChannels) out.addChannel(c);
   std::vector<uint8_t> skipped(current.pixelCount(), 0);
   size_t fireflies = 0;
   for (const LayerSpec& layer : layers) {
@@ -315,14 +310,14 @@ FrameImage denoiseFrame(const FrameImage& current, const FrameImage* previous, c
     for (size_t p = 0; p < skipped.size(); ++p) skipped[p] |= filtered.invalid[p];
     const std::vector<float>* coverage = coverageOf(current, layer);
     for (size_t c = 0; c < 3; ++c) {
-      std::vector<float>& beauty = out.channel(kRgb[c]);
+      std::vector<float>& beauty = out.channel(kRgbChannels[c]);
       const std::vector<float>& value = filtered.color.channels[c];
       if (layer.component.empty()) {
         beauty = value;
         continue;
       }
-      std::vector<float>& color = out.addChannel(layer.component + ".color." + kRgb[c]);
-      const std::vector<float>& reflectance = current.channel(layer.component + ".reflectance." + kRgb[c]);
+      std::vector<float>& color = out.addChannel(layer.component + ".color." + kRgbChannels[c]);
+      const std::vector<float>& reflectance = current.channel(layer.component + ".reflectance." + kRgbChannels[c]);
       for (size_t p = 0; p < color.size(); ++p) {
         const float r = std::isfinite(reflectance[p]) ? reflectance[p] : 0.0f;
         color[p] = modulateIrradiance(value[p], r);

@@ -16,7 +16,6 @@ namespace pathfarm {
 namespace {
 
 constexpr const char* kDecompositionAttribute = "pathfarm.decomposition";
-constexpr const char* kRgb[] = {"R", "G", "B"};
 
 // The channel suffixes of the data contract's buffers (docs/decomposition.md).
 const std::vector<std::string>* knownChannels(const std::string& buffer) {
@@ -189,13 +188,13 @@ void addComponent(FrameImage& out, std::vector<float>& clamped, const FrameImage
   for (int j = 0; j < 3; ++j) {
     const std::vector<float>& irradiance = up.image.channels[static_cast<size_t>(j)];
     const std::vector<float>& reflectance = highFeatures.channel(channels.reflectance[static_cast<size_t>(j)]);
-    std::vector<float>& color = out.addChannel(c + ".color." + kRgb[j]);
-    std::vector<float>& beauty = out.channel(kRgb[j]);
+    std::vector<float>& color = out.addChannel(c + ".color." + kRgbChannels[j]);
+    std::vector<float>& beauty = out.channel(kRgbChannels[j]);
     for (size_t i = 0; i < color.size(); ++i) {
       color[i] = modulateIrradiance(irradiance[i], reflectance[i]);
       beauty[i] += color[i];
     }
-    out.addChannel(c + ".irradiance." + kRgb[j]) = irradiance;
+    out.addChannel(c + ".irradiance." + kRgbChannels[j]) = irradiance;
   }
 }
 
@@ -227,7 +226,7 @@ FrameImage upsampleFrame(const FrameImage& low, const FrameImage& highFeatures, 
 
   FrameImage out(highFeatures.width(), highFeatures.height());
   out.attributes() = low.attributes();
-  for (const char* name : kRgb) out.addChannel(name);
+  for (const char* name : kRgbChannels) out.addChannel(name);
   std::vector<float> clamped(out.pixelCount(), 0.0f);  // color lost to clamping, summed over components
   for (size_t k = 0; k < components.size(); ++k) {
     const GuidedUpsampleResult up = upsampledIrradiance(low, highFeatures, components[k], channels[k], settings.guided);

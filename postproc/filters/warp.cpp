@@ -10,11 +10,6 @@
 namespace pathfarm {
 namespace {
 
-const std::vector<float>& requireChannel(const FrameImage& frame, const std::string& name, const std::string& label) {
-  if (!frame.hasChannel(name)) throw std::invalid_argument(label + ": missing channel \"" + name + "\"");
-  return frame.channel(name);
-}
-
 void checkField(const MotionField& motion) {
   const size_t pixels =
       static_cast<size_t>(std::max(0, motion.width)) * static_cast<size_t>(std::max(0, motion.height));

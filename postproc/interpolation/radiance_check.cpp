@@ -14,7 +14,6 @@
 namespace pathfarm {
 namespace {
 
-constexpr const char* kRgb[3] = {"R", "G", "B"};
 constexpr const char* kInterpolated = "radiance check: the interpolated frame";
 constexpr const char* kFeatures = "radiance check: the features' frame";
 
@@ -24,7 +23,7 @@ std::vector<double> luminancePlane(const FrameImage& frame, const std::string& p
                                    bool deviation = false) {
   std::vector<double> out(frame.pixelCount(), 0.0);
   for (int c = 0; c < 3; ++c) {
-    const std::vector<float>& values = channelOf(frame, prefix + kRgb[c], whose);
+    const std::vector<float>& values = channelOf(frame, prefix + kRgbChannels[c], whose);
     for (size_t p = 0; p < out.size(); ++p)
       out[p] += kLuminanceWeights<float>[c] * (deviation ? std::sqrt(std::max(0.0f, values[p])) : values[p]);
   }

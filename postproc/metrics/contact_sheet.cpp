@@ -9,7 +9,6 @@
 namespace pathfarm {
 namespace {
 
-constexpr const char* kRgb[3] = {"R", "G", "B"};
 constexpr int kPanels = 5;
 
 float srgbToLinear(float v) { return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f); }
@@ -20,7 +19,7 @@ template <class Value>
 void drawPanel(FrameImage& sheet, int left, int top, int width, int height, int factor, Value value) {
   const float area = static_cast<float>(factor * factor);
   for (int c = 0; c < 3; ++c) {
-    std::vector<float>& out = sheet.channel(kRgb[c]);
+    std::vector<float>& out = sheet.channel(kRgbChannels[c]);
     for (int y = 0; y < height / factor; ++y)
       for (int x = 0; x < width / factor; ++x) {
         float sum = 0;
@@ -50,14 +49,14 @@ FrameImage contactSheet(const std::vector<ContactSheetRow>& rows, const ContactS
       if (frame == nullptr || frame->width() != width || frame->height() != height)
         throw std::invalid_argument("contact sheet: every frame must exist and be " + std::to_string(width) + "x" +
                                     std::to_string(height));
-      for (const char* c : kRgb) channelOf(*frame, c, "contact sheet: a frame");
+      for (const char* c : kRgbChannels) channelOf(*frame, c, "contact sheet: a frame");
     }
   const int factor = std::max(1, (width + settings.maxPanelWidth - 1) / settings.maxPanelWidth);
   const int panelWidth = width / factor, panelHeight = height / factor;
   const int rowCount = static_cast<int>(rows.size());
   FrameImage sheet(kPanels * panelWidth + (kPanels - 1) * settings.gap,
                    rowCount * panelHeight + (rowCount - 1) * settings.gap);
-  for (const char* c : kRgb) sheet.addChannel(c);
+  for (const char* c : kRgbChannels) sheet.addChannel(c);
 
   for (int r = 0; r < rowCount; ++r) {
     const ContactSheetRow& row = rows[static_cast<size_t>(r)];
@@ -66,14 +65,14 @@ FrameImage contactSheet(const std::vector<ContactSheetRow>& rows, const ContactS
     const auto at = [&](int x, int y) { return static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x); };
     const auto image = [&](const FrameImage& frame) {
       return [&frame, &at](int c, int x, int y) {
-        const float v = frame.channel(kRgb[c])[at(x, y)];
+        const float v = frame.channel(kRgbChannels[c])[at(x, y)];
         return std::isfinite(v) ? v : 0.0f;
       };
     };
     const auto error = [&](const FrameImage& frame) {
       return [&frame, &row, &at](int c, int x, int y) {
         double sum = 0;
-        for (const char* channel : kRgb) {
+        for (const char* channel : kRgbChannels) {
           const double v = frame.channel(channel)[at(x, y)];
           sum += std::isfinite(v) ? relativeSquaredError(v, row.reference->channel(channel)[at(x, y)]) : 1.0;
         }

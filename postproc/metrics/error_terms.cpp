@@ -71,14 +71,9 @@ std::vector<BeautyChannel> withVariance(const FrameImage& reference) {
   return channels;
 }
 
-void checkSameSize(const FrameImage& a, const FrameImage& b) {
-  if (a.width() != b.width() || a.height() != b.height())
-    throw std::invalid_argument("relMSE needs two frames of the same resolution");
-}
-
 BlockedTerms errorTermsIn(Rect area, const FrameImage* image, const FrameImage& reference,
                           const std::vector<uint8_t>* kept, int block) {
-  if (image) checkSameSize(*image, reference);
+  if (image) requireSameSize(*image, reference);
   const int w = reference.width(), h = reference.height();
   const std::vector<BeautyChannel> ref = withVariance(reference);
   std::vector<const std::vector<float>*> values;
@@ -115,9 +110,9 @@ BlockedTerms errorTerms(const FrameImage* image, const FrameImage& reference, co
 
 BlockedTerms temporalTerms(const FrameImage& before, const FrameImage& after, const FrameImage& referenceBefore,
                            const FrameImage& referenceAfter) {
-  checkSameSize(before, after);
-  checkSameSize(before, referenceBefore);
-  checkSameSize(before, referenceAfter);
+  requireSameSize(before, after);
+  requireSameSize(before, referenceBefore);
+  requireSameSize(before, referenceAfter);
   const int w = before.width(), h = before.height();
   const std::vector<BeautyChannel> r0 = withVariance(referenceBefore), r1 = withVariance(referenceAfter);
   // The reference's change per channel, whose neighbours give the denominators.

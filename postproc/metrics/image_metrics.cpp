@@ -54,13 +54,6 @@ Crop checkedCrop(const FrameImage& image, const std::optional<Crop>& crop) {
   return c;
 }
 
-void checkSameSize(const FrameImage& a, const FrameImage& b) {
-  if (a.width() != b.width() || a.height() != b.height())
-    throw std::invalid_argument("the frames differ in size: " + std::to_string(a.width()) + "x" +
-                                std::to_string(a.height()) + " against " + std::to_string(b.width()) + "x" +
-                                std::to_string(b.height()));
-}
-
 // Calls visit(p) for every pixel index p inside the crop.
 template <class Visit>
 void forEachPixel(const Crop& crop, int width, Visit visit) {
@@ -129,7 +122,7 @@ std::vector<std::string> layerChannels(const FrameImage& frame, const std::strin
 ImageMetrics compareImages(const FrameImage& image, const FrameImage& reference,
                            const std::vector<std::string>& channels, const std::optional<Crop>& crop,
                            const std::vector<uint8_t>* only) {
-  checkSameSize(image, reference);
+  requireSameSize(image, reference);
   const Crop c = checkedCrop(image, crop);
   if (only && only->size() != image.pixelCount())
     throw std::invalid_argument("the pixel mask has " + std::to_string(only->size()) + " entries for " +
@@ -162,7 +155,7 @@ SequenceMetrics compareSequences(const std::vector<FrameImage>& images, const st
     result.frames.push_back(compareImages(images[i], references[i], channels, crop));
     result.meanRelMse += result.frames.back().relMse / static_cast<double>(images.size());
     if (i == 0) continue;
-    checkSameSize(images[i], images[i - 1]);
+    requireSameSize(images[i], images[i - 1]);
     const Crop c = checkedCrop(images[i], crop);
     for (const std::string& name : channels) {
       const auto& x = channelOf(images[i], name, "the image");

@@ -15,6 +15,9 @@
 
 namespace pathfarm {
 
+// Vertex i of a path's std::vector: the path algorithms count vertices in int.
+inline size_t vertexIndex(int i) { return static_cast<size_t>(i); }
+
 enum class VertexType : uint8_t {
   Camera,       // x0: hit.position is the lens point, hit.geometricNormal the viewing axis
   Surface,      // a scattering point (it may also emit, when a camera subpath ends on an emitter)

@@ -6,7 +6,6 @@
 namespace pathfarm {
 namespace {
 
-constexpr float kMaxCoordinate = 1e7f;
 constexpr float kMaxIntensity = 1e12f;
 
 // The rotation that turns a light's local -z onto `direction`.
@@ -17,7 +16,7 @@ Quaternion aimedAlong(Vec3f direction) {
   return Quaternion::fromBasis(x, cross(z, x), z);
 }
 
-PunctualType parseType(const JsonNode& node) {
+PunctualType parsePunctualType(const JsonNode& node) {
   const std::string type = node.string();
   if (type == "point") return PunctualType::Point;
   if (type == "spot") return PunctualType::Spot;
@@ -48,7 +47,7 @@ PunctualLight parsePunctualLight(const JsonNode& node, double fps) {
                    "outer_cone"});
   PunctualLight light;
   if (auto name = node.optional("name")) light.name = name->string();
-  light.type = parseType(node["type"]);
+  light.type = parsePunctualType(node["type"]);
   light.intensity = node["intensity"].rgb(0, kMaxIntensity);
   if (light.type == PunctualType::Spot) {
     const double inner = node.has("inner_cone") ? node["inner_cone"].number(0, 90) : 0;

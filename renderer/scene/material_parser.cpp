@@ -76,7 +76,7 @@ void parseMetallicRoughness(const JsonNode& node, const std::filesystem::path& f
   }
 }
 
-MaterialType parseType(const JsonNode& node) {
+MaterialType parseMaterialType(const JsonNode& node) {
   const std::string name = node.string();
   const auto it = materialTypes().find(name);
   if (it == materialTypes().end()) {
@@ -92,7 +92,7 @@ MaterialType parseType(const JsonNode& node) {
 Material parseMaterial(const JsonNode& node, const std::filesystem::path& folder,
                        std::vector<ImageTexture>& textures) {
   Material material;
-  material.type = parseType(node["type"]);
+  material.type = parseMaterialType(node["type"]);
   const MaterialType t = material.type;
   if (t == MaterialType::MetallicRoughness) {
     parseMetallicRoughness(node, folder, textures, material);

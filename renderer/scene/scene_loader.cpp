@@ -13,8 +13,6 @@
 namespace pathfarm {
 namespace {
 
-constexpr float kMaxCoordinate = 1e7f;
-
 void parseRender(const JsonNode& node, RenderDefaults& defaults) {
   node.expectKeys({"resolution", "spp", "max_depth", "frames"});
   if (auto res = node.optional("resolution")) {

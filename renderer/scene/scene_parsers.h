@@ -7,6 +7,10 @@
 
 namespace pathfarm {
 
+// The largest coordinate a scene file may give a position: beyond it a float's spacing
+// (about 1 at 1e7) is coarser than any scene's detail, and a typo is more likely than a scene.
+inline constexpr float kMaxCoordinate = 1e7f;
+
 // {"translate": [x,y,z], "rotate": ROTATION, "scale": s | [sx,sy,sz]}
 Trs parseTrs(const JsonNode& node);
 // {"axis": [x,y,z], "angle": degrees} or {"quaternion": [w,x,y,z]}

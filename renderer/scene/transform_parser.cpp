@@ -5,8 +5,6 @@
 namespace pathfarm {
 namespace {
 
-constexpr float kMaxCoordinate = 1e7f;
-
 Vec3f parseScale(const JsonNode& node) {
   const float limit = 1e6f;
   if (node.isNumber()) {

@@ -12,8 +12,6 @@
 namespace pathfarm {
 namespace {
 
-size_t at(int i) { return static_cast<size_t>(i); }
-
 double deletedEdgesWeight(int d) { return std::ldexp(1.0, -(d - 1)); }
 
 double deletionNormalization(int k) {
@@ -64,12 +62,12 @@ int sampleAddition(int kept, int deleted, bool lightEndDeleted, int maxVertices,
 double splitDensity(const BdptScene& bdpt, float time, const std::vector<PathVertex>& y, int l, int mNew, int t) {
   const int k = static_cast<int>(y.size()) - 1;
   const int c = l + t, q = l + t + 1;  // the connection edge, if q is a vertex
-  if (q <= k && (y[at(c)].delta || y[at(q)].delta)) return 0;
+  if (q <= k && (y[vertexIndex(c)].delta || y[vertexIndex(q)].delta)) return 0;
   double p = 1;
-  for (int i = l + 1; i <= c; ++i) p *= walkDensity(bdpt, time, i >= 2 ? &y[at(i - 2)] : nullptr, y[at(i - 1)], y[at(i)]);
+  for (int i = l + 1; i <= c; ++i) p *= walkDensity(bdpt, time, i >= 2 ? &y[vertexIndex(i - 2)] : nullptr, y[vertexIndex(i - 1)], y[vertexIndex(i)]);
   for (int i = q; i < mNew; ++i)
-    p *= i == k ? lightStartDensity(bdpt, time, y[at(k)])
-                : walkDensity(bdpt, time, i + 2 <= k ? &y[at(i + 2)] : nullptr, y[at(i + 1)], y[at(i)]);
+    p *= i == k ? lightStartDensity(bdpt, time, y[vertexIndex(k)])
+                : walkDensity(bdpt, time, i + 2 <= k ? &y[vertexIndex(i + 2)] : nullptr, y[vertexIndex(i + 1)], y[vertexIndex(i)]);
   return p;
 }
 

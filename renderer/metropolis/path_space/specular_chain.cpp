@@ -9,8 +9,6 @@
 namespace pathfarm {
 namespace {
 
-size_t at(int i) { return static_cast<size_t>(i); }
-
 bool isReflection(const PathVertex& previous, const PathVertex& x, const PathVertex& next) {
   const Vec3f n = x.hit.geometricNormal;
   return dot(n, directionBetween(x, previous)) * dot(n, directionBetween(x, next)) > 0;
@@ -55,9 +53,9 @@ std::vector<SpecularChain> specularChainsOf(const std::vector<PathVertex>& x) {
   std::vector<SpecularChain> chains;
   const int k = static_cast<int>(x.size()) - 1;
   for (int i = 1; i < k; ++i) {
-    if (!x[at(i)].delta) continue;
+    if (!x[vertexIndex(i)].delta) continue;
     const int a = i - 1;
-    while (i < k && x[at(i)].delta) ++i;
+    while (i < k && x[vertexIndex(i)].delta) ++i;
     chains.push_back({a, i});
   }
   return chains;
@@ -94,17 +92,17 @@ bool retraceChain(const BdptScene& bdpt, float time, const std::vector<PathVerte
   const bool fromCamera = direction == ChainDirection::FromCamera;
   const int step = fromCamera ? 1 : -1;
   const int anchor = fromCamera ? chain.a : chain.b, far = fromCamera ? chain.b : chain.a;
-  const PathVertex& start = vertices[at(anchor)];
-  const PathVertex& first = vertices[at(anchor + step)];
+  const PathVertex& start = vertices[vertexIndex(anchor)];
+  const PathVertex& first = vertices[vertexIndex(anchor + step)];
   if (!(fromCamera ? edgeVisible(bdpt, time, start, first) : edgeVisible(bdpt, time, first, start))) return false;
   Vec3f travel = directionBetween(start, first);
   for (int i = anchor + step; i != far; i += step) {
-    const bool reflection = isReflection(original[at(i - 1)], original[at(i)], original[at(i + 1)]);
-    const auto out = deltaDirection(bdpt.scene(), vertices[at(i)], travel, reflection);
+    const bool reflection = isReflection(original[vertexIndex(i - 1)], original[vertexIndex(i)], original[vertexIndex(i + 1)]);
+    const auto out = deltaDirection(bdpt.scene(), vertices[vertexIndex(i)], travel, reflection);
     if (!out) return false;
-    const auto next = regenerate(bdpt, time, vertices[at(i)], *out, original[at(i + step)]);
+    const auto next = regenerate(bdpt, time, vertices[vertexIndex(i)], *out, original[vertexIndex(i + step)]);
     if (!next) return false;
-    vertices[at(i + step)] = *next;
+    vertices[vertexIndex(i + step)] = *next;
     travel = *out;
   }
   return true;
@@ -120,19 +118,19 @@ bool straightenChains(const BdptScene& bdpt, float time, std::vector<PathVertex>
 double regenerationDensity(const Scene& scene, const std::vector<PathVertex>& x, SpecularChain chain,
                            ChainDirection direction) {
   double fromCamera = 1;
-  for (int j = chain.a + 2; j <= chain.b; ++j) fromCamera *= toAreaDensity(x[at(j - 1)], x[at(j)], 1.0f);
+  for (int j = chain.a + 2; j <= chain.b; ++j) fromCamera *= toAreaDensity(x[vertexIndex(j - 1)], x[vertexIndex(j)], 1.0f);
   if (direction == ChainDirection::FromCamera) return fromCamera;
   // n_b / n_a: each refraction multiplies the index by the material's ior entering it.
   double indexRatio = 1;
   for (int i = chain.a + 1; i < chain.b; ++i) {
-    const PathVertex& v = x[at(i)];
-    if (isReflection(x[at(i - 1)], v, x[at(i + 1)])) continue;
+    const PathVertex& v = x[vertexIndex(i)];
+    if (isReflection(x[vertexIndex(i - 1)], v, x[vertexIndex(i + 1)])) continue;
     const double ior = ShadedVertex::materialOf(scene, v.hit).ior;
-    const bool cameraSideOutside = dot(v.hit.geometricNormal, directionBetween(v, x[at(i - 1)])) > 0;
+    const bool cameraSideOutside = dot(v.hit.geometricNormal, directionBetween(v, x[vertexIndex(i - 1)])) > 0;
     indexRatio *= cameraSideOutside ? ior : 1 / ior;
   }
-  return fromCamera * symmetricGeometry(x[at(chain.a)], x[at(chain.a + 1)]) /
-         (indexRatio * indexRatio * symmetricGeometry(x[at(chain.b - 1)], x[at(chain.b)]));
+  return fromCamera * symmetricGeometry(x[vertexIndex(chain.a)], x[vertexIndex(chain.a + 1)]) /
+         (indexRatio * indexRatio * symmetricGeometry(x[vertexIndex(chain.b - 1)], x[vertexIndex(chain.b)]));
 }
 
 }  // namespace pathfarm

@@ -8,8 +8,6 @@
 namespace pathfarm {
 namespace {
 
-size_t at(int i) { return static_cast<size_t>(i); }
-
 ChainDirection opposite(ChainDirection way) {
   return way == ChainDirection::FromCamera ? ChainDirection::FromLight : ChainDirection::FromCamera;
 }
@@ -35,12 +33,12 @@ std::optional<MovedPath> moveTo(const WindowScene& scene, const std::vector<Path
   if (!fromCamera) std::reverse(chains.begin(), chains.end());
   for (const SpecularChain& c : chains) {
     const int anchor = fromCamera ? c.a : c.b;
-    bool changed = m.regenerated[at(anchor)];
-    for (int i = c.a; i <= c.b; ++i) changed = changed || m.moved[at(i)];
+    bool changed = m.regenerated[vertexIndex(anchor)];
+    for (int i = c.a; i <= c.b; ++i) changed = changed || m.moved[vertexIndex(i)];
     if (!changed) continue;
     if (!retraceChain(bdpt, to.shutterFraction, x, c, way, m.vertices)) return std::nullopt;
     const int step = fromCamera ? 1 : -1;
-    for (int i = anchor + 2 * step; i != (fromCamera ? c.b : c.a) + step; i += step) m.regenerated[at(i)] = true;
+    for (int i = anchor + 2 * step; i != (fromCamera ? c.b : c.a) + step; i += step) m.regenerated[vertexIndex(i)] = true;
     m.retraced.push_back(c);
   }
   return m;

@@ -5,7 +5,7 @@
 namespace pathfarm {
 namespace {
 
-constexpr double kMaxIntensity = 1e12;
+constexpr double kMaxPhotometricIntensity = 1e12;
 constexpr double kRightAngle = 1.5707963267948966;
 // KHR_lights_punctual gives point and spot lights in candela and directional lights in
 // lux; pathfarm renders in radiometric units, converted at the luminous efficacy the
@@ -33,7 +33,7 @@ PunctualLight readLight(const GltfDocument& document, int index) {
       color[c] = gltfFactor(document, pointer + "/color/" + std::to_string(c), source.color[c], 0, 1e6);
   }
   light.intensity = Rgb(color[0], color[1], color[2]) *
-                    (gltfFactor(document, pointer + "/intensity", source.intensity, 0, kMaxIntensity) * kWattsPerLumen);
+                    (gltfFactor(document, pointer + "/intensity", source.intensity, 0, kMaxPhotometricIntensity) * kWattsPerLumen);
   if (light.type == PunctualType::Spot) {
     const float inner = gltfFactor(document, pointer + "/spot/innerConeAngle", source.spot.innerConeAngle, 0, kRightAngle);
     const float outer = gltfFactor(document, pointer + "/spot/outerConeAngle", source.spot.outerConeAngle, 0, kRightAngle);
