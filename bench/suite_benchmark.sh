@@ -13,15 +13,19 @@
 #                            [--pipelines "dui"] [--spp 64] [--reference-spp 1024]
 #                            [--frames 0:23] [--res 320x180] [--figures docs/figures] [--repeat 1]
 #                            [--setting small|production] [--reference-cache DIR]
+#                            [--evaluation-frames "3,4,11,12,19,20"]
 # --setting production is 640x360 at 256 spp against a 4096-spp reference (production renders
 # take hundreds of samples, where a frame's fixed costs weigh less); small, the default, is
 # 320x180 at 64 spp against 1024. Options after it change its values. References are kept
 # in the reference cache (default ~/.cache/pathfarm/references; client/reference_cache.h),
-# so a second run of a scene at the same size renders none.
+# so a second run of a scene at the same size renders none. --evaluation-frames names the
+# frames measured against the reference (the shot's default: the middle frame and the
+# next); more frames narrow the intervals, each costing a reference frame. Give them in
+# consecutive pairs, so that the temporal error has frame pairs to compare.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=build scenes="dolly courtyard walkthrough cornell showroom creature" pipelines=dui spp=64 reference=1024
-frames=0:23 res=320x180 figures=docs/figures repeat=1
+frames=0:23 res=320x180 figures=docs/figures repeat=1 evaluation=""
 cache="${XDG_CACHE_HOME:-$HOME/.cache}/pathfarm/references"
 while (($#)); do
   case "$1" in
@@ -35,6 +39,7 @@ while (($#)); do
     --figures) figures=$2 ;;
     --repeat) repeat=$2 ;;
     --reference-cache) cache=$2 ;;
+    --evaluation-frames) evaluation=$2 ;;
     --setting)
       case "$2" in
         small) res=320x180 spp=64 reference=1024 ;;
@@ -56,10 +61,12 @@ echo "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---:
 for scene in $scenes; do
   for pipeline in $pipelines; do
     out="$work/$scene-$pipeline"
+    extra=""
+    [ -n "$evaluation" ] && extra=", \"evaluation_frames\": [$evaluation]"
     cat > "$work/shot.json" <<JSON
 {"name": "$scene-$pipeline", "scene": "$PWD/scenes/$scene/scene.json",
  "frames": {"start": ${frames%:*}, "end": ${frames#*:}}, "resolution": [${res%x*}, ${res#*x}],
- "spp": $spp, "pipeline": "$pipeline", "reference_spp": $reference, "output": "$out"}
+ "spp": $spp, "pipeline": "$pipeline", "reference_spp": $reference, "output": "$out"$extra}
 JSON
     reports=()
     for ((run = 1; run <= repeat; run++)); do
