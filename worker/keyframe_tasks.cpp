@@ -1,6 +1,7 @@
 // Denoising and upsampling of keyframes (worker/filter_tasks.h).
 #include <algorithm>
 #include <optional>
+#include <string>
 
 #include "contract/pipeline.h"
 #include "image/exr_io.h"
@@ -24,6 +25,15 @@ constexpr int kUpsampleFactor = 2;
 // filter's bias outweighs its leftover noise: on frame 11 of the suite's d scenes, 1
 // gave 15 to 24 % less relMSE than 4 (docs/performance.md). Quarter-spp keyframes keep 4.
 constexpr float kFullSampleCancellation = 1.0f;
+
+// Pastes a filter's output over the frame whose features it was given, with the filter's
+// record of what it did (its attributes named `record*`, e.g. pathfarm.denoise_skipped):
+// FrameImage::paste moves pixels only.
+void pasteFiltered(const FrameImage& filtered, const std::string& record, FrameImage& frame) {
+  frame.paste(filtered, 0, 0);
+  for (const auto& [key, value] : filtered.attributes())
+    if (key.rfind(record, 0) == 0) frame.attributes()[key] = value;
+}
 
 }  // namespace
 
@@ -61,7 +71,7 @@ TaskOutput runDenoiseTask(const Lease& lease, std::vector<TaskInput>& inputs) {
   }
   // The output keeps the keyframe's features and motion; its colors are the denoised ones
   // and its effective irradiance follows from them, as the upsampler and interpolation read it.
-  current.paste(denoised, 0, 0);
+  pasteFiltered(denoised, "pathfarm.denoise", current);
   deriveIrradiance(current);
   // Upsampling adds the light back at full resolution (runUpsampleTask).
   if (!upsample) addDirectEmission(current, emission);
@@ -86,7 +96,7 @@ TaskOutput runUpsampleTask(const Lease& lease, std::vector<TaskInput>& inputs) {
   const FrameImage emission = takeDirectEmission(high);
   UpsampleSettings settings;
   settings.guided.factor = kUpsampleFactor;
-  high.paste(upsampleFrame(low, high, settings), 0, 0);
+  pasteFiltered(upsampleFrame(low, high, settings), "pathfarm.upsample", high);
   addDirectEmission(high, emission);
   std::vector<float>& flagged = high.channel("rerender.Y");
   std::vector<uint8_t> mask(flagged.size());

@@ -58,7 +58,12 @@ TEST(DenoiseTask, DsFinalFrameIsTheOneACompositeOfItsDenoisedFrameWrites) {
   const FrameImage final = runTask(denoiseLease(ROLE_OUTPUT), chunks);
 
   // The other way: the denoised keyframe with its features, then a composite of it alone.
-  chunks["denoised"] = encodeExr(runTask(denoiseLease(ROLE_UNSPECIFIED), chunks), ExrCompression::Fast);
+  const FrameImage denoised = runTask(denoiseLease(ROLE_UNSPECIFIED), chunks);
+  // It carries the filter's record of what it did, as the final frame does.
+  for (const char* record : {"pathfarm.denoise", "pathfarm.denoise_skipped", "pathfarm.denoise_fireflies"})
+    EXPECT_EQ(denoised.attributes().count(record), 1u) << record;
+  EXPECT_EQ(denoised.attributes().at("pathfarm.denoise"), final.attributes().at("pathfarm.denoise"));
+  chunks["denoised"] = encodeExr(denoised, ExrCompression::Fast);
   Lease composite;
   composite.set_kind(TASK_COMPOSITE);
   composite.mutable_spec()->set_pipeline(PIPELINE_D);

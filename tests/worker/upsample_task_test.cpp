@@ -53,6 +53,10 @@ TEST(UpsampleTask, DirectlySeenLightThatTheKeyframesFewSamplesGetWrongIsReRender
   const TaskOutput output = runUpsampleTask(lease, inputs);
   const FrameImage result = decodeExr(output.chunk, "upsampled keyframe");
   const std::vector<float>& flagged = result.channel("rerender.Y");
+  // The upsampler's record of its settings goes with the frame (the keyframe's own
+  // attributes stay too).
+  EXPECT_EQ(result.attributes().count("pathfarm.upsample"), 1u);
+  EXPECT_EQ(result.attributes().count("pathfarm.decomposition"), 1u);
 
   // Wrong: the keyframe's directly seen light is off from a 256-spp render's by more than
   // a quarter of what the pixel shows there.
