@@ -56,7 +56,7 @@ Rgb PathTracer::radiance(Ray ray, float time, SampleStream& stream, RayCounts& c
     if (bsdf.hasNonDeltaLobe() && !lights_.empty()) {
       if (const auto light = lights_.sample(geometry_, hit.position, time, u.light, u.lightPoint)) {
         const Vec3f wi = frame.toLocal(light->direction);
-        // The lobes sum to eval() exactly (bsdf.h), so the beauty keeps its bits.
+        // The lobes sum to eval() exactly (lobe_interface.h), so the beauty keeps its bits.
         const LobeValues perLobe = decomposer ? bsdf.evalLobes(wo, wi) : LobeValues{};
         const Rgb f = decomposer ? perLobe.sum() : bsdf.eval(wo, wi);
         if (!f.isBlack()) {

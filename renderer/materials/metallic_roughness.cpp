@@ -228,7 +228,7 @@ std::optional<BsdfSample> MetallicRoughnessBsdf::sample(Vec3f woIn, float uLobe,
     lobe = transmissionLobe_;
   }
   // The non-delta lobes overlap (reflection and diffuse), so the weight is eval over the
-  // mixture density, and each lobe's part is its own value over that density (bsdf.h).
+  // mixture density, and each lobe's part is its own value over that density (lobe_interface.h).
   const float pdf = density(wo, wi);
   const LobeValues v = evaluate(wo, wi);
   BsdfSample s{wi, v.sum() / pdf, pdf, symbol, false, {}, lobe};

@@ -49,7 +49,7 @@
 // smooth conductor and dielectric.
 //
 // Lobes: up to three at once (reflection R, diffuse D, transmission T), so LobeList holds
-// three (bsdf.h): glTF materials with partial transmission need D and T together beside the
+// three (lobe_interface.h): glTF materials with partial transmission need D and T together beside the
 // specular R, and merging any two would give one lobe two symbols. A lobe is listed when
 // the material can have it anywhere (reflection always; the diffuse base when the metallic
 // factor or texture can leave a dielectric part and t < 1; the transmission when that part

@@ -90,7 +90,7 @@ std::optional<BsdfSample> RoughPlasticBsdf::sample(Vec3f wo, float uLobe, Vec2f 
   const LobeValues v = evalLobes(wo, wi);
   // The weight is eval(wo, wi) / pdf as it always was. Both lobes are non-delta, so each
   // gets its own f cos over the mixture density, whichever was sampled; the parts are
-  // rounded separately, so their sum matches the weight only to rounding (see bsdf.h).
+  // rounded separately, so their sum matches the weight only to rounding (see lobe_interface.h).
   return BsdfSample{wi, (v.value[0] + v.value[1]) / pdf, pdf, symbol, false,
                     {v.value[0] / pdf, v.value[1] / pdf}, lobe};
 }
