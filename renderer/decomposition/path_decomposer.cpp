@@ -1,5 +1,6 @@
 #include "renderer/decomposition/path_decomposer.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace pathfarm {
@@ -23,11 +24,17 @@ bool hasDiffuseLobe(const LobeList& lobes) {
 }  // namespace
 
 void SampleComponents::reset(int components) {
-  color.assign(static_cast<size_t>(components), Rgb());
-  direct.assign(static_cast<size_t>(components), Rgb());
+  const auto n = static_cast<size_t>(components);
+  if (color.size() != n) {  // the first sample; afterwards only the values are cleared
+    color.resize(n);
+    direct.resize(n);
+    features.resize(n);
+    hasFeatures.resize(n);
+  }
+  std::fill(color.begin(), color.end(), Rgb());
+  std::fill(direct.begin(), direct.end(), Rgb());
+  std::fill(hasFeatures.begin(), hasFeatures.end(), uint8_t{0});
   movingCaustic = Rgb();
-  features.resize(static_cast<size_t>(components));
-  hasFeatures.assign(static_cast<size_t>(components), 0);
 }
 
 PathDecomposer::PathDecomposer(const Decomposition& decomposition, SampleComponents& out)
