@@ -1,5 +1,6 @@
 #include "renderer/decomposition/decomposed_film.h"
 
+#include <bit>
 #include <cmath>
 
 #include "renderer/decomposition/effective_irradiance.h"
@@ -69,7 +70,9 @@ DecomposedFilm::Pixel::Pixel(int components) : components_(static_cast<size_t>(c
 void DecomposedFilm::Pixel::add(const SampleComponents& sample, const SampleExtras& extras) {
   ++samples_;
   const bool moving = extras.motionSampled && extras.motion && extras.motionBack;
-  for (size_t k = 0; k < components_.size(); ++k) {
+  // A component the sample did not touch would add zeros.
+  for (uint32_t bits = sample.touched; bits != 0; bits &= bits - 1) {
+    const auto k = static_cast<size_t>(std::countr_zero(bits));
     Component& c = components_[k];
     const Rgb color = sample.color[k];
     for (int i = 0; i < 3; ++i) {

@@ -1,6 +1,7 @@
 #include "renderer/decomposition/path_decomposer.h"
 
 #include <algorithm>
+#include <bit>
 #include <stdexcept>
 
 namespace pathfarm {
@@ -25,15 +26,20 @@ bool hasDiffuseLobe(const LobeList& lobes) {
 
 void SampleComponents::reset(int components) {
   const auto n = static_cast<size_t>(components);
-  if (color.size() != n) {  // the first sample; afterwards only the values are cleared
-    color.resize(n);
-    direct.resize(n);
+  if (color.size() != n) {  // the first sample; afterwards only what the last one touched is cleared
+    color.assign(n, Rgb());
+    direct.assign(n, Rgb());
     features.resize(n);
-    hasFeatures.resize(n);
+    hasFeatures.assign(n, 0);
+    touched = 0;
   }
-  std::fill(color.begin(), color.end(), Rgb());
-  std::fill(direct.begin(), direct.end(), Rgb());
-  std::fill(hasFeatures.begin(), hasFeatures.end(), uint8_t{0});
+  for (uint32_t bits = touched; bits != 0; bits &= bits - 1) {
+    const auto k = static_cast<size_t>(std::countr_zero(bits));
+    color[k] = Rgb();
+    direct[k] = Rgb();
+    hasFeatures[k] = 0;
+  }
+  touched = 0;
   movingCaustic = Rgb();
 }
 
@@ -42,6 +48,9 @@ PathDecomposer::PathDecomposer(const Decomposition& decomposition, SampleCompone
   if (automaton_.stateCount() > kMaxStates)
     throw std::invalid_argument("the decomposition's automaton has more than " + std::to_string(kMaxStates) +
                                 " states");
+  if (decomposition.size() > SampleComponents::kMaxComponents)
+    throw std::invalid_argument("the decomposition has more than " + std::to_string(SampleComponents::kMaxComponents) +
+                                " components");
   begin();
 }
 
@@ -60,6 +69,7 @@ PathDecomposer::Tail PathDecomposer::tailAfter(const StateWeight& from, PathSymb
 
 void PathDecomposer::addTo(int state, bool diffuse, Tail tail, Rgb value) {
   const auto component = static_cast<size_t>(automaton_.accepting(state));
+  out_.touch(component);
   out_.color[component] += value;
   if (!diffuse) out_.direct[component] += value;
   if (tail == Tail::Moving) out_.movingCaustic += value;
@@ -100,6 +110,7 @@ void PathDecomposer::recordFeatures(const LobeList& lobes, const VertexFeatures&
     static_cast<VertexFeatures&>(features) = vertex;
     features.reflectance = reflectance;
     out_.hasFeatures[static_cast<size_t>(k)] = 1;
+    out_.touch(static_cast<size_t>(k));
   }
 }
 

@@ -44,8 +44,13 @@ struct SampleComponents {
   Rgb movingCaustic;        // the part of the sum of `color` carried by moving caustics
   std::vector<Features> features;
   std::vector<uint8_t> hasFeatures;
+  // Bit k: component k got light or features in this sample. A path reaches one or two
+  // components of five, so the film adds, and the next sample clears, only these.
+  uint32_t touched = 0;
 
+  static constexpr int kMaxComponents = 32;  // the bits of `touched`
   void reset(int components);
+  void touch(size_t component) { touched |= 1u << component; }
 };
 
 class PathDecomposer {

@@ -13,6 +13,14 @@ const MotionPair kStill{Vec2f{0, 0}, Vec2f{0, 0}};
 }  // namespace
 
 MotionPair PrimaryMotion::ofSurface(const SurfaceHit& hit, float time) const {
+  return ofSurface(hit, time, camera_.cameraToWorld(geometry_.shot().scene().timeAt(frame_, time)));
+}
+
+MotionPair PrimaryMotion::ofBackground(Vec3f direction, float time) const {
+  return ofBackground(direction, time, camera_.cameraToWorld(geometry_.shot().scene().timeAt(frame_, time)));
+}
+
+MotionPair PrimaryMotion::ofSurface(const SurfaceHit& hit, float time, const Transform& cameraNow) const {
   const PreparedShape& shape = geometry_.shot().shape(hit.object);
   const bool moves = shape.animated || shape.deforming;
   if (!moves && !camera_.isAnimated()) return kStill;  // nothing moves: no need to project
@@ -22,17 +30,17 @@ MotionPair PrimaryMotion::ofSurface(const SurfaceHit& hit, float time) const {
     const Vec3f point = offset != 0 && moves ? geometry_.shot().surfacePointAt(hit, seconds) : hit.position;
     return camera_.project(point, seconds);
   };
-  const auto now = imageAt(0);
+  const auto now = camera_.project(hit.position, cameraNow);
   return {difference(now, imageAt(span_.forward)), difference(now, imageAt(-span_.backward))};
 }
 
-MotionPair PrimaryMotion::ofBackground(Vec3f direction, float time) const {
+MotionPair PrimaryMotion::ofBackground(Vec3f direction, float time, const Transform& cameraNow) const {
   if (!camera_.isAnimated()) return kStill;
   const Scene& scene = geometry_.shot().scene();
   const auto imageAt = [&](int offset) {
     return camera_.projectDirection(direction, scene.timeAt(frame_ + offset, time));
   };
-  const auto now = imageAt(0);
+  const auto now = camera_.projectDirection(direction, cameraNow);
   return {difference(now, imageAt(span_.forward)), difference(now, imageAt(-span_.backward))};
 }
 

@@ -33,6 +33,10 @@ class PrimaryMotion {
   MotionPair ofSurface(const SurfaceHit& hit, float time) const;
   // The environment seen along `direction`.
   MotionPair ofBackground(Vec3f direction, float time) const;
+  // The same, with the camera's placement at `time` given: a renderer has it from the
+  // camera ray, and evaluating the camera's animation is most of the cost.
+  MotionPair ofSurface(const SurfaceHit& hit, float time, const Transform& cameraNow) const;
+  MotionPair ofBackground(Vec3f direction, float time, const Transform& cameraNow) const;
 
  private:
   const FrameGeometry& geometry_;

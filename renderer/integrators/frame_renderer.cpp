@@ -62,7 +62,9 @@ std::shared_ptr<const FrameGeometry> FrameRenderer::geometryFor(int64_t frame) c
 
 namespace {
 
-SampleExtras extrasOf(const PathRecord& record, const Ray& ray, float time, const PrimaryMotion* motion) {
+// `cameraNow`: the camera's placement at the sample's time, which made `ray`.
+SampleExtras extrasOf(const PathRecord& record, const Ray& ray, float time, const PrimaryMotion* motion,
+                      const Transform& cameraNow) {
   SampleExtras extras;
   extras.hit = record.hit;
   if (record.hit) {
@@ -72,7 +74,8 @@ SampleExtras extrasOf(const PathRecord& record, const Ray& ray, float time, cons
     extras.depth = hit.distance;
   }
   if (!motion) return extras;
-  const MotionPair moved = record.hit ? motion->ofSurface(record.primary, time) : motion->ofBackground(ray.direction, time);
+  const MotionPair moved = record.hit ? motion->ofSurface(record.primary, time, cameraNow)
+                                      : motion->ofBackground(ray.direction, time, cameraNow);
   extras.motionSampled = true;
   extras.motion = moved.forward;
   extras.motionBack = moved.backward;
@@ -154,8 +157,9 @@ struct WindowPixels {
       const Vec2f jitter = stratified.film;
       const float time = stratified.time;
       const Vec2f lens = stream.next2D();
-      const Ray ray = camera.generateRay({static_cast<float>(x) + jitter.x, static_cast<float>(y) + jitter.y},
-                                         lens, scene.timeAt(frame, time));
+      const Transform cameraNow = camera.cameraToWorld(scene.timeAt(frame, time));
+      const Ray ray =
+          camera.generateRay({static_cast<float>(x) + jitter.x, static_cast<float>(y) + jitter.y}, lens, cameraNow);
       if (film) {
         paths.decomposer->begin();
         paths.record = {&*paths.decomposer, false, {}};
@@ -168,7 +172,7 @@ struct WindowPixels {
       }
       if (film)
         sums->add(paths.components,
-                  extrasOf(paths.record, ray, time, s < DecomposedFilm::kMotionSamples ? &motion : nullptr));
+                  extrasOf(paths.record, ray, time, s < DecomposedFilm::kMotionSamples ? &motion : nullptr, cameraNow));
       ++accepted;
       moments.add(L);
     }

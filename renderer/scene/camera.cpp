@@ -54,11 +54,19 @@ std::optional<Vec2f> Camera::toFilm(Vec3f v) const {
 }
 
 std::optional<Vec2f> Camera::project(Vec3f point, double seconds) const {
-  return toFilm(cameraToWorld(seconds).inversePoint(point));
+  return project(point, cameraToWorld(seconds));
+}
+
+std::optional<Vec2f> Camera::project(Vec3f point, const Transform& toWorld) const {
+  return toFilm(toWorld.inversePoint(point));
 }
 
 std::optional<Vec2f> Camera::projectDirection(Vec3f direction, double seconds) const {
-  return toFilm(cameraToWorld(seconds).inverseVector(direction));
+  return projectDirection(direction, cameraToWorld(seconds));
+}
+
+std::optional<Vec2f> Camera::projectDirection(Vec3f direction, const Transform& toWorld) const {
+  return toFilm(toWorld.inverseVector(direction));
 }
 
 }  // namespace pathfarm

@@ -40,8 +40,11 @@ class Camera {
   // Where a world point is imaged at `seconds` (the pinhole projection, the centre of a
   // thin lens's blur), as a continuous pixel position; nothing if it is behind the camera.
   std::optional<Vec2f> project(Vec3f point, double seconds) const;
+  // The same, with cameraToWorld(seconds) given.
+  std::optional<Vec2f> project(Vec3f point, const Transform& toWorld) const;
   // Where a direction (a point at infinity) is imaged.
   std::optional<Vec2f> projectDirection(Vec3f direction, double seconds) const;
+  std::optional<Vec2f> projectDirection(Vec3f direction, const Transform& toWorld) const;
 
  private:
   const CameraDesc& desc_;
