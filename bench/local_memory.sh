@@ -4,8 +4,9 @@
 # resident set of `pathfarm local` and of each worker process every second (ps), and
 # prints one markdown row: wall time, the peaks (the largest worker's and `pathfarm
 # local`'s), all in GiB, and the size of the farm's chunk store at the end (every intermediate chunk
-# and the frames; kept with --keep-farm for the count, then removed with the run's folder);
-# then the largest peak of each kind of task, from the workers' logs.
+# still kept and the frames; kept with --keep-farm for the count, then removed with the run's
+# folder) and its largest size while the shot ran (sampled every 5 s); then the largest peak
+# of each kind of task, from the workers' logs.
 #
 #   bench/local_memory.sh [--build DIR] [--workers 2] [--label TEXT] SHOT [-- LOCAL-ARGS...]
 #   e.g. bench/local_memory.sh scenes/walkthrough/shot.json -- --res 1920x1080 --spp 16 --frames 0:4 --pipeline dui
@@ -29,11 +30,16 @@ start=$SECONDS
 "$build/bin/pathfarm" local "$shot" --workers "$workers" --out "$work/frames" --keep-farm "$@" > "$work/local.log" 2>&1 &
 pid=$!
 declare -A peak  # pid -> peak resident KiB
+store_peak=0 tick=0
 while kill -0 "$pid" 2> /dev/null; do
   for p in $pid $(pgrep -P "$pid" || true); do
     rss=$(ps -o rss= -p "$p" 2> /dev/null | tr -d ' ' || true)
     [ -n "$rss" ] && ((rss > ${peak[$p]:-0})) && peak[$p]=$rss
   done
+  if ((tick++ % 5 == 0)) && [ -d "$work/frames/farm/chunks" ]; then
+    size=$(du -sk "$work/frames/farm/chunks" 2> /dev/null | cut -f1 || true)
+    [ -n "$size" ] && ((size > store_peak)) && store_peak=$size
+  fi
   sleep 1
 done
 status=0
@@ -48,7 +54,8 @@ worker=0
 for p in "${!peak[@]}"; do [ "$p" != "$pid" ] && ((peak[$p] > worker)) && worker=${peak[$p]}; done
 gib() { awk -v k="$1" 'BEGIN { printf "%.2f", k / 1048576 }'; }
 store=$(du -sk "$work/frames/farm/chunks" | cut -f1)
-echo "| ${label:-$shot $*} | $seconds | $(gib "$worker") | $(gib "${peak[$pid]:-0}") | $(gib "$store") |"
+((store > store_peak)) && store_peak=$store
+echo "| ${label:-$shot $*} | $seconds | $(gib "$worker") | $(gib "${peak[$pid]:-0}") | $(gib "$store") | $(gib "$store_peak") |"
 # Each task's own peak, as its worker logged it ("peak resident X GiB": one-slot workers),
 # the largest per kind of task.
 cat "$work"/frames/farm/logs/local-*.log | python3 -c '

@@ -233,7 +233,8 @@ void FarmState::endAttempt(const AttemptRow& attempt, int state, const std::stri
 }
 
 ReportReply FarmState::complete(const CompleteRequest& request, double now) {
-  return transact([&]() -> ReportReply {
+  std::vector<std::string> released;
+  const ReportReply reply = transact([&]() -> ReportReply {
     const ChunkRef& output = request.output();
     const auto attempt = currentAttempt(request.attempt_id());
     if (!attempt) return refused(kStaleLease);
@@ -276,8 +277,14 @@ ReportReply FarmState::complete(const CompleteRequest& request, double now) {
         .bind(3, attempt->taskId)
         .run();
     countTaskDone(attempt->shotId, now);
+    released = consumedTileOutputs(attempt->taskId);
     return accepted();
   });
+  if (!released.empty()) {  // committed: their files may go
+    const std::lock_guard lock(releasedMutex_);
+    releasedTiles_.insert(releasedTiles_.end(), released.begin(), released.end());
+  }
+  return reply;
 }
 
 ReportReply FarmState::fail(int64_t attemptId, const std::string& reason, double now, const std::string& logTail,

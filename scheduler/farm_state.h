@@ -125,6 +125,11 @@ class FarmState {
     std::vector<std::string> chunks;
   };
   Collected collectGarbage(double now);
+  // The files of render tiles (and gradient tiles) whose every consumer is done, to be
+  // removed from the store: once a frame is assembled its tiles are a third of what a
+  // filtering shot stores (docs/farm.md, "Retention"). Their rows stay, so a tile needed
+  // again (its assembly requeued) is made again by requeueProducersOf. Each once.
+  std::vector<std::string> takeReleasedTiles();
 
   void recordChunk(const ChunkRef& chunk, double now);
   bool hasChunk(const std::string& sha256);
@@ -151,6 +156,8 @@ class FarmState {
   // A chunk the store has lost (missing or damaged on disk): every done task that made it,
   // in a shot still queued, running, paused or done, runs again with what used it. Returns
   // how many tasks were requeued (0: no task can make it again).
+  // A released tile (takeReleasedTiles) is made again only while a task that reads it
+  // waits: a late worker fetching it for an attempt already redone elsewhere changes nothing.
   int requeueProducersOf(const std::string& sha256, double now);
   // Blocklisted workers of one shot, or of every shot with 0.
   std::vector<BlocklistEntry> blocklist(int64_t shotId);
@@ -264,9 +271,14 @@ class FarmState {
   // The pool rules: the worker carries the shot's required tags and its cap allows it.
   bool workerMayJoin(int64_t workerId, int64_t shotId);
 
+  // The outputs of `taskId`'s tile dependencies that no task waits for any more.
+  std::vector<std::string> consumedTileOutputs(int64_t taskId);
+
   std::mutex mutex_;  // one writer: every public method is one transaction under it
   Database db_;
   FarmSettings settings_;
+  std::mutex releasedMutex_;
+  std::vector<std::string> releasedTiles_;  // committed, their files not yet removed
 };
 
 }  // namespace pathfarm::farm

@@ -1,5 +1,7 @@
 // FarmState's retention: finished shots past settings().retainSeconds are deleted, and the
-// chunks nothing kept needs any more.
+// chunks nothing kept needs any more; render tiles go from the store once consumed.
+#include <utility>
+
 #include "scheduler/farm_state.h"
 #include "scheduler/farm_state_internal.h"
 
@@ -37,6 +39,34 @@ FarmState::Collected FarmState::collectGarbage(double now) {
       db_.query("DELETE FROM chunks WHERE sha256 = ?1").bind(1, sha).run();
     return collected;
   });
+}
+
+namespace {
+
+// The kinds of task whose output is a part of a frame that another task joins.
+constexpr const char* kTileKinds = "(?2, ?3)";
+
+}  // namespace
+
+std::vector<std::string> FarmState::consumedTileOutputs(int64_t taskId) {
+  // A tile's chunk may be named by several tasks (the same bytes): it goes when every task
+  // naming it is a done tile whose readers are all done.
+  const std::string sql = std::string(
+      "SELECT DISTINCT t.output_sha FROM task_deps d JOIN tasks t ON t.id = d.depends_on "
+      "WHERE d.task_id = ?1 AND t.kind IN ") + kTileKinds + " AND t.output_sha IS NOT NULL "
+      "AND NOT EXISTS (SELECT 1 FROM tasks o WHERE o.output_sha = t.output_sha AND (o.state != ?4 OR o.kind NOT IN " +
+      kTileKinds + " OR EXISTS (SELECT 1 FROM task_deps od JOIN tasks r ON r.id = od.task_id "
+      "WHERE od.depends_on = o.id AND r.state != ?4)))";
+  Statement& q = db_.query(sql);
+  q.bind(1, taskId).bind(2, int64_t{TASK_RENDER_TILE}).bind(3, int64_t{TASK_GRADIENT_TILE}).bind(4, asInt(TaskState::Done));
+  std::vector<std::string> shas;
+  while (q.step()) shas.push_back(q.text(0));
+  return shas;
+}
+
+std::vector<std::string> FarmState::takeReleasedTiles() {
+  const std::lock_guard lock(releasedMutex_);
+  return std::exchange(releasedTiles_, {});
 }
 
 }  // namespace pathfarm::farm

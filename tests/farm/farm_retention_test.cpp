@@ -28,7 +28,7 @@ TEST_F(FarmTest, AShotPastItsRetentionGoesWithItsChunks) {
   const int64_t id = client().submit(shotSpec(spec));
   ASSERT_EQ(waitForShot(id, 30s).state(), farm::SHOT_DONE);
   const size_t files = chunkFiles(storeFolder());
-  EXPECT_GE(files, 5u) << "four tiles and a frame";
+  EXPECT_GE(files, 1u) << "the frame (its four tiles leave the store once it is assembled)";
 
   // The rows go first, then the files.
   ASSERT_TRUE(waitUntil([&] { return db.integer("SELECT COUNT(*) FROM shots") == 0 && chunkFiles(storeFolder()) == 0; },

@@ -74,3 +74,47 @@ TEST_F(FarmStateTest, WithoutRetentionNothingIsDeleted) {
 
 }  // namespace
 }  // namespace pathfarm::farm
+
+namespace pathfarm::farm {
+namespace {
+
+// Whether `list` is exactly the digests FarmStateTest::storedChunk gives `names`, in any order.
+bool holdsExactly(std::vector<std::string> list, const std::vector<std::string>& names) {
+  std::vector<std::string> expected;
+  for (const std::string& name : names) expected.push_back(std::string(64 - name.size(), '0') + name);
+  std::sort(list.begin(), list.end());
+  std::sort(expected.begin(), expected.end());
+  return list == expected;
+}
+
+TEST_F(FarmStateTest, TilesAreReleasedOnceTheirFrameIsAssembledAndMadeAgainOnlyForAReader) {
+  const int64_t w1 = state_->registerWorker("w1", 1, now_), w2 = state_->registerWorker("w2", 1, now_);
+  const int64_t first = submitFrame();
+  ASSERT_TRUE(complete(leaseFor(w1).attempt_id(), storedChunk("shared"), now_).accepted());
+  ASSERT_TRUE(complete(leaseFor(w1).attempt_id(), storedChunk("mine"), now_).accepted());
+  EXPECT_TRUE(state_->takeReleasedTiles().empty()) << "released before their frame was assembled";
+
+  // A second shot (leased first) renders a tile of the same bytes; its frame is not assembled yet.
+  submitFrame(/*priority=*/5);
+  ASSERT_TRUE(complete(leaseFor(w1).attempt_id(), storedChunk("shared"), now_).accepted());
+  const Lease stillRendering = leaseFor(w1);
+  ASSERT_EQ(stillRendering.kind(), TASK_RENDER_TILE);
+
+  const Lease assembly = leaseFor(w2);
+  ASSERT_EQ(assembly.kind(), TASK_ASSEMBLE_FRAME);
+  ASSERT_TRUE(complete(assembly.attempt_id(), storedChunk("frame"), now_).accepted());
+  EXPECT_TRUE(holdsExactly(state_->takeReleasedTiles(), {"mine"}))
+      << "the frame is kept, and so is the tile another shot's assembly still reads";
+  EXPECT_TRUE(state_->takeReleasedTiles().empty()) << "each tile is released once";
+
+  // A late worker asking for a released tile makes nothing run again...
+  const std::string mine = std::string(64 - 4, '0') + "mine";
+  EXPECT_EQ(state_->requeueProducersOf(mine, now_), 0);
+  EXPECT_EQ(state_->summary(first, now_).state(), SHOT_DONE);
+  // ...an assembly that runs again does.
+  state_->requeueTask(first, assembly.task_id(), now_);
+  EXPECT_EQ(state_->requeueProducersOf(mine, now_), 1);
+}
+
+}  // namespace
+}  // namespace pathfarm::farm
