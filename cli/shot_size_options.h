@@ -1,6 +1,7 @@
 #pragma once
-// The options that bound how large a shot a scheduler takes and how its large tasks are
-// leased: `pathfarm scheduler` and the embedded farm of `pathfarm local` take the same.
+// The options that bound how large a shot a scheduler takes, how its large tasks are
+// leased and what its store keeps: `pathfarm scheduler` and the embedded farm of
+// `pathfarm local` take the same.
 #include <CLI/CLI.hpp>
 
 #include <cstdint>
@@ -21,6 +22,9 @@ inline void addShotSizeOptions(CLI::App* command, farm::ShotLimits& limits, farm
   command->add_option("--max-frames-per-shot", limits.maxFrames, "a shot with more frames is refused")
       ->check(CLI::Range(int64_t{1}, int64_t{1'000'000'000}))
       ->capture_default_str();
+  command->add_flag("--keep-intermediates", farm.keepIntermediates,
+                    "keep every task's output chunk until retention (default: an intermediate chunk, such as a "
+                    "render tile or a filtered keyframe, leaves the store once no task reads it)");
 }
 
 }  // namespace pathfarm

@@ -277,12 +277,12 @@ ReportReply FarmState::complete(const CompleteRequest& request, double now) {
         .bind(3, attempt->taskId)
         .run();
     countTaskDone(attempt->shotId, now);
-    released = consumedTileOutputs(attempt->taskId);
+    released = releaseConsumedInputs(attempt->taskId);
     return accepted();
   });
   if (!released.empty()) {  // committed: their files may go
     const std::lock_guard lock(releasedMutex_);
-    releasedTiles_.insert(releasedTiles_.end(), released.begin(), released.end());
+    releasedChunks_.insert(releasedChunks_.end(), released.begin(), released.end());
   }
   return reply;
 }
@@ -499,7 +499,8 @@ void FarmState::addEvent(int64_t shotId, const std::string& message, double now)
 
 void FarmState::recordChunk(const ChunkRef& chunk, double now) {
   return transact([&]() -> void {
-    db_.query("INSERT OR IGNORE INTO chunks (sha256, size, stored_at) VALUES (?1, ?2, ?3)")
+    db_.query("INSERT INTO chunks (sha256, size, stored_at) VALUES (?1, ?2, ?3) "
+              "ON CONFLICT (sha256) DO UPDATE SET released = 0")
         .bind(1, chunk.sha256())
         .bind(2, chunk.size())
         .bind(3, now)

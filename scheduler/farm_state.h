@@ -38,6 +38,9 @@ struct FarmSettings {
   // A shot finished this long ago is deleted with its tasks, attempts and events, and so
   // are chunks nothing kept refers to and stored as long ago; 0 keeps everything.
   double retainSeconds = 0;
+  // Keeps every intermediate chunk until retention (for looking into a shot's stages)
+  // instead of removing each once no task reads it.
+  bool keepIntermediates = false;
 };
 
 // A task as the shot's report sees it.
@@ -125,11 +128,12 @@ class FarmState {
     std::vector<std::string> chunks;
   };
   Collected collectGarbage(double now);
-  // The files of render tiles (and gradient tiles) whose every consumer is done, to be
-  // removed from the store: once a frame is assembled its tiles are a third of what a
-  // filtering shot stores (docs/farm.md, "Retention"). Their rows stay, so a tile needed
-  // again (its assembly requeued) is made again by requeueProducersOf. Each once.
-  std::vector<std::string> takeReleasedTiles();
+  // The files of intermediate chunks that no task reads any more, to be removed from the
+  // store (unless settings().keepIntermediates): a render tile once its frame is
+  // assembled, a keyframe once it is filtered, and so on; never a shot's frames or its
+  // references (docs/farm.md, "Retention"). Their rows stay, marked released, so a chunk
+  // needed again (its reader requeued) is made again by requeueProducersOf. Each once.
+  std::vector<std::string> takeReleasedChunks();
 
   void recordChunk(const ChunkRef& chunk, double now);
   bool hasChunk(const std::string& sha256);
@@ -156,7 +160,7 @@ class FarmState {
   // A chunk the store has lost (missing or damaged on disk): every done task that made it,
   // in a shot still queued, running, paused or done, runs again with what used it. Returns
   // how many tasks were requeued (0: no task can make it again).
-  // A released tile (takeReleasedTiles) is made again only while a task that reads it
+  // A released chunk (takeReleasedChunks) is made again only while a task that reads it
   // waits: a late worker fetching it for an attempt already redone elsewhere changes nothing.
   int requeueProducersOf(const std::string& sha256, double now);
   // Blocklisted workers of one shot, or of every shot with 0.
@@ -271,14 +275,15 @@ class FarmState {
   // The pool rules: the worker carries the shot's required tags and its cap allows it.
   bool workerMayJoin(int64_t workerId, int64_t shotId);
 
-  // The outputs of `taskId`'s tile dependencies that no task waits for any more.
-  std::vector<std::string> consumedTileOutputs(int64_t taskId);
+  // Marks released, and returns, the outputs of `taskId`'s dependencies that no task
+  // waits for any more and that are neither a shot's frame nor a reference.
+  std::vector<std::string> releaseConsumedInputs(int64_t taskId);
 
   std::mutex mutex_;  // one writer: every public method is one transaction under it
   Database db_;
   FarmSettings settings_;
   std::mutex releasedMutex_;
-  std::vector<std::string> releasedTiles_;  // committed, their files not yet removed
+  std::vector<std::string> releasedChunks_;  // committed, their files not yet removed
 };
 
 }  // namespace pathfarm::farm

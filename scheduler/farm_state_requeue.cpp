@@ -44,13 +44,13 @@ ShotSummary FarmState::requeueFrame(int64_t shotId, int64_t frame, double now) {
 int FarmState::requeueProducersOf(const std::string& sha256, double now) {
   return transact([&]() -> int {
     std::map<int64_t, std::vector<int64_t>> producersByShot;
-    // A tile whose readers are all done was released from the store: nothing needs it.
+    // A chunk released on purpose (no reader waited) is made again only for a reader.
     Statement& q = db_.query(
         "SELECT t.shot_id, t.id FROM tasks t JOIN shots s ON s.id = t.shot_id "
-        "WHERE t.output_sha = ?1 AND t.state = ?2 AND s.state NOT IN (?3, ?4) AND (t.kind NOT IN (?5, ?6) OR EXISTS "
+        "WHERE t.output_sha = ?1 AND t.state = ?2 AND s.state NOT IN (?3, ?4) "
+        "AND (NOT EXISTS (SELECT 1 FROM chunks c WHERE c.sha256 = ?1 AND c.released = 1) OR EXISTS "
         "(SELECT 1 FROM task_deps d JOIN tasks r ON r.id = d.task_id WHERE d.depends_on = t.id AND r.state != ?2))");
     q.bind(1, sha256).bind(2, asInt(TaskState::Done)).bind(3, int64_t{SHOT_FAILED}).bind(4, int64_t{SHOT_CANCELLED});
-    q.bind(5, int64_t{TASK_RENDER_TILE}).bind(6, int64_t{TASK_GRADIENT_TILE});
     while (q.step()) producersByShot[q.integer(0)].push_back(q.integer(1));
     int requeued = 0;
     for (const auto& [shotId, producers] : producersByShot) {

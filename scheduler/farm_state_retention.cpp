@@ -1,5 +1,5 @@
 // FarmState's retention: finished shots past settings().retainSeconds are deleted, and the
-// chunks nothing kept needs any more; render tiles go from the store once consumed.
+// chunks nothing kept needs any more; intermediate chunks go from the store once read.
 #include <utility>
 
 #include "scheduler/farm_state.h"
@@ -41,32 +41,40 @@ FarmState::Collected FarmState::collectGarbage(double now) {
   });
 }
 
-namespace {
-
-// The kinds of task whose output is a part of a frame that another task joins.
-constexpr const char* kTileKinds = "(?2, ?3)";
-
-}  // namespace
-
-std::vector<std::string> FarmState::consumedTileOutputs(int64_t taskId) {
-  // A tile's chunk may be named by several tasks (the same bytes): it goes when every task
-  // naming it is a done tile whose readers are all done.
-  const std::string sql = std::string(
+std::vector<std::string> FarmState::releaseConsumedInputs(int64_t taskId) {
+  if (settings_.keepIntermediates) return {};
+  // A chunk may be named by several tasks (the same bytes): it goes when every task naming
+  // it is done, none is a shot's frame, and all their readers are done.
+  Statement& candidates = db_.query(
       "SELECT DISTINCT t.output_sha FROM task_deps d JOIN tasks t ON t.id = d.depends_on "
-      "WHERE d.task_id = ?1 AND t.kind IN ") + kTileKinds + " AND t.output_sha IS NOT NULL "
-      "AND NOT EXISTS (SELECT 1 FROM tasks o WHERE o.output_sha = t.output_sha AND (o.state != ?4 OR o.kind NOT IN " +
-      kTileKinds + " OR EXISTS (SELECT 1 FROM task_deps od JOIN tasks r ON r.id = od.task_id "
-      "WHERE od.depends_on = o.id AND r.state != ?4)))";
-  Statement& q = db_.query(sql);
-  q.bind(1, taskId).bind(2, int64_t{TASK_RENDER_TILE}).bind(3, int64_t{TASK_GRADIENT_TILE}).bind(4, asInt(TaskState::Done));
+      "WHERE d.task_id = ?1 AND t.output_sha IS NOT NULL "
+      "AND NOT EXISTS (SELECT 1 FROM tasks o WHERE o.output_sha = t.output_sha AND (o.state != ?2 OR o.is_output = 1 "
+      "OR EXISTS (SELECT 1 FROM task_deps od JOIN tasks r ON r.id = od.task_id WHERE od.depends_on = o.id AND r.state != ?2)))");
+  candidates.bind(1, taskId).bind(2, asInt(TaskState::Done));
   std::vector<std::string> shas;
-  while (q.step()) shas.push_back(q.text(0));
+  while (candidates.step()) shas.push_back(candidates.text(0));
+  candidates.reset();
+  // References outlive their shot: a later shot of the same scene reuses them.
+  const auto namesAReference = [&](const std::string& sha) {
+    Statement& q = db_.query("SELECT params FROM tasks WHERE output_sha = ?1 AND kind = ?2");
+    q.bind(1, sha).bind(2, int64_t{TASK_ASSEMBLE_FRAME});
+    bool reference = false;
+    while (q.step()) {
+      TaskParams params;
+      params.ParseFromString(q.blob(0));
+      reference = reference || params.role() == ROLE_REFERENCE;
+    }
+    return reference;
+  };
+  std::erase_if(shas, namesAReference);
+  for (const std::string& sha : shas)
+    db_.query("UPDATE chunks SET released = 1 WHERE sha256 = ?1").bind(1, sha).run();
   return shas;
 }
 
-std::vector<std::string> FarmState::takeReleasedTiles() {
+std::vector<std::string> FarmState::takeReleasedChunks() {
   const std::lock_guard lock(releasedMutex_);
-  return std::exchange(releasedTiles_, {});
+  return std::exchange(releasedChunks_, {});
 }
 
 }  // namespace pathfarm::farm

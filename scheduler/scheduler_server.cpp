@@ -76,7 +76,7 @@ SchedulerServer::SchedulerServer(SchedulerOptions options) : options_(std::move(
     while (!stopping_) {
       try {
         if (services_->state.expireLeases(farmClockSeconds()) > 0) services_->signal.notify();
-        for (const std::string& sha : services_->state.takeReleasedTiles()) services_->store.remove(sha);
+        for (const std::string& sha : services_->state.takeReleasedChunks()) services_->store.remove(sha);
         if (options_.farm.retainSeconds > 0 && farmClockSeconds() >= nextRetention) {
           collectGarbage();
           nextRetention = farmClockSeconds() + retentionPeriod;

@@ -156,6 +156,11 @@ const std::vector<const char*>& migrations() {
         PRIMARY KEY (shot_id, after_id));
       CREATE INDEX shot_waits_reverse ON shot_waits(after_id);
       )sql",
+      // 14: a chunk whose file the scheduler removed once no task read it any more
+      // (FarmState::takeReleasedChunks); stored again, it is kept again.
+      R"sql(
+      ALTER TABLE chunks ADD COLUMN released INTEGER NOT NULL DEFAULT 0;
+      )sql",
   };
   return list;
 }

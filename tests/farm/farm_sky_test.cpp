@@ -68,8 +68,8 @@ void expectComponentsAddUp(const FrameImage& image, const std::string& label) {
 
 // Every finished output of the given kinds that holds components (baseline and reference
 // renders are plain pt) has them adding up to its beauty; returns how many each kind had.
-// Render tiles leave the store once read (docs/farm.md, "Retention"): their pixels are
-// checked in the frames assembled from them and in the composites.
+// The shots run with --keep-intermediates: by default each intermediate chunk leaves the
+// store once read (docs/farm.md, "Retention").
 std::map<int, int> expectEveryStageAddsUp(const fs::path& farmFolder, const std::set<int>& kinds) {
   const FarmDatabase db(farmFolder / "farm.db");
   const farm::ChunkStore store(farmFolder / "chunks");
@@ -96,7 +96,8 @@ class SkyShotTest : public FarmTest {
   fs::path runSkyShot(const std::string& pipeline) {
     const fs::path out = dir() / (pipeline + "-out");
     const CommandResult local = runPathfarm({"local", writeSkyShot(dir(), pipeline).string(), "--workers", "2",
-                                             "--threads", "1", "--out", out.string(), "--keep-farm"},
+                                             "--threads", "1", "--out", out.string(), "--keep-farm",
+                                             "--keep-intermediates"},
                                             {}, 300s);
     EXPECT_EQ(local.status, 0) << local.output;
     return out;
@@ -106,8 +107,8 @@ class SkyShotTest : public FarmTest {
 TEST_F(SkyShotTest, SkyMirrorAndGlassLightSurviveEveryDuiStage) {
   const fs::path out = runSkyShot("dui");
   ASSERT_FALSE(HasFailure());
-  const std::set<int> stages = {farm::TASK_ASSEMBLE_FRAME, farm::TASK_DENOISE, farm::TASK_UPSAMPLE,
-                                farm::TASK_INTERPOLATE, farm::TASK_COMPOSITE};
+  const std::set<int> stages = {farm::TASK_ASSEMBLE_FRAME, farm::TASK_DENOISE,      farm::TASK_UPSAMPLE,
+                                farm::TASK_INTERPOLATE,    farm::TASK_RENDER_TILE, farm::TASK_COMPOSITE};
   std::map<int, int> checked = expectEveryStageAddsUp(out / "farm", stages);
   for (const farm::TaskKind kind :
        {farm::TASK_ASSEMBLE_FRAME, farm::TASK_UPSAMPLE, farm::TASK_INTERPOLATE, farm::TASK_COMPOSITE})
@@ -126,11 +127,12 @@ TEST_F(SkyShotTest, ADeformingCharacterSurvivesEveryDuiStage) {
     "pipeline": "dui", "keyframe_interval": 2, "tile": 32, "baseline_core_seconds": 1})");
   const fs::path out = dir() / "creature-out";
   const CommandResult local = runPathfarm(
-      {"local", shot.string(), "--workers", "2", "--threads", "1", "--out", out.string(), "--keep-farm"}, {}, 300s);
+      {"local", shot.string(), "--workers", "2", "--threads", "1", "--out", out.string(), "--keep-farm",
+                                             "--keep-intermediates"}, {}, 300s);
   ASSERT_EQ(local.status, 0) << local.output;
   std::map<int, int> checked = expectEveryStageAddsUp(
-      out / "farm",
-      {farm::TASK_ASSEMBLE_FRAME, farm::TASK_DENOISE, farm::TASK_UPSAMPLE, farm::TASK_INTERPOLATE, farm::TASK_COMPOSITE});
+      out / "farm", {farm::TASK_ASSEMBLE_FRAME, farm::TASK_DENOISE, farm::TASK_UPSAMPLE, farm::TASK_INTERPOLATE,
+                     farm::TASK_RENDER_TILE, farm::TASK_COMPOSITE});
   for (const farm::TaskKind kind : {farm::TASK_UPSAMPLE, farm::TASK_INTERPOLATE})
     EXPECT_GT(checked[kind], 0) << "no output of " << farm::TaskKind_Name(kind) << " was checked";
   for (int64_t frame = 0; frame <= 4; ++frame) {

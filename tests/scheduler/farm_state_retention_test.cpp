@@ -92,7 +92,7 @@ TEST_F(FarmStateTest, TilesAreReleasedOnceTheirFrameIsAssembledAndMadeAgainOnlyF
   const int64_t first = submitFrame();
   ASSERT_TRUE(complete(leaseFor(w1).attempt_id(), storedChunk("shared"), now_).accepted());
   ASSERT_TRUE(complete(leaseFor(w1).attempt_id(), storedChunk("mine"), now_).accepted());
-  EXPECT_TRUE(state_->takeReleasedTiles().empty()) << "released before their frame was assembled";
+  EXPECT_TRUE(state_->takeReleasedChunks().empty()) << "released before their frame was assembled";
 
   // A second shot (leased first) renders a tile of the same bytes; its frame is not assembled yet.
   submitFrame(/*priority=*/5);
@@ -103,9 +103,9 @@ TEST_F(FarmStateTest, TilesAreReleasedOnceTheirFrameIsAssembledAndMadeAgainOnlyF
   const Lease assembly = leaseFor(w2);
   ASSERT_EQ(assembly.kind(), TASK_ASSEMBLE_FRAME);
   ASSERT_TRUE(complete(assembly.attempt_id(), storedChunk("frame"), now_).accepted());
-  EXPECT_TRUE(holdsExactly(state_->takeReleasedTiles(), {"mine"}))
+  EXPECT_TRUE(holdsExactly(state_->takeReleasedChunks(), {"mine"}))
       << "the frame is kept, and so is the tile another shot's assembly still reads";
-  EXPECT_TRUE(state_->takeReleasedTiles().empty()) << "each tile is released once";
+  EXPECT_TRUE(state_->takeReleasedChunks().empty()) << "each tile is released once";
 
   // A late worker asking for a released tile makes nothing run again...
   const std::string mine = std::string(64 - 4, '0') + "mine";
@@ -114,6 +114,52 @@ TEST_F(FarmStateTest, TilesAreReleasedOnceTheirFrameIsAssembledAndMadeAgainOnlyF
   // ...an assembly that runs again does.
   state_->requeueTask(first, assembly.task_id(), now_);
   EXPECT_EQ(state_->requeueProducersOf(mine, now_), 1);
+}
+
+}  // namespace
+}  // namespace pathfarm::farm
+
+namespace pathfarm::farm {
+namespace {
+
+// A filtering frame with its evaluation: a reference, an interpolation (an intermediate),
+// the composite (the shot's frame) and the evaluate task reading the reference and the
+// frame.
+class ReleaseTest : public FarmStateTest {
+ protected:
+  // Runs every task, each output named after its kind; returns what was released when the
+  // composite finished and when the evaluation did.
+  std::pair<std::vector<std::string>, std::vector<std::string>> runFilteredFrame() {
+    PlannedTask reference{TASK_ASSEMBLE_FRAME, {}, {}};
+    reference.params.set_role(ROLE_REFERENCE);
+    const std::vector<PlannedTask> plan = {
+        reference, {TASK_INTERPOLATE, {}, {}}, {TASK_COMPOSITE, {}, {1}, true}, {TASK_EVALUATE, {}, {0, 2}}};
+    state_->submit(filteredSpec(), plan, now_);
+    const int64_t worker = state_->registerWorker("w", 1, now_);
+    std::vector<std::string> afterComposite, afterEvaluation;
+    for (int task = 0; task < 4; ++task) {
+      const Lease lease = leaseFor(worker);
+      const std::string name = TaskKind_Name(lease.kind()).substr(5, 10);  // letters only, short enough
+      EXPECT_TRUE(complete(lease.attempt_id(), storedChunk(name), now_).accepted()) << name;
+      if (lease.kind() == TASK_COMPOSITE) afterComposite = state_->takeReleasedChunks();
+      if (lease.kind() == TASK_EVALUATE) afterEvaluation = state_->takeReleasedChunks();
+    }
+    return {afterComposite, afterEvaluation};
+  }
+};
+
+TEST_F(ReleaseTest, AnIntermediateIsReleasedOnceReadButAFrameAndAReferenceAreKept) {
+  const auto [afterComposite, afterEvaluation] = runFilteredFrame();
+  EXPECT_TRUE(holdsExactly(afterComposite, {"INTERPOLAT"})) << "the interpolation, read by the composite alone";
+  EXPECT_TRUE(afterEvaluation.empty()) << "the evaluation read the reference (kept for later shots) and the frame";
+}
+
+TEST_F(ReleaseTest, KeepIntermediatesKeepsEveryChunk) {
+  settings_.keepIntermediates = true;
+  open();
+  const auto [afterComposite, afterEvaluation] = runFilteredFrame();
+  EXPECT_TRUE(afterComposite.empty());
+  EXPECT_TRUE(afterEvaluation.empty());
 }
 
 }  // namespace
