@@ -321,35 +321,38 @@ void markHolesAndIllumination(const LayerOutcome& o, const std::array<std::vecto
 // Untracked: a keyframe's layer significant (against that keyframe's beauty) where its
 // motion is invalid.
 void markUntracked(const KeyframeLayer& key, const BeautyPlanes& beauty, const InterpolationSettings& settings,
-                   RerenderCauses& causes) {
+                   std::vector<uint8_t>& untracked) {
   const auto& v = key.values.channels;
   for (size_t p = 0; p < key.active.size(); ++p) {
     if (key.active[p]) continue;
     if (significant(v[0][p], v[1][p], v[2][p], (*beauty[0])[p], (*beauty[1])[p], (*beauty[2])[p], settings))
-      causes.untracked[p] = 1;
+      untracked[p] = 1;
   }
 }
 
 // Silhouettes: where the silhouette pixels of keyframe k land at `fraction` of the way
-// along each layer's valid motion (the pixel itself where none is valid).
-void markSilhouettes(const std::vector<float>& silhouette, const std::vector<LayerKeyframes>& keys, int k,
-                     float fraction, int width, int height, RerenderCauses& causes) {
+// along each layer's valid motion (the pixel itself where no layer's is valid). One layer
+// at a time: its targets marked in `targets`, and in `landed` the silhouette pixels it
+// carried somewhere.
+void markSilhouetteTargets(const std::vector<float>& silhouette, const KeyframeLayer& layer, float fraction, int width,
+                           int height, std::vector<uint8_t>& targets, std::vector<uint8_t>& landed) {
   for (size_t p = 0; p < silhouette.size(); ++p) {
-    if (silhouette[p] <= 0.5f) continue;
+    if (silhouette[p] <= 0.5f || !layer.active[p]) continue;
     const int px = static_cast<int>(p % static_cast<size_t>(width)), py = static_cast<int>(p / static_cast<size_t>(width));
-    bool landed = false;
-    for (const LayerKeyframes& key : keys) {
-      const KeyframeLayer& l = key.primary[static_cast<size_t>(k)];
-      if (!l.active[p]) continue;
-      const int tx = static_cast<int>(std::lround(static_cast<float>(px) + fraction * l.dx[p]));
-      const int ty = static_cast<int>(std::lround(static_cast<float>(py) + fraction * l.dy[p]));
-      if (tx < 0 || tx >= width || ty < 0 || ty >= height) continue;
-      causes.silhouette[static_cast<size_t>(ty) * static_cast<size_t>(width) + static_cast<size_t>(tx)] = 1;
-      landed = true;
-    }
-    if (!landed) causes.silhouette[p] = 1;
+    const int tx = static_cast<int>(std::lround(static_cast<float>(px) + fraction * layer.dx[p]));
+    const int ty = static_cast<int>(std::lround(static_cast<float>(py) + fraction * layer.dy[p]));
+    if (tx < 0 || tx >= width || ty < 0 || ty >= height) continue;
+    targets[static_cast<size_t>(ty) * static_cast<size_t>(width) + static_cast<size_t>(tx)] = 1;
+    landed[p] = 1;
   }
 }
+
+// What a layer leaves for the re-render mask besides its outcome, found while its keyframe
+// buffers are at hand.
+struct LayerMarks {
+  std::vector<uint8_t> untracked;
+  std::array<std::vector<uint8_t>, 2> silhouetteTargets, silhouetteLanded;  // per keyframe
+};
 
 // The mask, its counts per cause and rate, and its channel `rerender.Y`.
 void addRerenderMask(InterpolationResult& result, const RerenderCauses& causes) {
@@ -410,23 +413,44 @@ InterpolationResult interpolateFrameDetailed(const FrameImage& k0, const FrameIm
   const std::vector<float>* silhouette[2] = {
       k0.hasChannel("silhouette.Y") ? &finiteChannel(k0, "silhouette.Y", "keyframe 0") : nullptr,
       k1.hasChannel("silhouette.Y") ? &finiteChannel(k1, "silhouette.Y", "keyframe 1") : nullptr};
-  std::vector<LayerKeyframes> keys(layers.size());
-  for (size_t i = 0; i < layers.size(); ++i) keys[i] = readKeyframes(k0, k1, layers[i], motions, settings);
-
+  // Each layer's keyframe buffers (copies of a dozen planes per keyframe) live only while
+  // the layer is interpolated: held for every layer at once they were most of a 1080p
+  // interpolation's memory.
   std::vector<LayerOutcome> outcomes(layers.size());
+  std::vector<LayerMarks> marks(layers.size());
   tbb::parallel_for(size_t(0), layers.size(), [&](size_t i) {
-    outcomes[i] = interpolateLayer(layers[i], keys[i], s, settings, width, height);
+    const LayerKeyframes keys = readKeyframes(k0, k1, layers[i], motions, settings);
+    outcomes[i] = interpolateLayer(layers[i], keys, s, settings, width, height);
+    outcomes[i].color.resize(3);  // the irradiance and reflectance it carried are combined already
+    LayerMarks& m = marks[i];
+    m.untracked.assign(pixels, 0);
+    for (size_t k = 0; k < 2; ++k) {
+      markUntracked(keys.primary[k], keyBeauty[k], settings, m.untracked);
+      if (silhouette[k] == nullptr) continue;
+      m.silhouetteTargets[k].assign(pixels, 0);
+      m.silhouetteLanded[k].assign(pixels, 0);
+      markSilhouetteTargets(*silhouette[k], keys.primary[k], k == 0 ? s : 1.0f - s, width, height,
+                            m.silhouetteTargets[k], m.silhouetteLanded[k]);
+    }
   });
   const std::array<std::vector<float>, 3> beauty = summedBeauty(outcomes, pixels);
 
   RerenderCauses causes(pixels);
   for (size_t i = 0; i < layers.size(); ++i) {
     markHolesAndIllumination(outcomes[i], beauty, settings, causes);
-    for (size_t k = 0; k < 2; ++k) markUntracked(keys[i].primary[k], keyBeauty[k], settings, causes);
+    for (size_t p = 0; p < pixels; ++p) causes.untracked[p] |= marks[i].untracked[p];
   }
-  for (int k = 0; k < 2; ++k)
-    if (silhouette[k] != nullptr)
-      markSilhouettes(*silhouette[k], keys, k, k == 0 ? s : 1.0f - s, width, height, causes);
+  for (size_t k = 0; k < 2; ++k) {
+    if (silhouette[k] == nullptr) continue;
+    for (size_t p = 0; p < pixels; ++p) {
+      bool landed = false;
+      for (const LayerMarks& m : marks) {
+        causes.silhouette[p] |= m.silhouetteTargets[k][p];
+        landed = landed || m.silhouetteLanded[k][p];
+      }
+      if ((*silhouette[k])[p] > 0.5f && !landed) causes.silhouette[p] = 1;
+    }
+  }
 
   InterpolationResult result;
   result.frame = FrameImage(width, height);

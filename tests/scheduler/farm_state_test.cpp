@@ -470,10 +470,11 @@ TEST(Schema, MigratesOnceAndRefusesANewerDatabase) {
   {
     Database db(file.string());
     migrate(db);
-    EXPECT_EQ(schemaVersion(db), 13);
+    EXPECT_EQ(schemaVersion(db), 14);
     EXPECT_NO_THROW(db.execute("SELECT lost FROM tasks"));  // migration 3's column
     EXPECT_NO_THROW(db.execute("SELECT attempt_id, params FROM follow_ups"));  // migration 11's table
     EXPECT_NO_THROW(db.execute("SELECT shot_id, after_id FROM shot_waits"));  // migration 13's table
+    EXPECT_NO_THROW(db.execute("SELECT released FROM chunks"));  // migration 14's column
     migrate(db);  // nothing to do the second time
     db.execute("PRAGMA user_version = 99");
     EXPECT_THROW(migrate(db), DatabaseError);
