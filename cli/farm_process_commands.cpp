@@ -63,21 +63,22 @@ struct WorkerArguments {
   std::string tokenFile;
   double cacheMaxGb = 20;
   double decodedInputsGb = static_cast<double>(farm::TaskRunner::kDefaultDecodedInputBytes) / 1e9;
-  pid_t parent = 0;  // stop when this process ends (0: never)
+  pid_t parent = 0;  // end when this process ends (0: never)
 };
 
-// The worker is asked to stop (SIGTERM) when its parent ends, even by SIGKILL: the workers
-// of a killed `pathfarm local` do not outlive it. Returns false when the parent is gone
-// already.
-bool stopWithParent(pid_t parent) {
+// The worker ends with its parent, even when the parent is SIGKILLed: the workers of a
+// killed `pathfarm local` do not outlive it. At once (SIGKILL): the scheduler they would
+// finish and deliver their tasks to ran inside that process, and a graceful stop waited a
+// minute for it. Returns false when the parent is gone already.
+bool endWithParent(pid_t parent) {
   if (parent == 0) return true;
-  if (prctl(PR_SET_PDEATHSIG, SIGTERM) != 0) spdlog::warn("cannot follow the parent process: {}", std::strerror(errno));
+  if (prctl(PR_SET_PDEATHSIG, SIGKILL) != 0) spdlog::warn("cannot follow the parent process: {}", std::strerror(errno));
   return getppid() == parent;
 }
 
 int runWorker(WorkerArguments& arguments) {
   const auto& stop = stopRequested();
-  if (!stopWithParent(arguments.parent)) {
+  if (!endWithParent(arguments.parent)) {
     spdlog::error("the process that started this worker ({}) has ended", arguments.parent);
     return kExitFailure;
   }
@@ -161,7 +162,8 @@ std::vector<Command> addFarmProcessCommands(CLI::App& app) {
                 "gives it to another worker at once (0: at once); one that ends sooner is delivered")
       ->check(CLI::Range(0.0, 1e6))
       ->capture_default_str();
-  w->add_option("--parent", worker->parent, "stop when process PID ends (`pathfarm local` passes its own)");
+  w->add_option("--parent", worker->parent,
+                "end, without finishing its tasks, when process PID ends (`pathfarm local` passes its own)");
 
   return {{s, [scheduler] { return runScheduler(*scheduler); }}, {w, [worker] { return runWorker(*worker); }}};
 }

@@ -1,6 +1,6 @@
-// A worker started with --parent stops when that process ends, even by SIGKILL: the
+// A worker started with --parent ends when that process ends, even by SIGKILL: the
 // workers of a killed `pathfarm local` do not outlive it (they used to poll a dead
-// scheduler for hours).
+// scheduler for hours, then to wait a minute to deliver their tasks to it).
 #include "farm/farm_fixture.h"
 
 namespace pathfarm::farmtest {
@@ -39,6 +39,34 @@ TEST_F(FarmTest, AWorkerStopsWhenTheProcessThatStartedItIsKilled) {
                            (dir() / "stray.log").string());
   EXPECT_EQ(stray.wait(10s), 1);
   EXPECT_TRUE(contains(readFile(dir() / "stray.log"), "the process that started this worker (999999) has ended"));
+}
+
+TEST_F(FarmTest, TheWorkersOfAKilledLocalFarmEndAtOnceMidTask) {
+  RenderSpec spec;
+  spec.name = "long";
+  spec.width = 256;
+  spec.height = 256;
+  spec.spp = 4096;  // minutes of tiles: the workers are rendering when the farm is killed
+  spec.tile = 128;
+  farm::ChildProcess local({pathfarmBinary().string(), "local", writeShotFile(spec).string(), "--workers", "2",
+                            "--threads", "1", "--out", (dir() / "out").string()},
+                           (dir() / "local.log").string());
+  const fs::path logs = dir() / "out" / "farm" / "logs";
+  const auto rendering = [&](int i) {
+    return contains(readFile(logs / ("local-" + std::to_string(i) + ".log")), "TASK_RENDER_TILE");
+  };
+  ASSERT_TRUE(waitUntil([&] { return rendering(0) && rendering(1); }, 30s)) << readFile(dir() / "local.log");
+  std::vector<pid_t> workers;  // the farm's children: its two workers
+  std::istringstream children(
+      readFile("/proc/" + std::to_string(local.pid()) + "/task/" + std::to_string(local.pid()) + "/children"));
+  for (pid_t child = 0; children >> child;) workers.push_back(child);
+  ASSERT_EQ(workers.size(), 2u);
+  local.signal(SIGKILL);
+  const auto start = Clock::now();
+  EXPECT_TRUE(waitUntil([&] { return std::none_of(workers.begin(), workers.end(), running); }, 10s));
+  EXPECT_LT(Clock::now() - start, 5s) << "the workers finished their tiles first";
+  for (const pid_t worker : workers)
+    if (running(worker)) kill(worker, SIGKILL);
 }
 
 }  // namespace
