@@ -44,7 +44,7 @@ struct SampleComponents {
   Rgb movingCaustic;        // the part of the sum of `color` carried by moving caustics
   std::vector<Features> features;
   std::vector<uint8_t> hasFeatures;
-  // Bit k: component k got light or features in this sample. A path reaches one or two
+  // Bit k: component k got light or features in this sample. A path reaches one to three
   // components of five, so the film adds, and the next sample clears, only these.
   uint32_t touched = 0;
 
