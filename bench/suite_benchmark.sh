@@ -13,7 +13,7 @@
 #                            [--pipelines "dui"] [--spp 64] [--reference-spp 1024]
 #                            [--frames 0:23] [--res 320x180] [--figures docs/figures] [--repeat 1]
 #                            [--setting small|production] [--reference-cache DIR]
-#                            [--evaluation-frames "3,4,11,12,19,20"]
+#                            [--evaluation-frames "3,4,11,12,19,20"] [--baseline-repeats 1]
 # --setting production is 640x360 at 256 spp against a 4096-spp reference (production renders
 # take hundreds of samples, where a frame's fixed costs weigh less); small, the default, is
 # 320x180 at 64 spp against 1024. Options after it change its values. References are kept
@@ -22,10 +22,13 @@
 # frames measured against the reference (the shot's default: the middle frame and the
 # next); more frames narrow the intervals, each costing a reference frame. Give them in
 # consecutive pairs, so that the temporal error has frame pairs to compare.
+# --baseline-repeats N renders plain pt N times per evaluation frame from disjoint samples
+# (ShotSpec.baseline_repeats): pt's error at the shot's spp averaged over N renders, which
+# narrows the cost at equal error where pt's fireflies dominate its interval.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=build scenes="dolly courtyard walkthrough cornell showroom creature" pipelines=dui spp=64 reference=1024
-frames=0:23 res=320x180 figures=docs/figures repeat=1 evaluation=""
+frames=0:23 res=320x180 figures=docs/figures repeat=1 evaluation="" baseline_repeats=1
 cache="${XDG_CACHE_HOME:-$HOME/.cache}/pathfarm/references"
 while (($#)); do
   case "$1" in
@@ -40,6 +43,7 @@ while (($#)); do
     --repeat) repeat=$2 ;;
     --reference-cache) cache=$2 ;;
     --evaluation-frames) evaluation=$2 ;;
+    --baseline-repeats) baseline_repeats=$2 ;;
     --setting)
       case "$2" in
         small) res=320x180 spp=64 reference=1024 ;;
@@ -66,7 +70,8 @@ for scene in $scenes; do
     cat > "$work/shot.json" <<JSON
 {"name": "$scene-$pipeline", "scene": "$PWD/scenes/$scene/scene.json",
  "frames": {"start": ${frames%:*}, "end": ${frames#*:}}, "resolution": [${res%x*}, ${res#*x}],
- "spp": $spp, "pipeline": "$pipeline", "reference_spp": $reference, "output": "$out"$extra}
+ "spp": $spp, "pipeline": "$pipeline", "reference_spp": $reference, "baseline_repeats": $baseline_repeats,
+ "output": "$out"$extra}
 JSON
     reports=()
     for ((run = 1; run <= repeat; run++)); do

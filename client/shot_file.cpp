@@ -82,6 +82,7 @@ void readEvaluationKeys(const JsonNode& root, ShotSpec& spec) {
     spec.set_reference_spp(root["reference_spp"].integer(1, 1 << 24));
   }
   if (root.has("baseline_core_seconds")) spec.set_baseline_core_seconds(root["baseline_core_seconds"].number(1e-9, 1e12));
+  if (root.has("baseline_repeats")) spec.set_baseline_repeats(root["baseline_repeats"].integer(1, kMaxBaselineRepeats));
   if (auto frames = root.optional("evaluation_frames")) {
     for (const JsonNode& frame : frames->elements()) {
       const int64_t value = frame.integer(0, 10'000'000);
@@ -117,7 +118,7 @@ void readPipelineKeys(const JsonNode& root, const Scene& scene, ShotSpec& spec) 
 std::vector<const char*> shotFileKeys() {
   std::vector<const char*> keys = {"name", "scene", "frames", "resolution", "spp", "max_depth", "pipeline", "tile",
                                    "output", "priority", "max_attempts", "decompose", "reference_spp",
-                                   "reference_cache", "evaluation_frames", "baseline_core_seconds", "required_tags",
+                                   "reference_cache", "evaluation_frames", "baseline_core_seconds", "baseline_repeats", "required_tags",
                                    "max_workers", "preview_every"};
   for (const PipelineTraits& traits : allPipelines())
     for (const std::string_view key : traits.keys)  // literals: terminated

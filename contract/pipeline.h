@@ -60,5 +60,7 @@ FilteringStages stagesOf(Pipeline pipeline);
 // The rendered frames of a filtering shot: every frame, or with interpolation every k-th
 // from the first, and the last.
 std::vector<int64_t> keyframesOf(const ShotSpec& spec);
+// How many baseline renders an evaluation frame gets (ShotSpec.baseline_repeats; 0 is 1).
+inline int baselineRepeatsOf(const ShotSpec& spec) { return spec.baseline_repeats() > 1 ? spec.baseline_repeats() : 1; }
 
 }  // namespace pathfarm::farm

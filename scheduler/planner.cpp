@@ -11,6 +11,7 @@
 #include <string>
 
 #include "postproc/poisson/window_blend.h"
+#include "renderer/integrators/frame_integrator.h"
 #include "renderer/decomposition/decomposition.h"
 
 namespace pathfarm::farm {
@@ -36,6 +37,12 @@ void checkRenderSpec(const ShotSpec& spec) {
   if (spec.tile() < 8) throw PlanError("tile: must be at least 8 pixels");
   if (spec.reference_spp() < 0)
     throw PlanError("reference_spp: must not be negative (the client chooses \"auto\" before it submits)");
+  if (spec.baseline_repeats() < 0 || spec.baseline_repeats() > kMaxBaselineRepeats)
+    throw PlanError("baseline_repeats: must be 1 to " + std::to_string(kMaxBaselineRepeats));
+  const auto baselineSamples = static_cast<uint64_t>(baselineRepeatsOf(spec)) * static_cast<uint64_t>(spec.spp());
+  if (baselineRepeatsOf(spec) > 1 && spec.first_sample() + baselineSamples > kIndependentFirstSample)
+    throw PlanError("baseline_repeats: " + std::to_string(baselineRepeatsOf(spec)) + " renders of " +
+                    std::to_string(spec.spp()) + " spp would reach the reference's samples");
   for (const int64_t frame : spec.evaluation_frames())
     if (frame < spec.frame_start() || frame > spec.frame_end())
       throw PlanError("evaluation_frames: frame " + std::to_string(frame) + " is not in the shot");
@@ -126,8 +133,12 @@ void planEvaluation(const ShotSpec& spec, bool filtering, const StageOutputs& st
   const bool measureBaseline = filtering && (spec.baseline_core_seconds() <= 0 || spec.reference_spp() > 0);
   PlannedTask evaluate{TASK_EVALUATE, {}, {}};
   for (const int64_t frame : spec.evaluation_frames()) {
-    if (measureBaseline)
-      evaluate.dependencies.push_back(planFrameRender(spec, frame, ROLE_BASELINE, spec.spp(), true, plan));
+    for (int repeat = 0; measureBaseline && repeat < baselineRepeatsOf(spec); ++repeat) {
+      const auto withRepeat = [&](TaskParams& params) { params.set_baseline_repeat(repeat); };
+      const size_t assembled = planFrameRender(spec, frame, ROLE_BASELINE, spec.spp(), true, plan, withRepeat);
+      withRepeat(plan[assembled].params);
+      evaluate.dependencies.push_back(assembled);
+    }
     if (spec.reference_spp() == 0) continue;
     evaluate.dependencies.push_back(planReference(spec, frame, plan));
     const std::vector<size_t>& outputs = stages.at(frame);

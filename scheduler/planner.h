@@ -15,7 +15,7 @@
 //         and per frame a merge task depending on all of them;
 //   noop  independent tasks that do nothing, for measuring the farm itself.
 // Every render pipeline adds the evaluation tasks the report needs: the baseline (plain pt
-// at the shot's spp) and, with reference_spp, the reference of the evaluation frames and
+// at the shot's spp, baseline_repeats times from disjoint samples) and, with reference_spp, the reference of the evaluation frames and
 // an evaluate task comparing every stage against it.
 #include <stdexcept>
 #include <vector>
@@ -28,6 +28,10 @@ namespace pathfarm::farm {
 // The most inputs an assemble task reads: a lease naming them stays far below gRPC's
 // message limit (about 100 bytes each against 8 MiB).
 inline constexpr int64_t kMaxAssemblyInputs = 4096;
+
+// The most baseline renders of one evaluation frame (ShotSpec.baseline_repeats): their
+// sample ranges stay below a reference's (kIndependentFirstSample) at any shot's spp.
+inline constexpr int kMaxBaselineRepeats = 64;
 
 struct PlannedTask {
   TaskKind kind;

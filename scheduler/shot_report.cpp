@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <initializer_list>
 #include <map>
+#include <set>
 
 #include "image/atomic_file.h"
 #include "scheduler/planner.h"
@@ -81,7 +82,7 @@ struct TaskTotals {
   double baselineSeconds = 0, interpolationRerender = 0, upsampleRerender = 0;
   double temporalProposed = 0, temporalAccepted = 0;
   int64_t interpolated = 0, upsampled = 0;
-  std::map<int64_t, bool> baselineFrames;
+  std::set<std::pair<int64_t, int>> baselineRenders;  // (frame, repeat) of each assembled baseline
   std::map<std::string, double> errors;  // the evaluation task's figures
 };
 
@@ -106,7 +107,7 @@ TaskTotals addUpTasks(ShotReport& report, const std::vector<TaskRecord>& tasks) 
       report.set_samples_traced(report.samples_traced() + metric(task, "samples"));
     if (task.params.role() == ROLE_BASELINE) {
       totals.baselineSeconds += task.coreSeconds;
-      if (task.kind == TASK_ASSEMBLE_FRAME) totals.baselineFrames[task.params.frame()] = true;
+      if (task.kind == TASK_ASSEMBLE_FRAME) totals.baselineRenders.insert({task.params.frame(), task.params.baseline_repeat()});
     }
     if (task.kind == TASK_INTERPOLATE) {
       totals.interpolationRerender += metric(task, "rerender_pixels");
@@ -147,10 +148,14 @@ void setCosts(ShotReport& report, const ShotSpec& spec, const TaskTotals& totals
   } else if (spec.baseline_core_seconds() > 0) {
     report.set_baseline_core_seconds_per_frame(spec.baseline_core_seconds());
     report.set_baseline_source("given in the shot");
-  } else if (!totals.baselineFrames.empty()) {
-    report.set_baseline_core_seconds_per_frame(totals.baselineSeconds / static_cast<double>(totals.baselineFrames.size()));
+  } else if (!totals.baselineRenders.empty()) {
+    const size_t renders = totals.baselineRenders.size();
+    std::set<int64_t> frames;
+    for (const auto& [frame, repeat] : totals.baselineRenders) frames.insert(frame);
+    report.set_baseline_core_seconds_per_frame(totals.baselineSeconds / static_cast<double>(renders));
     report.set_baseline_source("measured: pt at " + std::to_string(spec.spp()) + " spp on " +
-                               std::to_string(totals.baselineFrames.size()) + " frame(s)");
+                               std::to_string(frames.size()) + " frame(s)" +
+                               (renders > frames.size() ? ", " + std::to_string(renders) + " independent renders" : ""));
   } else {
     report.set_baseline_source("not measured yet");
   }

@@ -77,10 +77,14 @@ struct Measured {
   std::vector<uint8_t> kept;
 };
 
-// The inputs of an evaluation: the references by frame, each stage's frames by frame.
+// A stage's renders of one frame: one, or the baseline's independent renders
+// (ShotSpec.baseline_repeats) in the order of their samples.
+using Renders = std::vector<Measured>;
+
+// The inputs of an evaluation: the references by frame, each stage's renders by frame.
 struct Evaluation {
   std::map<int64_t, const FrameImage*> references;
-  std::map<std::string, std::map<int64_t, Measured>> stages;
+  std::map<std::string, std::map<int64_t, Renders>> stages;
 };
 
 Evaluation sortedInputs(const std::vector<TaskInput>& inputs) {
@@ -96,8 +100,15 @@ Evaluation sortedInputs(const std::vector<TaskInput>& inputs) {
     // A half-resolution denoise output has no full-resolution error; its upsampling has.
     if (input.image().width() != reference->second->width() || input.image().height() != reference->second->height())
       continue;
-    evaluation.stages[stage][input.params.frame()] = {&input.image(), keptPixels(stage, input.image())};
+    Renders& renders = evaluation.stages[stage][input.params.frame()];
+    const auto repeat = static_cast<size_t>(std::max(0, input.params.baseline_repeat()));
+    if (renders.size() <= repeat) renders.resize(repeat + 1, {nullptr, {}});
+    renders[repeat] = {&input.image(), keptPixels(stage, input.image())};
   }
+  for (auto& [stage, frames] : evaluation.stages)
+    for (auto& [frame, renders] : frames)
+      if (std::any_of(renders.begin(), renders.end(), [](const Measured& m) { return m.image == nullptr; }))
+        throw BadInput("the evaluation misses one of frame " + std::to_string(frame) + "'s " + stage + " renders");
   return evaluation;
 }
 
@@ -115,20 +126,44 @@ void putInterval(TaskOutput& output, const std::string& name, const std::string&
 void putRawFigures(const Evaluation& evaluation, TaskOutput& output) {
   for (const auto& [stage, frames] : evaluation.stages) {
     StageSums sum;
-    for (const auto& [frame, measured] : frames) {
-      const ImageMetrics m = compareImages(*measured.image, *evaluation.references.at(frame), kBeauty, {}, &measured.kept);
-      sum.relMse += m.relMse;
-      sum.worstTile = std::max(sum.worstTile, m.worstTileRelMse);
-      sum.worstShare += m.worstPercentShare;
-      sum.kept += static_cast<double>(std::count(measured.kept.begin(), measured.kept.end(), 1)) /
-                  static_cast<double>(measured.kept.size());
-      ++sum.frames;
-    }
+    for (const auto& [frame, renders] : frames)
+      for (const Measured& measured : renders) {
+        const ImageMetrics m =
+            compareImages(*measured.image, *evaluation.references.at(frame), kBeauty, {}, &measured.kept);
+        sum.relMse += m.relMse;
+        sum.worstTile = std::max(sum.worstTile, m.worstTileRelMse);
+        sum.worstShare += m.worstPercentShare;
+        sum.kept += static_cast<double>(std::count(measured.kept.begin(), measured.kept.end(), 1)) /
+                    static_cast<double>(measured.kept.size());
+        ++sum.frames;
+      }
     output.metrics["relmse." + stage] = sum.relMse / sum.frames;
-    output.metrics["worst_tile." + stage] = sum.worstTile;  // the worst over the frames
+    output.metrics["worst_tile." + stage] = sum.worstTile;  // the worst over the renders
     output.metrics["worst_share." + stage] = sum.worstShare / sum.frames;
     output.metrics["kept." + stage] = sum.kept / sum.frames;
   }
+}
+
+// A frame's error terms against its reference, averaged over the stage's renders of it.
+BlockedTerms frameTerms(const Renders& renders, const FrameImage& reference) {
+  std::vector<BlockedTerms> each;
+  for (const Measured& measured : renders) each.push_back(errorTerms(measured.image, reference, &measured.kept));
+  return averageOf(each);
+}
+
+// A frame's worst-tile candidates, each tile's terms averaged over the renders. Renders of
+// one stage keep the same pixels (only a final or a baseline frame has several), so their
+// tiles are the same ones.
+std::vector<BlockedTerms> frameTileTerms(const Renders& renders, const FrameImage& reference) {
+  std::vector<std::vector<BlockedTerms>> each;
+  for (const Measured& measured : renders) each.push_back(tileTerms(*measured.image, reference, &measured.kept));
+  std::vector<BlockedTerms> tiles;
+  for (size_t t = 0; t < each.front().size(); ++t) {
+    std::vector<BlockedTerms> tile;
+    for (const auto& render : each) tile.push_back(render.at(t));
+    tiles.push_back(averageOf(tile));
+  }
+  return tiles;
 }
 
 // Each stage's error against the truth (the reference's noise taken out) with its interval,
@@ -137,10 +172,10 @@ void putTruthFigures(const Evaluation& evaluation, TaskOutput& output) {
   for (const auto& [stage, frames] : evaluation.stages) {
     BlockedTerms all;
     std::vector<BlockedTerms> tiles;
-    for (const auto& [frame, measured] : frames) {
+    for (const auto& [frame, renders] : frames) {
       const FrameImage& reference = *evaluation.references.at(frame);
-      all.append(errorTerms(measured.image, reference, &measured.kept));
-      for (BlockedTerms& tile : tileTerms(*measured.image, reference, &measured.kept)) tiles.push_back(std::move(tile));
+      all.append(frameTerms(renders, reference));
+      for (BlockedTerms& tile : frameTileTerms(renders, reference)) tiles.push_back(std::move(tile));
     }
     if (!all.sums.empty()) putInterval(output, "truth", "." + stage, meanInterval(all));
     if (!tiles.empty()) putInterval(output, "worst_tile_truth", "." + stage, maxOfMeansInterval(tiles));
@@ -148,26 +183,34 @@ void putTruthFigures(const Evaluation& evaluation, TaskOutput& output) {
 }
 
 // The temporal error of the final frames and of the baseline: as the contract measures it
-// against the reference, and against the truth's change with its interval.
+// against the reference, and against the truth's change with its interval; for the
+// baseline's independent renders, the n-th render of each frame is a sequence, and the
+// figures are their sequences' average.
 void putTemporalFigures(const Evaluation& evaluation, TaskOutput& output) {
   for (const char* stage : {"final", "baseline"}) {
     const auto found = evaluation.stages.find(stage);
     if (found == evaluation.stages.end() || found->second.size() < 2) continue;
-    std::vector<FrameImage> images, referenced;
-    BlockedTerms changes;
-    const Measured* before = nullptr;
-    int64_t frameBefore = 0;
-    for (const auto& [frame, measured] : found->second) {
-      images.push_back(*measured.image);
-      referenced.push_back(*evaluation.references.at(frame));
-      if (before)
-        changes.append(temporalTerms(*before->image, *measured.image, *evaluation.references.at(frameBefore),
-                                     *evaluation.references.at(frame)));
-      before = &measured;
-      frameBefore = frame;
+    const size_t sequences = found->second.begin()->second.size();
+    double temporalRelMse = 0;
+    std::vector<BlockedTerms> changes(sequences);
+    for (size_t n = 0; n < sequences; ++n) {
+      std::vector<FrameImage> images, referenced;
+      const FrameImage* before = nullptr;
+      int64_t frameBefore = 0;
+      for (const auto& [frame, renders] : found->second) {
+        const FrameImage& image = *renders.at(n).image;
+        images.push_back(image);
+        referenced.push_back(*evaluation.references.at(frame));
+        if (before)
+          changes[n].append(temporalTerms(*before, image, *evaluation.references.at(frameBefore),
+                                          *evaluation.references.at(frame)));
+        before = &image;
+        frameBefore = frame;
+      }
+      temporalRelMse += compareSequences(images, referenced, kBeauty).temporalRelMse / static_cast<double>(sequences);
     }
-    output.metrics[std::string("temporal.") + stage] = compareSequences(images, referenced, kBeauty).temporalRelMse;
-    putInterval(output, "temporal_truth", std::string(".") + stage, meanInterval(changes));
+    output.metrics[std::string("temporal.") + stage] = temporalRelMse;
+    putInterval(output, "temporal_truth", std::string(".") + stage, meanInterval(averageOf(changes)));
   }
 }
 
@@ -177,12 +220,12 @@ void putErrorRatio(const Evaluation& evaluation, TaskOutput& output) {
   const auto finals = evaluation.stages.find("final"), baselines = evaluation.stages.find("baseline");
   if (finals == evaluation.stages.end() || baselines == evaluation.stages.end()) return;
   BlockedTerms final, baseline;
-  for (const auto& [frame, measured] : finals->second) {
+  for (const auto& [frame, renders] : finals->second) {
     const auto pt = baselines->second.find(frame);
     if (pt == baselines->second.end()) continue;
     const FrameImage& reference = *evaluation.references.at(frame);
-    final.append(errorTerms(measured.image, reference));
-    baseline.append(errorTerms(pt->second.image, reference));
+    final.append(errorTerms(renders.front().image, reference));
+    baseline.append(frameTerms(pt->second, reference));
   }
   // Both are measured over the same pixels unless one skipped a value that is not finite.
   if (!final.sums.empty() && final.counts == baseline.counts)
@@ -213,9 +256,9 @@ TaskOutput runEvaluateTask(const Lease& /*lease*/, std::vector<TaskInput>& input
     const FrameImage* baseline = nullptr;
     if (baselines != evaluation.stages.end()) {
       const auto pt = baselines->second.find(frame);
-      if (pt != baselines->second.end()) baseline = pt->second.image;
+      if (pt != baselines->second.end()) baseline = pt->second.front().image;
     }
-    rows.push_back({final->second.image, baseline, reference});
+    rows.push_back({final->second.front().image, baseline, reference});
   }
   output.chunk = rows.empty() ? std::string("no final frame among the evaluation frames\n")
                               : encodePngPreview(contactSheet(rows));

@@ -155,6 +155,10 @@ TaskOutput TaskRunner::renderTile(const Lease& lease, const ChunkFetcher& fetch,
   // A reference measures the shot's frames: it must not share their samples, or their
   // errors would partly cancel in the comparison.
   if (params.role() == ROLE_REFERENCE) settings.firstSample = kIndependentFirstSample;
+  // The n-th baseline render of a frame takes the n-th range of spp samples: together the
+  // renders are the one render a longer baseline would be, cut where its samples part.
+  if (params.role() == ROLE_BASELINE)
+    settings.firstSample += static_cast<uint32_t>(params.baseline_repeat()) * static_cast<uint32_t>(settings.spp);
   const FrameRenderer renderer(*shot->renderer, settings);
   const PixelWindow& w = params.window();
   const std::vector<uint8_t> only(params.pixel_mask().begin(), params.pixel_mask().end());

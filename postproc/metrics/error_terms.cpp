@@ -103,6 +103,25 @@ void BlockedTerms::append(const BlockedTerms& other) {
   counts.insert(counts.end(), other.counts.begin(), other.counts.end());
 }
 
+BlockedTerms averageOf(const std::vector<BlockedTerms>& measurements) {
+  if (measurements.empty()) throw std::invalid_argument("an average of no measurement");
+  BlockedTerms average = measurements.front();
+  for (size_t m = 1; m < measurements.size(); ++m) {
+    if (measurements[m].sums.size() != average.sums.size())
+      throw std::invalid_argument("an average of terms over different blocks");
+    for (size_t b = 0; b < average.sums.size(); ++b) {
+      average.sums[b] += measurements[m].sums[b];
+      average.counts[b] += measurements[m].counts[b];
+    }
+  }
+  const auto n = static_cast<double>(measurements.size());
+  for (size_t b = 0; b < average.sums.size(); ++b) {
+    average.sums[b] /= n;
+    average.counts[b] /= n;
+  }
+  return average;
+}
+
 BlockedTerms errorTerms(const FrameImage* image, const FrameImage& reference, const std::vector<uint8_t>* kept,
                         int block) {
   return errorTermsIn({0, 0, reference.width(), reference.height()}, image, reference, kept, block);

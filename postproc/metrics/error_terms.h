@@ -27,6 +27,12 @@ struct BlockedTerms {
   void append(const BlockedTerms& other);
 };
 
+// The terms of independent measurements of the same blocks (several renders of one frame),
+// averaged block by block: each block then holds the mean of its measurements, and its
+// spread between blocks is what that mean's is. Throws std::invalid_argument for no
+// measurement or for terms over different numbers of blocks.
+BlockedTerms averageOf(const std::vector<BlockedTerms>& measurements);
+
 // The beauty's terms of `image` against `reference`, over the pixels whose `kept` byte is
 // non-zero (every pixel without `kept`), in blocks of `block` pixels; blocks with no pixel
 // kept are left out, and so are values that are not finite (a damaged pixel is counted

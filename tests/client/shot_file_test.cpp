@@ -103,7 +103,7 @@ TEST(ShotFile, AShotTooLargeToPlanIsReadWithoutPlanningIt) {
 
 TEST(ShotFile, ReadsTheFilteringAndEvaluationKeys) {
   const auto file = writeShot("filtering", R"({"scene": "cornell/scene.json", "pipeline": "di", "keyframe_interval": 3,
-    "reference_spp": 512, "evaluation_frames": [2, 7], "baseline_core_seconds": 4.5})");
+    "reference_spp": 512, "evaluation_frames": [2, 7], "baseline_core_seconds": 4.5, "baseline_repeats": 4})");
   const ShotSpec spec = loadShotFile(file);
   std::filesystem::remove(file);
   EXPECT_EQ(spec.keyframe_interval(), 3);
@@ -112,6 +112,15 @@ TEST(ShotFile, ReadsTheFilteringAndEvaluationKeys) {
   ASSERT_EQ(spec.evaluation_frames_size(), 2);
   EXPECT_EQ(spec.evaluation_frames(1), 7);
   EXPECT_EQ(spec.baseline_core_seconds(), 4.5);
+  EXPECT_EQ(spec.baseline_repeats(), 4);
+  const auto tooMany = writeShot("repeats", R"({"scene": "cornell/scene.json", "baseline_repeats": 65})");
+  try {
+    loadShotFile(tooMany);
+    ADD_FAILURE() << "65 baseline renders a frame were accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("baseline_repeats"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(tooMany);
 
   const auto du = writeShot("du", R"({"scene": "cornell/scene.json", "pipeline": "du", "keyframe_interval": 3})");
   EXPECT_EQ(loadShotFile(du).keyframe_interval(), 1);  // nothing is interpolated

@@ -4,6 +4,7 @@
 #include <map>
 #include <set>
 
+#include "renderer/integrators/frame_integrator.h"
 #include "scheduler/planner.h"
 
 namespace pathfarm::farm {
@@ -322,6 +323,41 @@ TEST(Planner, EvaluationAddsBaselineReferenceAndOneEvaluateTask) {
   spec.clear_evaluation_frames();
   spec.add_evaluation_frames(25);  // not in the shot
   EXPECT_THROW(planShot(spec), PlanError);
+}
+
+TEST(Planner, BaselineRepeatsRenderEachEvaluationFrameFromDisjointSampleRanges) {
+  ShotSpec spec = filteringSpec("d", 1);
+  spec.add_evaluation_frames(12);
+  spec.add_evaluation_frames(13);
+  spec.set_reference_spp(256);
+  spec.set_baseline_repeats(3);
+  const auto plan = planShot(spec);
+  const PlannedTask& evaluate = plan.back();
+  ASSERT_EQ(evaluate.kind, TASK_EVALUATE);
+  // Every (frame, repeat) assembled once, from tiles of that repeat, and read by the evaluation.
+  std::set<std::pair<int64_t, int>> assembled, evaluated;
+  for (const PlannedTask& task : plan) {
+    if (task.params.role() != ROLE_BASELINE || task.kind != TASK_ASSEMBLE_FRAME) continue;
+    EXPECT_TRUE(assembled.insert({task.params.frame(), task.params.baseline_repeat()}).second);
+    for (const size_t d : task.dependencies) {
+      EXPECT_EQ(plan[d].params.baseline_repeat(), task.params.baseline_repeat());
+      EXPECT_EQ(plan[d].params.spp(), 16);
+    }
+  }
+  for (const size_t d : evaluate.dependencies)
+    if (plan[d].params.role() == ROLE_BASELINE) evaluated.insert({plan[d].params.frame(), plan[d].params.baseline_repeat()});
+  const std::set<std::pair<int64_t, int>> expected = {{12, 0}, {12, 1}, {12, 2}, {13, 0}, {13, 1}, {13, 2}};
+  EXPECT_EQ(assembled, expected);
+  EXPECT_EQ(evaluated, expected);
+
+  spec.set_baseline_repeats(kMaxBaselineRepeats + 1);
+  EXPECT_THROW(planShot(spec), PlanError);
+  // Renders whose samples would run into the reference's are refused.
+  spec.set_baseline_repeats(2);
+  spec.set_first_sample(kIndependentFirstSample - 20);
+  EXPECT_THROW(planShot(spec), PlanError);
+  spec.set_first_sample(kIndependentFirstSample - 32);
+  EXPECT_NO_THROW(planShot(spec));
 }
 
 TEST(Planner, AKnownReferenceIsHandedOnAndOnlyTheOtherFramesReferenceIsRendered) {

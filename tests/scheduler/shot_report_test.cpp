@@ -112,6 +112,20 @@ TEST(ShotReport, CostsRatesAndErrorsFollowFromTheTasks) {
   EXPECT_EQ(md.find("Pipeline `dui` ("), std::string::npos);
 }
 
+TEST(ShotReport, PtsCostPerFrameIsPerRenderWhenTheBaselineIsRenderedSeveralTimes) {
+  std::vector<TaskRecord> tasks;
+  tasks.push_back(taskRecord(TASK_RENDER_TILE, ROLE_KEYFRAME, 0, 8.0));
+  for (int repeat = 0; repeat < 3; ++repeat) {
+    tasks.push_back(taskRecord(TASK_RENDER_TILE, ROLE_BASELINE, 1, 1.5 + repeat));
+    tasks.back().params.set_baseline_repeat(repeat);
+    tasks.push_back(taskRecord(TASK_ASSEMBLE_FRAME, ROLE_BASELINE, 1, 0.5));
+    tasks.back().params.set_baseline_repeat(repeat);
+  }
+  const ShotReport report = buildReport(ShotSummary(), spec(), tasks);
+  EXPECT_DOUBLE_EQ(report.baseline_core_seconds_per_frame(), (1.5 + 2.5 + 3.5 + 3 * 0.5) / 3);
+  EXPECT_EQ(report.baseline_source(), "measured: pt at 8 spp on 1 frame(s), 3 independent renders");
+}
+
 TEST(ShotReport, AnUpsampledKeyframesReRenderIsSplitByCause) {
   // Two keyframes of 10x10 pixels: 30 re-rendered in all, 20 on edges of directly seen
   // light and 6 on moving caustics (the rest flagged by the upsampler itself).
