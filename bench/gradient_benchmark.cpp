@@ -36,6 +36,7 @@
 #include "bench/command_line.h"
 #include "bench/bench_support.h"
 #include "bench/median.h"
+#include "bench/truth_figure.h"
 #include "image/exr_io.h"
 #include "postproc/metrics/relmse.h"
 #include "postproc/poisson/poisson_system.h"
@@ -213,6 +214,7 @@ struct Outcome {
   int spp = 0;
   double costRatio = 1;  // seconds per sample per pixel, relative to PT
   double renderSeconds = 0, reconstructSeconds = 0, relMse = 0, temporalError = 0;
+  bench::TruthFigure truth;  // relMSE with the reference's noise taken out
 };
 
 using Sequence = std::vector<FrameImage>;
@@ -371,17 +373,20 @@ int equalTime(const std::string& scenePath, const std::string& frames, int width
     for (size_t f = 0; f < result.size(); ++f)
       o.relMse += relMse(result[f], truth[f]) / static_cast<double>(result.size());
     o.temporalError = temporalError(result, truth);
+    o.truth = bench::truthFigureOf(result, truth);
     outcomes.push_back(o);
   }
 
   std::printf("\n%s, frames %ld..%ld at %dx%d, equal render time with PT at %d spp\n\n", scenePath.c_str(), first, last,
               width, height, ptSpp);
-  std::printf("| method | cost per sample (PT = 1) | spp | render s | reconstruction s | relMSE | temporal error |\n");
-  std::printf("| --- | --- | --- | --- | --- | --- | --- |\n");
+  std::printf("the reference's own expected relMSE (its noise): %.4f\n\n", outcomes.empty() ? 0.0 : outcomes[0].truth.referenceNoise);
+  std::printf("| method | cost per sample (PT = 1) | spp | render s | reconstruction s | relMSE | against the truth (95 %%) | "
+              "temporal error |\n");
+  std::printf("| --- | --- | --- | --- | --- | --- | --- | --- |\n");
   for (size_t i = 0; i < methods.size(); ++i) {
     const Outcome& o = outcomes[i];
-    std::printf("| %s | %.2f | %d | %.1f | %.1f | %.4f | %.4f |\n", methods[i].name.c_str(), o.costRatio, o.spp,
-                o.renderSeconds, o.reconstructSeconds, o.relMse, o.temporalError);
+    std::printf("| %s | %.2f | %d | %.1f | %.1f | %.4f | %s | %.4f |\n", methods[i].name.c_str(), o.costRatio, o.spp,
+                o.renderSeconds, o.reconstructSeconds, o.relMse, o.truth.text().c_str(), o.temporalError);
   }
   if (!svgFile.empty()) {
     char caption[200];

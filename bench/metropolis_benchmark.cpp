@@ -18,6 +18,7 @@
 
 #include "bench/command_line.h"
 #include "bench/bench_support.h"
+#include "bench/truth_figure.h"
 #include "image/exr_io.h"
 #include "postproc/metrics/image_metrics.h"
 #include "renderer/metropolis/metropolis_renderer.h"
@@ -43,6 +44,7 @@ struct Outcome {
   double budget = 0;  // samples or mutations per pixel
   double seconds = 0;
   SequenceMetrics metrics;
+  bench::TruthFigure truth;  // relMSE with the reference's noise taken out
   std::vector<double> brightness;  // per frame, mean luminance over the reference's
   double brightnessVariation = 0;
 };
@@ -211,6 +213,7 @@ int run(const std::string& scenePath, const std::string& frameRange, int width, 
       o.seconds = bench::seconds([&] { images = renderWith(scene, m.integrator, o.budget, frames, settings); });
     }
     o.metrics = compareSequences(images, reference, {"R", "G", "B"});
+    o.truth = bench::truthFigureOf(images, reference);
     double squaredChange = 0;
     for (size_t f = 0; f < images.size(); ++f) {
       o.brightness.push_back(meanLuminance(images[f]) / std::max(1e-12, meanLuminance(reference[f])));
@@ -221,12 +224,14 @@ int run(const std::string& scenePath, const std::string& frameRange, int width, 
     std::fprintf(stderr, "%s done: %.1f per pixel, %.1f s\n", m.name.c_str(), o.budget, o.seconds);
   }
 
-  std::printf("\n| method | per pixel (spp or mutations) | s per frame | relMSE | temporal error | brightness variation |\n"
-              "| --- | ---: | ---: | ---: | ---: | ---: |\n");
+  std::printf("\nthe reference's own expected relMSE (its noise): %.4f\n", outcomes.empty() ? 0.0 : outcomes[0].truth.referenceNoise);
+  std::printf("\n| method | per pixel (spp or mutations) | s per frame | relMSE | against the truth (95 %%) | temporal error | "
+              "brightness variation |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
   for (size_t i = 0; i < methods.size(); ++i) {
     const Outcome& o = outcomes[i];
-    std::printf("| %s | %.1f | %.2f | %.4f | %.4f | %.4f |\n", methods[i].name.c_str(), o.budget,
-                o.seconds / frames.count(), o.metrics.meanRelMse, o.metrics.temporalRelMse, o.brightnessVariation);
+    std::printf("| %s | %.1f | %.2f | %.4f | %s | %.4f | %.4f |\n", methods[i].name.c_str(), o.budget,
+                o.seconds / frames.count(), o.metrics.meanRelMse, o.truth.text().c_str(), o.metrics.temporalRelMse,
+                o.brightnessVariation);
   }
   if (!svgFile.empty())
     writeSvg(svgFile, methods, outcomes, frames,
