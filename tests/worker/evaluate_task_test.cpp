@@ -26,22 +26,34 @@ TaskInput evaluationInput(TaskKind kind, TaskRole role, int64_t frame, FrameImag
   return input;
 }
 
-// The verdict on a dui shot that costs what plain pt costs per frame and whose final
-// frames have `errorOverPt` times pt's expected squared error, on evaluation frames 1 and
-// 2 against a reference of 1024 samples (drawn from `seed`).
-std::string verdictAt(double errorOverPt, uint64_t seed) {
+// The evaluation's inputs on frames 1 and 2: a reference of 1024 samples, final frames
+// with `errorOverPt` times pt's expected squared error, and `baselineRenders` independent
+// renders of pt per frame (each input's noise drawn from `seed`).
+std::vector<TaskInput> evaluationInputs(double errorOverPt, int baselineRenders, uint64_t seed) {
   const FrameImage truth = test_support::smoothTruth(kEvaluatedSize, kEvaluatedSize);
   std::vector<TaskInput> inputs;
   for (int64_t frame = 1; frame <= 2; ++frame) {
     const uint64_t base = 8 * seed + 4 * static_cast<uint64_t>(frame);
     inputs.push_back(evaluationInput(TASK_ASSEMBLE_FRAME, ROLE_REFERENCE, frame,
                                      test_support::noisyCopy(truth, 0.4 / 32, base, true)));
-    inputs.push_back(evaluationInput(TASK_ASSEMBLE_FRAME, ROLE_BASELINE, frame,
-                                     test_support::noisyCopy(truth, kPtSigma, base + 1, true)));
     inputs.push_back(
         evaluationInput(TASK_COMPOSITE, ROLE_UNSPECIFIED, frame,
                         test_support::noisyCopy(truth, kPtSigma * std::sqrt(errorOverPt), base + 2, false)));
+    for (int repeat = baselineRenders - 1; repeat >= 0; --repeat) {  // in any order
+      const uint64_t noise = base + 1 + (static_cast<uint64_t>(repeat) << 32);
+      TaskInput baseline = evaluationInput(TASK_ASSEMBLE_FRAME, ROLE_BASELINE, frame,
+                                           test_support::noisyCopy(truth, kPtSigma, noise, true));
+      baseline.params.set_baseline_repeat(repeat);
+      inputs.push_back(std::move(baseline));
+    }
   }
+  return inputs;
+}
+
+// The verdict on a dui shot that costs what plain pt costs per frame and whose final
+// frames have `errorOverPt` times pt's expected squared error (evaluationInputs).
+std::string verdictAt(double errorOverPt, uint64_t seed) {
+  std::vector<TaskInput> inputs = evaluationInputs(errorOverPt, 1, seed);
   ShotSpec spec;
   spec.set_pipeline(PIPELINE_DUI);
   spec.set_frame_start(0);
@@ -78,28 +90,6 @@ TEST(EvaluateTask, APipelineAThirdBetterThanPtIsSaidToPayOff) {
   EXPECT_GE(said, 18);
 }
 
-// The evaluation's figures for final frames with half pt's expected squared error, on
-// frames 1 and 2 against a 1024-sample reference, with `repeats` independent baseline
-// renders of each frame.
-std::map<std::string, double> figuresWithBaselineRenders(int repeats, uint64_t seed) {
-  const FrameImage truth = test_support::smoothTruth(kEvaluatedSize, kEvaluatedSize);
-  std::vector<TaskInput> inputs;
-  for (int64_t frame = 1; frame <= 2; ++frame) {
-    const uint64_t base = 100 * seed + 50 * static_cast<uint64_t>(frame);
-    inputs.push_back(evaluationInput(TASK_ASSEMBLE_FRAME, ROLE_REFERENCE, frame,
-                                     test_support::noisyCopy(truth, 0.4 / 32, base, true)));
-    inputs.push_back(evaluationInput(TASK_COMPOSITE, ROLE_UNSPECIFIED, frame,
-                                     test_support::noisyCopy(truth, kPtSigma * std::sqrt(0.5), base + 1, false)));
-    for (int repeat = repeats - 1; repeat >= 0; --repeat) {  // in any order
-      TaskInput baseline = evaluationInput(TASK_ASSEMBLE_FRAME, ROLE_BASELINE, frame,
-                                           test_support::noisyCopy(truth, kPtSigma, base + 2 + repeat, true));
-      baseline.params.set_baseline_repeat(repeat);
-      inputs.push_back(std::move(baseline));
-    }
-  }
-  return runEvaluateTask(Lease(), inputs).metrics;
-}
-
 TEST(EvaluateTask, IndependentBaselineRendersNarrowTheErrorRatioWhichStillCoversTheTruth) {
   constexpr int kTrials = 40;
   int covered = 0;
@@ -108,7 +98,8 @@ TEST(EvaluateTask, IndependentBaselineRendersNarrowTheErrorRatioWhichStillCovers
     return figures.at("error_ratio_high") - figures.at("error_ratio_low");
   };
   for (uint64_t seed = 0; seed < kTrials; ++seed) {
-    const auto one = figuresWithBaselineRenders(1, seed), four = figuresWithBaselineRenders(4, seed);
+    std::vector<TaskInput> oneRender = evaluationInputs(0.5, 1, seed), fourRenders = evaluationInputs(0.5, 4, seed);
+    const auto one = runEvaluateTask(Lease(), oneRender).metrics, four = runEvaluateTask(Lease(), fourRenders).metrics;
     if (four.at("error_ratio_low") <= 0.5 && 0.5 <= four.at("error_ratio_high")) ++covered;
     narrowing.push_back(width(four) / width(one));
   }
