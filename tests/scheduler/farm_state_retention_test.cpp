@@ -87,6 +87,18 @@ bool holdsExactly(std::vector<std::string> list, const std::vector<std::string>&
   return list == expected;
 }
 
+TEST_F(FarmStateTest, ChunksReleasedBeforeARestartAreHandedOutAgainForTheirFilesToGo) {
+  const int64_t worker = state_->registerWorker("w1", 1, now_);
+  submitFrame();
+  ASSERT_TRUE(complete(leaseFor(worker).attempt_id(), storedChunk("left"), now_).accepted());
+  ASSERT_TRUE(complete(leaseFor(worker).attempt_id(), storedChunk("right"), now_).accepted());
+  ASSERT_TRUE(complete(leaseFor(worker).attempt_id(), storedChunk("frame"), now_).accepted());
+  // The scheduler is killed after the release is committed, before it removes the files.
+  open();
+  EXPECT_TRUE(holdsExactly(state_->takeReleasedChunks(), {"left", "right"}));
+  EXPECT_TRUE(state_->takeReleasedChunks().empty());
+}
+
 TEST_F(FarmStateTest, TilesAreReleasedOnceTheirFrameIsAssembledAndMadeAgainOnlyForAReader) {
   const int64_t w1 = state_->registerWorker("w1", 1, now_), w2 = state_->registerWorker("w2", 1, now_);
   const int64_t first = submitFrame();
