@@ -320,11 +320,12 @@ auto readFile(const std::filesystem::path& file, const std::string& label, Read 
 
 namespace {
 
-// Every channel and attribute of the reader's frame.
-FrameImage wholeFrame(Imf::InputFile& in) {
+// The channels `keep` accepts (every one without it) and every attribute of the reader's frame.
+FrameImage framePart(Imf::InputFile& in, const ChannelFilter& keep) {
   const Imath::Box2i window = in.header().dataWindow();
   FrameImage frame(window.max.x - window.min.x + 1, window.max.y - window.min.y + 1);
-  const std::vector<std::string> names = channelNames(in.header());
+  std::vector<std::string> names = channelNames(in.header());
+  if (keep) std::erase_if(names, [&](const std::string& name) { return !keep(name); });
   std::vector<float*> planes;
   for (const std::string& name : names) planes.push_back(frame.addChannel(name).data());
   frame.attributes() = stringAttributes(in.header());
@@ -335,10 +336,12 @@ FrameImage wholeFrame(Imf::InputFile& in) {
 
 }  // namespace
 
-FrameImage decodeExr(const std::string& bytes, const std::string& label) { return readBytes(bytes, label, wholeFrame); }
+FrameImage decodeExr(const std::string& bytes, const std::string& label) {
+  return readBytes(bytes, label, [](Imf::InputFile& in) { return framePart(in, {}); });
+}
 
-FrameImage decodeExrFile(const std::filesystem::path& file, const std::string& label) {
-  return readFile(file, label, wholeFrame);
+FrameImage decodeExrFile(const std::filesystem::path& file, const std::string& label, const ChannelFilter& keep) {
+  return readFile(file, label, [&](Imf::InputFile& in) { return framePart(in, keep); });
 }
 
 std::pair<int, int> readExrStrips(const std::filesystem::path& file, const std::string& label,

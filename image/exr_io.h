@@ -30,9 +30,13 @@ enum class ExrCompression { Small, Fast };
 std::string encodeExr(const FrameImage& frame, ExrCompression compression = ExrCompression::Small);
 // `label` names the bytes' origin (a file, a chunk) in error messages.
 FrameImage decodeExr(const std::string& bytes, const std::string& label);
+// Whether a channel, by its name, is wanted.
+using ChannelFilter = std::function<bool(const std::string&)>;
 // decodeExr of a file's bytes, read in place: the file is never held in memory besides
-// its frame (a 1080p keyframe chunk is about half a gigabyte).
-FrameImage decodeExrFile(const std::filesystem::path& file, const std::string& label);
+// its frame (a 1080p keyframe chunk is about half a gigabyte). With `keep`, only the
+// channels it accepts are decoded (every attribute is), so a task that reads one layer of
+// a 150-channel frame holds that layer alone.
+FrameImage decodeExrFile(const std::filesystem::path& file, const std::string& label, const ChannelFilter& keep = {});
 
 
 // What checking a chunk finds without holding it: its size, and its first non-finite

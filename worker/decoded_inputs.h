@@ -28,6 +28,8 @@ class DecodedInputs {
 
   uint64_t bytes() const;
   size_t size() const;
+  // Whether a frame whose planes take `planeBytes` is small enough to be kept at all.
+  bool couldKeep(uint64_t planeBytes) const { return planeBytes <= maxBytes_; }
 
   // The memory keeping a frame takes: its planes and their bookkeeping.
   static uint64_t frameBytes(const FrameImage& frame);

@@ -17,6 +17,18 @@ const FrameImage& TaskInput::image() const {
   return *frame;
 }
 
+FrameImage TaskInput::part(const ChannelFilter& keep) const {
+  return !frame && decodePart ? decodePart(keep) : channelsOf(image(), keep);
+}
+
+FrameImage channelsOf(const FrameImage& frame, const ChannelFilter& keep) {
+  FrameImage kept(frame.width(), frame.height());
+  for (const std::string& name : frame.channelNames())
+    if (keep(name)) kept.addChannel(name) = frame.channel(name);
+  kept.attributes() = frame.attributes();
+  return kept;
+}
+
 FrameImage TaskInput::take() {
   image();
   const std::shared_ptr<FrameImage> held = std::move(frame);

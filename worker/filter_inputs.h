@@ -20,6 +20,9 @@ TaskInput& inputOf(std::vector<TaskInput>& inputs, TaskKind kind, int64_t frame)
 const TaskInput& filteredKeyframe(const std::vector<TaskInput>& inputs, int64_t frame);
 TaskInput& filteredKeyframe(std::vector<TaskInput>& inputs, int64_t frame);
 
+// The channels of `frame` that `keep` accepts, with its attributes.
+FrameImage channelsOf(const FrameImage& frame, const ChannelFilter& keep);
+
 // A motion field stored as `<name>.X`, `<name>.Y`, `<name>.valid`.
 void writeMotionField(FrameImage& image, const std::string& name, const MotionField& field);
 MotionField readMotionField(const FrameImage& image, const std::string& name);

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "image/exr_io.h"
 #include "image/frame_image.h"
 #include "pathfarm/worker_service.pb.h"
 #include "worker/scratch_file.h"
@@ -26,8 +27,16 @@ struct TaskInput {
   mutable std::shared_ptr<FrameImage> frame;  // shared: change only what take() gives
   // Makes `frame` when it is first asked for; empty when `frame` was given.
   mutable std::function<std::shared_ptr<FrameImage>()> decode = {};
+  // Makes the channels a filter accepts (with every attribute); empty: they are taken
+  // from image().
+  std::function<FrameImage(const ChannelFilter&)> decodePart = {};
 
   const FrameImage& image() const;
+  // The channels `keep` accepts, with the frame's attributes: copied from the frame when it
+  // is decoded already, else decoded alone (decodePart), so that a task reading one
+  // component of a keyframe too large for the worker's decoded inputs holds that component
+  // alone. The input itself is left as it was.
+  FrameImage part(const ChannelFilter& keep) const;
   // The image, to change: moved out when this input alone holds it (a frame too large for
   // the decoded inputs' budget: a 1080p keyframe of 150 channels is 1.2 GB, and copying it
   // would double a filter task's memory), else copied. The input is empty afterwards.

@@ -15,17 +15,20 @@
 namespace pathfarm::farm {
 namespace {
 
-// Each component's motion between the keyframes, and the frame-wide one (""): forward
-// from k0's motion vectors, backward from k1's, which reach each other (planner.h).
+// A component's motion between the keyframes (the frame-wide one for ""): forward from
+// k0's motion vectors, backward from k1's, which reach each other (planner.h).
+ComponentMotion keyframeMotion(const FrameImage& k0, const FrameImage& k1, const std::string& layer) {
+  const std::string prefix = layer.empty() ? "" : layer + ".";
+  return ComponentMotion(motionTowards(k0, NeighbourFrame::Next, prefix, "keyframe 0"),
+                         motionTowards(k1, NeighbourFrame::Previous, prefix, "keyframe 1"));
+}
+
+// Every component's motion between the keyframes, and the frame-wide one ("").
 ComponentMotions keyframeMotions(const FrameImage& k0, const FrameImage& k1) {
   std::vector<std::string> layers = decompositionComponents(k0);
   layers.emplace_back();
   ComponentMotions motions;
-  for (const std::string& layer : layers) {
-    const std::string prefix = layer.empty() ? "" : layer + ".";
-    motions.components[layer] = ComponentMotion(motionTowards(k0, NeighbourFrame::Next, prefix, "keyframe 0"),
-                                                motionTowards(k1, NeighbourFrame::Previous, prefix, "keyframe 1"));
-  }
+  for (const std::string& layer : layers) motions.components[layer] = keyframeMotion(k0, k1, layer);
   return motions;
 }
 
@@ -44,14 +47,16 @@ bool componentIsEmpty(const FrameImage& frame, const std::string& component) {
 TaskOutput runFlowTask(const Lease& lease, std::vector<TaskInput>& inputs) {
   const TaskParams& params = lease.params();
   const std::string& component = params.component();
-  const FrameImage& k0 = filteredKeyframe(inputs, params.keyframe_before()).image();
-  const FrameImage& k1 = filteredKeyframe(inputs, params.keyframe_after()).image();
-  const ComponentMotions all = keyframeMotions(k0, k1);
-  const auto primary = all.components.find(component);
-  if (primary == all.components.end()) throw BadInput("the keyframes have no component " + component);
+  // The component's channels alone: a 1080p keyframe's others are gigabytes.
+  const auto ofComponent = [&](const std::string& name) { return name.rfind(component + ".", 0) == 0; };
+  const FrameImage k0 = filteredKeyframe(inputs, params.keyframe_before()).part(ofComponent);
+  const FrameImage k1 = filteredKeyframe(inputs, params.keyframe_after()).part(ofComponent);
+  const std::vector<std::string> components = decompositionComponents(k0);
+  if (component.empty() || std::find(components.begin(), components.end(), component) == components.end())
+    throw BadInput("the keyframes have no component " + component);
 
   ComponentMotions motions;
-  motions.components[component] = primary->second;
+  motions.components[component] = keyframeMotion(k0, k1, component);
   FrameImage chunk(k0.width(), k0.height());
   // A component both keyframes lack has nothing to track: its (absent) flow is invalid
   // everywhere and interpolation falls back to the primary motion.

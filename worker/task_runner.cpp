@@ -16,6 +16,7 @@
 #include "worker/chunk_channels.h"
 #include "renderer/setup/integrator_factory.h"
 #include "worker/failure_class.h"
+#include "worker/filter_inputs.h"
 #include "worker/metropolis_tasks.h"
 #include "worker/scene_files.h"
 
@@ -256,8 +257,10 @@ std::vector<TaskInput> TaskRunner::inputsOf(const Lease& lease, const ChunkFetch
       input.frame = std::make_shared<FrameImage>();
     } else if (files) {
       // Fetched now, so that a task whose inputs cannot be had fails before its work.
-      input.decode = [this, ref, label, file = files(ref)] {
-        return decodedInput(ref, [&] { return decodeExrFile(file, label); });
+      const std::filesystem::path file = files(ref);
+      input.decode = [this, ref, label, file] { return decodedInput(ref, [&] { return decodeExrFile(file, label); }); };
+      input.decodePart = [this, ref, label, file, whole = input.decode](const ChannelFilter& keep) {
+        return decodedPart(ref, label, file, whole, keep);
       };
     } else {
       input.decode = [this, ref, label, fetch] { return decodedInput(ref, [&] { return decodeExr(fetch(ref), label); }); };
@@ -277,6 +280,25 @@ std::shared_ptr<FrameImage> TaskRunner::decodedInput(const ChunkRef& ref, const 
     throw BadInput("input chunk " + ref.sha256() + " holds a non-finite value (" + bad + ")");
   decoded_.keep(ref.sha256(), frame);
   return frame;
+}
+
+FrameImage TaskRunner::decodedPart(const ChunkRef& ref, const std::string& label, const std::filesystem::path& file,
+                                    const std::function<std::shared_ptr<FrameImage>()>& whole,
+                                    const ChannelFilter& keep) {
+  // A frame the decoded inputs would keep is decoded whole, once, for the tasks after this
+  // one too; a larger one (a 1080p keyframe) would be decoded again by each task anyway.
+  if (!decoded_.find(ref.sha256())) {
+    const ExrHeader header = readExrHeader(file, label);
+    const uint64_t planeBytes = static_cast<uint64_t>(header.width) * static_cast<uint64_t>(header.height) *
+                                header.channels.size() * sizeof(float);
+    if (!decoded_.couldKeep(planeBytes)) {
+      FrameImage part = decodeExrFile(file, label, keep);
+      if (const std::string bad = part.firstNonFinite(); !bad.empty())
+        throw BadInput("input chunk " + ref.sha256() + " holds a non-finite value (" + bad + ")");
+      return part;
+    }
+  }
+  return channelsOf(*whole(), keep);
 }
 
 TaskOutput TaskRunner::runMetropolis(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,

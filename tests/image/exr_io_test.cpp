@@ -250,6 +250,29 @@ TEST(ExrIo, AFileDecodedInPlaceIsItsBytesDecoded) {
   EXPECT_THROW(decodeExrFile(temporaryFile("absent.exr"), "chunk"), ExrError);
 }
 
+// With a channel filter, decodeExrFile gives the channels it accepts, as decoding the
+// whole file has them, and every attribute; nothing else.
+TEST(ExrIo, AFileDecodedForSomeChannelsHasThoseAlone) {
+  const std::filesystem::path file = temporaryFile("some_channels.exr");
+  const FrameImage whole = sampleFrame();
+  writeExr(file, whole);
+  const auto ofDiffuse = [](const std::string& name) { return name.rfind("diffuse_direct.", 0) == 0; };
+  const FrameImage part = decodeExrFile(file, "chunk", ofDiffuse);
+  std::vector<std::string> expected;
+  for (const std::string& name : whole.channelNames())
+    if (ofDiffuse(name)) expected.push_back(name);
+  ASSERT_FALSE(expected.empty());
+  ASSERT_LT(expected.size(), whole.channelNames().size());
+  std::vector<std::string> names = part.channelNames();
+  std::sort(names.begin(), names.end());
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(names, expected);
+  for (const std::string& name : names) EXPECT_EQ(part.channel(name), whole.channel(name)) << name;
+  EXPECT_EQ(part.attributes(), whole.attributes());
+  EXPECT_EQ(part.width(), whole.width());
+  EXPECT_EQ(part.height(), whole.height());
+}
+
 // The scan walks the headers before OpenEXR does, as decodeExr does: a damaged size is
 // refused before anything is allocated.
 TEST(ExrIo, AScannedFileClaimingMorePixelsThanItsBytesCanHoldIsRefused) {

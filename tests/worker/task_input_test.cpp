@@ -49,5 +49,32 @@ TEST(TaskInput, AnInputIsDecodedWhenFirstReadAndOnlyOnce) {
   EXPECT_EQ(takenFirst.take().channel("R")[0], 6.0f) << "taking decodes too";
 }
 
+// Part of an input: decoded alone while the whole frame is not, copied from it once it is.
+TEST(TaskInput, APartIsDecodedAloneUnlessTheWholeFrameIsDecodedAlready) {
+  const auto onlyG = [](const std::string& name) { return name == "G"; };
+  int wholeDecodes = 0, partDecodes = 0;
+  TaskInput input{TASK_ASSEMBLE_FRAME, {}, nullptr, [&] {
+                    ++wholeDecodes;
+                    auto frame = frameOf(1.0f);
+                    frame->addChannel("G").assign(12, 4.0f);
+                    return frame;
+                  }};
+  input.decodePart = [&](const ChannelFilter&) {
+    ++partDecodes;
+    FrameImage part(4, 3);
+    part.addChannel("G").assign(12, 4.0f);
+    return part;
+  };
+  EXPECT_EQ(input.part(onlyG).channelNames(), std::vector<std::string>{"G"});
+  EXPECT_EQ(partDecodes, 1);
+  EXPECT_EQ(wholeDecodes, 0);
+  input.image();
+  const FrameImage copied = input.part(onlyG);
+  EXPECT_EQ(partDecodes, 1);
+  EXPECT_EQ(copied.channelNames(), std::vector<std::string>{"G"});
+  EXPECT_EQ(copied.channel("G")[11], 4.0f);
+  EXPECT_TRUE(input.image().hasChannel("R")) << "the input keeps its frame";
+}
+
 }  // namespace
 }  // namespace pathfarm::farm
