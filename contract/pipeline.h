@@ -60,6 +60,9 @@ FilteringStages stagesOf(Pipeline pipeline);
 // The rendered frames of a filtering shot: every frame, or with interpolation every k-th
 // from the first, and the last.
 std::vector<int64_t> keyframesOf(const ShotSpec& spec);
+// The most baseline renders of one evaluation frame (ShotSpec.baseline_repeats): the
+// evaluate task holds them all (a 1080p render is about 50 MB).
+inline constexpr int kMaxBaselineRepeats = 16;
 // How many baseline renders an evaluation frame gets (ShotSpec.baseline_repeats; 0 is 1).
 inline int baselineRepeatsOf(const ShotSpec& spec) { return spec.baseline_repeats() > 1 ? spec.baseline_repeats() : 1; }
 

@@ -37,12 +37,6 @@ FarmState::FarmState(const std::string& databaseFile, FarmSettings settings, dou
       .bind(3, int64_t{kRunning})
       .run();
   transaction.commit();
-  // Chunks released before the restart: a scheduler killed between committing a release
-  // and removing the files left them in the store. The checker removes them with the rest
-  // (a file already gone is no error).
-  Statement& released = db_.query("SELECT sha256 FROM chunks WHERE released = 1");
-  while (released.step()) releasedChunks_.push_back(released.text(0));
-  released.reset();
 }
 
 int64_t FarmState::registerWorker(const std::string& name, int slots, double now,

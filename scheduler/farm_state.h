@@ -134,6 +134,9 @@ class FarmState {
   // references (docs/farm.md, "Retention"). Their rows stay, marked released, so a chunk
   // needed again (its reader requeued) is made again by requeueProducersOf. Each once.
   std::vector<std::string> takeReleasedChunks();
+  // Every chunk marked released: a scheduler killed between committing a release and
+  // removing the files left them in the store, so it looks for them when it starts.
+  std::vector<std::string> releasedChunks();
 
   void recordChunk(const ChunkRef& chunk, double now);
   bool hasChunk(const std::string& sha256);

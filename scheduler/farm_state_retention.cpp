@@ -72,6 +72,16 @@ std::vector<std::string> FarmState::releaseConsumedInputs(int64_t taskId) {
   return shas;
 }
 
+std::vector<std::string> FarmState::releasedChunks() {
+  return transact([&] {
+    std::vector<std::string> shas;
+    Statement& released = db_.query("SELECT sha256 FROM chunks WHERE released = 1");
+    while (released.step()) shas.push_back(released.text(0));
+    released.reset();
+    return shas;
+  });
+}
+
 std::vector<std::string> FarmState::takeReleasedChunks() {
   const std::lock_guard lock(releasedMutex_);
   return std::exchange(releasedChunks_, {});

@@ -133,11 +133,12 @@ void planEvaluation(const ShotSpec& spec, bool filtering, const StageOutputs& st
   const bool measureBaseline = filtering && (spec.baseline_core_seconds() <= 0 || spec.reference_spp() > 0);
   PlannedTask evaluate{TASK_EVALUATE, {}, {}};
   for (const int64_t frame : spec.evaluation_frames()) {
-    for (int repeat = 0; measureBaseline && repeat < baselineRepeatsOf(spec); ++repeat) {
-      const auto withRepeat = [&](TaskParams& params) { params.set_baseline_repeat(repeat); };
-      const size_t assembled = planFrameRender(spec, frame, ROLE_BASELINE, spec.spp(), true, plan, withRepeat);
-      withRepeat(plan[assembled].params);
-      evaluate.dependencies.push_back(assembled);
+    // Several renders narrow pt's error; without a reference only its cost is measured.
+    const int repeats = spec.reference_spp() > 0 ? baselineRepeatsOf(spec) : 1;
+    for (int repeat = 0; measureBaseline && repeat < repeats; ++repeat) {
+      const size_t first = plan.size();
+      evaluate.dependencies.push_back(planFrameRender(spec, frame, ROLE_BASELINE, spec.spp(), true, plan));
+      for (size_t task = first; task < plan.size(); ++task) plan[task].params.set_baseline_repeat(repeat);
     }
     if (spec.reference_spp() == 0) continue;
     evaluate.dependencies.push_back(planReference(spec, frame, plan));

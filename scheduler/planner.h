@@ -29,10 +29,6 @@ namespace pathfarm::farm {
 // message limit (about 100 bytes each against 8 MiB).
 inline constexpr int64_t kMaxAssemblyInputs = 4096;
 
-// The most baseline renders of one evaluation frame (ShotSpec.baseline_repeats): their
-// sample ranges stay below a reference's (kIndependentFirstSample) at any shot's spp.
-inline constexpr int kMaxBaselineRepeats = 64;
-
 struct PlannedTask {
   TaskKind kind;
   TaskParams params;

@@ -59,6 +59,15 @@ SchedulerServer::SchedulerServer(SchedulerOptions options) : options_(std::move(
   services_ = std::make_unique<Services>(options_);
   if (const size_t removed = services_->store.removeAbandonedWrites(); removed > 0)
     spdlog::info("removed {} chunk(s) left half-written in the store by a scheduler that was killed", removed);
+  // Before any worker can store one of them again.
+  size_t leftReleased = 0;
+  for (const std::string& sha : services_->state.releasedChunks())
+    if (services_->store.has(sha)) {
+      services_->store.remove(sha);
+      ++leftReleased;
+    }
+  if (leftReleased > 0)
+    spdlog::info("removed {} released chunk(s) left in the store by a scheduler that was killed", leftReleased);
   grpc::ServerBuilder builder;
   configureServer(builder);
   builder.AddListeningPort(options_.listen, serverCredentials(options_.tls), &port_);

@@ -107,7 +107,8 @@ TaskTotals addUpTasks(ShotReport& report, const std::vector<TaskRecord>& tasks) 
       report.set_samples_traced(report.samples_traced() + metric(task, "samples"));
     if (task.params.role() == ROLE_BASELINE) {
       totals.baselineSeconds += task.coreSeconds;
-      if (task.kind == TASK_ASSEMBLE_FRAME) totals.baselineRenders.insert({task.params.frame(), task.params.baseline_repeat()});
+      if (task.kind == TASK_ASSEMBLE_FRAME && !task.params.has_window())  // a whole frame, not a region of one
+        totals.baselineRenders.insert({task.params.frame(), task.params.baseline_repeat()});
     }
     if (task.kind == TASK_INTERPOLATE) {
       totals.interpolationRerender += metric(task, "rerender_pixels");

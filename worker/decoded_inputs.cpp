@@ -48,9 +48,14 @@ constexpr uint64_t kPerEntryBytes = 512;
 }  // namespace
 
 uint64_t DecodedInputs::frameBytes(const FrameImage& frame) {
-  uint64_t bytes = kPerEntryBytes + static_cast<uint64_t>(frame.channelNames().size()) * frame.pixelCount() * sizeof(float);
-  for (const std::string& name : frame.channelNames()) bytes += kPerChannelBytes + 2 * name.size();
-  for (const auto& [key, value] : frame.attributes()) bytes += kPerAttributeBytes + key.size() + value.size();
+  return frameBytes(frame.pixelCount(), frame.channelNames(), frame.attributes());
+}
+
+uint64_t DecodedInputs::frameBytes(size_t pixels, const std::vector<std::string>& channels,
+                                   const std::map<std::string, std::string>& attributes) {
+  uint64_t bytes = kPerEntryBytes + static_cast<uint64_t>(channels.size()) * pixels * sizeof(float);
+  for (const std::string& name : channels) bytes += kPerChannelBytes + 2 * name.size();
+  for (const auto& [key, value] : attributes) bytes += kPerAttributeBytes + key.size() + value.size();
   return bytes;
 }
 

@@ -7,10 +7,12 @@
 // content's digest, so a kept frame is never stale.
 #include <cstdint>
 #include <list>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <string>
 #include <unordered_map>
+#include <vector>
 
 #include "image/frame_image.h"
 
@@ -28,11 +30,14 @@ class DecodedInputs {
 
   uint64_t bytes() const;
   size_t size() const;
-  // Whether a frame whose planes take `planeBytes` is small enough to be kept at all.
-  bool couldKeep(uint64_t planeBytes) const { return planeBytes <= maxBytes_; }
+  // Whether a frame that takes `frameBytes` to keep is small enough to be kept at all.
+  bool couldKeep(uint64_t frameBytes) const { return frameBytes <= maxBytes_; }
 
   // The memory keeping a frame takes: its planes and their bookkeeping.
   static uint64_t frameBytes(const FrameImage& frame);
+  // The same of a frame known by its pixels, channels and attributes (a file's header).
+  static uint64_t frameBytes(size_t pixels, const std::vector<std::string>& channels,
+                             const std::map<std::string, std::string>& attributes);
 
  private:
   struct Entry {

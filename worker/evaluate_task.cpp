@@ -105,9 +105,11 @@ Evaluation sortedInputs(const std::vector<TaskInput>& inputs) {
     if (renders.size() <= repeat) renders.resize(repeat + 1, {nullptr, {}});
     renders[repeat] = {&input.image(), keptPixels(stage, input.image())};
   }
-  for (auto& [stage, frames] : evaluation.stages)
-    for (auto& [frame, renders] : frames)
-      if (std::any_of(renders.begin(), renders.end(), [](const Measured& m) { return m.image == nullptr; }))
+  // Every frame of a stage has its renders 0 .. n - 1, the same n.
+  for (const auto& [stage, frames] : evaluation.stages)
+    for (const auto& [frame, renders] : frames)
+      if (renders.size() != frames.begin()->second.size() ||
+          std::any_of(renders.begin(), renders.end(), [](const Measured& m) { return m.image == nullptr; }))
         throw BadInput("the evaluation misses one of frame " + std::to_string(frame) + "'s " + stage + " renders");
   return evaluation;
 }
@@ -126,19 +128,24 @@ void putInterval(TaskOutput& output, const std::string& name, const std::string&
 void putRawFigures(const Evaluation& evaluation, TaskOutput& output) {
   for (const auto& [stage, frames] : evaluation.stages) {
     StageSums sum;
-    for (const auto& [frame, renders] : frames)
+    for (const auto& [frame, renders] : frames) {
+      // A frame's figures are its renders' average (only a baseline has several).
+      const auto n = static_cast<double>(renders.size());
+      double worstTile = 0;
       for (const Measured& measured : renders) {
         const ImageMetrics m =
             compareImages(*measured.image, *evaluation.references.at(frame), kBeauty, {}, &measured.kept);
-        sum.relMse += m.relMse;
-        sum.worstTile = std::max(sum.worstTile, m.worstTileRelMse);
-        sum.worstShare += m.worstPercentShare;
+        sum.relMse += m.relMse / n;
+        worstTile += m.worstTileRelMse / n;
+        sum.worstShare += m.worstPercentShare / n;
         sum.kept += static_cast<double>(std::count(measured.kept.begin(), measured.kept.end(), 1)) /
-                    static_cast<double>(measured.kept.size());
-        ++sum.frames;
+                    static_cast<double>(measured.kept.size()) / n;
       }
+      sum.worstTile = std::max(sum.worstTile, worstTile);
+      ++sum.frames;
+    }
     output.metrics["relmse." + stage] = sum.relMse / sum.frames;
-    output.metrics["worst_tile." + stage] = sum.worstTile;  // the worst over the renders
+    output.metrics["worst_tile." + stage] = sum.worstTile;  // the worst over the frames
     output.metrics["worst_share." + stage] = sum.worstShare / sum.frames;
     output.metrics["kept." + stage] = sum.kept / sum.frames;
   }
@@ -151,9 +158,9 @@ BlockedTerms frameTerms(const Renders& renders, const FrameImage& reference) {
   return averageOf(each);
 }
 
-// A frame's worst-tile candidates, each tile's terms averaged over the renders. Renders of
-// one stage keep the same pixels (only a final or a baseline frame has several), so their
-// tiles are the same ones.
+// A frame's worst-tile candidates, each tile's terms averaged over the renders. Only a
+// baseline frame has several, and a baseline keeps every pixel, so their tiles are the
+// same ones.
 std::vector<BlockedTerms> frameTileTerms(const Renders& renders, const FrameImage& reference) {
   std::vector<std::vector<BlockedTerms>> each;
   for (const Measured& measured : renders) each.push_back(tileTerms(*measured.image, reference, &measured.kept));

@@ -42,6 +42,12 @@ RenderSettings settingsOf(const Scene& scene, const ShotSpec& spec, int threads)
 
 // A render's progress callback: reports to `progress`, stops with TaskAbandoned once
 // `abandon` is set.
+// A decoded input chunk's values must be finite: a damaged chunk is the shot's bad input.
+void requireFinite(const FrameImage& frame, const ChunkRef& ref) {
+  if (const std::string bad = frame.firstNonFinite(); !bad.empty())
+    throw BadInput("input chunk " + ref.sha256() + " holds a non-finite value (" + bad + ")");
+}
+
 ProgressCallback abandonable(std::atomic<double>& progress, const std::atomic<bool>& abandon) {
   return [&](size_t done, size_t total) {
     if (abandon) throw TaskAbandoned();
@@ -276,8 +282,7 @@ std::shared_ptr<FrameImage> TaskRunner::decodedInput(const ChunkRef& ref, const 
   // TaskInput::take copies it rather than change it.
   if (auto kept = decoded_.find(ref.sha256())) return std::const_pointer_cast<FrameImage>(kept);
   auto frame = std::make_shared<FrameImage>(decode());
-  if (const std::string bad = frame->firstNonFinite(); !bad.empty())
-    throw BadInput("input chunk " + ref.sha256() + " holds a non-finite value (" + bad + ")");
+  requireFinite(*frame, ref);
   decoded_.keep(ref.sha256(), frame);
   return frame;
 }
@@ -289,12 +294,10 @@ FrameImage TaskRunner::decodedPart(const ChunkRef& ref, const std::string& label
   // one too; a larger one (a 1080p keyframe) would be decoded again by each task anyway.
   if (!decoded_.find(ref.sha256())) {
     const ExrHeader header = readExrHeader(file, label);
-    const uint64_t planeBytes = static_cast<uint64_t>(header.width) * static_cast<uint64_t>(header.height) *
-                                header.channels.size() * sizeof(float);
-    if (!decoded_.couldKeep(planeBytes)) {
+    const size_t pixels = static_cast<size_t>(header.width) * static_cast<size_t>(header.height);
+    if (!decoded_.couldKeep(DecodedInputs::frameBytes(pixels, header.channels, header.attributes))) {
       FrameImage part = decodeExrFile(file, label, keep);
-      if (const std::string bad = part.firstNonFinite(); !bad.empty())
-        throw BadInput("input chunk " + ref.sha256() + " holds a non-finite value (" + bad + ")");
+      requireFinite(part, ref);  // the channels read: the others are not decoded at all
       return part;
     }
   }

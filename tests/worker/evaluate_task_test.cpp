@@ -11,6 +11,7 @@
 #include "scheduler/shot_report.h"
 #include "scheduler/task_records.h"
 #include "test_support.h"
+#include "worker/failure_class.h"
 #include "worker/filter_tasks.h"
 
 namespace pathfarm::farm {
@@ -111,6 +112,16 @@ TEST(EvaluateTask, IndependentBaselineRendersNarrowTheErrorRatioWhichStillCovers
   const double median = narrowing[narrowing.size() / 2];
   EXPECT_GT(median, 0.7);
   EXPECT_LT(median, 0.88);
+}
+
+TEST(EvaluateTask, AFrameMissingOneOfItsBaselineRendersIsRefused) {
+  std::vector<TaskInput> inputs = evaluationInputs(0.5, 2, 0);
+  const auto lastOfFrameTwo = std::find_if(inputs.begin(), inputs.end(), [](const TaskInput& input) {
+    return input.params.role() == ROLE_BASELINE && input.params.frame() == 2 && input.params.baseline_repeat() == 1;
+  });
+  ASSERT_NE(lastOfFrameTwo, inputs.end());
+  inputs.erase(lastOfFrameTwo);
+  EXPECT_THROW(runEvaluateTask(Lease(), inputs), BadInput);
 }
 
 }  // namespace
