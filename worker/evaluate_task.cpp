@@ -55,6 +55,20 @@ std::string stageOf(const TaskInput& input) {
 
 const std::vector<std::string> kBeauty = {"R", "G", "B"};
 
+// The contact sheet travels inside the report, one gRPC message of at most 8 MiB: a row
+// for at most kSheetRows evaluation frames, evenly spaced, and at most kSheetPixels pixels
+// (3 bytes each in the PNG, at worst).
+constexpr size_t kSheetRows = 8;
+constexpr size_t kSheetPixels = 2'000'000;
+
+// At most `count` of `rows`, evenly spaced from the first to the last.
+std::vector<ContactSheetRow> evenlySpaced(const std::vector<ContactSheetRow>& rows, size_t count) {
+  if (rows.size() <= count) return rows;
+  std::vector<ContactSheetRow> chosen;
+  for (size_t i = 0; i < count; ++i) chosen.push_back(rows[i * (rows.size() - 1) / (count - 1)]);
+  return chosen;
+}
+
 // The pixels a stage keeps: those upsampling or interpolation do not flag for re-rendering
 // (`rerender.Y`), all of any other stage's (a final frame's `rerender.Y` marks the pixels
 // that were re-rendered).
@@ -267,8 +281,10 @@ TaskOutput runEvaluateTask(const Lease& /*lease*/, std::vector<TaskInput>& input
     }
     rows.push_back({final->second.front().image, baseline, reference});
   }
+  ContactSheetSettings sheet;
+  sheet.maxPixels = kSheetPixels;
   output.chunk = rows.empty() ? std::string("no final frame among the evaluation frames\n")
-                              : encodePngPreview(contactSheet(rows));
+                              : encodePngPreview(contactSheet(evenlySpaced(rows, kSheetRows), sheet));
   return output;
 }
 

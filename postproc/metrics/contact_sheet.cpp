@@ -51,9 +51,15 @@ FrameImage contactSheet(const std::vector<ContactSheetRow>& rows, const ContactS
                                     std::to_string(height));
       for (const char* c : kRgbChannels) channelOf(*frame, c, "contact sheet: a frame");
     }
-  const int factor = std::max(1, (width + settings.maxPanelWidth - 1) / settings.maxPanelWidth);
-  const int panelWidth = width / factor, panelHeight = height / factor;
   const int rowCount = static_cast<int>(rows.size());
+  int factor = std::max(1, (width + settings.maxPanelWidth - 1) / settings.maxPanelWidth);
+  const auto sheetPixels = [&](int f) {
+    return static_cast<size_t>(kPanels * (width / f) + (kPanels - 1) * settings.gap) *
+           static_cast<size_t>(rowCount * (height / f) + (rowCount - 1) * settings.gap);
+  };
+  while (settings.maxPixels > 0 && sheetPixels(factor) > settings.maxPixels && width / factor > 1 && height / factor > 1)
+    ++factor;
+  const int panelWidth = width / factor, panelHeight = height / factor;
   FrameImage sheet(kPanels * panelWidth + (kPanels - 1) * settings.gap,
                    rowCount * panelHeight + (rowCount - 1) * settings.gap);
   for (const char* c : kRgbChannels) sheet.addChannel(c);

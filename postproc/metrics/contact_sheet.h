@@ -4,6 +4,7 @@
 // the first two against the reference. A ghost or a misplaced highlight shows in the
 // error maps even where the frame's mean relMSE is low.
 #include <array>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,7 @@ struct ContactSheetRow {
 struct ContactSheetSettings {
   int maxPanelWidth = 640;  // wider frames are box-downsampled by an integer factor
   int gap = 4;              // pixels between panels and rows
+  size_t maxPixels = 0;     // > 0: the panels downsampled further until the sheet has no more
 };
 
 // The error maps show relMSE per pixel (mean over R, G, B of (x - r)^2 / (r^2 + 0.01)) on a

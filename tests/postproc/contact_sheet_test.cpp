@@ -59,5 +59,21 @@ TEST(ContactSheet, WideFramesAreDownsampledAndMismatchesRefused) {
   EXPECT_THROW(contactSheet({}), std::invalid_argument);
 }
 
+TEST(ContactSheet, ASheetBoundInPixelsShrinksItsPanelsUntilItFits) {
+  const FrameImage frame = flat(320, 180, 0.5f);
+  const std::vector<ContactSheetRow> rows(8, ContactSheetRow{&frame, &frame, &frame});
+  ContactSheetSettings settings;
+  settings.maxPixels = 500'000;
+  const FrameImage sheet = contactSheet(rows, settings);
+  EXPECT_LE(sheet.pixelCount(), settings.maxPixels);
+  // The largest panels that fit: one step less downsampling would not.
+  const int factor = 320 / ((sheet.width() - 4 * settings.gap) / 5);
+  ASSERT_GT(factor, 1);
+  const size_t larger = static_cast<size_t>(5 * (320 / (factor - 1)) + 4 * settings.gap) *
+                        static_cast<size_t>(8 * (180 / (factor - 1)) + 7 * settings.gap);
+  EXPECT_GT(larger, settings.maxPixels);
+  EXPECT_EQ(contactSheet(rows).width(), 5 * 320 + 4 * settings.gap) << "unbounded: panels of the frame's size";
+}
+
 }  // namespace
 }  // namespace pathfarm

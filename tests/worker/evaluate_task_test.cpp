@@ -124,5 +124,24 @@ TEST(EvaluateTask, AFrameMissingOneOfItsBaselineRendersIsRefused) {
   EXPECT_THROW(runEvaluateTask(Lease(), inputs), BadInput);
 }
 
+// The contact sheet travels inside the report, one gRPC message of at most 8 MiB, however
+// many evaluation frames a shot measures and however large they are.
+TEST(EvaluateTask, TheContactSheetOfManyLargeEvaluationFramesFitsInAReport) {
+  const FrameImage truth = test_support::smoothTruth(320, 180);
+  std::vector<TaskInput> inputs;
+  for (int64_t frame = 0; frame < 16; ++frame) {  // 16 rows of noisy 320x180 panels: 15 MB as pixels
+    const auto seed = static_cast<uint64_t>(3 * frame);
+    inputs.push_back(evaluationInput(TASK_ASSEMBLE_FRAME, ROLE_REFERENCE, frame,
+                                     test_support::noisyCopy(truth, 0.01, seed, true)));
+    inputs.push_back(evaluationInput(TASK_ASSEMBLE_FRAME, ROLE_BASELINE, frame,
+                                     test_support::noisyCopy(truth, 0.3, seed + 1, true)));
+    inputs.push_back(evaluationInput(TASK_COMPOSITE, ROLE_UNSPECIFIED, frame,
+                                     test_support::noisyCopy(truth, 0.1, seed + 2, false)));
+  }
+  const std::string sheet = runEvaluateTask(Lease(), inputs).chunk;
+  EXPECT_EQ(sheet.substr(1, 3), "PNG");
+  EXPECT_LT(sheet.size(), 6'500'000u);
+}
+
 }  // namespace
 }  // namespace pathfarm::farm
