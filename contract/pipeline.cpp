@@ -7,7 +7,8 @@ namespace pathfarm::farm {
 
 const std::vector<PipelineTraits>& allPipelines() {
   using F = PipelineFamily;
-  static const std::vector<std::string_view> filteringKeys = {"keyframe_interval", "rerender_bound", "feature_spp"};
+  static const std::vector<std::string_view> filteringKeys = {"keyframe_interval", "rerender_bound", "feature_spp",
+                                                              "filter_window_rows"};
   static const std::vector<std::string_view> gradientKeys = {"poisson_window", "poisson_overlap", "poisson_norm"};
   static const std::vector<std::string_view> metropolisKeys = {"mlt_window",       "mutations_per_pixel", "mlt_chains",
                                                                "chains_per_block", "chain_tasks",         "temporal_delta",
@@ -84,6 +85,16 @@ std::vector<int64_t> keyframesOf(const ShotSpec& spec) {
   for (int64_t frame = spec.frame_start(); frame <= spec.frame_end(); frame += step) keyframes.push_back(frame);
   if (keyframes.back() != spec.frame_end()) keyframes.push_back(spec.frame_end());
   return keyframes;
+}
+
+std::vector<RowWindow> filterWindowsOf(const ShotSpec& spec) {
+  const int64_t rows = spec.filter_window_rows() > 0 ? spec.filter_window_rows() : kDefaultFilterWindowRows;
+  const int64_t height = std::max(spec.height(), 1);
+  const int64_t count = (height + rows - 1) / rows;
+  std::vector<RowWindow> windows;
+  for (int64_t i = 0; i < count; ++i)
+    windows.push_back({static_cast<int>(i * height / count), static_cast<int>((i + 1) * height / count)});
+  return windows;
 }
 
 }  // namespace pathfarm::farm

@@ -66,4 +66,18 @@ inline constexpr int kMaxBaselineRepeats = 16;
 // How many baseline renders an evaluation frame gets (ShotSpec.baseline_repeats; 0 is 1).
 inline int baselineRepeatsOf(const ShotSpec& spec) { return spec.baseline_repeats() > 1 ? spec.baseline_repeats() : 1; }
 
+// Rows per window of a filter task that runs in windows (ShotSpec.filter_window_rows, 0).
+inline constexpr int kDefaultFilterWindowRows = 512;
+// How far beyond its window a composite window reads the re-render tiles: every pixel its
+// denoise compares and every firefly whose spread reaches the window
+// (worker/composite_task.cpp checks that its filters reach no farther).
+inline constexpr int kCompositeHalo = 32;
+// Rows first .. end - 1 of a frame.
+struct RowWindow {
+  int first = 0, end = 0;
+};
+// The windows a frame of the shot is filtered in, top to bottom: as few as hold at most
+// filter_window_rows rows each, of heights that differ by at most one row.
+std::vector<RowWindow> filterWindowsOf(const ShotSpec& spec);
+
 }  // namespace pathfarm::farm

@@ -320,17 +320,23 @@ auto readFile(const std::filesystem::path& file, const std::string& label, Read 
 
 namespace {
 
-// The channels `keep` accepts (every one without it) and every attribute of the reader's frame.
-FrameImage framePart(Imf::InputFile& in, const ChannelFilter& keep) {
+// Rows from .. to - 1 (every row when `to` is negative) of the channels `keep` accepts
+// (every one without it), with every attribute of the reader's frame.
+FrameImage framePart(Imf::InputFile& in, const ChannelFilter& keep, int from = 0, int to = -1) {
   const Imath::Box2i window = in.header().dataWindow();
-  FrameImage frame(window.max.x - window.min.x + 1, window.max.y - window.min.y + 1);
+  const int height = window.max.y - window.min.y + 1;
+  if (to < 0) to = height;
+  if (from < 0 || to > height || from >= to)
+    throw std::runtime_error("rows " + std::to_string(from) + " to " + std::to_string(to) + " of a frame of " +
+                             std::to_string(height) + " rows");
+  FrameImage frame(window.max.x - window.min.x + 1, to - from);
   std::vector<std::string> names = channelNames(in.header());
   if (keep) std::erase_if(names, [&](const std::string& name) { return !keep(name); });
   std::vector<float*> planes;
   for (const std::string& name : names) planes.push_back(frame.addChannel(name).data());
   frame.attributes() = stringAttributes(in.header());
-  in.setFrameBuffer(frameBufferOf(window, names, planes, window.min.y));
-  in.readPixels(window.min.y, window.max.y);
+  in.setFrameBuffer(frameBufferOf(window, names, planes, window.min.y + from));
+  in.readPixels(window.min.y + from, window.min.y + to - 1);
   return frame;
 }
 
@@ -360,22 +366,9 @@ ExrHeader readExrHeader(const std::filesystem::path& file, const std::string& la
   });
 }
 
-FrameImage readExrRows(const std::filesystem::path& file, const std::string& label, int from, int to) {
-  return readFile(file, label, [&](Imf::InputFile& in) {
-    const Imath::Box2i window = in.header().dataWindow();
-    const int height = window.max.y - window.min.y + 1;
-    if (from < 0 || to > height || from >= to)
-      throw std::runtime_error("rows " + std::to_string(from) + " to " + std::to_string(to) + " of a frame of " +
-                               std::to_string(height) + " rows");
-    FrameImage rows(window.max.x - window.min.x + 1, to - from);
-    const std::vector<std::string> names = channelNames(in.header());
-    std::vector<float*> planes;
-    for (const std::string& name : names) planes.push_back(rows.addChannel(name).data());
-    rows.attributes() = stringAttributes(in.header());
-    in.setFrameBuffer(frameBufferOf(window, names, planes, window.min.y + from));
-    in.readPixels(window.min.y + from, window.min.y + to - 1);
-    return rows;
-  });
+FrameImage readExrRows(const std::filesystem::path& file, const std::string& label, int from, int to,
+                       const ChannelFilter& keep) {
+  return readFile(file, label, [&](Imf::InputFile& in) { return framePart(in, keep, from, to); });
 }
 
 ExrScan scanExrFile(const std::filesystem::path& file, const std::string& label, int rowsPerStrip) {

@@ -72,9 +72,11 @@ struct ExrHeader {
   std::map<std::string, std::string> attributes;  // its string attributes
 };
 ExrHeader readExrHeader(const std::filesystem::path& file, const std::string& label);
-// Rows from .. to - 1 (from the top) of every channel of a file, with its attributes, read
-// in place (with scanExrFile's checks): a part of a frame too large to hold.
-FrameImage readExrRows(const std::filesystem::path& file, const std::string& label, int from, int to);
+// Rows from .. to - 1 (from the top) of every channel of a file (of those `keep` accepts,
+// with it), with its attributes, read in place (with scanExrFile's checks): a part of a
+// frame too large to hold.
+FrameImage readExrRows(const std::filesystem::path& file, const std::string& label, int from, int to,
+                       const ChannelFilter& keep = {});
 
 void writeExr(const std::filesystem::path& file, const FrameImage& frame);
 

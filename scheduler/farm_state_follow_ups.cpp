@@ -3,6 +3,8 @@
 #include "scheduler/farm_state.h"
 #include "scheduler/farm_state_internal.h"
 
+#include "contract/pipeline.h"
+
 namespace pathfarm::farm {
 namespace {
 
@@ -26,6 +28,14 @@ std::string refusalOfFollowUp(const TaskParams& params, int64_t frame, const Sho
   if (!params.pixel_mask().empty() && params.pixel_mask().size() != area)
     return "a follow-up tile's pixel mask does not have its window's size";
   return {};
+}
+
+// Whether a composite reads a re-render tile: a composite of the whole frame reads every
+// one, a composite of a window those within kCompositeHalo of its rows.
+bool readsTile(const TaskParams& composite, const PixelWindow& tile) {
+  if (!composite.has_window()) return true;
+  const PixelWindow& rows = composite.window();
+  return tile.y1() > rows.y0() - kCompositeHalo && tile.y0() < rows.y1() + kCompositeHalo;
 }
 
 }  // namespace
@@ -76,13 +86,18 @@ ReportReply FarmState::stageFollowUps(int64_t attemptId,
 }
 
 void FarmState::addFollowUps(const AttemptRow& attempt, double now) {
-  // The composite tasks waiting for the reporting task wait for the follow-ups too; they
-  // cannot be ready yet, as the reporting task is not counted done until after this.
-  std::vector<int64_t> composites;
-  Statement& q = db_.query("SELECT t.id FROM task_deps d JOIN tasks t ON t.id = d.task_id "
+  // The composite tasks waiting for the reporting task wait for the follow-ups too (a
+  // composite of a window of rows, for those within its halo); they cannot be ready yet, as
+  // the reporting task is not counted done until after this.
+  std::vector<std::pair<int64_t, TaskParams>> composites;
+  Statement& q = db_.query("SELECT t.id, t.params FROM task_deps d JOIN tasks t ON t.id = d.task_id "
                            "WHERE d.depends_on = ?1 AND t.kind = ?2");
   q.bind(1, attempt.taskId).bind(2, int64_t{TASK_COMPOSITE});
-  while (q.step()) composites.push_back(q.integer(0));
+  while (q.step()) {
+    TaskParams params;
+    params.ParseFromString(q.blob(1));
+    composites.emplace_back(q.integer(0), std::move(params));
+  }
   q.reset();
   int64_t added = 0;
   Statement& staged = db_.query("SELECT params FROM follow_ups WHERE attempt_id = ?1 ORDER BY id").bind(1, attempt.id);
@@ -91,7 +106,8 @@ void FarmState::addFollowUps(const AttemptRow& attempt, double now) {
     params.ParseFromString(staged.blob(0));
     const int64_t id = insertTask(attempt.shotId, TASK_RENDER_TILE, params, 0, attempt.maxAttempts, false);
     db_.query("UPDATE tasks SET created_by = ?1 WHERE id = ?2").bind(1, attempt.taskId).bind(2, id).run();
-    for (const int64_t composite : composites) {
+    for (const auto& [composite, reader] : composites) {
+      if (!readsTile(reader, params.window())) continue;
       db_.query("INSERT INTO task_deps (task_id, depends_on) VALUES (?1, ?2)").bind(1, composite).bind(2, id).run();
       db_.query("UPDATE tasks SET pending_deps = pending_deps + 1 WHERE id = ?1").bind(1, composite).run();
     }

@@ -203,6 +203,7 @@ void planFiltering(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
   if (stages.upsample && (spec.width() % 2 != 0 || spec.height() % 2 != 0))
     throw PlanError("resolution: upsampling pipelines need an even width and height");
   if (spec.keyframe_interval() < 1) throw PlanError("keyframe_interval: must be at least 1");
+  if (spec.filter_window_rows() < 0) throw PlanError("filter_window_rows: must not be negative");
   std::vector<std::string> components;
   try {
     components = flowComponents(spec);
@@ -274,9 +275,20 @@ void planFiltering(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
     }
   }
 
+  // A frame taller than a filter window is composited window by window, each a task that
+  // holds only its rows, and joined by the frame's composite.
+  const std::vector<RowWindow> windows = filterWindowsOf(spec);
   for (const auto& [frame, stage] : finalOf) {
     PlannedTask composite = task(TASK_COMPOSITE, frame, {stage});
     composite.output = true;
+    if (windows.size() > 1) {
+      composite.dependencies.clear();
+      for (const RowWindow& rows : windows) {
+        PlannedTask window = task(TASK_COMPOSITE, frame, {stage});
+        setWindow(window.params, 0, rows.first, spec.width(), rows.end);
+        composite.dependencies.push_back(push(std::move(window), plan));
+      }
+    }
     evaluated[frame].push_back(push(std::move(composite), plan));
   }
   planEvaluation(spec, true, evaluated, plan);

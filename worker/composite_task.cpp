@@ -1,8 +1,13 @@
 // A frame's final image (worker/filter_tasks.h): the stage output (filtered keyframe or
 // interpolated frame) with every re-rendered pixel replaced by its full-sample render,
-// denoised at full resolution among the other re-rendered pixels.
+// denoised at full resolution among the other re-rendered pixels. A frame taller than a
+// filter window (contract/pipeline.h) is composited by a task per window, each holding only
+// its rows, and joined by the frame's composite; denoising is cut at the filter windows'
+// borders whichever task runs it, so the frame is the same bits however it is split.
 #include <algorithm>
 #include <limits>
+#include <optional>
+#include <stdexcept>
 #include <tuple>
 
 #include "postproc/filters/component_denoiser.h"
@@ -11,6 +16,8 @@
 #include "worker/failure_class.h"
 #include "worker/filter_inputs.h"
 #include "worker/final_frame.h"
+#include "contract/pipeline.h"
+#include "image/exr_io.h"
 
 namespace pathfarm::farm {
 namespace {
@@ -102,7 +109,7 @@ double area(const PixelWindow& w) { return static_cast<double>(w.x1() - w.x0()) 
 // nothing but float rounding (every neighbourhood holds all that decides its pixels).
 std::vector<PixelWindow> joinedAlongRows(std::vector<PixelWindow> windows, int margin, int width, int height) {
   std::sort(windows.begin(), windows.end(), [](const PixelWindow& a, const PixelWindow& b) {
-    return std::make_tuple(a.y0(), a.y1(), a.x0()) < std::make_tuple(b.y0(), b.y1(), b.x0());
+    return std::make_tuple(a.y0(), a.y1(), a.x0(), a.x1()) < std::make_tuple(b.y0(), b.y1(), b.x0(), b.x1());
   });
   std::vector<PixelWindow> joined;
   for (const PixelWindow& w : windows) {
@@ -124,29 +131,50 @@ std::vector<PixelWindow> joinedAlongRows(std::vector<PixelWindow> windows, int m
   return joined;
 }
 
-}  // namespace
 
-TaskOutput runCompositeTask(const Lease& lease, std::vector<TaskInput>& inputs) {
+// `w`'s rows first .. end - 1 (empty when it has none there).
+std::optional<PixelWindow> withinRows(PixelWindow w, int first, int end) {
+  w.set_y0(std::max(w.y0(), first));
+  w.set_y1(std::min(w.y1(), end));
+  if (w.y1() <= w.y0()) return std::nullopt;
+  return w;
+}
+
+std::string frameLabel(const Lease& lease) { return "frame " + std::to_string(lease.params().frame()); }
+
+// The composite of the lease's rows (every row without a window): the stage output's final
+// colors there, with their re-rendered pixels denoised; `mask` becomes the frame's
+// re-render mask.
+FrameImage compositedRows(const Lease& lease, std::vector<TaskInput>& inputs, std::vector<uint8_t>& mask) {
   const int64_t frame = lease.params().frame();
+  const int width = lease.spec().width(), height = lease.spec().height();
+  PixelWindow area;
+  area.set_x1(width);
+  area.set_y1(height);
+  if (lease.params().has_window()) area = lease.params().window();
+  if (area.x0() != 0 || area.x1() != width || area.y0() < 0 || area.y1() > height || area.y0() >= area.y1())
+    throw BadInput("the composite of " + frameLabel(lease) + " is not of whole rows of the frame");
   const TaskInput& stage = findInput(
       inputs, [&](const TaskInput& input) { return input.kind != TASK_RENDER_TILE && input.params.frame() == frame; },
-      "the stage output of frame " + std::to_string(frame));
-  const FrameImage& staged = stage.image();
-  const int width = staged.width(), height = staged.height();
-  FrameImage result = finalColorsOf(staged);
+      "the stage output of " + frameLabel(lease));
+  // The stage's final colors of these rows alone: a 1080p stage output holds about 80 channels.
+  FrameImage result = stage.part({isFinalColorChannel, area.y0(), area.y1()});
+  requireFinalColors(result, "the stage output of " + frameLabel(lease));
+  if (result.width() != width || result.height() != area.y1() - area.y0())
+    throw BadInput("the stage output of " + frameLabel(lease) + " is not " + std::to_string(width) + " pixels wide");
 
   std::vector<const TaskInput*> tiles;
-  std::vector<uint8_t> mask(staged.pixelCount(), 0);
+  mask.assign(static_cast<size_t>(width) * static_cast<size_t>(height), 0);
   std::vector<PixelWindow> windows;
   for (const TaskInput& input : inputs) {
     if (input.kind != TASK_RENDER_TILE) continue;
     const PixelWindow& w = input.params.window();
     if (w.x0() < 0 || w.y0() < 0 || w.x1() > width || w.y1() > height || input.image().width() != w.x1() - w.x0() ||
         input.image().height() != w.y1() - w.y0())
-      throw BadInput("a re-render tile of frame " + std::to_string(frame) + " does not have its window's size or place");
+      throw BadInput("a re-render tile of " + frameLabel(lease) + " does not have its window's size or place");
     const size_t area = static_cast<size_t>(w.x1() - w.x0()) * static_cast<size_t>(w.y1() - w.y0());
     if (!input.params.pixel_mask().empty() && input.params.pixel_mask().size() != area)
-      throw BadInput("a re-render tile of frame " + std::to_string(frame) + " has a pixel mask of " +
+      throw BadInput("a re-render tile of " + frameLabel(lease) + " has a pixel mask of " +
                      std::to_string(input.params.pixel_mask().size()) + " bytes for " + std::to_string(area) +
                      " pixels");
     tiles.push_back(&input);
@@ -154,7 +182,7 @@ TaskOutput runCompositeTask(const Lease& lease, std::vector<TaskInput>& inputs) 
     if (flagged.x1() > flagged.x0()) windows.push_back(flagged);
   }
   DenoiseSettings settings;
-  settings.label = "re-rendered pixels of frame " + std::to_string(frame);
+  settings.label = "re-rendered pixels of " + frameLabel(lease);
   // They have the shot's full samples: a smaller search window than a keyframe's suffices.
   settings.spatialRadius = kRerenderSearchRadius;
   // A firefly in a small re-rendered clump would light the whole clump; spread, it lights
@@ -165,23 +193,78 @@ TaskOutput runCompositeTask(const Lease& lease, std::vector<TaskInput>& inputs) 
   // Each window is denoised with a margin wide enough for every patch its pixels compare
   // and every firefly whose spread reaches them.
   const int margin = settings.spatialRadius + settings.patch + fireflyReach(settings.fireflies);
-  for (const PixelWindow& w : joinedAlongRows(windows, margin, width, height)) {
-    const PixelWindow region = grown(w, margin, width, height);
-    // Only the window's pixels are kept: the filter need not finish the rest.
-    settings.onlyWithin = NlMeansArea{w.x0() - region.x0(), w.y0() - region.y0(), w.x1() - region.x0(),
-                                      w.y1() - region.y0()};
-    FrameImage denoised = denoisedRegion(tiles, mask, width, region, settings);
-    for (const std::string& name : result.channelNames()) {
-      const std::vector<float>& source = denoised.channel(name);
-      std::vector<float>& target = result.channel(name);
-      for (int y = w.y0(); y < w.y1(); ++y)
-        for (int x = w.x0(); x < w.x1(); ++x) {
-          const size_t p = static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
-          if (mask[p]) target[p] = source[localIndex(region, x, y)];
-        }
+  // The scheduler gives a window's composite the tiles within kCompositeHalo of its rows.
+  if (margin > kCompositeHalo) throw std::logic_error("the composite's denoise reaches beyond kCompositeHalo");
+  for (const RowWindow& rows : filterWindowsOf(lease.spec())) {
+    const int first = std::max(rows.first, area.y0()), end = std::min(rows.end, area.y1());
+    if (first >= end) continue;
+    std::vector<PixelWindow> inRows;
+    for (const PixelWindow& w : windows)
+      if (const auto clipped = withinRows(w, first, end)) inRows.push_back(*clipped);
+    for (const PixelWindow& w : joinedAlongRows(inRows, margin, width, height)) {
+      const PixelWindow region = grown(w, margin, width, height);
+      // Only the window's pixels are kept: the filter need not finish the rest.
+      settings.onlyWithin = NlMeansArea{w.x0() - region.x0(), w.y0() - region.y0(), w.x1() - region.x0(),
+                                        w.y1() - region.y0()};
+      FrameImage denoised = denoisedRegion(tiles, mask, width, region, settings);
+      for (const std::string& name : result.channelNames()) {
+        const std::vector<float>& source = denoised.channel(name);
+        std::vector<float>& target = result.channel(name);
+        for (int y = w.y0(); y < w.y1(); ++y)
+          for (int x = w.x0(); x < w.x1(); ++x) {
+            const size_t p = static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
+            if (mask[p]) target[p - static_cast<size_t>(area.y0()) * static_cast<size_t>(width)] = source[localIndex(region, x, y)];
+          }
+      }
     }
   }
-  return finishedFinalFrame(std::move(result), mask, lease.spec().pipeline());
+  return result;
+}
+
+// The frame's composite from its windows' composites: their rows pasted in place, their
+// re-render masks joined.
+TaskOutput joinedWindows(const Lease& lease, std::vector<TaskInput>& inputs) {
+  const int width = lease.spec().width(), height = lease.spec().height();
+  FrameImage frame(width, height);
+  std::vector<uint8_t> mask(frame.pixelCount(), 0);
+  std::vector<uint8_t> rowsDone(static_cast<size_t>(height), 0);
+  for (TaskInput& input : inputs) {
+    const PixelWindow& w = input.params.window();
+    if (input.kind != TASK_COMPOSITE || !input.params.has_window())
+      throw BadInput("the composite of " + frameLabel(lease) + " joins its windows' composites and nothing else");
+    FrameImage rows = input.take();
+    if (w.x0() != 0 || w.x1() != width || w.y0() < 0 || w.y1() > height || rows.width() != width ||
+        rows.height() != w.y1() - w.y0() || std::any_of(rowsDone.begin() + w.y0(), rowsDone.begin() + w.y1(), [](uint8_t done) { return done; }))
+      throw BadInput("a window's composite of " + frameLabel(lease) + " does not have its rows' size or place");
+    std::fill(rowsDone.begin() + w.y0(), rowsDone.begin() + w.y1(), 1);
+    const std::vector<float>& flagged = channelOf(rows, "rerender.Y", "a window's composite of " + frameLabel(lease));
+    std::transform(flagged.begin(), flagged.end(), mask.begin() + static_cast<ptrdiff_t>(w.y0()) * width,
+                   [](float value) { return static_cast<uint8_t>(value > 0.5f ? 1 : 0); });
+    rows.removeChannels([](const std::string& name) { return name == "rerender.Y"; });
+    frame.attributes() = rows.attributes();
+    frame.paste(rows, 0, w.y0());
+  }
+  if (std::find(rowsDone.begin(), rowsDone.end(), 0) != rowsDone.end())
+    throw BadInput("the windows' composites of " + frameLabel(lease) + " do not cover the frame");
+  requireFinalColors(frame, "the joined composite of " + frameLabel(lease));
+  return finishedFinalFrame(std::move(frame), mask, lease.spec().pipeline());
+}
+
+}  // namespace
+
+TaskOutput runCompositeTask(const Lease& lease, std::vector<TaskInput>& inputs) {
+  if (!inputs.empty() && std::all_of(inputs.begin(), inputs.end(), [](const TaskInput& input) { return input.kind == TASK_COMPOSITE; }))
+    return joinedWindows(lease, inputs);
+  std::vector<uint8_t> mask;
+  FrameImage result = compositedRows(lease, inputs, mask);
+  if (!lease.params().has_window()) return finishedFinalFrame(std::move(result), mask, lease.spec().pipeline());
+  // A window: its rows with their re-render mask, for the frame's composite to join.
+  const PixelWindow& w = lease.params().window();
+  const auto width = static_cast<ptrdiff_t>(lease.spec().width());
+  addRerenderMask(result, std::vector<uint8_t>(mask.begin() + w.y0() * width, mask.begin() + w.y1() * width));
+  TaskOutput output;
+  output.chunk = encodeExr(result, ExrCompression::Fast);
+  return output;
 }
 
 }  // namespace pathfarm::farm

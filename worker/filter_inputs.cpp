@@ -17,14 +17,23 @@ const FrameImage& TaskInput::image() const {
   return *frame;
 }
 
-FrameImage TaskInput::part(const ChannelFilter& keep) const {
-  return !frame && decodePart ? decodePart(keep) : channelsOf(image(), keep);
+FrameImage TaskInput::part(const InputPart& wanted) const {
+  return !frame && decodePart ? decodePart(wanted) : partOf(image(), wanted);
 }
 
-FrameImage channelsOf(const FrameImage& frame, const ChannelFilter& keep) {
-  FrameImage kept(frame.width(), frame.height());
-  for (const std::string& name : frame.channelNames())
-    if (keep(name)) kept.addChannel(name) = frame.channel(name);
+FrameImage partOf(const FrameImage& frame, const InputPart& wanted) {
+  const int endRow = wanted.endRow > 0 ? wanted.endRow : frame.height();
+  if (wanted.firstRow < 0 || endRow > frame.height() || wanted.firstRow >= endRow)
+    throw BadInput("rows " + std::to_string(wanted.firstRow) + " to " + std::to_string(endRow) +
+                   " of a frame of " + std::to_string(frame.height()) + " rows");
+  const size_t first = static_cast<size_t>(wanted.firstRow) * static_cast<size_t>(frame.width());
+  const size_t end = static_cast<size_t>(endRow) * static_cast<size_t>(frame.width());
+  FrameImage kept(frame.width(), endRow - wanted.firstRow);
+  for (const std::string& name : frame.channelNames()) {
+    if (wanted.keep && !wanted.keep(name)) continue;
+    const std::vector<float>& values = frame.channel(name);
+    kept.addChannel(name).assign(values.begin() + static_cast<ptrdiff_t>(first), values.begin() + static_cast<ptrdiff_t>(end));
+  }
   kept.attributes() = frame.attributes();
   return kept;
 }

@@ -20,8 +20,9 @@ TaskInput& inputOf(std::vector<TaskInput>& inputs, TaskKind kind, int64_t frame)
 const TaskInput& filteredKeyframe(const std::vector<TaskInput>& inputs, int64_t frame);
 TaskInput& filteredKeyframe(std::vector<TaskInput>& inputs, int64_t frame);
 
-// The channels of `frame` that `keep` accepts, with its attributes.
-FrameImage channelsOf(const FrameImage& frame, const ChannelFilter& keep);
+// The part of `frame` that `wanted` names, with its attributes; rows outside the frame
+// are BadInput.
+FrameImage partOf(const FrameImage& frame, const InputPart& wanted);
 
 // A motion field stored as `<name>.X`, `<name>.Y`, `<name>.valid`.
 void writeMotionField(FrameImage& image, const std::string& name, const MotionField& field);

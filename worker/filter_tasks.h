@@ -16,6 +16,13 @@
 
 namespace pathfarm::farm {
 
+// What a task reads of an input: the channels `keep` accepts, of rows firstRow .. endRow - 1
+// (every row when endRow is 0), with every attribute of the frame.
+struct InputPart {
+  ChannelFilter keep;
+  int firstRow = 0, endRow = 0;
+};
+
 // One input chunk: what made it and its image. The image may be shared with the worker's
 // decoded inputs (worker/decoded_inputs.h) and other tasks, so a task changes only what
 // take() gives it. A worker's inputs are decoded when the task first asks for them, so that
@@ -27,16 +34,15 @@ struct TaskInput {
   mutable std::shared_ptr<FrameImage> frame;  // shared: change only what take() gives
   // Makes `frame` when it is first asked for; empty when `frame` was given.
   mutable std::function<std::shared_ptr<FrameImage>()> decode = {};
-  // Makes the channels a filter accepts (with every attribute); empty: they are taken
-  // from image().
-  std::function<FrameImage(const ChannelFilter&)> decodePart = {};
+  // Makes a part of the frame; empty: parts are taken from image().
+  std::function<FrameImage(const InputPart&)> decodePart = {};
 
   const FrameImage& image() const;
-  // The channels `keep` accepts, with the frame's attributes: copied from the frame when it
-  // is decoded already, else decoded alone (decodePart), so that a task reading one
-  // component of a keyframe too large for the worker's decoded inputs holds that component
-  // alone. The input itself is left as it was.
-  FrameImage part(const ChannelFilter& keep) const;
+  // A part of the frame: copied from it when it is decoded already, else decoded alone
+  // (decodePart), so that a task reading one component of a keyframe, or a window of
+  // rows, of a frame too large for the worker's decoded inputs holds that part alone. The
+  // input itself is left as it was.
+  FrameImage part(const InputPart& wanted) const;
   // The image, to change: moved out when this input alone holds it (a frame too large for
   // the decoded inputs' budget: a 1080p keyframe of 150 channels is 1.2 GB, and copying it
   // would double a filter task's memory), else copied. The input is empty afterwards.

@@ -2,29 +2,46 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string_view>
 
 #include "image/exr_io.h"
 #include "postproc/filters/decomposed_frame.h"
+#include "worker/failure_class.h"
+#include "worker/filter_inputs.h"
 
 namespace pathfarm::farm {
 
+bool isFinalColorChannel(const std::string& name) {
+  if (name == "R" || name == "G" || name == "B") return true;
+  // <component>.color.<R|G|B>: component names hold no dot.
+  const size_t dot = name.find('.');
+  if (dot == std::string::npos) return false;
+  const std::string_view rest = std::string_view(name).substr(dot);
+  return rest == ".color.R" || rest == ".color.G" || rest == ".color.B";
+}
+
+void requireFinalColors(const FrameImage& frame, const std::string& label) {
+  std::vector<std::string> wanted = {"R", "G", "B"};
+  for (const std::string& component : decompositionComponents(frame))
+    for (const char* c : {"R", "G", "B"}) wanted.push_back(component + ".color." + c);
+  for (const std::string& name : wanted)
+    if (!frame.hasChannel(name)) throw BadInput(label + " has no channel \"" + name + "\"");
+}
+
 FrameImage finalColorsOf(const FrameImage& staged) {
-  FrameImage final(staged.width(), staged.height());
-  for (const char* c : {"R", "G", "B"}) final.addChannel(c) = staged.channel(c);
-  for (const std::string& component : decompositionComponents(staged))
-    for (const char* c : {"R", "G", "B"}) {
-      const std::string name = component + ".color." + c;
-      final.addChannel(name) = staged.channel(name);
-    }
-  final.attributes() = staged.attributes();
-  return final;
+  requireFinalColors(staged, "the stage output");
+  return partOf(staged, {isFinalColorChannel});
+}
+
+void addRerenderMask(FrameImage& final, const std::vector<uint8_t>& rerendered) {
+  if (rerendered.size() != final.pixelCount())
+    throw std::logic_error("addRerenderMask: the re-render mask does not have the frame's size");
+  std::vector<float>& flagged = final.addChannel("rerender.Y");
+  std::copy(rerendered.begin(), rerendered.end(), flagged.begin());
 }
 
 TaskOutput finishedFinalFrame(FrameImage final, const std::vector<uint8_t>& rerendered, Pipeline pipeline) {
-  if (rerendered.size() != final.pixelCount())
-    throw std::logic_error("finishedFinalFrame: the re-render mask does not have the frame's size");
-  std::vector<float>& flagged = final.addChannel("rerender.Y");
-  std::copy(rerendered.begin(), rerendered.end(), flagged.begin());
+  addRerenderMask(final, rerendered);
   const auto count = static_cast<size_t>(std::count(rerendered.begin(), rerendered.end(), 1));
   final.attributes()["pathfarm.rerender_pixels"] = std::to_string(count);
   final.attributes()["pathfarm.pipeline"] = pipelineName(pipeline);

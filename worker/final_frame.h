@@ -13,11 +13,18 @@
 
 namespace pathfarm::farm {
 
+// Whether a channel is one of a final frame's colors: `R`, `G`, `B` or `<component>.color.*`.
+bool isFinalColorChannel(const std::string& name);
+// Throws BadInput naming `label` unless `frame` has the beauty and every component's colors.
+void requireFinalColors(const FrameImage& frame, const std::string& label);
 // The final frame's colors and attributes, taken from a stage output.
 FrameImage finalColorsOf(const FrameImage& staged);
 
-// `final` with `rerendered` (a byte per pixel, 1 = re-rendered) added as `rerender.Y`,
-// encoded for the shot's output, with its "rerender_pixels" metric.
+// Adds `rerendered` (a byte per pixel, 1 = re-rendered) to `final` as `rerender.Y`.
+void addRerenderMask(FrameImage& final, const std::vector<uint8_t>& rerendered);
+
+// `final` with `rerendered` added as `rerender.Y`, encoded for the shot's output, with its
+// "rerender_pixels" metric.
 TaskOutput finishedFinalFrame(FrameImage final, const std::vector<uint8_t>& rerendered, Pipeline pipeline);
 
 }  // namespace pathfarm::farm

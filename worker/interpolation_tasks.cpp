@@ -49,8 +49,8 @@ TaskOutput runFlowTask(const Lease& lease, std::vector<TaskInput>& inputs) {
   const std::string& component = params.component();
   // The component's channels alone: a 1080p keyframe's others are gigabytes.
   const auto ofComponent = [&](const std::string& name) { return name.rfind(component + ".", 0) == 0; };
-  const FrameImage k0 = filteredKeyframe(inputs, params.keyframe_before()).part(ofComponent);
-  const FrameImage k1 = filteredKeyframe(inputs, params.keyframe_after()).part(ofComponent);
+  const FrameImage k0 = filteredKeyframe(inputs, params.keyframe_before()).part({ofComponent});
+  const FrameImage k1 = filteredKeyframe(inputs, params.keyframe_after()).part({ofComponent});
   const std::vector<std::string> components = decompositionComponents(k0);
   if (component.empty() || std::find(components.begin(), components.end(), component) == components.end())
     throw BadInput("the keyframes have no component " + component);

@@ -265,8 +265,8 @@ std::vector<TaskInput> TaskRunner::inputsOf(const Lease& lease, const ChunkFetch
       // Fetched now, so that a task whose inputs cannot be had fails before its work.
       const std::filesystem::path file = files(ref);
       input.decode = [this, ref, label, file] { return decodedInput(ref, [&] { return decodeExrFile(file, label); }); };
-      input.decodePart = [this, ref, label, file, whole = input.decode](const ChannelFilter& keep) {
-        return decodedPart(ref, label, file, whole, keep);
+      input.decodePart = [this, ref, label, file, whole = input.decode](const InputPart& wanted) {
+        return decodedPart(ref, label, file, whole, wanted);
       };
     } else {
       input.decode = [this, ref, label, fetch] { return decodedInput(ref, [&] { return decodeExr(fetch(ref), label); }); };
@@ -289,19 +289,20 @@ std::shared_ptr<FrameImage> TaskRunner::decodedInput(const ChunkRef& ref, const 
 
 FrameImage TaskRunner::decodedPart(const ChunkRef& ref, const std::string& label, const std::filesystem::path& file,
                                     const std::function<std::shared_ptr<FrameImage>()>& whole,
-                                    const ChannelFilter& keep) {
+                                    const InputPart& wanted) {
   // A frame the decoded inputs would keep is decoded whole, once, for the tasks after this
   // one too; a larger one (a 1080p keyframe) would be decoded again by each task anyway.
   if (!decoded_.find(ref.sha256())) {
     const ExrHeader header = readExrHeader(file, label);
     const size_t pixels = static_cast<size_t>(header.width) * static_cast<size_t>(header.height);
     if (!decoded_.couldKeep(DecodedInputs::frameBytes(pixels, header.channels, header.attributes))) {
-      FrameImage part = decodeExrFile(file, label, keep);
-      requireFinite(part, ref);  // the channels read: the others are not decoded at all
+      FrameImage part = wanted.endRow > 0 ? readExrRows(file, label, wanted.firstRow, wanted.endRow, wanted.keep)
+                                          : decodeExrFile(file, label, wanted.keep);
+      requireFinite(part, ref);  // the part read: the rest is not decoded at all
       return part;
     }
   }
-  return channelsOf(*whole(), keep);
+  return partOf(*whole(), wanted);
 }
 
 TaskOutput TaskRunner::runMetropolis(const Lease& lease, const ChunkFetcher& fetch, std::atomic<double>& progress,

@@ -83,10 +83,10 @@ class TaskRunner {
                                   const ChunkFileFetcher& files = {});
   // An input chunk's frame: made by `decode` and checked once, then kept in decoded_.
   std::shared_ptr<FrameImage> decodedInput(const ChunkRef& ref, const std::function<FrameImage()>& decode);
-  // The channels `keep` accepts of the input chunk in `file` (TaskInput::part); `whole`
+  // The part `wanted` names of the input chunk in `file` (TaskInput::part); `whole`
   // decodes the frame through the decoded inputs.
   FrameImage decodedPart(const ChunkRef& ref, const std::string& label, const std::filesystem::path& file,
-                         const std::function<std::shared_ptr<FrameImage>()>& whole, const ChannelFilter& keep);
+                         const std::function<std::shared_ptr<FrameImage>()>& whole, const InputPart& wanted);
 
   int threads_;
   std::filesystem::path scenesRoot_;

@@ -155,6 +155,21 @@ TEST(ShotFile, WithoutAPipelineAProbeChoosesItAndTheFileReadsAsEachCandidate) {
   // A key only some candidate reads is still checked when the file is read.
   EXPECT_NE(errorOf(R"({"scene": "cornell/scene.json", "poisson_norm": "l3"})").find("poisson_norm"), std::string::npos);
   EXPECT_NE(errorOf(R"({"scene": "cornell/scene.json", "feature_spp": 0})").find("feature_spp"), std::string::npos);
+  EXPECT_NE(errorOf(R"({"scene": "cornell/scene.json", "filter_window_rows": 8})").find("filter_window_rows"),
+            std::string::npos);
+}
+
+TEST(ShotFile, FilterWindowRowsAreReadForTheFilteringPipelines) {
+  const auto file = writeShot("windows", R"({"scene": "cornell/scene.json", "pipeline": "dui", "resolution": [64, 200],
+    "filter_window_rows": 64})");
+  const ShotSpec spec = loadShotFile(file);
+  std::filesystem::remove(file);
+  EXPECT_EQ(spec.filter_window_rows(), 64);
+  const std::vector<RowWindow> windows = filterWindowsOf(spec);  // 200 rows in four windows of 50
+  ASSERT_EQ(windows.size(), 4u);
+  EXPECT_EQ(windows.front().first, 0);
+  EXPECT_EQ(windows[1].first, 50);
+  EXPECT_EQ(windows.back().end, 200);
 }
 
 TEST(ShotFile, ReadingRunsNoProbeAndPreparingRunsTheKeyframeProbe) {

@@ -1,7 +1,7 @@
 // The DUI pipeline on a multi-process farm (issue: the shot planner and the DUI pipeline):
-// a small Cornell animation filtered end to end, judged against renders made apart from
-// the farm, and the same shot with a worker killed midway and its inputs streamed, which
-// must not change a byte.
+// a small Cornell animation filtered end to end (its frames composited in windows of 16
+// rows), judged against renders made apart from the farm, and the same shot with a worker
+// killed midway and its inputs streamed, which must not change a byte.
 #include <map>
 
 #include "farm/farm_fixture.h"
@@ -19,7 +19,7 @@ fs::path writeDuiShot(const fs::path& folder) {
                       "\", \"frames\": {\"start\": 0, \"end\": 4}, \"resolution\": [64, 64], \"spp\": " +
                       std::to_string(kSpp) +
                       ", \"max_depth\": 6, \"pipeline\": \"dui\", \"keyframe_interval\": 4, \"tile\": 32,"
-                      " \"evaluation_frames\": [2], \"baseline_core_seconds\": 1}\n");
+                      " \"evaluation_frames\": [2], \"baseline_core_seconds\": 1, \"filter_window_rows\": 16}\n");
   return file;
 }
 
@@ -94,6 +94,8 @@ TEST_F(FarmTest, DuiShotIsFilteredEndToEndAndAKilledWorkerChangesNoByte) {
   EXPECT_GT(db.integer("SELECT COUNT(*) FROM (SELECT task_id FROM task_deps GROUP BY task_id HAVING COUNT(*) > 2)"), 0)
       << "no task had more inputs than a lease names";
   EXPECT_GT(db.integer("SELECT COUNT(*) FROM tasks WHERE created_by IS NOT NULL"), 0) << "no follow-up tile was asked for";
+  EXPECT_EQ(db.integer("SELECT COUNT(*) FROM tasks WHERE kind = " + std::to_string(farm::TASK_COMPOSITE)), 5 * (4 + 1))
+      << "each frame's four windows and their join";
   const fs::path disturbed = fetchFrames(id, "disturbed");
   for (int64_t frame = 0; frame <= 4; ++frame) {
     const std::string name = farm::frameFileName(frame);

@@ -222,6 +222,12 @@ TEST(ExrIo, AFilesHeaderAndRowsReadInPlaceAreWhatDecodingItWholeGives) {
   }
   EXPECT_THROW(readExrRows(file, "chunk", 20, 24), ExrError);
   EXPECT_THROW(readExrRows(file, "chunk", 4, 4), ExrError);
+  // Rows of some channels: those channels alone, the same values.
+  const std::string kept = decoded.channelNames().back();
+  const FrameImage some = readExrRows(file, "chunk", 5, 19, [&](const std::string& name) { return name == kept; });
+  EXPECT_EQ(some.channelNames(), std::vector<std::string>{kept});
+  EXPECT_EQ(some.channel(kept), frame.crop(0, 5, frame.width(), 14).channel(kept));
+  EXPECT_EQ(some.attributes(), frame.attributes());
   const std::string bytes = fileBytes(file);
   std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes.substr(0, 40);
   EXPECT_THROW(readExrHeader(file, "chunk"), ExrError);

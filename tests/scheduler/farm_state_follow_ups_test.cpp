@@ -1,5 +1,8 @@
 // Messages of bounded size however large the frame: a lease's inputs read in parts, and
 // follow-up tiles staged in batches until their task completes.
+#include <map>
+
+#include "contract/pipeline.h"
 #include "scheduler/farm_state_fixture.h"
 
 namespace pathfarm::farm {
@@ -103,6 +106,46 @@ TEST_F(FarmStateTest, FollowUpsOfAnAttemptThatDoesNotCompleteAreDropped) {
   ASSERT_TRUE(complete(completing.attempt_id(), storedChunk("i"), now_).accepted());
   EXPECT_EQ(state_->summary(shot, now_).tasks_total(), 2) << "a tile staged by an attempt that ended joined the shot";
   EXPECT_EQ(leaseFor(worker).kind(), TASK_COMPOSITE);
+}
+
+// A composite of a window of rows waits for the re-render tiles within kCompositeHalo of
+// its rows, not for the others; the frame's composite, joining the windows, for none.
+TEST_F(FarmStateTest, FollowUpsJoinTheWindowsCompositesWhoseHaloTheyReach) {
+  ShotSpec spec = filteredSpec();
+  spec.set_height(200);
+  std::vector<PlannedTask> plan = {{TASK_INTERPOLATE, {}, {}}};
+  for (const auto& [first, end] : {std::pair{0, 100}, {100, 200}}) {
+    PlannedTask window{TASK_COMPOSITE, {}, {0}};
+    window.params.mutable_window()->set_y0(first);
+    window.params.mutable_window()->set_y1(end);
+    window.params.mutable_window()->set_x1(16);
+    plan.push_back(window);
+  }
+  plan.push_back({TASK_COMPOSITE, {}, {1, 2}, true});
+  state_->submit(spec, plan, now_);
+  const int64_t worker = state_->registerWorker("w", 1, now_);
+  const Lease interpolate = leaseFor(worker);
+  static_assert(kCompositeHalo == 32, "the tiles below are placed for a halo of 32 rows");
+  // Rows 0-8 reach the first window alone, 64-72 both (72 > 100 - 32), 192-200 the second.
+  ASSERT_TRUE(state_->stageFollowUps(interpolate.attempt_id(),
+                                     batch({rerenderTile(0, 0), rerenderTile(0, 64), rerenderTile(8, 192)}))
+                  .accepted());
+  ASSERT_TRUE(complete(interpolate.attempt_id(), storedChunk("i"), now_).accepted());
+  // The three tiles and the two windows, in whichever order they become ready.
+  std::map<int, std::vector<int>> tilesOf;  // a window's first row -> its tiles' first rows
+  for (int i = 0; i < 5; ++i) {
+    const Lease lease = leaseFor(worker);
+    ASSERT_TRUE(lease.kind() == TASK_RENDER_TILE || lease.params().has_window()) << "the join came before a window";
+    for (int input = 0; input < lease.inputs_size(); ++input)
+      if (lease.input_kinds(input) == TASK_RENDER_TILE)
+        tilesOf[lease.params().window().y0()].push_back(lease.input_params(input).window().y0());
+    ASSERT_TRUE(complete(lease.attempt_id(), storedChunk("c" + std::to_string(i)), now_).accepted());
+  }
+  EXPECT_EQ(tilesOf[0], (std::vector<int>{0, 64}));
+  EXPECT_EQ(tilesOf[100], (std::vector<int>{64, 192}));
+  const Lease joined = leaseFor(worker);
+  ASSERT_EQ(joined.kind(), TASK_COMPOSITE);
+  EXPECT_EQ(joined.inputs_size(), 2) << "the frame's composite reads its windows' composites alone";
 }
 
 TEST_F(FarmStateTest, FollowUpsThatAreNoTilesOfTheFrameAreRefused) {

@@ -7,6 +7,7 @@
 #include <limits>
 #include <map>
 
+#include "contract/pipeline.h"
 #include "image/exr_io.h"
 #include "postproc/filters/component_denoiser.h"
 #include "postproc/filters/decomposed_frame.h"
@@ -55,6 +56,8 @@ TEST(CompositeTask, ReRenderedPixelsAreThoseOfDenoisingTheWholeSparseFrame) {
   Lease lease;
   lease.set_kind(TASK_COMPOSITE);
   lease.mutable_spec()->set_pipeline(PIPELINE_DUI);
+  lease.mutable_spec()->set_width(kSize);
+  lease.mutable_spec()->set_height(kSize);
   lease.mutable_params()->set_frame(0);
   lease.add_inputs()->set_sha256("stage");
   lease.add_input_kinds(TASK_INTERPOLATE);
@@ -127,6 +130,8 @@ TEST(CompositeTask, ATileWhosePixelMaskDoesNotFitItsWindowIsRefused) {
                                                      {"tile", encodeExr(flat.crop(0, 0, 2, 2), ExrCompression::Fast)}};
   Lease lease;
   lease.set_kind(TASK_COMPOSITE);
+  lease.mutable_spec()->set_width(4);
+  lease.mutable_spec()->set_height(4);
   lease.mutable_params()->set_frame(0);
   lease.add_inputs()->set_sha256("stage");
   lease.add_input_kinds(TASK_UPSAMPLE);
@@ -147,6 +152,89 @@ TEST(CompositeTask, ATileWhosePixelMaskDoesNotFitItsWindowIsRefused) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("has a pixel mask of 3 bytes for 4 pixels"), std::string::npos) << e.what();
   }
+}
+
+// A frame composited window by window, each window's task given only the re-render tiles
+// within kCompositeHalo of its rows (as the scheduler gives them) and the windows joined,
+// is the same bytes as the frame composited by one task; re-rendered content crosses both
+// window borders.
+TEST(CompositeTask, WindowsComposedApartAndJoinedAreTheWholeFramesBytes) {
+  constexpr int kWidth = 40, kHeight = 120;
+  const FrameImage staged = test_support::renderDecomposed("scenes/cornell/scene.json", kWidth, kHeight, 1, 0);
+  const FrameImage rendered = test_support::renderDecomposed("scenes/cornell/scene.json", kWidth, kHeight, 16, 0);
+  // Windows of rows 0-40, 40-80, 80-120; tiles across the first border, across the second
+  // (in part, a diagonal), and one below the halo of the first window.
+  std::vector<Tile> tiles = {{window(8, 32, 24, 48), ""}, {window(16, 72, 32, 88), std::string(256, '\0')},
+                             {window(0, 100, 16, 116), ""}};
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) tiles[1].mask[static_cast<size_t>(y * 16 + x)] = std::abs(x - y) < 4 ? 1 : 0;
+  std::map<std::string, std::string> chunks = {{"stage", encodeExr(staged, ExrCompression::Fast)}};
+  Lease whole;
+  whole.set_kind(TASK_COMPOSITE);
+  whole.mutable_spec()->set_pipeline(PIPELINE_DUI);
+  whole.mutable_spec()->set_width(kWidth);
+  whole.mutable_spec()->set_height(kHeight);
+  whole.mutable_spec()->set_filter_window_rows(40);
+  whole.mutable_params()->set_frame(0);
+  const auto addInput = [](Lease& lease, const std::string& name, TaskKind kind, const TaskParams& params) {
+    lease.add_inputs()->set_sha256(name);
+    lease.add_input_kinds(kind);
+    *lease.add_input_params() = params;
+  };
+  TaskParams stageParams;
+  stageParams.set_frame(0);
+  addInput(whole, "stage", TASK_INTERPOLATE, stageParams);
+  std::vector<TaskParams> tileParams;
+  for (size_t t = 0; t < tiles.size(); ++t) {
+    const PixelWindow& w = tiles[t].window;
+    chunks["tile" + std::to_string(t)] =
+        encodeExr(rendered.crop(w.x0(), w.y0(), w.x1() - w.x0(), w.y1() - w.y0()), ExrCompression::Fast);
+    TaskParams& params = tileParams.emplace_back();
+    params.set_frame(0);
+    *params.mutable_window() = w;
+    params.set_pixel_mask(tiles[t].mask);
+    addInput(whole, "tile" + std::to_string(t), TASK_RENDER_TILE, params);
+  }
+  TaskRunner runner(1, test_support::processTemporaryFolder("pathfarm_composite_scenes"),
+                    test_support::processTemporaryFolder("pathfarm_composite_outgoing"));
+  std::atomic<double> progress{0};
+  std::atomic<bool> abandon{false};
+  const auto run = [&](const Lease& lease) {
+    return runner.run(lease, [&](const ChunkRef& ref) { return chunks.at(ref.sha256()); }, progress, abandon).chunk;
+  };
+  const std::string expected = run(whole);
+
+  const std::vector<RowWindow> windows = filterWindowsOf(whole.spec());
+  ASSERT_EQ(windows.size(), 3u);
+  Lease join = whole;
+  join.clear_inputs();
+  join.clear_input_kinds();
+  join.clear_input_params();
+  const Lease noInputs = join;
+  std::vector<size_t> tilesGiven;
+  for (const RowWindow& rows : windows) {
+    Lease part = noInputs;
+    *part.mutable_params()->mutable_window() = window(0, rows.first, kWidth, rows.end);
+    addInput(part, "stage", TASK_INTERPOLATE, stageParams);
+    for (size_t t = 0; t < tiles.size(); ++t) {
+      const PixelWindow& w = tiles[t].window;
+      if (w.y1() <= rows.first - kCompositeHalo || w.y0() >= rows.end + kCompositeHalo) continue;
+      addInput(part, "tile" + std::to_string(t), TASK_RENDER_TILE, tileParams[t]);
+      tilesGiven.push_back(t);
+    }
+    const std::string name = "window" + std::to_string(rows.first);
+    chunks[name] = run(part);
+    addInput(join, name, TASK_COMPOSITE, part.params());
+  }
+  EXPECT_EQ(tilesGiven, (std::vector<size_t>{0, 0, 1, 2, 1, 2})) << "the halo left no tile out";
+  const std::string joined = run(join);
+  EXPECT_TRUE(joined == expected) << "the joined windows differ from the whole frame's composite";
+  const FrameImage frame = decodeExr(joined, "joined");
+  EXPECT_NE(frame.attributes().at("pathfarm.rerender_pixels"), "0");
+  // Not the stage's pixels alone: the re-rendered ones at the borders are the denoised render.
+  const size_t border = 40 * kWidth + 16;
+  EXPECT_EQ(frame.channel("rerender.Y")[border], 1.0f);
+  EXPECT_NE(frame.channel("R")[border], staged.channel("R")[border]);
 }
 
 }  // namespace

@@ -76,6 +76,8 @@ Lease compositeLease() {
   Lease lease;
   lease.set_kind(TASK_COMPOSITE);
   lease.mutable_spec()->set_pipeline(PIPELINE_DU);
+  lease.mutable_spec()->set_width(4);
+  lease.mutable_spec()->set_height(2);
   lease.mutable_params()->set_frame(3);
   lease.add_inputs()->set_sha256("keyframe");
   lease.add_input_kinds(TASK_UPSAMPLE);

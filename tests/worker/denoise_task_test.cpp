@@ -67,6 +67,8 @@ TEST(DenoiseTask, DsFinalFrameIsTheOneACompositeOfItsDenoisedFrameWrites) {
   Lease composite;
   composite.set_kind(TASK_COMPOSITE);
   composite.mutable_spec()->set_pipeline(PIPELINE_D);
+  composite.mutable_spec()->set_width(40);
+  composite.mutable_spec()->set_height(40);
   composite.mutable_params()->set_frame(1);
   composite.add_inputs()->set_sha256("denoised");
   composite.add_input_kinds(TASK_DENOISE);

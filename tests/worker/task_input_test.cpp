@@ -59,21 +59,39 @@ TEST(TaskInput, APartIsDecodedAloneUnlessTheWholeFrameIsDecodedAlready) {
                     frame->addChannel("G").assign(12, 4.0f);
                     return frame;
                   }};
-  input.decodePart = [&](const ChannelFilter&) {
+  input.decodePart = [&](const InputPart&) {
     ++partDecodes;
     FrameImage part(4, 3);
     part.addChannel("G").assign(12, 4.0f);
     return part;
   };
-  EXPECT_EQ(input.part(onlyG).channelNames(), std::vector<std::string>{"G"});
+  EXPECT_EQ(input.part({onlyG}).channelNames(), std::vector<std::string>{"G"});
   EXPECT_EQ(partDecodes, 1);
   EXPECT_EQ(wholeDecodes, 0);
   input.image();
-  const FrameImage copied = input.part(onlyG);
+  const FrameImage copied = input.part({onlyG});
   EXPECT_EQ(partDecodes, 1);
   EXPECT_EQ(copied.channelNames(), std::vector<std::string>{"G"});
   EXPECT_EQ(copied.channel("G")[11], 4.0f);
   EXPECT_TRUE(input.image().hasChannel("R")) << "the input keeps its frame";
+}
+
+// Rows of a decoded frame are cut from it; rows outside it are refused, not read past.
+TEST(TaskInput, RowsOfADecodedFrameAreThoseRowsOfTheChannelsKept) {
+  FrameImage frame(3, 4);
+  std::vector<float>& r = frame.addChannel("R");
+  for (size_t p = 0; p < r.size(); ++p) r[p] = static_cast<float>(p);
+  frame.addChannel("G").assign(12, 2.0f);
+  frame.attributes()["a"] = "b";
+  TaskInput input{TASK_UPSAMPLE, {}, std::make_shared<FrameImage>(frame)};
+  const FrameImage rows = input.part({[](const std::string& name) { return name == "R"; }, 1, 3});
+  ASSERT_EQ(rows.width(), 3);
+  ASSERT_EQ(rows.height(), 2);
+  EXPECT_EQ(rows.channelNames(), std::vector<std::string>{"R"});
+  EXPECT_EQ(rows.channel("R"), (std::vector<float>{3, 4, 5, 6, 7, 8}));
+  EXPECT_EQ(rows.attributes().at("a"), "b");
+  EXPECT_THROW(input.part({{}, 2, 5}), std::runtime_error);
+  EXPECT_THROW(input.part({{}, 3, 3}), std::runtime_error);
 }
 
 }  // namespace
