@@ -18,27 +18,41 @@ std::vector<std::string> componentsOf(const FrameImage& frame) {
   return components;
 }
 
-// Adds `sign` times the light to the beauty and the components' colors, and recomputes
-// their irradiance from the colors where the frame has it.
+// Where a frame's light is changed: the beauty, one component's color (and irradiance).
+enum class Target { Beauty, Component };
+
+// Adds `sign` times the component's light to `target` (the beauty, or the component's
+// color, clamped at 0, with its irradiance recomputed where the frame has it).
+void applyTo(Target target, FrameImage& frame, const FrameImage& emission, const std::string& component, float sign,
+             const std::vector<uint8_t>* only) {
+  for (const char* c : kRgb) {
+    const std::string direct = component + ".direct." + c;
+    if (!emission.hasChannel(direct)) continue;
+    const std::vector<float>& light = emission.channel(direct);
+    if (target == Target::Beauty) {
+      std::vector<float>& beauty = frame.channel(c);
+      for (size_t p = 0; p < light.size(); ++p)
+        if (light[p] != 0.0f && (!only || (*only)[p])) beauty[p] += sign * light[p];
+      continue;
+    }
+    std::vector<float>& color = frame.channel(component + ".color." + c);
+    const std::string irradianceName = component + ".irradiance." + c;
+    std::vector<float>* irradiance = frame.hasChannel(irradianceName) ? &frame.channel(irradianceName) : nullptr;
+    const std::vector<float>* reflectance = irradiance ? &frame.channel(component + ".reflectance." + c) : nullptr;
+    for (size_t p = 0; p < light.size(); ++p) {
+      if (light[p] == 0.0f || (only && !(*only)[p])) continue;
+      color[p] = std::max(0.0f, color[p] + sign * light[p]);
+      if (irradiance) (*irradiance)[p] = effectiveIrradiance(color[p], (*reflectance)[p]);
+    }
+  }
+}
+
+// Adds `sign` times the light to the beauty and the components' colors (the channels are
+// apart, so the order of the two changes no bit).
 void apply(FrameImage& frame, const FrameImage& emission, float sign, const std::vector<uint8_t>* only) {
   for (const std::string& component : componentsOf(frame)) {
-    for (const char* c : kRgb) {
-      const std::string direct = component + ".direct." + c;
-      if (!emission.hasChannel(direct)) continue;
-      const std::vector<float>& light = emission.channel(direct);
-      std::vector<float>& beauty = frame.channel(c);
-      std::vector<float>& color = frame.channel(component + ".color." + c);
-      const std::string irradianceName = component + ".irradiance." + c;
-      std::vector<float>* irradiance = frame.hasChannel(irradianceName) ? &frame.channel(irradianceName) : nullptr;
-      const std::vector<float>* reflectance =
-          irradiance ? &frame.channel(component + ".reflectance." + c) : nullptr;
-      for (size_t p = 0; p < light.size(); ++p) {
-        if (light[p] == 0.0f || (only && !(*only)[p])) continue;
-        beauty[p] += sign * light[p];
-        color[p] = std::max(0.0f, color[p] + sign * light[p]);
-        if (irradiance) (*irradiance)[p] = effectiveIrradiance(color[p], (*reflectance)[p]);
-      }
-    }
+    applyTo(Target::Beauty, frame, emission, component, sign, only);
+    applyTo(Target::Component, frame, emission, component, sign, only);
   }
 }
 
@@ -54,19 +68,31 @@ std::vector<float> luminance(const FrameImage& frame, const std::string& prefix)
 
 }  // namespace
 
-FrameImage directEmissionOf(const FrameImage& frame) {
+FrameImage directEmissionOf(const FrameImage& frame, const std::string& component) {
   FrameImage emission(frame.width(), frame.height());
-  for (const std::string& component : componentsOf(frame)) {
-    for (const char* c : kRgb) {
-      const std::vector<float>& color = frame.channel(component + ".color." + c);
-      const std::vector<float>& emitted = frame.channel(component + ".emission." + c);
-      if (std::all_of(emitted.begin(), emitted.end(), [](float v) { return v <= 0.0f; })) continue;
-      std::vector<float>& light = emission.addChannel(component + ".direct." + c);
-      // The light is part of the color; the clamp only guards against rounding.
-      for (size_t p = 0; p < light.size(); ++p) light[p] = std::clamp(emitted[p], 0.0f, std::max(0.0f, color[p]));
-    }
+  for (const char* c : kRgb) {
+    const std::vector<float>& color = frame.channel(component + ".color." + c);
+    const std::vector<float>& emitted = frame.channel(component + ".emission." + c);
+    if (std::all_of(emitted.begin(), emitted.end(), [](float v) { return v <= 0.0f; })) continue;
+    std::vector<float>& light = emission.addChannel(component + ".direct." + c);
+    // The light is part of the color; the clamp only guards against rounding.
+    for (size_t p = 0; p < light.size(); ++p) light[p] = std::clamp(emitted[p], 0.0f, std::max(0.0f, color[p]));
   }
   return emission;
+}
+
+FrameImage directEmissionOf(const FrameImage& frame) {
+  FrameImage emission(frame.width(), frame.height());
+  for (const std::string& component : componentsOf(frame)) emission.paste(directEmissionOf(frame, component), 0, 0);
+  return emission;
+}
+
+void takeComponentEmission(FrameImage& frame, const std::string& component) {
+  applyTo(Target::Component, frame, directEmissionOf(frame, component), component, -1.0f, nullptr);
+}
+
+void takeFromBeauty(FrameImage& beauty, const FrameImage& emission, const std::string& component) {
+  applyTo(Target::Beauty, beauty, emission, component, -1.0f, nullptr);
 }
 
 FrameImage takeDirectEmission(FrameImage& frame) {

@@ -13,6 +13,7 @@
 // below the roughness threshold counts as specular and scatters a highlight at random):
 // those edges are re-rendered at the shot's spp (directLightEdges).
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "image/frame_image.h"
@@ -25,6 +26,16 @@ namespace pathfarm::farm {
 FrameImage takeDirectEmission(FrameImage& frame);
 // The light takeDirectEmission would take, leaving the frame as it is.
 FrameImage directEmissionOf(const FrameImage& frame);
+// One component's part of it, from a frame that holds the component's color and emission.
+FrameImage directEmissionOf(const FrameImage& frame, const std::string& component);
+
+// takeDirectEmission a component at a time, for a task that holds a frame in parts: out of
+// the component's color (and irradiance) in a part holding the component, and out of the
+// beauty in a part holding `R`, `G`, `B` (`emission`: the component's, directEmissionOf).
+// Taken from every component and the beauty, in the frame's component order, the same bits
+// as takeDirectEmission.
+void takeComponentEmission(FrameImage& frame, const std::string& component);
+void takeFromBeauty(FrameImage& beauty, const FrameImage& emission, const std::string& component);
 // Adds it back to the beauty and the components' colors (and irradiance, recomputed),
 // at every pixel or only where `only` is set.
 void addDirectEmission(FrameImage& frame, const FrameImage& emission, const std::vector<uint8_t>* only = nullptr);

@@ -21,6 +21,10 @@ FrameImage TaskInput::part(const InputPart& wanted) const {
   return !frame && decodePart ? decodePart(wanted) : partOf(image(), wanted);
 }
 
+bool isFrameWideChannel(const std::string& name) {
+  return std::count(name.begin(), name.end(), '.') <= 1;
+}
+
 FrameImage partOf(const FrameImage& frame, const InputPart& wanted) {
   const int endRow = wanted.endRow > 0 ? wanted.endRow : frame.height();
   if (wanted.firstRow < 0 || endRow > frame.height() || wanted.firstRow >= endRow)

@@ -20,6 +20,10 @@ TaskInput& inputOf(std::vector<TaskInput>& inputs, TaskKind kind, int64_t frame)
 const TaskInput& filteredKeyframe(const std::vector<TaskInput>& inputs, int64_t frame);
 TaskInput& filteredKeyframe(std::vector<TaskInput>& inputs, int64_t frame);
 
+// Whether a channel is frame-wide: the beauty `R`, `G`, `B` or `<buffer>.<channel>`, not a
+// component's `<component>.<buffer>.<channel>`.
+bool isFrameWideChannel(const std::string& name);
+
 // The part of `frame` that `wanted` names, with its attributes; rows outside the frame
 // are BadInput.
 FrameImage partOf(const FrameImage& frame, const InputPart& wanted);

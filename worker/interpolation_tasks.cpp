@@ -1,6 +1,9 @@
 // Irradiance flow and frame interpolation between two keyframes (worker/filter_tasks.h).
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <memory>
+#include <mutex>
 
 #include "image/exr_io.h"
 #include "postproc/filters/decomposed_frame.h"
@@ -21,15 +24,6 @@ ComponentMotion keyframeMotion(const FrameImage& k0, const FrameImage& k1, const
   const std::string prefix = layer.empty() ? "" : layer + ".";
   return ComponentMotion(motionTowards(k0, NeighbourFrame::Next, prefix, "keyframe 0"),
                          motionTowards(k1, NeighbourFrame::Previous, prefix, "keyframe 1"));
-}
-
-// Every component's motion between the keyframes, and the frame-wide one ("").
-ComponentMotions keyframeMotions(const FrameImage& k0, const FrameImage& k1) {
-  std::vector<std::string> layers = decompositionComponents(k0);
-  layers.emplace_back();
-  ComponentMotions motions;
-  for (const std::string& layer : layers) motions.components[layer] = keyframeMotion(k0, k1, layer);
-  return motions;
 }
 
 bool isZero(const std::vector<float>& values) {
@@ -82,33 +76,64 @@ TaskOutput runFlowTask(const Lease& lease, std::vector<TaskInput>& inputs) {
 TaskOutput runInterpolateTask(const Lease& lease, std::vector<TaskInput>& inputs) {
   const TaskParams& params = lease.params();
   const int64_t before = params.keyframe_before(), after = params.keyframe_after();
-  // Directly seen light is not interpolated: the frame's own feature render has it exactly.
-  FrameImage k0 = filteredKeyframe(inputs, before).take(), k1 = filteredKeyframe(inputs, after).take();
-  takeDirectEmission(k0);
-  takeDirectEmission(k1);
-  ComponentMotions motions = keyframeMotions(k0, k1);
-  for (const TaskInput& input : inputs) {
-    if (input.kind != TASK_FLOW) continue;
-    ComponentMotion& motion = motions.components.at(input.params.component());
-    motion.irradianceForward = readMotionField(input.image(), input.params.component() + ".irradiance_forward");
-    motion.irradianceBackward = readMotionField(input.image(), input.params.component() + ".irradiance_backward");
-    motion.hasIrradianceMotion = true;
+  const std::array<const TaskInput*, 2> keyframes = {&filteredKeyframe(inputs, before), &filteredKeyframe(inputs, after)};
+  // The keyframes are read a component at a time (a 1080p pair is gigabytes); first their
+  // frame-wide channels, with each component's colors and emission for a moment: directly
+  // seen light is not interpolated (the frame's own feature render has it exactly), so it
+  // leaves the beauty here and each component's colors when the component is read.
+  std::array<FrameImage, 2> frameWide;
+  for (size_t k = 0; k < 2; ++k) {
+    FrameImage read = keyframes[k]->part({[](const std::string& name) {
+      return isFrameWideChannel(name) || name.find(".color.") != std::string::npos ||
+             name.find(".emission.") != std::string::npos;
+    }});
+    for (const std::string& component : decompositionComponents(read))
+      takeFromBeauty(read, directEmissionOf(read, component), component);
+    read.removeChannels([](const std::string& name) { return !isFrameWideChannel(name); });
+    frameWide[k] = std::move(read);
   }
+  const std::vector<std::string> components = decompositionComponents(frameWide[0]);
+  for (const TaskInput& input : inputs)
+    if (input.kind == TASK_FLOW &&
+        std::find(components.begin(), components.end(), input.params.component()) == components.end())
+      throw BadInput("a flow of component \"" + input.params.component() + "\", which the keyframes do not have");
+  const ComponentMotion frameWideMotion = keyframeMotion(frameWide[0], frameWide[1], "");
+  std::mutex reading;  // a task's inputs are read by one thread at a time
+  LayeredKeyframes keys;
+  keys.frameWide = {&frameWide[0], &frameWide[1]};
+  keys.frameWideMotion = &frameWideMotion;
+  keys.component = [&](const std::string& component) {
+    const auto ofComponent = [&](const std::string& name) {
+      return name.rfind(component + ".", 0) == 0 || name == "depth.Z";
+    };
+    std::array<std::shared_ptr<FrameImage>, 2> parts;
+    {
+      const std::lock_guard lock(reading);
+      for (size_t k = 0; k < 2; ++k) parts[k] = std::make_shared<FrameImage>(keyframes[k]->part({ofComponent}));
+    }
+    for (const auto& part : parts) takeComponentEmission(*part, component);
+    auto motion = std::make_shared<ComponentMotion>(keyframeMotion(*parts[0], *parts[1], component));
+    for (const TaskInput& input : inputs) {
+      if (input.kind != TASK_FLOW || input.params.component() != component) continue;
+      const std::lock_guard lock(reading);
+      motion->irradianceForward = readMotionField(input.image(), component + ".irradiance_forward");
+      motion->irradianceBackward = readMotionField(input.image(), component + ".irradiance_backward");
+      motion->hasIrradianceMotion = true;
+    }
+    return KeyframeComponent{{parts[0], parts[1]}, motion};
+  };
   const float fraction = static_cast<float>(params.frame() - before) / static_cast<float>(after - before);
   // Light seen by one keyframe only, with nothing nearby to tell whether it changed, is
   // left to the radiance check below: it compares the frame's own render there.
   InterpolationSettings settings;
   settings.unknownChangeMasks = false;
-  InterpolationResult result = interpolateFrameDetailed(k0, k1, motions, fraction, settings);
-  for (const auto& [key, value] : k0.attributes()) result.frame.attributes().emplace(key, value);
+  InterpolationResult result = interpolateFrameDetailed(keys, fraction, settings);
+  for (const auto& [key, value] : frameWide[0].attributes()) result.frame.attributes().emplace(key, value);
   result.frame.attributes()["pathfarm.frame"] = std::to_string(params.frame());
   result.frame.attributes()["pathfarm.interpolated"] =
       "between keyframes " + std::to_string(before) + " and " + std::to_string(after);
-  // The keyframes are let go before the frame's feature render is decoded (a 1080p
-  // keyframe is most of a gigabyte).
-  k0 = FrameImage();
-  k1 = FrameImage();
-  motions = ComponentMotions();
+  // The keyframes are let go before the frame's feature render is decoded.
+  frameWide = {};
   const FrameImage& features = inputOf(inputs, TASK_ASSEMBLE_FRAME, params.frame()).image();
   const FrameImage directLight = directEmissionOf(features);
   addDirectEmission(result.frame, directLight);

@@ -1,5 +1,7 @@
 #include "worker/peak_memory.h"
 
+#include <malloc.h>
+
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -7,6 +9,9 @@
 namespace pathfarm::farm {
 
 bool restartPeakResident() {
+  // The memory earlier tasks freed goes back to the system first: glibc keeps freed pages
+  // of its arenas, and without this a task's peak would start at the largest one before it.
+  malloc_trim(0);
   std::ofstream refs("/proc/self/clear_refs");
   refs << "5";
   refs.flush();

@@ -226,37 +226,34 @@ struct LayerKeyframes {
 };
 
 // Checks the layer's motions and reads it from both keyframes; sets layer.irradianceMotion.
-LayerKeyframes readKeyframes(const FrameImage& k0, const FrameImage& k1, Layer& layer,
-                             const ComponentMotions& motions, const InterpolationSettings& settings) {
+// `primary`: the frame-wide motion, or null.
+LayerKeyframes readKeyframes(const FrameImage& k0, const FrameImage& k1, Layer& layer, const ComponentMotion& motion,
+                             const ComponentMotion* primary, const InterpolationSettings& settings) {
   const int width = k0.width(), height = k0.height();
   const std::string& name = layer.name;
   const std::string what = name.empty() ? "the frame-wide motion (\"\")" : "component \"" + name + "\"";
-  const auto found = motions.components.find(name);
-  if (found == motions.components.end()) throw std::invalid_argument("interpolation: no motion for " + what);
-  checkField(found->second.forward, width, height, "interpolation: forward motion of " + what);
-  checkField(found->second.backward, width, height, "interpolation: backward motion of " + what);
+  checkField(motion.forward, width, height, "interpolation: forward motion of " + what);
+  checkField(motion.backward, width, height, "interpolation: backward motion of " + what);
   // Untracked components fall back on the frame-wide motion where the caller gave one.
-  const auto primary = motions.components.find("");
-  const bool fallback = settings.untrackedFollowPrimary && !name.empty() && primary != motions.components.end();
+  const bool fallback = settings.untrackedFollowPrimary && !name.empty() && primary != nullptr;
   if (fallback) {
-    checkField(primary->second.forward, width, height, "interpolation: forward frame-wide motion");
-    checkField(primary->second.backward, width, height, "interpolation: backward frame-wide motion");
+    checkField(primary->forward, width, height, "interpolation: forward frame-wide motion");
+    checkField(primary->backward, width, height, "interpolation: backward frame-wide motion");
   }
-  const ComponentMotion& motion = found->second;
   layer.irradianceMotion = !name.empty() && motion.hasIrradianceMotion;
   const Carry carry = layer.irradianceMotion ? Carry::ColorReflectance : Carry::Color;
   LayerKeyframes keys;
   keys.primary[0] =
-      readLayer(k0, layer, motion.forward, fallback ? &primary->second.forward : nullptr, "keyframe 0", carry);
+      readLayer(k0, layer, motion.forward, fallback ? &primary->forward : nullptr, "keyframe 0", carry);
   keys.primary[1] =
-      readLayer(k1, layer, motion.backward, fallback ? &primary->second.backward : nullptr, "keyframe 1", carry);
+      readLayer(k1, layer, motion.backward, fallback ? &primary->backward : nullptr, "keyframe 1", carry);
   if (layer.irradianceMotion) {
     checkField(motion.irradianceForward, width, height, "interpolation: forward irradiance motion of " + what);
     checkField(motion.irradianceBackward, width, height, "interpolation: backward irradiance motion of " + what);
     keys.irradiance[0] = readLayer(k0, layer, withPrimary(motion.irradianceForward, motion.forward),
-                                   fallback ? &primary->second.forward : nullptr, "keyframe 0", Carry::Irradiance);
+                                   fallback ? &primary->forward : nullptr, "keyframe 0", Carry::Irradiance);
     keys.irradiance[1] = readLayer(k1, layer, withPrimary(motion.irradianceBackward, motion.backward),
-                                   fallback ? &primary->second.backward : nullptr, "keyframe 1", Carry::Irradiance);
+                                   fallback ? &primary->backward : nullptr, "keyframe 1", Carry::Irradiance);
   }
   return keys;
 }
@@ -398,11 +395,13 @@ void addInterpolatedFrame(FrameImage& frame, const std::array<std::vector<float>
 
 }  // namespace
 
-InterpolationResult interpolateFrameDetailed(const FrameImage& k0, const FrameImage& k1,
-                                             const ComponentMotions& motions, float s,
+InterpolationResult interpolateFrameDetailed(const LayeredKeyframes& keys, float s,
                                              const InterpolationSettings& settings) {
   if (!(s > 0.0f && s < 1.0f))
     throw std::invalid_argument("interpolation: the fraction s must be inside (0, 1), got " + std::to_string(s));
+  if (keys.frameWide[0] == nullptr || keys.frameWide[1] == nullptr)
+    throw std::invalid_argument("interpolation: a keyframe is missing");
+  const FrameImage &k0 = *keys.frameWide[0], &k1 = *keys.frameWide[1];
   const int width = k0.width(), height = k0.height();
   if (width <= 0 || height <= 0) throw std::invalid_argument("interpolation: keyframe 0 is empty");
   checkSameLayout(k0, k1, "keyframe 0", "keyframe 1");
@@ -414,25 +413,33 @@ InterpolationResult interpolateFrameDetailed(const FrameImage& k0, const FrameIm
       k0.hasChannel("silhouette.Y") ? &finiteChannel(k0, "silhouette.Y", "keyframe 0") : nullptr,
       k1.hasChannel("silhouette.Y") ? &finiteChannel(k1, "silhouette.Y", "keyframe 1") : nullptr};
   // Each layer's keyframe buffers (copies of a dozen planes per keyframe) live only while
-  // the layer is interpolated: held for every layer at once they were most of a 1080p
-  // interpolation's memory.
+  // the layer is interpolated, and its channels of the keyframes only while they are read:
+  // held for every layer at once they were most of a 1080p interpolation's memory.
   std::vector<LayerOutcome> outcomes(layers.size());
   std::vector<LayerMarks> marks(layers.size());
   tbb::parallel_for(size_t(0), layers.size(), [&](size_t i) {
-    const LayerKeyframes keys = readKeyframes(k0, k1, layers[i], motions, settings);
-    outcomes[i] = interpolateLayer(layers[i], keys, s, settings, width, height);
+    const LayerKeyframes keyframes = [&] {
+      const KeyframeComponent component = keys.component(layers[i].name);
+      for (const auto& frame : component.frames)
+        if (!frame || frame->width() != width || frame->height() != height || !component.motion)
+          throw std::invalid_argument("interpolation: layer \"" + layers[i].name + "\" of a keyframe is missing or of another size");
+      return readKeyframes(*component.frames[0], *component.frames[1], layers[i], *component.motion,
+                           keys.frameWideMotion, settings);
+    }();
+    outcomes[i] = interpolateLayer(layers[i], keyframes, s, settings, width, height);
     outcomes[i].color.resize(3);  // the irradiance and reflectance it carried are combined already
     LayerMarks& m = marks[i];
     m.untracked.assign(pixels, 0);
     for (size_t k = 0; k < 2; ++k) {
-      markUntracked(keys.primary[k], keyBeauty[k], settings, m.untracked);
+      markUntracked(keyframes.primary[k], keyBeauty[k], settings, m.untracked);
       if (silhouette[k] == nullptr) continue;
       m.silhouetteTargets[k].assign(pixels, 0);
       m.silhouetteLanded[k].assign(pixels, 0);
-      markSilhouetteTargets(*silhouette[k], keys.primary[k], k == 0 ? s : 1.0f - s, width, height,
+      markSilhouetteTargets(*silhouette[k], keyframes.primary[k], k == 0 ? s : 1.0f - s, width, height,
                             m.silhouetteTargets[k], m.silhouetteLanded[k]);
     }
   });
+
   const std::array<std::vector<float>, 3> beauty = summedBeauty(outcomes, pixels);
 
   RerenderCauses causes(pixels);
@@ -458,6 +465,26 @@ InterpolationResult interpolateFrameDetailed(const FrameImage& k0, const FrameIm
   addRerenderMask(result, causes);
   addInterpolatedFrame(result.frame, beauty, layers, outcomes, s, result.rerenderRate, settings);
   return result;
+}
+
+InterpolationResult interpolateFrameDetailed(const FrameImage& k0, const FrameImage& k1,
+                                             const ComponentMotions& motions, float s,
+                                             const InterpolationSettings& settings) {
+  // Every layer reads the whole frames, which the caller holds.
+  const auto held = [](const FrameImage& frame) { return std::shared_ptr<const FrameImage>(std::shared_ptr<void>(), &frame); };
+  LayeredKeyframes keys;
+  keys.frameWide = {&k0, &k1};
+  keys.component = [&](const std::string& name) {
+    const auto found = motions.components.find(name);
+    if (found == motions.components.end())
+      throw std::invalid_argument("interpolation: no motion for " +
+                                  (name.empty() ? "the frame-wide motion (\"\")" : "component \"" + name + "\""));
+    return KeyframeComponent{{held(k0), held(k1)},
+                             std::shared_ptr<const ComponentMotion>(std::shared_ptr<void>(), &found->second)};
+  };
+  const auto primary = motions.components.find("");
+  keys.frameWideMotion = primary != motions.components.end() ? &primary->second : nullptr;
+  return interpolateFrameDetailed(keys, s, settings);
 }
 
 FrameImage interpolateFrame(const FrameImage& k0, const FrameImage& k1, const ComponentMotions& motions, float s,

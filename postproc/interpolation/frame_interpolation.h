@@ -56,7 +56,11 @@
 // Color-only baseline (settings.colorOnly): the same code with one layer, the beauty
 // R, G, B, frame-wide `depth.Z` and the frame-wide motion (ComponentMotions key ""); its
 // output has no component channels and no `pathfarm.decomposition` attribute.
+#include <array>
 #include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
 #include <vector>
 
 #include "image/frame_image.h"
@@ -93,6 +97,33 @@ struct InterpolationResult {
 // missing channels or motions (naming the frame and the layer) and non-finite values.
 InterpolationResult interpolateFrameDetailed(const FrameImage& k0, const FrameImage& k1,
                                              const ComponentMotions& motions, float s,
+                                             const InterpolationSettings& settings = {});
+
+// One component of both keyframes, as LayeredKeyframes gives it.
+struct KeyframeComponent {
+  // Each keyframe's channels of the component (`<c>.*`) and depth.Z; of "" in the
+  // color-only mode, the beauty and depth.Z.
+  std::array<std::shared_ptr<const FrameImage>, 2> frames;
+  std::shared_ptr<const ComponentMotion> motion;  // its motions between the keyframes
+};
+
+// The keyframes given a component at a time, so that an interpolation holds the components
+// it is working on and not both keyframes whole (a 1080p pair of filtered keyframes is
+// gigabytes). The same result, bit for bit, as interpolating the whole frames they are
+// parts of.
+struct LayeredKeyframes {
+  // Each keyframe's frame-wide channels (`R`, `G`, `B`, `<buffer>.<channel>`: depth.Z,
+  // silhouette.Y, motion) and attributes.
+  std::array<const FrameImage*, 2> frameWide{};
+  // A component ("" in the color-only mode); throws std::invalid_argument when it has no
+  // motion. Called from several threads at once; what it returns is let go once the
+  // component is read.
+  std::function<KeyframeComponent(const std::string& component)> component;
+  // The frame-wide motion, which untracked components follow (untrackedFollowPrimary), or null.
+  const ComponentMotion* frameWideMotion = nullptr;
+};
+// interpolateFrameDetailed of the keyframes `keys` gives a component at a time.
+InterpolationResult interpolateFrameDetailed(const LayeredKeyframes& keys, float s,
                                              const InterpolationSettings& settings = {});
 
 // The frame of interpolateFrameDetailed.

@@ -6,9 +6,16 @@
 // compares such light with the frame's render).
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include "image/exr_io.h"
+#include "postproc/filters/decomposed_frame.h"
+#include "postproc/interpolation/frame_interpolation.h"
 #include "test_support.h"
+#include "worker/direct_emission.h"
+#include "worker/filter_inputs.h"
 #include "worker/filter_tasks.h"
+#include "worker/task_runner.h"
 
 namespace pathfarm::farm {
 namespace {
@@ -78,6 +85,100 @@ TEST(InterpolateTask, LightThatChangedAtTheEdgeTheCameraTurnsToIsReRendered) {
   EXPECT_GT(changed, 0.9);
   // Left to the radiance check, the strip is not re-rendered wholesale when nothing changed.
   EXPECT_LT(unchanged, 0.5);
+}
+
+// The task reads its keyframes a component at a time, each decoded alone from its file when
+// the worker keeps no decoded frames: its frame is the same bits as interpolating the whole
+// keyframes (their directly seen light taken out) with every component's motion at once.
+TEST(InterpolateTask, KeyframesReadAComponentAtATimeGiveTheWholeFramesInterpolation) {
+  const MotionSpan span{kAfter - kBefore, kAfter - kBefore};
+  const FrameImage k0 = render(kBefore, 8, span), k1 = render(kAfter, 8, span), features = render(kFrame, 4, {});
+  const auto folder = test_support::processTemporaryFolder("pathfarm_interpolate_parts");
+  std::map<std::string, std::filesystem::path> files = {
+      {"k0", folder / "k0.exr"}, {"k1", folder / "k1.exr"}, {"features", folder / "features.exr"}};
+  writeExr(files["k0"], k0);
+  writeExr(files["k1"], k1);
+  writeExr(files["features"], features);
+  Lease lease;
+  lease.set_kind(TASK_INTERPOLATE);
+  ShotSpec& spec = *lease.mutable_spec();
+  spec.set_width(kWidth);
+  spec.set_height(kHeight);
+  spec.set_spp(16);
+  spec.set_tile(16);
+  spec.set_pipeline(PIPELINE_DUI);
+  lease.mutable_params()->set_frame(kFrame);
+  lease.mutable_params()->set_keyframe_before(kBefore);
+  lease.mutable_params()->set_keyframe_after(kAfter);
+  const auto addInput = [&](const std::string& name, TaskKind kind, int64_t frame, const std::string& component) {
+    lease.add_inputs()->set_sha256(name);
+    lease.add_input_kinds(kind);
+    TaskParams& params = *lease.add_input_params();
+    params.set_frame(frame);
+    params.set_component(component);
+  };
+  addInput("k0", TASK_UPSAMPLE, kBefore, "");
+  addInput("k1", TASK_UPSAMPLE, kAfter, "");
+  addInput("features", TASK_ASSEMBLE_FRAME, kFrame, "");
+  // An irradiance flow for one component (made up, but valid), so that both ways of moving
+  // a component are compared.
+  const std::string flowing = decompositionComponents(k0).front();
+  FrameImage flow(kWidth, kHeight);
+  MotionField field{kWidth, kHeight, std::vector<float>(k0.pixelCount(), 1.5f), std::vector<float>(k0.pixelCount(), -0.5f),
+                    std::vector<float>(k0.pixelCount(), 1.0f)};
+  writeMotionField(flow, flowing + ".irradiance_forward", field);
+  writeMotionField(flow, flowing + ".irradiance_backward", field);
+  files["flow"] = folder / "flow.exr";
+  writeExr(files["flow"], flow);
+  addInput("flow", TASK_FLOW, kBefore, flowing);
+
+  const auto run = [&](uint64_t decodedBytes) {
+    TaskRunner runner(1, folder / "scenes", folder / ("outgoing" + std::to_string(decodedBytes)), decodedBytes);
+    std::atomic<double> progress{0};
+    std::atomic<bool> abandon{false};
+    return runner.run(lease, [](const ChunkRef&) -> std::string { throw std::logic_error("read in place"); },
+                      progress, abandon, [&](const ChunkRef& ref) { return files.at(ref.sha256()); });
+  };
+  const TaskOutput outputs[2] = {run(0), run(TaskRunner::kDefaultDecodedInputBytes)};
+  const FrameImage alone = decodeExr(outputs[0].chunk, "alone"), fromWhole = decodeExr(outputs[1].chunk, "from whole");
+
+  // The whole keyframes, interpolated at once.
+  FrameImage w0 = k0, w1 = k1;
+  takeDirectEmission(w0);
+  takeDirectEmission(w1);
+  ComponentMotions motions;
+  std::vector<std::string> layers = decompositionComponents(k0);
+  layers.emplace_back();
+  for (const std::string& layer : layers) {
+    const std::string prefix = layer.empty() ? "" : layer + ".";
+    motions.components[layer] = ComponentMotion(motionTowards(w0, NeighbourFrame::Next, prefix, "k0"),
+                                                motionTowards(w1, NeighbourFrame::Previous, prefix, "k1"));
+  }
+  motions.components[flowing].irradianceForward = field;
+  motions.components[flowing].irradianceBackward = field;
+  motions.components[flowing].hasIrradianceMotion = true;
+  InterpolationSettings settings;
+  settings.unknownChangeMasks = false;  // as the task
+  const InterpolationResult whole = interpolateFrameDetailed(w0, w1, motions, 1.0f / 3.0f, settings);
+  FrameImage expected = whole.frame;
+  addDirectEmission(expected, directEmissionOf(features));
+  // The interpolation's own re-render causes (the task adds its checks' as other causes).
+  for (const TaskOutput& output : outputs) {
+    EXPECT_EQ(output.metrics.at("rerender_holes"), static_cast<double>(whole.holePixels));
+    EXPECT_EQ(output.metrics.at("rerender_silhouettes"), static_cast<double>(whole.silhouettePixels));
+    EXPECT_EQ(output.metrics.at("rerender_untracked"), static_cast<double>(whole.untrackedPixels));
+    EXPECT_EQ(output.metrics.at("rerender_illumination"), static_cast<double>(whole.illuminationPixels));
+  }
+  EXPECT_GT(whole.untrackedPixels, 0u);
+
+  for (const FrameImage* result : {&alone, &fromWhole})
+    for (const std::string& name : expected.channelNames()) {
+      if (name == "rerender.Y") continue;  // the task adds its checks' pixels
+      ASSERT_TRUE(result->hasChannel(name)) << name;
+      EXPECT_TRUE(result->channel(name) == expected.channel(name)) << name;
+    }
+  for (const std::string& name : {std::string("R"), flowing + ".color.G"})
+    EXPECT_NE(expected.channel(name), features.channel(name)) << "not interpolated: " << name;
 }
 
 }  // namespace

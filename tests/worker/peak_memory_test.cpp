@@ -4,6 +4,7 @@
 
 #include <cstring>
 #include <memory>
+#include <vector>
 
 #include "worker/peak_memory.h"
 
@@ -32,6 +33,27 @@ TEST(PeakMemory, ARestartForgetsAnEarlierPeakAndSeesALaterOne) {
   const std::optional<uint64_t> restarted = peakResidentBytes();
   ASSERT_TRUE(restarted);
   EXPECT_LT(*restarted, *afterBlock - kBlock / 2) << "the freed block still counts after the restart";
+}
+
+// Memory a task freed in small blocks stays in the heap (below a block still in use, the
+// heap cannot shrink): the restart gives it back, or the next task's peak would start there.
+TEST(PeakMemory, ARestartGivesBackWhatTheHeapKeptOfFreedSmallBlocks) {
+  if (!restartPeakResident()) GTEST_SKIP() << "this kernel does not let a process restart its peak (clear_refs)";
+  constexpr size_t kSmall = size_t{64} << 10;  // below malloc's mmap threshold: from the heap
+  std::vector<std::unique_ptr<char[]>> blocks;
+  for (size_t i = 0; i < kBlock / kSmall; ++i) {
+    blocks.emplace_back(new char[kSmall]);
+    std::memset(blocks.back().get(), 1, kSmall);
+  }
+  const std::unique_ptr<char[]> pin(new char[kSmall]);  // above them, in use
+  std::memset(pin.get(), 1, kSmall);
+  const std::optional<uint64_t> afterBlocks = peakResidentBytes();
+  ASSERT_TRUE(afterBlocks);
+  blocks.clear();
+  ASSERT_TRUE(restartPeakResident());
+  const std::optional<uint64_t> restarted = peakResidentBytes();
+  ASSERT_TRUE(restarted);
+  EXPECT_LT(*restarted, *afterBlocks - kBlock / 2) << "the heap kept the freed blocks";
 }
 
 }  // namespace
