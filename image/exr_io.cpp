@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <functional>
 #include <sstream>
@@ -35,6 +36,49 @@ Imf::Header headerOf(int width, int height, const std::vector<std::string>& chan
   return header;
 }
 
+// OpenEXR's output into a string that grows in place, reserved for the frame's raw size up
+// front (pages not written are never touched): Imf::StdOSStream would hold the bytes
+// twice, in its buffer grown by doubling and in the copy str() returns, which for a 1080p
+// filtered keyframe was gigabytes on top of the frame.
+class StringOStream : public Imf::OStream {
+ public:
+  explicit StringOStream(size_t expected) : Imf::OStream("memory") { bytes_.reserve(expected); }
+
+  void write(const char c[], int n) override {
+    const size_t end = position_ + static_cast<size_t>(n);
+    if (end > bytes_.size()) bytes_.resize(end);
+    std::memcpy(bytes_.data() + position_, c, static_cast<size_t>(n));
+    position_ = end;
+  }
+  uint64_t tellp() override { return position_; }
+  void seekp(uint64_t position) override { position_ = position; }
+  std::string take() { return std::move(bytes_); }
+
+ private:
+  std::string bytes_;
+  size_t position_ = 0;
+};
+
+// OpenEXR's input from bytes held elsewhere, read in place (Imf::StdISStream copies them).
+class StringIStream : public Imf::IStream {
+ public:
+  explicit StringIStream(std::string_view bytes) : Imf::IStream("memory"), bytes_(bytes) {}
+
+  bool read(char c[], int n) override {
+    if (n < 0 || position_ > bytes_.size() || static_cast<size_t>(n) > bytes_.size() - position_)
+      throw std::runtime_error("unexpected end of the EXR bytes");
+    std::memcpy(c, bytes_.data() + position_, static_cast<size_t>(n));
+    position_ += static_cast<size_t>(n);
+    return position_ < bytes_.size();
+  }
+  uint64_t tellg() override { return position_; }
+  void seekg(uint64_t position) override { position_ = position; }
+
+ private:
+  std::string_view bytes_;
+  size_t position_ = 0;
+};
+
 }  // namespace
 
 std::string encodeExr(const FrameImage& frame, ExrCompression compression) {
@@ -48,13 +92,16 @@ std::string encodeExr(const FrameImage& frame, ExrCompression compression) {
       buffer.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(base), sizeof(float),
                                      sizeof(float) * static_cast<size_t>(frame.width())));
     }
-    Imf::StdOSStream stream;
+    // Room for the raw planes, the line offsets and the header: RLE and ZIP store a block
+    // raw where packing would enlarge it.
+    StringOStream stream(frame.pixelCount() * frame.channelNames().size() * sizeof(float) +
+                         static_cast<size_t>(frame.height()) * 16 + (size_t{1} << 20));
     {
       Imf::OutputFile out(stream, header);  // finishes the file when it goes out of scope
       out.setFrameBuffer(buffer);
       out.writePixels(frame.height());
     }
-    return stream.str();
+    return stream.take();
   } catch (const std::exception& e) {
     throw ExrError(std::string("cannot encode EXR: ") + e.what());
   }
@@ -289,8 +336,7 @@ std::pair<int, int> readStrips(Imf::InputFile& in, const std::vector<std::string
 template <class Read>
 auto readBytes(const std::string& bytes, const std::string& label, Read read) {
   try {
-    Imf::StdISStream stream;
-    stream.str(bytes);
+    StringIStream stream(bytes);
     return readChecked(bytes, bytes.size(), stream, read);
   } catch (const std::exception& e) {
     throw ExrError(label + ": cannot read EXR: " + e.what());
