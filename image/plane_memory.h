@@ -13,4 +13,9 @@ namespace pathfarm {
 // early in main; returns false when the allocator refused a setting (not glibc's).
 bool keepFreedPlanesForReuse();
 
+// Gives the heap's freed memory back to the kernel when it holds more than those 512 MB:
+// the trim threshold only shrinks the heap's top, and what a large task freed below a
+// block still in use would stay resident for good. Nothing on another allocator.
+void returnFreedBeyondReuse();
+
 }  // namespace pathfarm

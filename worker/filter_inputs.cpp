@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "postproc/filters/component_upsampler.h"
+#include "worker/direct_emission.h"
 #include "worker/failure_class.h"
 
 namespace pathfarm::farm {
@@ -47,6 +49,21 @@ FrameImage TaskInput::take() {
   const std::shared_ptr<FrameImage> held = std::move(frame);
   if (held.use_count() > 1) return *held;
   return std::move(*held);
+}
+
+FrameImage reducedWithoutLight(const TaskInput& input, int width, int height, int factor) {
+  // Rows read at a time: whole blocks.
+  const int strip = 64 / factor * factor;
+  FrameImage reduced(width / factor, height / factor);
+  for (int y = 0; y < height; y += strip) {
+    FrameImage rows = input.part({{}, y, std::min(height, y + strip)});
+    if (rows.width() != width) throw BadInput("a render to reduce is not " + std::to_string(width) + " pixels wide");
+    takeDirectEmission(rows);
+    const FrameImage low = boxDownsample(rows, factor);
+    reduced.attributes() = low.attributes();
+    reduced.paste(low, 0, y / factor);
+  }
+  return reduced;
 }
 
 const TaskInput& findInput(const std::vector<TaskInput>& inputs, const std::function<bool(const TaskInput&)>& matches,

@@ -28,6 +28,12 @@ bool isFrameWideChannel(const std::string& name);
 // are BadInput.
 FrameImage partOf(const FrameImage& frame, const InputPart& wanted);
 
+// A render (`input`, of width x height) without its directly seen light
+// (takeDirectEmission), box-downsampled by `factor` (boxDownsample), read a strip of rows
+// at a time: a 1080p keyframe's render is more than a gigabyte whole. Both steps are per
+// pixel and per block, so the bits are those of the whole frame reduced at once.
+FrameImage reducedWithoutLight(const TaskInput& input, int width, int height, int factor);
+
 // A motion field stored as `<name>.X`, `<name>.Y`, `<name>.valid`.
 void writeMotionField(FrameImage& image, const std::string& name, const MotionField& field);
 MotionField readMotionField(const FrameImage& image, const std::string& name);

@@ -45,14 +45,20 @@ TaskOutput runDenoiseTask(const Lease& lease, std::vector<TaskInput>& inputs) {
   if (at == keyframes.end()) throw BadInput("frame " + std::to_string(frame) + " is not a keyframe");
 
   // The keyframe's motion vectors reach its neighbouring keyframes (planner.h). Each frame
-  // is reduced (its directly seen light out; with u, to half resolution) before the next
-  // is decoded: a 1080p keyframe is more than a gigabyte.
+  // is reduced (its directly seen light out; with u, to half resolution, read a strip of
+  // rows at a time) before the next is decoded: a 1080p keyframe is more than a gigabyte.
   FrameImage emission;
   const auto reduced = [&](int64_t keyframe, FrameImage* light) {
-    FrameImage image = inputOf(inputs, TASK_ASSEMBLE_FRAME, keyframe).take();
-    FrameImage taken = takeDirectEmission(image);
-    if (light) *light = std::move(taken);
-    return upsample ? boxDownsample(image, kUpsampleFactor) : image;
+    TaskInput& input = inputOf(inputs, TASK_ASSEMBLE_FRAME, keyframe);
+    if (!upsample) {
+      FrameImage image = input.take();
+      FrameImage taken = takeDirectEmission(image);
+      if (light) *light = std::move(taken);
+      return image;
+    }
+    // The light of a keyframe to upsample is not kept: the upsampler adds it back from the
+    // full-resolution render.
+    return reducedWithoutLight(input, lease.spec().width(), lease.spec().height(), kUpsampleFactor);
   };
   FrameImage current = reduced(frame, &emission);
   std::optional<FrameImage> previous, next;

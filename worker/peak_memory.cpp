@@ -1,6 +1,6 @@
 #include "worker/peak_memory.h"
 
-#include <malloc.h>
+#include "image/plane_memory.h"
 
 #include <fstream>
 #include <sstream>
@@ -9,9 +9,9 @@
 namespace pathfarm::farm {
 
 bool restartPeakResident() {
-  // The memory earlier tasks freed goes back to the system first: glibc keeps freed pages
-  // of its arenas, and without this a task's peak would start at the largest one before it.
-  malloc_trim(0);
+  // What earlier tasks freed beyond the planes kept for reuse goes back to the system
+  // first, or a task's peak would start at the largest task's before it.
+  returnFreedBeyondReuse();
   std::ofstream refs("/proc/self/clear_refs");
   refs << "5";
   refs.flush();

@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include "image/plane_memory.h"
 #include "worker/peak_memory.h"
 
 namespace pathfarm::farm {
@@ -36,12 +37,14 @@ TEST(PeakMemory, ARestartForgetsAnEarlierPeakAndSeesALaterOne) {
 }
 
 // Memory a task freed in small blocks stays in the heap (below a block still in use, the
-// heap cannot shrink): the restart gives it back, or the next task's peak would start there.
+// heap cannot shrink): the restart gives back what is more than the 512 MB kept for reuse,
+// or the next task's peak would start there.
 TEST(PeakMemory, ARestartGivesBackWhatTheHeapKeptOfFreedSmallBlocks) {
   if (!restartPeakResident()) GTEST_SKIP() << "this kernel does not let a process restart its peak (clear_refs)";
+  keepFreedPlanesForReuse();  // as the worker's process does
   constexpr size_t kSmall = size_t{64} << 10;  // below malloc's mmap threshold: from the heap
   std::vector<std::unique_ptr<char[]>> blocks;
-  for (size_t i = 0; i < kBlock / kSmall; ++i) {
+  for (size_t i = 0; i < 5 * kBlock / 2 / kSmall; ++i) {  // 640 MB
     blocks.emplace_back(new char[kSmall]);
     std::memset(blocks.back().get(), 1, kSmall);
   }

@@ -2,6 +2,13 @@
 // second copy of a large frame), copied when the worker's decoded inputs share them.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
+#include "image/exr_io.h"
+#include "postproc/filters/component_upsampler.h"
+#include "test_support.h"
+#include "worker/direct_emission.h"
+#include "worker/filter_inputs.h"
 #include "worker/filter_tasks.h"
 
 namespace pathfarm::farm {
@@ -92,6 +99,37 @@ TEST(TaskInput, RowsOfADecodedFrameAreThoseRowsOfTheChannelsKept) {
   EXPECT_EQ(rows.attributes().at("a"), "b");
   EXPECT_THROW(input.part({{}, 2, 5}), std::runtime_error);
   EXPECT_THROW(input.part({{}, 3, 3}), std::runtime_error);
+}
+
+// A render reduced a strip of rows at a time, each strip decoded alone from its file, is
+// the bits of the whole frame without its light, box-downsampled at once.
+TEST(TaskInput, ARenderReducedStripByStripIsTheWholeFrameReduced) {
+  constexpr int kSize = 136;  // strips of 64, 64 and 8 rows
+  const FrameImage render = test_support::renderDecomposed("scenes/cornell/scene.json", kSize, kSize, 2, 0);
+  const auto file = test_support::processTemporaryFolder("pathfarm_reduce") / "render.exr";
+  writeExr(file, render);
+  TaskInput input{TASK_ASSEMBLE_FRAME, {}, nullptr, [] () -> std::shared_ptr<FrameImage> {
+                    throw std::logic_error("decoded whole");
+                  }};
+  int strips = 0;
+  input.decodePart = [&](const InputPart& wanted) {
+    ++strips;
+    EXPECT_LE(wanted.endRow - wanted.firstRow, 64);
+    return readExrRows(file, "render", wanted.firstRow, wanted.endRow, wanted.keep);
+  };
+  const FrameImage reduced = reducedWithoutLight(input, kSize, kSize, 2);
+  EXPECT_EQ(strips, 3);
+  FrameImage whole = render;
+  ASSERT_GT(directEmissionOf(whole).channelNames().size(), 0u) << "the lamp is seen: light is taken out";
+  takeDirectEmission(whole);
+  const FrameImage expected = boxDownsample(whole, 2);
+  std::vector<std::string> names = reduced.channelNames(), expectedNames = expected.channelNames();
+  std::sort(names.begin(), names.end());  // a file's channels are in alphabetical order
+  std::sort(expectedNames.begin(), expectedNames.end());
+  ASSERT_EQ(names, expectedNames);
+  for (const std::string& name : expected.channelNames())
+    EXPECT_TRUE(reduced.channel(name) == expected.channel(name)) << name;
+  EXPECT_EQ(reduced.attributes(), expected.attributes());
 }
 
 }  // namespace
