@@ -499,4 +499,12 @@ FrameImage readExr(const std::filesystem::path& file) {
   return decodeExr(bytes.str(), file.string());
 }
 
+void writeExrInStrips(const std::filesystem::path& file, const FrameImage& frame, ExrCompression compression) {
+  constexpr int kStripRows = 64;
+  ExrStripWriter writer(file, frame.width(), frame.height(), frame.channelNames(), frame.attributes(), compression);
+  for (int y = 0; y < frame.height(); y += kStripRows)
+    writer.write(frame.crop(0, y, frame.width(), std::min(kStripRows, frame.height() - y)));
+  writer.finish();
+}
+
 }  // namespace pathfarm

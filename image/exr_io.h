@@ -102,6 +102,10 @@ class ExrStripWriter {
   int width_, height_, rows_ = 0;
   std::vector<std::string> channels_;
 };
+// Writes a frame held in memory to `file` a strip of rows at a time (ExrStripWriter): the
+// bytes of encodeExr, never held in memory beside the frame.
+void writeExrInStrips(const std::filesystem::path& file, const FrameImage& frame, ExrCompression compression);
+
 // A missing, truncated or corrupted file throws ExrError naming the file.
 FrameImage readExr(const std::filesystem::path& file);
 

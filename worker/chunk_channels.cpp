@@ -85,6 +85,13 @@ std::optional<ChunkContent> renderedContent(TaskRole role) {
   }
 }
 
+bool upsampleReads(const std::string& channel, FilteringStages stages) {
+  Buffers read = buffersOf(ChunkContent::FilteredKeyframe, stages);
+  read.add(kUpsampled);
+  read.perComponent.erase("irradiance");
+  return read.keeps(channel);
+}
+
 void keepReadChannels(ChunkContent content, FilteringStages stages, FrameImage& frame) {
   const Buffers kept = buffersOf(content, stages);
   frame.removeChannels([&](const std::string& name) { return !kept.keeps(name); });

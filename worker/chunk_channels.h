@@ -5,6 +5,7 @@
 // table in docs/farm.md, "Channels of the intermediate chunks". Every chunk keeps its
 // attributes.
 #include <optional>
+#include <string>
 
 #include "contract/pipeline.h"
 #include "image/frame_image.h"
@@ -25,6 +26,11 @@ enum class ChunkContent {
 // roles whose frames are not filtered (a reference, a baseline, pt's output), whose every
 // channel is kept.
 std::optional<ChunkContent> renderedContent(TaskRole role);
+
+// Whether an upsample task reads a channel of its keyframe's render: what the upsampler
+// reads and what its output passes on, less the irradiance the upsampled one replaces
+// (not the variance and ids only the denoiser reads).
+bool upsampleReads(const std::string& channel, FilteringStages stages);
 
 // Removes every channel of `frame` the chunk's readers in `stages` do not use.
 void keepReadChannels(ChunkContent content, FilteringStages stages, FrameImage& frame);

@@ -6,6 +6,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,8 +51,11 @@ struct TaskInput {
 };
 
 struct TaskOutput {
-  std::string chunk;                          // the output chunk's bytes, or
-  std::shared_ptr<const ScratchFile> chunkFile;  // a file holding them (an assembled frame)
+  std::string chunk;                             // the output chunk's bytes, or
+  std::shared_ptr<const ScratchFile> chunkFile;  // a file holding them (an assembled frame), or
+  // a frame the worker writes into such a file a strip of rows at a time (RLE, as an
+  // intermediate chunk), so that a large frame is never held beside its encoding.
+  std::optional<FrameImage> frame;
   std::vector<TaskParams> followUps;      // render tiles to add to the shot
   std::map<std::string, double> metrics;  // figures for the shot's report
 };

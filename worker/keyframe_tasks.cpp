@@ -84,14 +84,16 @@ TaskOutput runDenoiseTask(const Lease& lease, std::vector<TaskInput>& inputs) {
   keepReadChannels(upsample ? ChunkContent::HalfResolutionDenoised : ChunkContent::FilteredKeyframe,
                    stagesOf(lease.spec().pipeline()), current);
   TaskOutput output;
-  output.chunk = encodeExr(current, ExrCompression::Fast);
+  output.frame = std::move(current);
   return output;
 }
 
 TaskOutput runUpsampleTask(const Lease& lease, std::vector<TaskInput>& inputs) {
   const int64_t frame = lease.params().frame();
   const FrameImage& low = inputOf(inputs, TASK_DENOISE, frame).image();
-  FrameImage high = inputOf(inputs, TASK_ASSEMBLE_FRAME, frame).take();
+  const FilteringStages stages = stagesOf(lease.spec().pipeline());
+  FrameImage high = inputOf(inputs, TASK_ASSEMBLE_FRAME, frame).part(
+      {[&](const std::string& name) { return upsampleReads(name, stages); }});
   // A moving caustic spread by the half-resolution filtering is rendered again at full spp.
   const std::vector<uint8_t> caustics = movingCausticPixels(high);
   // The directly seen light is added back unfiltered from the keyframe's own render, which
@@ -117,8 +119,8 @@ TaskOutput runUpsampleTask(const Lease& lease, std::vector<TaskInput>& inputs) {
   requestRerender(lease.spec(), frame, mask, output);
   output.metrics["rerender_moving_caustics"] = static_cast<double>(causticPixels);
   output.metrics["rerender_light_edges"] = static_cast<double>(edgePixels);
-  keepReadChannels(ChunkContent::FilteredKeyframe, stagesOf(lease.spec().pipeline()), high);
-  output.chunk = encodeExr(high, ExrCompression::Fast);
+  keepReadChannels(ChunkContent::FilteredKeyframe, stages, high);
+  output.frame = std::move(high);
   return output;
 }
 

@@ -246,6 +246,12 @@ TaskOutput TaskRunner::filter(const Lease& lease, const ChunkFetcher& fetch, con
   std::vector<TaskInput> inputs = inputsOf(lease, fetch, progress, files);
   tbb::task_arena arena(threads_ > 0 ? threads_ : tbb::task_arena::automatic);
   TaskOutput output = arena.execute([&] { return found->second(lease, inputs); });
+  if (output.frame) {
+    output.chunkFile = std::make_shared<const ScratchFile>(
+        scratchPathFor(outgoingRoot_, "attempt-" + std::to_string(lease.attempt_id()) + ".exr"));
+    writeExrInStrips(output.chunkFile->path(), *output.frame, ExrCompression::Fast);
+    output.frame.reset();
+  }
   progress = 1.0;
   return output;
 }

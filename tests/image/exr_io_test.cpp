@@ -202,6 +202,22 @@ TEST(ExrIo, AStripWriterRefusesRowsItCannotPlaceAndAShortFrame) {
   EXPECT_THROW(ExrStripWriter(temporaryFile("absent") / "frame.exr", 4, 4, {"R"}, {}, ExrCompression::Fast), ExrError);
 }
 
+// A frame written a strip at a time (a task's large output) is encodeExr's bytes, for a
+// frame of more rows than a strip.
+TEST(ExrIo, AFrameWrittenInStripsIsItsEncodedBytes) {
+  FrameImage tall(5, 150);
+  std::mt19937 random(3);
+  std::normal_distribution<float> value(0.0f, 1.0f);
+  for (const char* name : {"R", "G", "B", "diffuse_direct.color.R"})
+    for (float& v : tall.addChannel(name)) v = value(random);
+  tall.attributes()["pathfarm.frame"] = "3";
+  for (const ExrCompression compression : {ExrCompression::Fast, ExrCompression::Small}) {
+    const std::filesystem::path file = temporaryFile("strips.exr");
+    writeExrInStrips(file, tall, compression);
+    EXPECT_TRUE(fileBytes(file) == encodeExr(tall, compression));
+  }
+}
+
 TEST(ExrIo, AFilesHeaderAndRowsReadInPlaceAreWhatDecodingItWholeGives) {
   const FrameImage frame = sampleFrame();
   const std::filesystem::path file = temporaryFile("rows.exr");

@@ -12,6 +12,7 @@
 #include "image/exr_io.h"
 #include "postproc/filters/decomposed_frame.h"
 #include "test_support.h"
+#include "task_output_bytes.h"
 #include "worker/chunk_channels.h"
 #include "worker/filter_tasks.h"
 
@@ -63,12 +64,12 @@ TaskInput inputOf(TaskKind kind, int64_t frame, std::shared_ptr<FrameImage> imag
 }
 
 std::shared_ptr<FrameImage> decoded(const TaskOutput& output) {
-  return std::make_shared<FrameImage>(decodeExr(output.chunk, "a task's output"));
+  return std::make_shared<FrameImage>(decodeExr(outputBytes(output), "a task's output"));
 }
 
 // What a task gave: its chunk's bytes and the re-render tiles it asked for.
 std::string everythingOf(const TaskOutput& output) {
-  std::string all = output.chunk;
+  std::string all = outputBytes(output);
   for (const TaskParams& tile : output.followUps) all += tile.SerializeAsString();
   return all;
 }

@@ -11,6 +11,7 @@
 #include "renderer/integrators/frame_renderer.h"
 #include "renderer/scene/scene_loader.h"
 #include "test_support.h"
+#include "task_output_bytes.h"
 #include "worker/direct_emission.h"
 #include "worker/task_runner.h"
 
@@ -33,7 +34,7 @@ FrameImage runTask(const Lease& lease, const std::map<std::string, std::string>&
   std::atomic<double> progress{0};
   std::atomic<bool> abandon{false};
   return decodeExr(
-      runner.run(lease, [&](const ChunkRef& ref) { return chunks.at(ref.sha256()); }, progress, abandon).chunk,
+      outputBytes(runner.run(lease, [&](const ChunkRef& ref) { return chunks.at(ref.sha256()); }, progress, abandon)),
       TaskKind_Name(lease.kind()));
 }
 

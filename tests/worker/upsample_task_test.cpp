@@ -11,6 +11,7 @@
 #include "image/exr_io.h"
 #include "postproc/filters/component_upsampler.h"
 #include "test_support.h"
+#include "task_output_bytes.h"
 #include "worker/direct_emission.h"
 #include "worker/filter_tasks.h"
 
@@ -51,7 +52,7 @@ TEST(UpsampleTask, DirectlySeenLightThatTheKeyframesFewSamplesGetWrongIsReRender
   params.set_frame(kUpsampleFrame);
   std::vector<TaskInput> inputs = {{TASK_DENOISE, params, low}, {TASK_ASSEMBLE_FRAME, params, keyframe}};
   const TaskOutput output = runUpsampleTask(lease, inputs);
-  const FrameImage result = decodeExr(output.chunk, "upsampled keyframe");
+  const FrameImage result = decodeExr(outputBytes(output), "upsampled keyframe");
   const std::vector<float>& flagged = result.channel("rerender.Y");
   // The upsampler's record of its settings goes with the frame (the keyframe's own
   // attributes stay too).
