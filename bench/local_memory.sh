@@ -6,7 +6,7 @@
 # local`'s), all in GiB, and the size of the farm's chunk store at the end (every intermediate chunk
 # still kept and the frames; kept with --keep-farm for the count, then removed with the run's
 # folder) and its largest size while the shot ran (sampled every 5 s); then the largest peak
-# of each kind of task, from the workers' logs.
+# of each kind of task and the tasks' wall seconds summed per kind, from the workers' logs.
 #
 #   bench/local_memory.sh [--build DIR] [--workers 2] [--label TEXT] SHOT [-- LOCAL-ARGS...]
 #   e.g. bench/local_memory.sh scenes/walkthrough/shot.json -- --res 1920x1080 --spp 16 --frames 0:4 --pipeline dui
@@ -57,16 +57,18 @@ store=$(du -sk "$work/frames/farm/chunks" | cut -f1)
 ((store > store_peak)) && store_peak=$store
 echo "| ${label:-$shot $*} | $seconds | $(gib "$worker") | $(gib "${peak[$pid]:-0}") | $(gib "$store") | $(gib "$store_peak") |"
 # Each task's own peak, as its worker logged it ("peak resident X GiB": one-slot workers),
-# the largest per kind of task.
+# the largest per kind of task; and the tasks' wall seconds summed per kind.
 cat "$work"/frames/farm/logs/local-*.log | python3 -c '
 import re, sys
-kinds, peaks = {}, {}
+kinds, peaks, seconds = {}, {}, {}
 for line in sys.stdin:
     started = re.search(r"task (\d+) \((TASK_\w+)\)", line)
     if started: kinds[started.group(1)] = started.group(2)[5:].lower()
-    ran = re.search(r"task (\d+): ran .*peak resident ([\d.]+) GiB", line)
+    ran = re.search(r"task (\d+): ran ([\d.]+) s.*peak resident ([\d.]+) GiB", line)
     if ran:
         kind = kinds.get(ran.group(1), "?")
-        peaks[kind] = max(peaks.get(kind, 0.0), float(ran.group(2)))
+        peaks[kind] = max(peaks.get(kind, 0.0), float(ran.group(3)))
+        seconds[kind] = seconds.get(kind, 0.0) + float(ran.group(2))
 print("largest peak per task kind (GiB): " + ", ".join(f"{k} {v:.2f}" for k, v in sorted(peaks.items())))
+print("wall seconds per task kind, summed: " + ", ".join(f"{k} {v:.0f}" for k, v in sorted(seconds.items())))
 '

@@ -41,9 +41,8 @@ FrameImage withBrighterStrip(FrameImage frame, float factor) {
   return frame;
 }
 
-// The share of the strip's pixels the task sends to re-rendering.
-double stripFlagged(const std::shared_ptr<FrameImage>& k0, const std::shared_ptr<FrameImage>& k1,
-                    const FrameImage& features) {
+// An interpolate lease of frame kFrame between kBefore and kAfter, without inputs.
+Lease interpolateLease() {
   Lease lease;
   lease.set_kind(TASK_INTERPOLATE);
   ShotSpec& spec = *lease.mutable_spec();
@@ -55,6 +54,13 @@ double stripFlagged(const std::shared_ptr<FrameImage>& k0, const std::shared_ptr
   lease.mutable_params()->set_frame(kFrame);
   lease.mutable_params()->set_keyframe_before(kBefore);
   lease.mutable_params()->set_keyframe_after(kAfter);
+  return lease;
+}
+
+// The share of the strip's pixels the task sends to re-rendering.
+double stripFlagged(const std::shared_ptr<FrameImage>& k0, const std::shared_ptr<FrameImage>& k1,
+                    const FrameImage& features) {
+  const Lease lease = interpolateLease();
   auto input = [](TaskKind kind, int64_t frame, std::shared_ptr<FrameImage> image) {
     TaskParams params;
     params.set_frame(frame);
@@ -99,17 +105,7 @@ TEST(InterpolateTask, KeyframesReadAComponentAtATimeGiveTheWholeFramesInterpolat
   writeExr(files["k0"], k0);
   writeExr(files["k1"], k1);
   writeExr(files["features"], features);
-  Lease lease;
-  lease.set_kind(TASK_INTERPOLATE);
-  ShotSpec& spec = *lease.mutable_spec();
-  spec.set_width(kWidth);
-  spec.set_height(kHeight);
-  spec.set_spp(16);
-  spec.set_tile(16);
-  spec.set_pipeline(PIPELINE_DUI);
-  lease.mutable_params()->set_frame(kFrame);
-  lease.mutable_params()->set_keyframe_before(kBefore);
-  lease.mutable_params()->set_keyframe_after(kAfter);
+  Lease lease = interpolateLease();
   const auto addInput = [&](const std::string& name, TaskKind kind, int64_t frame, const std::string& component) {
     lease.add_inputs()->set_sha256(name);
     lease.add_input_kinds(kind);
