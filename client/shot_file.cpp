@@ -33,7 +33,8 @@ std::vector<int64_t> defaultEvaluationFrames(const ShotSpec& spec) {
 // (shot_preparation.h) within the file's rerender_bound.
 void readFilteringKeys(const JsonNode& root, ShotSpec& spec) {
   spec.set_feature_spp(root.has("feature_spp") ? root["feature_spp"].integer(1, 1 << 20) : 4);
-  if (root.has("filter_window_rows")) spec.set_filter_window_rows(root["filter_window_rows"].integer(16, 16384));
+  if (root.has("filter_window_rows"))
+    spec.set_filter_window_rows(root["filter_window_rows"].integer(kMinFilterWindowRows, 16384));
   if (!stagesOf(spec.pipeline()).interpolate) {
     spec.set_keyframe_interval(1);
     spec.set_keyframe_reason("k = 1: the pipeline does not interpolate");

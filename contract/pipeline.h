@@ -66,8 +66,11 @@ inline constexpr int kMaxBaselineRepeats = 16;
 // How many baseline renders an evaluation frame gets (ShotSpec.baseline_repeats; 0 is 1).
 inline int baselineRepeatsOf(const ShotSpec& spec) { return spec.baseline_repeats() > 1 ? spec.baseline_repeats() : 1; }
 
-// Rows per window of a filter task that runs in windows (ShotSpec.filter_window_rows, 0).
+// Rows per window of a filter task that runs in windows (ShotSpec.filter_window_rows, 0),
+// and the fewest a shot may ask for (a tile near a window reaches every window within
+// kCompositeHalo of it).
 inline constexpr int kDefaultFilterWindowRows = 512;
+inline constexpr int kMinFilterWindowRows = 16;
 // How far beyond its window a composite window reads the re-render tiles: every pixel its
 // denoise compares and every firefly whose spread reaches the window
 // (worker/composite_task.cpp checks that its filters reach no farther).

@@ -203,7 +203,8 @@ void planFiltering(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
   if (stages.upsample && (spec.width() % 2 != 0 || spec.height() % 2 != 0))
     throw PlanError("resolution: upsampling pipelines need an even width and height");
   if (spec.keyframe_interval() < 1) throw PlanError("keyframe_interval: must be at least 1");
-  if (spec.filter_window_rows() < 0) throw PlanError("filter_window_rows: must not be negative");
+  if (spec.filter_window_rows() != 0 && spec.filter_window_rows() < kMinFilterWindowRows)
+    throw PlanError("filter_window_rows: must be at least " + std::to_string(kMinFilterWindowRows));
   std::vector<std::string> components;
   try {
     components = flowComponents(spec);

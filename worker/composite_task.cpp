@@ -10,14 +10,14 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "contract/pipeline.h"
+#include "image/exr_io.h"
 #include "postproc/filters/component_denoiser.h"
 #include "postproc/filters/decomposed_frame.h"
 #include "worker/direct_emission.h"
 #include "worker/failure_class.h"
 #include "worker/filter_inputs.h"
 #include "worker/final_frame.h"
-#include "contract/pipeline.h"
-#include "image/exr_io.h"
 
 namespace pathfarm::farm {
 namespace {
@@ -160,7 +160,7 @@ FrameImage compositedRows(const Lease& lease, std::vector<TaskInput>& inputs, st
   // The stage's final colors of these rows alone: a 1080p stage output holds about 80 channels.
   FrameImage result = stage.part({isFinalColorChannel, area.y0(), area.y1()});
   requireFinalColors(result, "the stage output of " + frameLabel(lease));
-  if (result.width() != width || result.height() != area.y1() - area.y0())
+  if (result.width() != width)
     throw BadInput("the stage output of " + frameLabel(lease) + " is not " + std::to_string(width) + " pixels wide");
 
   std::vector<const TaskInput*> tiles;
@@ -213,7 +213,8 @@ FrameImage compositedRows(const Lease& lease, std::vector<TaskInput>& inputs, st
         for (int y = w.y0(); y < w.y1(); ++y)
           for (int x = w.x0(); x < w.x1(); ++x) {
             const size_t p = static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
-            if (mask[p]) target[p - static_cast<size_t>(area.y0()) * static_cast<size_t>(width)] = source[localIndex(region, x, y)];
+            const size_t inResult = p - static_cast<size_t>(area.y0()) * static_cast<size_t>(width);
+            if (mask[p]) target[inResult] = source[localIndex(region, x, y)];
           }
       }
     }
@@ -230,20 +231,23 @@ TaskOutput joinedWindows(const Lease& lease, std::vector<TaskInput>& inputs) {
   std::vector<uint8_t> rowsDone(static_cast<size_t>(height), 0);
   for (TaskInput& input : inputs) {
     const PixelWindow& w = input.params.window();
-    if (input.kind != TASK_COMPOSITE || !input.params.has_window())
+    if (input.kind != TASK_COMPOSITE || !input.params.has_window() || input.params.frame() != lease.params().frame())
       throw BadInput("the composite of " + frameLabel(lease) + " joins its windows' composites and nothing else");
     FrameImage rows = input.take();
-    if (w.x0() != 0 || w.x1() != width || w.y0() < 0 || w.y1() > height || rows.width() != width ||
-        rows.height() != w.y1() - w.y0() || std::any_of(rowsDone.begin() + w.y0(), rowsDone.begin() + w.y1(), [](uint8_t done) { return done; }))
+    const bool placed = w.x0() == 0 && w.x1() == width && w.y0() >= 0 && w.y1() <= height && w.y0() < w.y1() &&
+                        rows.width() == width && rows.height() == w.y1() - w.y0();
+    if (!placed || std::any_of(rowsDone.begin() + w.y0(), rowsDone.begin() + w.y1(), [](uint8_t done) { return done; }))
       throw BadInput("a window's composite of " + frameLabel(lease) + " does not have its rows' size or place");
+    if (!frame.channelNames().empty() && rows.channelNames() != frame.channelNames())
+      throw BadInput("the windows' composites of " + frameLabel(lease) + " have different channels");
     std::fill(rowsDone.begin() + w.y0(), rowsDone.begin() + w.y1(), 1);
     const std::vector<float>& flagged = channelOf(rows, "rerender.Y", "a window's composite of " + frameLabel(lease));
     std::transform(flagged.begin(), flagged.end(), mask.begin() + static_cast<ptrdiff_t>(w.y0()) * width,
                    [](float value) { return static_cast<uint8_t>(value > 0.5f ? 1 : 0); });
-    rows.removeChannels([](const std::string& name) { return name == "rerender.Y"; });
     frame.attributes() = rows.attributes();
     frame.paste(rows, 0, w.y0());
   }
+  frame.removeChannels([](const std::string& name) { return name == "rerender.Y"; });
   if (std::find(rowsDone.begin(), rowsDone.end(), 0) != rowsDone.end())
     throw BadInput("the windows' composites of " + frameLabel(lease) + " do not cover the frame");
   requireFinalColors(frame, "the joined composite of " + frameLabel(lease));
@@ -253,7 +257,8 @@ TaskOutput joinedWindows(const Lease& lease, std::vector<TaskInput>& inputs) {
 }  // namespace
 
 TaskOutput runCompositeTask(const Lease& lease, std::vector<TaskInput>& inputs) {
-  if (!inputs.empty() && std::all_of(inputs.begin(), inputs.end(), [](const TaskInput& input) { return input.kind == TASK_COMPOSITE; }))
+  const auto isWindow = [](const TaskInput& input) { return input.kind == TASK_COMPOSITE; };
+  if (!lease.params().has_window() && std::any_of(inputs.begin(), inputs.end(), isWindow))
     return joinedWindows(lease, inputs);
   std::vector<uint8_t> mask;
   FrameImage result = compositedRows(lease, inputs, mask);

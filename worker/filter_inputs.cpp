@@ -38,7 +38,8 @@ FrameImage partOf(const FrameImage& frame, const InputPart& wanted) {
   for (const std::string& name : frame.channelNames()) {
     if (wanted.keep && !wanted.keep(name)) continue;
     const std::vector<float>& values = frame.channel(name);
-    kept.addChannel(name).assign(values.begin() + static_cast<ptrdiff_t>(first), values.begin() + static_cast<ptrdiff_t>(end));
+    kept.addChannel(name).assign(values.begin() + static_cast<ptrdiff_t>(first),
+                                 values.begin() + static_cast<ptrdiff_t>(end));
   }
   kept.attributes() = frame.attributes();
   return kept;
@@ -53,7 +54,7 @@ FrameImage TaskInput::take() {
 
 FrameImage reducedWithoutLight(const TaskInput& input, int width, int height, int factor) {
   // Rows read at a time: whole blocks.
-  const int strip = 64 / factor * factor;
+  const int strip = std::max(64 / factor, 1) * factor;
   FrameImage reduced(width / factor, height / factor);
   for (int y = 0; y < height; y += strip) {
     FrameImage rows = input.part({{}, y, std::min(height, y + strip)});

@@ -76,7 +76,8 @@ TaskOutput runFlowTask(const Lease& lease, std::vector<TaskInput>& inputs) {
 TaskOutput runInterpolateTask(const Lease& lease, std::vector<TaskInput>& inputs) {
   const TaskParams& params = lease.params();
   const int64_t before = params.keyframe_before(), after = params.keyframe_after();
-  const std::array<const TaskInput*, 2> keyframes = {&filteredKeyframe(inputs, before), &filteredKeyframe(inputs, after)};
+  const std::array<const TaskInput*, 2> keyframes = {&filteredKeyframe(inputs, before),
+                                                     &filteredKeyframe(inputs, after)};
   // The keyframes are read a component at a time (a 1080p pair is gigabytes); first their
   // frame-wide channels, with each component's colors and emission for a moment: directly
   // seen light is not interpolated (the frame's own feature render has it exactly), so it

@@ -1,7 +1,5 @@
 #include "worker/peak_memory.h"
 
-#include "image/plane_memory.h"
-
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -9,9 +7,6 @@
 namespace pathfarm::farm {
 
 bool restartPeakResident() {
-  // What earlier tasks freed beyond the planes kept for reuse goes back to the system
-  // first, or a task's peak would start at the largest task's before it.
-  returnFreedBeyondReuse();
   std::ofstream refs("/proc/self/clear_refs");
   refs << "5";
   refs.flush();

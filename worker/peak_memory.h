@@ -6,9 +6,8 @@
 
 namespace pathfarm::farm {
 
-// Returns the heap's free memory beyond what is kept for reuse to the system
-// (image/plane_memory.h) and starts the peak over at the resident memory left (writes "5" to /proc/self/clear_refs); false where the kernel
-// does not allow it.
+// Starts the peak over at the current resident memory (writes "5" to
+// /proc/self/clear_refs); false where the kernel does not allow it.
 bool restartPeakResident();
 // The peak resident memory since the process started or since the last restart, in bytes;
 // nothing where /proc/self/status does not say.

@@ -12,6 +12,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "image/plane_memory.h"
 #include "worker/backoff.h"
 #include "worker/failure_class.h"
 #include "worker/lease_heartbeat.h"
@@ -200,7 +201,10 @@ class Slot {
     std::atomic<bool> abandon{false};
     InputCount inputs;
     const double cpuBefore = processCpuSeconds();
-    // With one slot the process's peak while the task runs is the task's own.
+    // What earlier tasks freed beyond the planes kept for reuse goes back to the system:
+    // else a large task's memory would stay with the worker, and with one slot the peak
+    // measured below (the task's own) would start from it.
+    returnFreedBeyondReuse();
     const bool measuresPeak = options_.slots == 1 && restartPeakResident();
     const auto started = Clock::now();
     TaskOutput output;

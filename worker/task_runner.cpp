@@ -249,7 +249,12 @@ TaskOutput TaskRunner::filter(const Lease& lease, const ChunkFetcher& fetch, con
   if (output.frame) {
     output.chunkFile = std::make_shared<const ScratchFile>(
         scratchPathFor(outgoingRoot_, "attempt-" + std::to_string(lease.attempt_id()) + ".exr"));
-    writeExrInStrips(output.chunkFile->path(), *output.frame, ExrCompression::Fast);
+    try {
+      writeExrInStrips(output.chunkFile->path(), *output.frame, ExrCompression::Fast);
+    } catch (const ExrError& e) {
+      // This worker's disk, not the task's inputs: the task may run elsewhere.
+      throw std::runtime_error(std::string("cannot write the task's output: ") + e.what());
+    }
     output.frame.reset();
   }
   progress = 1.0;
@@ -302,8 +307,10 @@ FrameImage TaskRunner::decodedPart(const ChunkRef& ref, const std::string& label
     const ExrHeader header = readExrHeader(file, label);
     const size_t pixels = static_cast<size_t>(header.width) * static_cast<size_t>(header.height);
     if (!decoded_.couldKeep(DecodedInputs::frameBytes(pixels, header.channels, header.attributes))) {
-      FrameImage part = wanted.endRow > 0 ? readExrRows(file, label, wanted.firstRow, wanted.endRow, wanted.keep)
-                                          : decodeExrFile(file, label, wanted.keep);
+      const int endRow = wanted.endRow > 0 ? wanted.endRow : header.height;
+      FrameImage part = wanted.firstRow > 0 || wanted.endRow > 0
+                            ? readExrRows(file, label, wanted.firstRow, endRow, wanted.keep)
+                            : decodeExrFile(file, label, wanted.keep);
       requireFinite(part, ref);  // the part read: the rest is not decoded at all
       return part;
     }

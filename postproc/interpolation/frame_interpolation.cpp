@@ -422,7 +422,8 @@ InterpolationResult interpolateFrameDetailed(const LayeredKeyframes& keys, float
       const KeyframeComponent component = keys.component(layers[i].name);
       for (const auto& frame : component.frames)
         if (!frame || frame->width() != width || frame->height() != height || !component.motion)
-          throw std::invalid_argument("interpolation: layer \"" + layers[i].name + "\" of a keyframe is missing or of another size");
+          throw std::invalid_argument("interpolation: layer \"" + layers[i].name +
+                                      "\" of a keyframe is missing or of another size");
       return readKeyframes(*component.frames[0], *component.frames[1], layers[i], *component.motion,
                            keys.frameWideMotion, settings);
     }();
@@ -471,7 +472,9 @@ InterpolationResult interpolateFrameDetailed(const FrameImage& k0, const FrameIm
                                              const ComponentMotions& motions, float s,
                                              const InterpolationSettings& settings) {
   // Every layer reads the whole frames, which the caller holds.
-  const auto held = [](const FrameImage& frame) { return std::shared_ptr<const FrameImage>(std::shared_ptr<void>(), &frame); };
+  const auto held = [](const FrameImage& frame) {
+    return std::shared_ptr<const FrameImage>(std::shared_ptr<void>(), &frame);
+  };
   LayeredKeyframes keys;
   keys.frameWide = {&k0, &k1};
   keys.component = [&](const std::string& name) {

@@ -232,40 +232,6 @@ TEST(Planner, DuiGraphHasEveryStageWithItsEdges) {
   EXPECT_EQ(outputs, 10);
 }
 
-// A frame taller than a filter window is composited by a task per window, whole rows that
-// cover it once, and the frame's composite (the shot's output) joins them.
-TEST(Planner, AFrameTallerThanAFilterWindowIsCompositedWindowByWindow) {
-  ShotSpec spec = filteringSpec("dui", 4);
-  spec.set_filter_window_rows(12);  // 32 rows: three windows of 10 or 11
-  const auto plan = planShot(spec);
-  EXPECT_EQ(countKinds(plan)[TASK_COMPOSITE], 10 * 4);
-  int joins = 0;
-  for (const PlannedTask& task : plan) {
-    if (task.kind != TASK_COMPOSITE || task.params.has_window()) continue;
-    ++joins;
-    EXPECT_TRUE(task.output);
-    ASSERT_EQ(task.dependencies.size(), 3u);
-    std::vector<int> rows(32, 0);
-    for (const size_t d : task.dependencies) {
-      const PlannedTask& window = plan[d];
-      ASSERT_EQ(window.kind, TASK_COMPOSITE);
-      EXPECT_FALSE(window.output);
-      EXPECT_EQ(window.params.frame(), task.params.frame());
-      EXPECT_EQ(window.params.window().x0(), 0);
-      EXPECT_EQ(window.params.window().x1(), 64);
-      EXPECT_LE(window.params.window().y1() - window.params.window().y0(), 12);
-      for (int y = window.params.window().y0(); y < window.params.window().y1(); ++y) ++rows[static_cast<size_t>(y)];
-      ASSERT_EQ(window.dependencies.size(), 1u);  // the stage output; re-render tiles join later
-      const TaskKind stage = plan[window.dependencies[0]].kind;
-      EXPECT_TRUE(stage == TASK_UPSAMPLE || stage == TASK_INTERPOLATE);
-    }
-    EXPECT_EQ(rows, std::vector<int>(32, 1)) << "frame " << task.params.frame();
-  }
-  EXPECT_EQ(joins, 10);
-  spec.set_filter_window_rows(-1);
-  EXPECT_THROW(planShot(spec), PlanError);
-}
-
 TEST(Planner, EachPipelinePlansOnlyItsStages) {
   const auto d = countKinds(planShot(filteringSpec("d", 4)));
   EXPECT_EQ(d.count(TASK_UPSAMPLE) + d.count(TASK_INTERPOLATE) + d.count(TASK_FLOW), 0u);

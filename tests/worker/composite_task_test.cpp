@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <limits>
 #include <map>
 
@@ -203,6 +205,19 @@ TEST(CompositeTask, WindowsComposedApartAndJoinedAreTheWholeFramesBytes) {
     return runner.run(lease, [&](const ChunkRef& ref) { return chunks.at(ref.sha256()); }, progress, abandon).chunk;
   };
   const std::string expected = run(whole);
+  // A worker that keeps no frame decoded reads a window's rows of the stage from its file.
+  const auto folder = test_support::processTemporaryFolder("pathfarm_composite_files");
+  TaskRunner fromFiles(1, folder / "scenes", folder / "outgoing", 0);
+  const auto runFromFiles = [&](const Lease& lease) {
+    return fromFiles
+        .run(lease, [](const ChunkRef&) -> std::string { throw std::logic_error("read in place"); }, progress, abandon,
+             [&](const ChunkRef& ref) {
+               const std::filesystem::path file = folder / (ref.sha256() + ".exr");
+               if (!std::filesystem::exists(file)) std::ofstream(file, std::ios::binary) << chunks.at(ref.sha256());
+               return file;
+             })
+        .chunk;
+  };
 
   const std::vector<RowWindow> windows = filterWindowsOf(whole.spec());
   ASSERT_EQ(windows.size(), 3u);
@@ -224,6 +239,7 @@ TEST(CompositeTask, WindowsComposedApartAndJoinedAreTheWholeFramesBytes) {
     }
     const std::string name = "window" + std::to_string(rows.first);
     chunks[name] = run(part);
+    EXPECT_TRUE(runFromFiles(part) == chunks[name]) << "rows " << rows.first << " read from the file";
     addInput(join, name, TASK_COMPOSITE, part.params());
   }
   EXPECT_EQ(tilesGiven, (std::vector<size_t>{0, 0, 1, 2, 1, 2})) << "the halo left no tile out";

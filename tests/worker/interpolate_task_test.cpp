@@ -129,7 +129,8 @@ TEST(InterpolateTask, KeyframesReadAComponentAtATimeGiveTheWholeFramesInterpolat
   addInput("flow", TASK_FLOW, kBefore, flowing);
 
   const auto run = [&](uint64_t decodedBytes) {
-    TaskRunner runner(1, folder / "scenes", folder / ("outgoing" + std::to_string(decodedBytes)), decodedBytes);
+    // Two threads: components are read and interpolated two at a time, as on a worker.
+    TaskRunner runner(2, folder / "scenes", folder / ("outgoing" + std::to_string(decodedBytes)), decodedBytes);
     std::atomic<double> progress{0};
     std::atomic<bool> abandon{false};
     return runner.run(lease, [](const ChunkRef&) -> std::string { throw std::logic_error("read in place"); },
