@@ -17,8 +17,9 @@
 
 namespace pathfarm::farm {
 
-// What a task reads of an input: the channels `keep` accepts, of rows firstRow .. endRow - 1
-// (every row when endRow is 0), with every attribute of the frame.
+// What a task reads of an input: the channels `keep` accepts (every one without it), of
+// rows firstRow .. endRow - 1 (to the last row when endRow is 0), with every attribute of
+// the frame.
 struct InputPart {
   ChannelFilter keep;
   int firstRow = 0, endRow = 0;
