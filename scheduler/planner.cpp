@@ -195,6 +195,22 @@ size_t push(PlannedTask planned, std::vector<PlannedTask>& plan) {
   return plan.size() - 1;
 }
 
+// A filter task of a frame taller than a filter window, as a task per window of rows (each
+// holding only its rows, with the task's inputs) and the task itself, which joins them.
+PlannedTask inWindows(PlannedTask whole, const ShotSpec& spec, std::vector<PlannedTask>& plan) {
+  const std::vector<RowWindow> windows = filterWindowsOf(spec);
+  if (windows.size() < 2) return whole;
+  std::vector<size_t> joined;
+  for (const RowWindow& rows : windows) {
+    PlannedTask window = whole;
+    window.output = false;
+    setWindow(window.params, 0, rows.first, spec.width(), rows.end);
+    joined.push_back(push(std::move(window), plan));
+  }
+  whole.dependencies = std::move(joined);
+  return whole;
+}
+
 void planFiltering(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
   checkRenderSpec(spec);
   const FilteringStages stages = stagesOf(spec.pipeline());
@@ -249,7 +265,8 @@ void planFiltering(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
       continue;
     }
     finalOf[frame] = push(std::move(denoise), plan);
-    if (stages.upsample) finalOf[frame] = push(task(TASK_UPSAMPLE, frame, {finalOf[frame], rendered.at(frame)}), plan);
+    if (stages.upsample)
+      finalOf[frame] = push(inWindows(task(TASK_UPSAMPLE, frame, {finalOf[frame], rendered.at(frame)}), spec, plan), plan);
     evaluated[frame] = {rendered.at(frame), finalOf[frame]};
   }
 
@@ -276,21 +293,10 @@ void planFiltering(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
     }
   }
 
-  // A frame taller than a filter window is composited window by window, each a task that
-  // holds only its rows, and joined by the frame's composite.
-  const std::vector<RowWindow> windows = filterWindowsOf(spec);
   for (const auto& [frame, stage] : finalOf) {
     PlannedTask composite = task(TASK_COMPOSITE, frame, {stage});
     composite.output = true;
-    if (windows.size() > 1) {
-      composite.dependencies.clear();
-      for (const RowWindow& rows : windows) {
-        PlannedTask window = task(TASK_COMPOSITE, frame, {stage});
-        setWindow(window.params, 0, rows.first, spec.width(), rows.end);
-        composite.dependencies.push_back(push(std::move(window), plan));
-      }
-    }
-    evaluated[frame].push_back(push(std::move(composite), plan));
+    evaluated[frame].push_back(push(inWindows(std::move(composite), spec, plan), plan));
   }
   planEvaluation(spec, true, evaluated, plan);
 }

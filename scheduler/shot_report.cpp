@@ -118,9 +118,12 @@ TaskTotals addUpTasks(ShotReport& report, const std::vector<TaskRecord>& tasks) 
       ++totals.interpolated;
     }
     if (task.kind == TASK_UPSAMPLE) {
-      totals.upsampleRerender += metric(task, "rerender_pixels");
+      // A frame upsampled in windows: each window counts its causes, the join the frame.
       addRerenderCauses(*report.mutable_upsample_rerender_causes(), task, {"moving_caustics", "light_edges"});
-      ++totals.upsampled;
+      if (!task.params.has_window()) {
+        totals.upsampleRerender += metric(task, "rerender_pixels");
+        ++totals.upsampled;
+      }
     }
     if (task.kind == TASK_COMPOSITE)
       report.set_rerender_pixels(report.rerender_pixels() + static_cast<int64_t>(metric(task, "rerender_pixels")));

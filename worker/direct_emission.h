@@ -45,5 +45,7 @@ void addDirectEmission(FrameImage& frame, const FrameImage& emission, const std:
 // `significance` times the larger of the two pixels' beauty luminance. `beauty` is the
 // frame the light was taken from.
 std::vector<uint8_t> directLightEdges(const FrameImage& emission, const FrameImage& beauty, float significance = 0.05f);
+// How many rows away directLightEdges reads (its 8-neighbours).
+inline constexpr int kLightEdgeReach = 1;
 
 }  // namespace pathfarm::farm

@@ -3,6 +3,7 @@
 // its decoded inputs: the postproc library does the work, these functions pick the inputs,
 // join the results into the task's output frame and say which pixels need re-rendering.
 // Channel layout of the intermediate chunks: docs/farm.md, "Task graphs".
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <memory>
@@ -57,9 +58,20 @@ struct TaskOutput {
   // a frame the worker writes into such a file a strip of rows at a time (RLE, as an
   // intermediate chunk), so that a large frame is never held beside its encoding.
   std::optional<FrameImage> frame;
+  // or a frame of `joinedHeight` rows the worker writes from windows of rows, top to
+  // bottom, each got from its function when its turn comes and let go once written: a join
+  // of windows holds one at a time. The functions may read the task's inputs.
+  std::vector<std::function<FrameImage()>> rowWindows;
+  int joinedHeight = 0;
   std::vector<TaskParams> followUps;      // render tiles to add to the shot
   std::map<std::string, double> metrics;  // figures for the shot's report
 };
+
+// Writes a task's `frame` or `rowWindows` (whichever it has) to `file` as an intermediate
+// chunk (RLE) a strip of rows at a time, and lets go of it. A failed write is this
+// worker's (std::runtime_error), not the task's input's; a window's function throws what
+// it throws.
+void writeOutputFrame(TaskOutput& output, const std::filesystem::path& file);
 
 // A keyframe denoised with its neighbouring keyframes (at half resolution when upsampling).
 TaskOutput runDenoiseTask(const Lease& lease, std::vector<TaskInput>& inputs);

@@ -1,6 +1,8 @@
 // Denoising and upsampling of keyframes (worker/filter_tasks.h).
 #include <algorithm>
+#include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "contract/pipeline.h"
@@ -8,6 +10,7 @@
 #include "postproc/filters/component_denoiser.h"
 #include "postproc/filters/component_upsampler.h"
 #include "postproc/filters/decomposed_frame.h"
+#include "postproc/filters/guided_upsample.h"
 #include "postproc/interpolation/caustic_check.h"
 #include "worker/chunk_channels.h"
 #include "worker/direct_emission.h"
@@ -33,6 +36,60 @@ void pasteFiltered(const FrameImage& filtered, const std::string& record, FrameI
   frame.paste(filtered, 0, 0);
   for (const auto& [key, value] : filtered.attributes())
     if (key.rfind(record, 0) == 0) frame.attributes()[key] = value;
+}
+
+// The frame rows an upsample task computes: its window's, or every row.
+FrameRows upsampledRows(const Lease& lease) {
+  const int width = lease.spec().width(), height = lease.spec().height();
+  if (!lease.params().has_window()) return {0, height};
+  const PixelWindow& w = lease.params().window();
+  if (w.x0() != 0 || w.x1() != width || w.y0() < 0 || w.y1() > height || w.y0() >= w.y1())
+    throw BadInput("the upsample of frame " + std::to_string(lease.params().frame()) +
+                   " is not of whole rows of the frame");
+  return {w.y0(), w.y1()};
+}
+
+// The upsampled keyframe from its windows' (written from them a window at a time, so that
+// it is never held whole), and the re-render of the pixels they flagged.
+TaskOutput joinedUpsampleWindows(const Lease& lease, std::vector<TaskInput>& inputs) {
+  const int width = lease.spec().width(), height = lease.spec().height();
+  const std::string label = "frame " + std::to_string(lease.params().frame());
+  std::vector<TaskInput*> windows;
+  for (TaskInput& input : inputs) {
+    if (input.kind != TASK_UPSAMPLE || !input.params.has_window() || input.params.frame() != lease.params().frame())
+      throw BadInput("the upsample of " + label + " joins its windows' upsamples and nothing else");
+    windows.push_back(&input);
+  }
+  std::sort(windows.begin(), windows.end(),
+            [](const TaskInput* a, const TaskInput* b) { return a->params.window().y0() < b->params.window().y0(); });
+  std::vector<uint8_t> mask(static_cast<size_t>(width) * static_cast<size_t>(height), 0);
+  int covered = 0;  // rows 0 .. covered - 1 are the windows' so far
+  for (const TaskInput* window : windows) {
+    const PixelWindow& w = window->params.window();
+    const FrameImage flags = window->part({[](const std::string& name) { return name == "rerender.Y"; }});
+    if (w.x0() != 0 || w.x1() != width || w.y0() != covered || w.y1() > height || w.y1() <= w.y0() ||
+        flags.width() != width || flags.height() != w.y1() - w.y0())
+      throw BadInput("the windows' upsamples of " + label + " do not cover the frame's rows once each, in place");
+    const std::vector<float>& flagged = channelOf(flags, "rerender.Y", "a window's upsample of " + label);
+    std::transform(flagged.begin(), flagged.end(), mask.begin() + static_cast<ptrdiff_t>(w.y0()) * width,
+                   [](float value) { return static_cast<uint8_t>(value > 0.5f ? 1 : 0); });
+    covered = w.y1();
+  }
+  if (covered != height)
+    throw BadInput("the windows' upsamples of " + label + " do not cover the frame's rows once each, in place");
+  TaskOutput output;
+  requestRerender(lease.spec(), lease.params().frame(), mask, output);
+  output.joinedHeight = height;
+  auto channels = std::make_shared<std::vector<std::string>>();
+  for (TaskInput* window : windows)
+    output.rowWindows.push_back([window, channels, label] {
+      FrameImage rows = window->take();
+      if (channels->empty()) *channels = rows.channelNames();
+      if (rows.channelNames() != *channels)
+        throw BadInput("the windows' upsamples of " + label + " have different channels");
+      return rows;
+    });
+  return output;
 }
 
 }  // namespace
@@ -89,11 +146,30 @@ TaskOutput runDenoiseTask(const Lease& lease, std::vector<TaskInput>& inputs) {
 }
 
 TaskOutput runUpsampleTask(const Lease& lease, std::vector<TaskInput>& inputs) {
+  const auto isWindow = [](const TaskInput& input) { return input.kind == TASK_UPSAMPLE; };
+  if (!lease.params().has_window() && std::any_of(inputs.begin(), inputs.end(), isWindow))
+    return joinedUpsampleWindows(lease, inputs);
   const int64_t frame = lease.params().frame();
-  const FrameImage& low = inputOf(inputs, TASK_DENOISE, frame).image();
+  const int width = lease.spec().width(), height = lease.spec().height();
   const FilteringStages stages = stagesOf(lease.spec().pipeline());
-  FrameImage high = inputOf(inputs, TASK_ASSEMBLE_FRAME, frame).part(
-      {[&](const std::string& name) { return upsampleReads(name, stages); }});
+  const FrameRows wanted = upsampledRows(lease);
+  UpsampleSettings settings;
+  settings.guided.factor = kUpsampleFactor;
+  // The rows the filters read around the wanted ones: the guided filter's strips and
+  // windows, which reach farther than the checks of the render's light below.
+  const FrameRows reads = guidedUpsampleReads(wanted, height, settings.guided);
+  const int checksReach = std::max(causticCheckReach({}), kLightEdgeReach);
+  if ((reads.first > 0 && wanted.first - reads.first < checksReach) ||
+      (reads.end < height && reads.end - wanted.end < checksReach))
+    throw std::logic_error("the upsample's checks reach beyond the rows the guided filter reads");
+  settings.guided.firstRow = reads.first;
+  settings.guided.onlyFirst = wanted.first;
+  settings.guided.onlyEnd = wanted.end;
+  const FrameImage low = inputOf(inputs, TASK_DENOISE, frame)
+                             .part({{}, reads.first / kUpsampleFactor, reads.end / kUpsampleFactor});
+  FrameImage high = inputOf(inputs, TASK_ASSEMBLE_FRAME, frame)
+                        .part({[&](const std::string& name) { return upsampleReads(name, stages); }, reads.first,
+                               reads.end});
   // A moving caustic spread by the half-resolution filtering is rendered again at full spp.
   const std::vector<uint8_t> caustics = movingCausticPixels(high);
   // The directly seen light is added back unfiltered from the keyframe's own render, which
@@ -102,21 +178,23 @@ TaskOutput runUpsampleTask(const Lease& lease, std::vector<TaskInput>& inputs) {
   // random), so those pixels are rendered again at the shot's spp, as in an interpolated frame.
   const std::vector<uint8_t> lightEdges = directLightEdges(directEmissionOf(high), high);
   const FrameImage emission = takeDirectEmission(high);
-  UpsampleSettings settings;
-  settings.guided.factor = kUpsampleFactor;
   pasteFiltered(upsampleFrame(low, high, settings), "pathfarm.upsample", high);
   addDirectEmission(high, emission);
+  if (wanted.first != reads.first || wanted.end != reads.end)
+    high = high.crop(0, wanted.first - reads.first, width, wanted.end - wanted.first);
   std::vector<float>& flagged = high.channel("rerender.Y");
   std::vector<uint8_t> mask(flagged.size());
+  const size_t skipped = static_cast<size_t>(wanted.first - reads.first) * static_cast<size_t>(width);
   size_t causticPixels = 0, edgePixels = 0;
   for (size_t p = 0; p < mask.size(); ++p) {
-    causticPixels += caustics[p];
-    edgePixels += lightEdges[p];
-    if (caustics[p] || lightEdges[p]) flagged[p] = 1.0f;
+    causticPixels += caustics[skipped + p];
+    edgePixels += lightEdges[skipped + p];
+    if (caustics[skipped + p] || lightEdges[skipped + p]) flagged[p] = 1.0f;
     mask[p] = flagged[p] > 0.5f ? 1 : 0;
   }
   TaskOutput output;
-  requestRerender(lease.spec(), frame, mask, output);
+  // A window's flags go to the re-render with the frame's, from the join.
+  if (!lease.params().has_window()) requestRerender(lease.spec(), frame, mask, output);
   output.metrics["rerender_moving_caustics"] = static_cast<double>(causticPixels);
   output.metrics["rerender_light_edges"] = static_cast<double>(edgePixels);
   keepReadChannels(ChunkContent::FilteredKeyframe, stages, high);

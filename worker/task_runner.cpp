@@ -246,16 +246,11 @@ TaskOutput TaskRunner::filter(const Lease& lease, const ChunkFetcher& fetch, con
   std::vector<TaskInput> inputs = inputsOf(lease, fetch, progress, files);
   tbb::task_arena arena(threads_ > 0 ? threads_ : tbb::task_arena::automatic);
   TaskOutput output = arena.execute([&] { return found->second(lease, inputs); });
-  if (output.frame) {
+  if (output.frame || !output.rowWindows.empty()) {
     output.chunkFile = std::make_shared<const ScratchFile>(
         scratchPathFor(outgoingRoot_, "attempt-" + std::to_string(lease.attempt_id()) + ".exr"));
-    try {
-      writeExrInStrips(output.chunkFile->path(), *output.frame, ExrCompression::Fast);
-    } catch (const ExrError& e) {
-      // This worker's disk, not the task's inputs: the task may run elsewhere.
-      throw std::runtime_error(std::string("cannot write the task's output: ") + e.what());
-    }
-    output.frame.reset();
+    // A join's windows are read from `inputs` as they are written.
+    writeOutputFrame(output, output.chunkFile->path());
   }
   progress = 1.0;
   return output;

@@ -10,14 +10,16 @@
 #include <string>
 #include <system_error>
 #include <thread>
+#include <utility>
 
 #include "image/size_text.h"
 
 namespace pathfarm {
 namespace {
 
-// Output rows per strip. Fixed (never derived from the thread count), so the running sums
-// start at the same rows whatever the parallelism and results are bit-identical.
+// Output rows per strip, placed by frame rows. Fixed (never derived from the thread count
+// or a band's rows), so the running sums start at the same rows whatever the parallelism
+// or the band and results are bit-identical.
 constexpr int kStripRows = 64;
 // Pixels solved together (structure of arrays).
 constexpr int kBatch = 8;
@@ -60,6 +62,9 @@ class Upsampler {
     // Coefficients per pixel: a (n m, a[c * m + j]), then b (m).
     C_ = n_ * m_ + m_;
     ringRows_ = 2 * R_ + 2;
+    const bool band = settings.onlyEnd != settings.onlyFirst;
+    onlyFirst_ = band ? settings.onlyFirst - settings.firstRow : 0;
+    onlyEnd_ = band ? settings.onlyEnd - settings.firstRow : height_;
     lowColumn_.resize(static_cast<size_t>(width_));
     for (int x = 0; x < width_; ++x) lowColumn_[static_cast<size_t>(x)] = x / factor_;
   }
@@ -107,7 +112,7 @@ class Upsampler {
         accumulateCoefficients<true>(coef, w);
       }
       while (coefLo < wantLo) accumulateCoefficients<false>(ringRow(coefLo++, w), w);
-      outputRow(y, wantHi - wantLo + 1, w);
+      if (y >= onlyFirst_ && y < onlyEnd_) outputRow(y, wantHi - wantLo + 1, w);
     }
   }
 
@@ -304,10 +309,20 @@ class Upsampler {
   const double epsilon_;
   const int n_, m_;
   int offsetP_ = 0, offsetII_ = 0, offsetIP_ = 0, K_ = 0, C_ = 0, ringRows_ = 0;
+  int onlyFirst_ = 0, onlyEnd_ = 0;  // the rows written, in the planes' rows
   std::vector<int> lowColumn_;
 };
 
 }  // namespace
+
+FrameRows guidedUpsampleReads(const FrameRows& wanted, int height, const GuidedUpsampleSettings& settings) {
+  const int factor = std::max(settings.factor, 1);
+  // A strip's coefficient windows reach R rows beyond it, and their statistics R more.
+  const int reach = 2 * settings.radius * factor;
+  const int first = std::max(0, wanted.first / kStripRows * kStripRows - reach);
+  const int end = std::min(height, (wanted.end + kStripRows - 1) / kStripRows * kStripRows + reach);
+  return {first / factor * factor, std::min(height, (end + factor - 1) / factor * factor)};
+}
 
 GuidedUpsampleResult guidedUpsample(const Planes& low, const Planes& guide, const GuidedUpsampleSettings& settings) {
   if (settings.factor < 1)
@@ -326,14 +341,31 @@ GuidedUpsampleResult guidedUpsample(const Planes& low, const Planes& guide, cons
                                 sizeText(low.width * settings.factor, low.height * settings.factor) +
                                 " guide, not " + sizeText(guide.width, guide.height));
 
+  const bool band = settings.onlyEnd != settings.onlyFirst;
+  if (settings.firstRow < 0 || settings.firstRow % settings.factor != 0 ||
+      (band && (settings.onlyFirst < settings.firstRow || settings.onlyEnd > settings.firstRow + guide.height ||
+                settings.onlyFirst > settings.onlyEnd)))
+    throw std::invalid_argument("guidedUpsample: rows " + std::to_string(settings.onlyFirst) + " to " +
+                                std::to_string(settings.onlyEnd) + " are not within the planes' rows from " +
+                                std::to_string(settings.firstRow) + " (a multiple of the factor)");
+
   GuidedUpsampleResult result;
   result.image = Planes(guide.width, guide.height, static_cast<int>(low.channels.size()));
   result.rerender.assign(guide.pixelCount(), 0.0f);
   result.deficit.assign(guide.pixelCount(), 0.0f);
   if (guide.pixelCount() == 0) return result;
 
+  // The strips, by frame rows, that hold the rows to compute; in the planes' rows.
+  const int from = band ? settings.onlyFirst : settings.firstRow;
+  const int to = band ? settings.onlyEnd : settings.firstRow + guide.height;
+  std::vector<std::pair<int, int>> stripRows;
+  for (int s = from / kStripRows; s * kStripRows < to; ++s)
+    stripRows.emplace_back(std::max(0, s * kStripRows - settings.firstRow),
+                           std::min(guide.height, (s + 1) * kStripRows - settings.firstRow));
+  const int strips = static_cast<int>(stripRows.size());
+  if (strips == 0) return result;
+
   const Upsampler upsampler(low, guide, settings, result);
-  const int strips = (guide.height + kStripRows - 1) / kStripRows;
   int threads = settings.threads > 0 ? settings.threads : static_cast<int>(std::thread::hardware_concurrency());
   threads = std::clamp(threads, 1, strips);
 
@@ -344,7 +376,7 @@ GuidedUpsampleResult guidedUpsample(const Planes& low, const Planes& guide, cons
     try {
       Workspace workspace = upsampler.workspace();
       for (int s = next++; s < strips; s = next++)
-        upsampler.strip(s * kStripRows, std::min(guide.height, (s + 1) * kStripRows), workspace);
+        upsampler.strip(stripRows[static_cast<size_t>(s)].first, stripRows[static_cast<size_t>(s)].second, workspace);
     } catch (...) {
       const std::lock_guard<std::mutex> lock(failureMutex);
       if (!failure) failure = std::current_exception();

@@ -22,6 +22,10 @@
 // Box filters are O(1) per pixel: running sums in double, vertical then horizontal. The
 // image is cut into strips of fixed height, each computed on its own (with the rows of
 // its windows around it), so the result does not depend on the number of threads.
+//
+// A band of rows of a taller frame (a filter task's window of rows) can be upsampled alone:
+// given the rows guidedUpsampleReads names, its rows are the same bits as the whole
+// frame's, since the strips are placed by frame rows and none reads past the rows given.
 #include <cstddef>
 #include <vector>
 
@@ -34,7 +38,22 @@ struct GuidedUpsampleSettings {
   int radius = 2;        // window radius, in low-resolution pixels (>= 0)
   float epsilon = 1e-3f; // regularization of the guide's covariance (> 0), in guide units^2
   int threads = 0;       // worker threads; 0: the hardware's. Results do not depend on it.
+  // For a band of a taller frame: the frame row of the planes' first row (a multiple of
+  // factor), and the frame rows [onlyFirst, onlyEnd) to compute (all when equal; the
+  // result's other rows are 0, not rerendered).
+  int firstRow = 0;
+  int onlyFirst = 0, onlyEnd = 0;
 };
+
+// Frame rows first .. end - 1.
+struct FrameRows {
+  int first = 0, end = 0;
+};
+
+// The full-resolution rows of a frame `height` rows tall that guidedUpsample reads to
+// compute rows `wanted` (the low-resolution input's are these divided by the factor): the
+// strips holding them and every row their windows reach, widened to multiples of the factor.
+FrameRows guidedUpsampleReads(const FrameRows& wanted, int height, const GuidedUpsampleSettings& settings);
 
 struct GuidedUpsampleResult {
   Planes image;                 // full resolution, the channels of `low`
@@ -46,7 +65,8 @@ struct GuidedUpsampleResult {
 
 // `low` is width/factor x height/factor; `guide` is full resolution (any channel count).
 // Throws std::invalid_argument when the sizes do not fit the factor, a plane has the
-// wrong size, either image has no channel, or a setting is out of range.
+// wrong size, either image has no channel, or a setting is out of range (a band's rows
+// outside the planes, or a first row that is not a multiple of the factor).
 GuidedUpsampleResult guidedUpsample(const Planes& low, const Planes& guide, const GuidedUpsampleSettings& settings);
 
 }  // namespace pathfarm

@@ -24,6 +24,10 @@ struct CausticCheckSettings {
   int margin = 2;      // pixels the flags grow by
 };
 
+// How many rows (and columns) away a pixel's flag reads: a band of a frame's rows with this
+// many rows around it has its rows' flags in the same bits as the whole frame.
+inline int causticCheckReach(const CausticCheckSettings& settings) { return settings.radius + settings.margin; }
+
 // One byte per pixel, 1 where a moving caustic should be re-rendered. A frame without
 // `moving_caustic.Y` (rendered without a decomposition) has none. Throws
 // std::invalid_argument when the beauty R, G, B is missing.

@@ -287,6 +287,65 @@ TEST(GuidedUpsample, IsDeterministicWhateverTheThreadCount) {
   EXPECT_EQ(one.rerender, three.rerender);
 }
 
+// Rows first .. end - 1 of every plane (of a plane `factor` times smaller, rows / factor).
+Planes rowsOf(const Planes& planes, int first, int end, int factor = 1) {
+  Planes band(planes.width, (end - first) / factor, 0);
+  for (const std::vector<float>& channel : planes.channels)
+    band.channels.emplace_back(channel.begin() + static_cast<ptrdiff_t>(first / factor) * planes.width,
+                               channel.begin() + static_cast<ptrdiff_t>(end / factor) * planes.width);
+  return band;
+}
+
+TEST(GuidedUpsample, ABandOfRowsGivenTheRowsItReadsIsThoseRowsOfTheWholeFramesBits) {
+  const int width = 60, height = 300, factor = 2;
+  const Planes low = makePlanes(width / factor, height / factor, 3, [](int c, int x, int y) { return hashed(5, c, x, y); });
+  const Planes guide = makePlanes(width, height, 6, [](int c, int x, int y) { return hashed(6, c, x, y); });
+  const GuidedUpsampleSettings whole = settingsOf(factor, 2, 1e-3f, 2);
+  const GuidedUpsampleResult frame = guidedUpsample(low, guide, whole);
+  // Bands at the frame's top and bottom, and one whose borders are not strip borders.
+  for (const FrameRows wanted : {FrameRows{0, 37}, FrameRows{101, 177}, FrameRows{250, 300}}) {
+    const FrameRows reads = guidedUpsampleReads(wanted, height, whole);
+    ASSERT_LE(reads.first, wanted.first);
+    ASSERT_GE(reads.end, wanted.end);
+    GuidedUpsampleSettings band = whole;
+    band.firstRow = reads.first;
+    band.onlyFirst = wanted.first;
+    band.onlyEnd = wanted.end;
+    const GuidedUpsampleResult part =
+        guidedUpsample(rowsOf(low, reads.first, reads.end, factor), rowsOf(guide, reads.first, reads.end), band);
+    for (size_t c = 0; c < frame.image.channels.size(); ++c)
+      for (int y = reads.first; y < reads.end; ++y)
+        for (int x = 0; x < width; ++x) {
+          const float value = part.image.channels[c][static_cast<size_t>(y - reads.first) * width + x];
+          if (y >= wanted.first && y < wanted.end)
+            ASSERT_EQ(value, frame.image.channels[c][static_cast<size_t>(y) * width + x])
+                << "channel " << c << " at (" << x << ", " << y << ")";
+          else
+            ASSERT_EQ(value, 0.0f) << "a row outside the band at " << y;
+        }
+  }
+  // Fewer rows than it reads: rows near the band's border come out otherwise.
+  const FrameRows wanted{100, 177};
+  const FrameRows reads = guidedUpsampleReads(wanted, height, whole);
+  GuidedUpsampleSettings band = whole;
+  band.firstRow = wanted.first - 2;
+  band.onlyFirst = wanted.first;
+  band.onlyEnd = wanted.end;
+  const GuidedUpsampleResult cut =
+      guidedUpsample(rowsOf(low, band.firstRow, reads.end, factor), rowsOf(guide, band.firstRow, reads.end), band);
+  const size_t firstPixel = static_cast<size_t>(wanted.first) * width;
+  EXPECT_NE(cut.image.channels[0][static_cast<size_t>(2) * width], frame.image.channels[0][firstPixel]);
+  // A band outside the planes, or planes starting between low-resolution rows, are refused.
+  band.onlyEnd = reads.end + 1;
+  EXPECT_THROW(guidedUpsample(rowsOf(low, band.firstRow, reads.end, factor), rowsOf(guide, band.firstRow, reads.end), band),
+               std::invalid_argument);
+  band.onlyEnd = wanted.end;
+  band.firstRow = wanted.first + 1;  // odd
+  EXPECT_THROW(guidedUpsample(rowsOf(low, 100, reads.end, factor), rowsOf(guide, 100, reads.end), band),
+               std::invalid_argument)
+      << "a first row between low-resolution rows";
+}
+
 TEST(GuidedUpsample, RejectsInputThatDoesNotFit) {
   const Planes low = makePlanes(4, 3, 1, [](int, int, int) { return 1.0f; });
   const Planes guide = makePlanes(8, 6, 2, [](int, int, int) { return 1.0f; });

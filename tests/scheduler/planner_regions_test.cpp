@@ -2,10 +2,12 @@
 // blocks of tiles into regions, regions into the frame. Every tile lands in exactly one
 // region, the regions tile the frame, and no assemble task reads more than
 // kMaxAssemblyInputs inputs. A filtering shot's frame taller than a filter window is
-// composited window by window in the same way.
+// upsampled and composited window by window in the same way.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <set>
+#include <utility>
 #include <vector>
 
 #include "scheduler/planner.h"
@@ -70,10 +72,11 @@ TEST(PlannerRegions, AFrameThatFitsOneAssemblyHasNoRegions) {
   for (size_t i = 0; i + 1 < plan.size(); ++i) EXPECT_EQ(plan[i].kind, TASK_RENDER_TILE);
 }
 
-// A frame taller than a filter window is composited by a task per window, whole rows that
-// cover it once, and the frame's composite (the shot's output) joins them.
-TEST(Planner, AFrameTallerThanAFilterWindowIsCompositedWindowByWindow) {
-  // Frames 10 to 19 of 64x64, keyframes every 4th: 10 frames, each composited.
+// A frame taller than a filter window is upsampled and composited by a task per window,
+// whole rows that cover it once with the inputs of the frame's task, and the frame's task
+// (the composite: the shot's output) joins them; what reads a frame's upsample reads the join.
+TEST(Planner, AFrameTallerThanAFilterWindowIsUpsampledAndCompositedWindowByWindow) {
+  // Frames 10 to 19 of 64x64, keyframes every 4th (10, 14, 18, 19): 10 frames, each composited.
   ShotSpec spec = bigFrame(64, 64, 32);
   spec.set_pipeline(PIPELINE_DUI);
   spec.set_frame_start(10);
@@ -84,31 +87,47 @@ TEST(Planner, AFrameTallerThanAFilterWindowIsCompositedWindowByWindow) {
   spec.set_feature_spp(2);
   spec.set_filter_window_rows(kMinFilterWindowRows);  // 64 rows: four windows of 16
   const auto plan = planShot(spec);
-  EXPECT_EQ(std::count_if(plan.begin(), plan.end(), [](const PlannedTask& task) { return task.kind == TASK_COMPOSITE; }),
-            10 * 5);
-  int joins = 0;
-  for (const PlannedTask& task : plan) {
-    if (task.kind != TASK_COMPOSITE || task.params.has_window()) continue;
-    ++joins;
-    EXPECT_TRUE(task.output);
-    ASSERT_EQ(task.dependencies.size(), 4u);
-    std::vector<int> rows(64, 0);
-    for (const size_t d : task.dependencies) {
-      const PlannedTask& window = plan[d];
-      ASSERT_EQ(window.kind, TASK_COMPOSITE);
-      EXPECT_FALSE(window.output);
-      EXPECT_EQ(window.params.frame(), task.params.frame());
-      EXPECT_EQ(window.params.window().x0(), 0);
-      EXPECT_EQ(window.params.window().x1(), 64);
-      EXPECT_EQ(window.params.window().y1() - window.params.window().y0(), 16);
-      for (int y = window.params.window().y0(); y < window.params.window().y1(); ++y) ++rows[static_cast<size_t>(y)];
-      ASSERT_EQ(window.dependencies.size(), 1u);  // the stage output; re-render tiles join later
-      const TaskKind stage = plan[window.dependencies[0]].kind;
-      EXPECT_TRUE(stage == TASK_UPSAMPLE || stage == TASK_INTERPOLATE);
+  const auto kindsOf = [&](const std::vector<size_t>& dependencies) {
+    std::multiset<TaskKind> kinds;
+    for (const size_t d : dependencies) kinds.insert(plan[d].kind);
+    return kinds;
+  };
+  for (const auto& [kind, frames] : {std::pair{TASK_COMPOSITE, 10}, std::pair{TASK_UPSAMPLE, 4}}) {
+    EXPECT_EQ(std::count_if(plan.begin(), plan.end(), [&](const PlannedTask& task) { return task.kind == kind; }),
+              frames * 5);
+    int joins = 0;
+    for (const PlannedTask& task : plan) {
+      if (task.kind != kind || task.params.has_window()) continue;
+      ++joins;
+      EXPECT_EQ(task.output, kind == TASK_COMPOSITE);
+      ASSERT_EQ(task.dependencies.size(), 4u);
+      std::vector<int> rows(64, 0);
+      for (const size_t d : task.dependencies) {
+        const PlannedTask& window = plan[d];
+        ASSERT_EQ(window.kind, kind);
+        EXPECT_FALSE(window.output);
+        EXPECT_EQ(window.params.frame(), task.params.frame());
+        EXPECT_EQ(window.params.window().x0(), 0);
+        EXPECT_EQ(window.params.window().x1(), 64);
+        EXPECT_EQ(window.params.window().y1() - window.params.window().y0(), 16);
+        for (int y = window.params.window().y0(); y < window.params.window().y1(); ++y) ++rows[static_cast<size_t>(y)];
+        if (kind == TASK_UPSAMPLE) {
+          EXPECT_EQ(kindsOf(window.dependencies), (std::multiset<TaskKind>{TASK_DENOISE, TASK_ASSEMBLE_FRAME}));
+          continue;
+        }
+        ASSERT_EQ(window.dependencies.size(), 1u);  // the stage output; re-render tiles join later
+        const PlannedTask& stage = plan[window.dependencies[0]];
+        EXPECT_TRUE(stage.kind == TASK_UPSAMPLE || stage.kind == TASK_INTERPOLATE);
+        EXPECT_FALSE(stage.params.has_window()) << "a composite reads its frame's joined upsample";
+      }
+      EXPECT_EQ(rows, std::vector<int>(64, 1)) << "frame " << task.params.frame();
     }
-    EXPECT_EQ(rows, std::vector<int>(64, 1)) << "frame " << task.params.frame();
+    EXPECT_EQ(joins, frames);
   }
-  EXPECT_EQ(joins, 10);
+  for (const PlannedTask& task : plan)
+    if (task.kind == TASK_FLOW || task.kind == TASK_INTERPOLATE)
+      for (const size_t d : task.dependencies)
+        EXPECT_FALSE(plan[d].params.has_window()) << "a flow or interpolation reads the joined upsample";
   for (const int refused : {-1, kMinFilterWindowRows - 1}) {
     spec.set_filter_window_rows(refused);
     EXPECT_THROW(planShot(spec), PlanError) << refused;

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <utility>
+
 #include "scheduler/task_records.h"
 
 namespace pathfarm::farm {
@@ -144,6 +146,28 @@ TEST(ShotReport, AnUpsampledKeyframesReRenderIsSplitByCause) {
   const size_t rate = markdown.find("| re-render rate, upsampled keyframes | 15.00% |");
   ASSERT_NE(rate, std::string::npos) << markdown;
   EXPECT_NE(markdown.find("| &nbsp; of which light_edges | 10.00% |", rate), std::string::npos) << markdown;
+}
+
+TEST(ShotReport, AKeyframeUpsampledInWindowsCountsAsOneFrameWithItsWindowsCauses) {
+  // The first keyframe of the test above in two windows of rows, which count its causes
+  // (8 on light edges, 2 on caustics), and their join, which counts its re-render (10).
+  std::vector<TaskRecord> tasks;
+  for (const auto& [edges, caustics] : {std::pair{5, 2}, std::pair{3, 0}}) {
+    tasks.push_back(taskRecord(TASK_UPSAMPLE, ROLE_UNSPECIFIED, 0, 0.5));
+    tasks.back().params.mutable_window()->set_x1(10);
+    tasks.back().params.mutable_window()->set_y1(5);
+    tasks.back().metrics = {{"rerender_light_edges", edges}, {"rerender_moving_caustics", caustics}};
+  }
+  tasks.push_back(taskRecord(TASK_UPSAMPLE, ROLE_UNSPECIFIED, 0, 0.1));
+  tasks.back().metrics = {{"rerender_pixels", 10}, {"pixels", 100}};
+  tasks.push_back(taskRecord(TASK_UPSAMPLE, ROLE_UNSPECIFIED, 3, 1.0));
+  tasks.back().metrics = {{"rerender_pixels", 20}, {"rerender_light_edges", 12}, {"rerender_moving_caustics", 4}};
+  ShotSummary summary;
+  summary.set_state(SHOT_DONE);
+  const ShotReport report = buildReport(summary, spec(), tasks);
+  EXPECT_DOUBLE_EQ(report.upsample_rerender_rate(), 30.0 / 200);
+  EXPECT_DOUBLE_EQ(report.upsample_rerender_causes().at("light_edges"), 20.0 / 200);
+  EXPECT_DOUBLE_EQ(report.upsample_rerender_causes().at("moving_caustics"), 6.0 / 200);
 }
 
 TEST(ShotReport, TheVerdictSaysPlainlyWhenThePipelineLost) {

@@ -1,7 +1,12 @@
 #pragma once
 // The bytes of a filter task's output chunk, however the task gave them (TaskOutput: the
-// bytes, a file holding them, or a frame the worker writes to a file).
+// bytes, a file holding them, or a frame or windows of rows the worker writes to a file,
+// written here as the worker writes them).
+#include <unistd.h>
+
+#include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <string>
 
@@ -10,8 +15,12 @@
 
 namespace pathfarm::farm {
 
-inline std::string outputBytes(const TaskOutput& output) {
-  if (output.frame) return encodeExr(*output.frame, ExrCompression::Fast);
+inline std::string outputBytes(TaskOutput output) {
+  if (output.frame || !output.rowWindows.empty()) {
+    output.chunkFile = std::make_shared<const ScratchFile>(
+        std::filesystem::temp_directory_path() / ("pathfarm-output-" + std::to_string(::getpid()) + ".exr"));
+    writeOutputFrame(output, output.chunkFile->path());
+  }
   if (!output.chunkFile) return output.chunk;
   std::ifstream file(output.chunkFile->path(), std::ios::binary);
   std::ostringstream bytes;

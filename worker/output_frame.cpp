@@ -1,0 +1,47 @@
+// Writing a filter task's output frame to its chunk file (worker/filter_tasks.h).
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "image/exr_io.h"
+#include "worker/filter_tasks.h"
+
+namespace pathfarm::farm {
+namespace {
+
+// Runs a step of writing the output: an ExrError there is this worker's disk.
+template <typename Step>
+void writing(Step&& step) {
+  try {
+    step();
+  } catch (const ExrError& e) {
+    throw std::runtime_error(std::string("cannot write the task's output: ") + e.what());
+  }
+}
+
+}  // namespace
+
+void writeOutputFrame(TaskOutput& output, const std::filesystem::path& file) {
+  if (output.frame) {
+    writing([&] { writeExrInStrips(file, *output.frame, ExrCompression::Fast); });
+    output.frame.reset();
+    return;
+  }
+  std::optional<ExrStripWriter> writer;
+  for (std::function<FrameImage()>& window : output.rowWindows) {
+    const FrameImage rows = window();
+    window = {};
+    writing([&] {
+      if (!writer)
+        writer.emplace(file, rows.width(), output.joinedHeight, rows.channelNames(), rows.attributes(),
+                       ExrCompression::Fast);
+      writer->write(rows);
+    });
+  }
+  if (!writer) throw std::logic_error("a task output without a frame or windows to write");
+  writing([&] { writer->finish(); });
+  output.rowWindows.clear();
+}
+
+}  // namespace pathfarm::farm
