@@ -6,6 +6,8 @@
 // borders whichever task runs it, so the frame is the same bits however it is split.
 #include <algorithm>
 #include <limits>
+#include <map>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <tuple>
@@ -222,36 +224,24 @@ FrameImage compositedRows(const Lease& lease, std::vector<TaskInput>& inputs, st
   return result;
 }
 
-// The frame's composite from its windows' composites: their rows pasted in place, their
-// re-render masks joined.
+// The frame's composite from its windows' composites: written from them a window at a
+// time (a 4K final frame is more than a gigabyte), with the re-render they flagged recorded.
 TaskOutput joinedWindows(const Lease& lease, std::vector<TaskInput>& inputs) {
-  const int width = lease.spec().width(), height = lease.spec().height();
-  FrameImage frame(width, height);
-  std::vector<uint8_t> mask(frame.pixelCount(), 0);
-  std::vector<uint8_t> rowsDone(static_cast<size_t>(height), 0);
-  for (TaskInput& input : inputs) {
-    const PixelWindow& w = input.params.window();
-    if (input.kind != TASK_COMPOSITE || !input.params.has_window() || input.params.frame() != lease.params().frame())
-      throw BadInput("the composite of " + frameLabel(lease) + " joins its windows' composites and nothing else");
-    FrameImage rows = input.take();
-    const bool placed = w.x0() == 0 && w.x1() == width && w.y0() >= 0 && w.y1() <= height && w.y0() < w.y1() &&
-                        rows.width() == width && rows.height() == w.y1() - w.y0();
-    if (!placed || std::any_of(rowsDone.begin() + w.y0(), rowsDone.begin() + w.y1(), [](uint8_t done) { return done; }))
-      throw BadInput("a window's composite of " + frameLabel(lease) + " does not have its rows' size or place");
-    if (!frame.channelNames().empty() && rows.channelNames() != frame.channelNames())
-      throw BadInput("the windows' composites of " + frameLabel(lease) + " have different channels");
-    std::fill(rowsDone.begin() + w.y0(), rowsDone.begin() + w.y1(), 1);
-    const std::vector<float>& flagged = channelOf(rows, "rerender.Y", "a window's composite of " + frameLabel(lease));
-    std::transform(flagged.begin(), flagged.end(), mask.begin() + static_cast<ptrdiff_t>(w.y0()) * width,
-                   [](float value) { return static_cast<uint8_t>(value > 0.5f ? 1 : 0); });
-    frame.attributes() = rows.attributes();
-    frame.paste(rows, 0, w.y0());
-  }
-  frame.removeChannels([](const std::string& name) { return name == "rerender.Y"; });
-  if (std::find(rowsDone.begin(), rowsDone.end(), 0) != rowsDone.end())
-    throw BadInput("the windows' composites of " + frameLabel(lease) + " do not cover the frame");
-  requireFinalColors(frame, "the joined composite of " + frameLabel(lease));
-  return finishedFinalFrame(std::move(frame), mask, lease.spec().pipeline());
+  const std::string label = "a window's composite of " + frameLabel(lease);
+  TaskOutput output;
+  const std::vector<uint8_t> mask = joinRowWindows(
+      lease, inputs, "composites", [&label](const FrameImage& rows) { requireFinalColors(rows, label); }, output);
+  output.compression = ExrCompression::Small;  // the shot's frame
+  auto record = std::make_shared<std::map<std::string, std::string>>();
+  recordRerender(*record, static_cast<size_t>(std::count(mask.begin(), mask.end(), 1)), lease.spec().pipeline(),
+                 output);
+  // The frame's attributes are the first window's, with the record.
+  output.rowWindows.front() = [first = std::move(output.rowWindows.front()), record] {
+    FrameImage rows = first();
+    for (const auto& [key, value] : *record) rows.attributes()[key] = value;
+    return rows;
+  };
+  return output;
 }
 
 }  // namespace

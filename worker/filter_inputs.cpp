@@ -1,6 +1,7 @@
 #include "worker/filter_inputs.h"
 
 #include <algorithm>
+#include <memory>
 #include <stdexcept>
 #include <utility>
 
@@ -93,6 +94,46 @@ const TaskInput& filteredKeyframe(const std::vector<TaskInput>& inputs, int64_t 
     return input.kind == TASK_UPSAMPLE && input.params.frame() == frame;
   });
   return upsampled != inputs.end() ? *upsampled : inputOf(inputs, TASK_DENOISE, frame);
+}
+
+std::vector<uint8_t> joinRowWindows(const Lease& lease, std::vector<TaskInput>& inputs, const std::string& what,
+                                    const std::function<void(const FrameImage&)>& check, TaskOutput& output) {
+  const int width = lease.spec().width(), height = lease.spec().height();
+  const std::string label = "frame " + std::to_string(lease.params().frame());
+  const std::string refused = "the windows' " + what + " of " + label;
+  std::vector<TaskInput*> windows;
+  for (TaskInput& input : inputs) {
+    if (input.kind != lease.kind() || !input.params.has_window() || input.params.frame() != lease.params().frame())
+      throw BadInput("the join of " + label + " takes its windows' " + what + " and nothing else");
+    windows.push_back(&input);
+  }
+  std::sort(windows.begin(), windows.end(),
+            [](const TaskInput* a, const TaskInput* b) { return a->params.window().y0() < b->params.window().y0(); });
+  std::vector<uint8_t> mask(static_cast<size_t>(width) * static_cast<size_t>(height), 0);
+  int covered = 0;  // rows 0 .. covered - 1 are the windows' so far
+  for (const TaskInput* window : windows) {
+    const PixelWindow& w = window->params.window();
+    const FrameImage flags = window->part({[](const std::string& name) { return name == "rerender.Y"; }});
+    if (w.x0() != 0 || w.x1() != width || w.y0() != covered || w.y1() > height || w.y1() <= w.y0() ||
+        flags.width() != width || flags.height() != w.y1() - w.y0())
+      throw BadInput(refused + " do not cover the frame's rows once each, in place");
+    const std::vector<float>& flagged = channelOf(flags, "rerender.Y", refused);
+    std::transform(flagged.begin(), flagged.end(), mask.begin() + static_cast<ptrdiff_t>(w.y0()) * width,
+                   [](float value) { return static_cast<uint8_t>(value > 0.5f ? 1 : 0); });
+    covered = w.y1();
+  }
+  if (covered != height) throw BadInput(refused + " do not cover the frame's rows once each, in place");
+  output.joinedHeight = height;
+  auto channels = std::make_shared<std::vector<std::string>>();
+  for (TaskInput* window : windows)
+    output.rowWindows.push_back([window, channels, check, refused] {
+      FrameImage rows = window->take();
+      check(rows);
+      if (channels->empty()) *channels = rows.channelNames();
+      if (rows.channelNames() != *channels) throw BadInput(refused + " have different channels");
+      return rows;
+    });
+  return mask;
 }
 
 void writeMotionField(FrameImage& image, const std::string& name, const MotionField& field) {

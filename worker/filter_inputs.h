@@ -1,6 +1,7 @@
 #pragma once
 // Helpers the filter tasks share: finding inputs, motion fields in chunks, and turning a
 // re-render mask into render tiles.
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -33,6 +34,16 @@ FrameImage partOf(const FrameImage& frame, const InputPart& wanted);
 // at a time: a 1080p keyframe's render is more than a gigabyte whole. Both steps are per
 // pixel and per block, so the bits are those of the whole frame reduced at once.
 FrameImage reducedWithoutLight(const TaskInput& input, int width, int height, int factor);
+
+// The join of a frame filtered in windows of rows (a filter task per window, and the
+// frame's task of the same kind joining them; contract/pipeline.h, filterWindowsOf): its
+// inputs, each a window of the lease's frame, must cover the frame's rows once each, whole
+// rows, else BadInput naming `what` ("upsamples"). Returns their `rerender.Y` flags as the
+// frame's mask (a byte per pixel), read before anything else, and sets `output` to write
+// the windows top to bottom, each taken from its input when its turn comes, checked by
+// `check` and to have the first window's channels (whose attributes the frame takes).
+std::vector<uint8_t> joinRowWindows(const Lease& lease, std::vector<TaskInput>& inputs, const std::string& what,
+                                    const std::function<void(const FrameImage&)>& check, TaskOutput& output);
 
 // A motion field stored as `<name>.X`, `<name>.Y`, `<name>.valid`.
 void writeMotionField(FrameImage& image, const std::string& name, const MotionField& field);

@@ -55,20 +55,23 @@ struct TaskInput {
 struct TaskOutput {
   std::string chunk;                             // the output chunk's bytes, or
   std::shared_ptr<const ScratchFile> chunkFile;  // a file holding them (an assembled frame), or
-  // a frame the worker writes into such a file a strip of rows at a time (RLE, as an
-  // intermediate chunk), so that a large frame is never held beside its encoding.
+  // a frame the worker writes into such a file a strip of rows at a time, so that a large
+  // frame is never held beside its encoding,
   std::optional<FrameImage> frame;
   // or a frame of `joinedHeight` rows the worker writes from windows of rows, top to
   // bottom, each got from its function when its turn comes and let go once written: a join
   // of windows holds one at a time. The functions may read the task's inputs.
   std::vector<std::function<FrameImage()>> rowWindows;
   int joinedHeight = 0;
+  // How `frame` or `rowWindows` is written: RLE for an intermediate chunk, ZIP for a frame
+  // the shot keeps.
+  ExrCompression compression = ExrCompression::Fast;
   std::vector<TaskParams> followUps;      // render tiles to add to the shot
   std::map<std::string, double> metrics;  // figures for the shot's report
 };
 
-// Writes a task's `frame` or `rowWindows` (whichever it has) to `file` as an intermediate
-// chunk (RLE) a strip of rows at a time, and lets go of it. A failed write is this
+// Writes a task's `frame` or `rowWindows` (whichever it has) to `file` a strip of rows at a
+// time, and lets go of it. A failed write is this
 // worker's (std::runtime_error), not the task's input's; a window's function throws what
 // it throws.
 void writeOutputFrame(TaskOutput& output, const std::filesystem::path& file);

@@ -40,14 +40,19 @@ void addRerenderMask(FrameImage& final, const std::vector<uint8_t>& rerendered) 
   std::copy(rerendered.begin(), rerendered.end(), flagged.begin());
 }
 
+void recordRerender(std::map<std::string, std::string>& attributes, size_t rerenderedPixels, Pipeline pipeline,
+                    TaskOutput& output) {
+  attributes["pathfarm.rerender_pixels"] = std::to_string(rerenderedPixels);
+  attributes["pathfarm.pipeline"] = pipelineName(pipeline);
+  output.metrics["rerender_pixels"] = static_cast<double>(rerenderedPixels);
+}
+
 TaskOutput finishedFinalFrame(FrameImage final, const std::vector<uint8_t>& rerendered, Pipeline pipeline) {
   addRerenderMask(final, rerendered);
-  const auto count = static_cast<size_t>(std::count(rerendered.begin(), rerendered.end(), 1));
-  final.attributes()["pathfarm.rerender_pixels"] = std::to_string(count);
-  final.attributes()["pathfarm.pipeline"] = pipelineName(pipeline);
   TaskOutput output;
+  recordRerender(final.attributes(), static_cast<size_t>(std::count(rerendered.begin(), rerendered.end(), 1)), pipeline,
+                 output);
   output.chunk = encodeExr(final);
-  output.metrics["rerender_pixels"] = static_cast<double>(count);
   return output;
 }
 

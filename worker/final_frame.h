@@ -3,7 +3,9 @@
 // and every component's color, `rerender.Y` marking the re-rendered pixels, and the
 // stage output's attributes with the pipeline and the re-render count. The composite
 // task writes it, or for d, where nothing is re-rendered, the denoise task itself.
+#include <cstddef>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -22,6 +24,11 @@ FrameImage finalColorsOf(const FrameImage& staged);
 
 // Adds `rerendered` (a byte per pixel, 1 = re-rendered) to `final` as `rerender.Y`.
 void addRerenderMask(FrameImage& final, const std::vector<uint8_t>& rerendered);
+
+// A final frame's record of its re-render: its attributes "pathfarm.rerender_pixels" and
+// "pathfarm.pipeline", and the output's "rerender_pixels" metric.
+void recordRerender(std::map<std::string, std::string>& attributes, size_t rerenderedPixels, Pipeline pipeline,
+                    TaskOutput& output);
 
 // `final` with `rerendered` added as `rerender.Y`, encoded for the shot's output, with its
 // "rerender_pixels" metric.

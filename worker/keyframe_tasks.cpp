@@ -1,6 +1,5 @@
 // Denoising and upsampling of keyframes (worker/filter_tasks.h).
 #include <algorithm>
-#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -52,43 +51,9 @@ FrameRows upsampledRows(const Lease& lease) {
 // The upsampled keyframe from its windows' (written from them a window at a time, so that
 // it is never held whole), and the re-render of the pixels they flagged.
 TaskOutput joinedUpsampleWindows(const Lease& lease, std::vector<TaskInput>& inputs) {
-  const int width = lease.spec().width(), height = lease.spec().height();
-  const std::string label = "frame " + std::to_string(lease.params().frame());
-  std::vector<TaskInput*> windows;
-  for (TaskInput& input : inputs) {
-    if (input.kind != TASK_UPSAMPLE || !input.params.has_window() || input.params.frame() != lease.params().frame())
-      throw BadInput("the upsample of " + label + " joins its windows' upsamples and nothing else");
-    windows.push_back(&input);
-  }
-  std::sort(windows.begin(), windows.end(),
-            [](const TaskInput* a, const TaskInput* b) { return a->params.window().y0() < b->params.window().y0(); });
-  std::vector<uint8_t> mask(static_cast<size_t>(width) * static_cast<size_t>(height), 0);
-  int covered = 0;  // rows 0 .. covered - 1 are the windows' so far
-  for (const TaskInput* window : windows) {
-    const PixelWindow& w = window->params.window();
-    const FrameImage flags = window->part({[](const std::string& name) { return name == "rerender.Y"; }});
-    if (w.x0() != 0 || w.x1() != width || w.y0() != covered || w.y1() > height || w.y1() <= w.y0() ||
-        flags.width() != width || flags.height() != w.y1() - w.y0())
-      throw BadInput("the windows' upsamples of " + label + " do not cover the frame's rows once each, in place");
-    const std::vector<float>& flagged = channelOf(flags, "rerender.Y", "a window's upsample of " + label);
-    std::transform(flagged.begin(), flagged.end(), mask.begin() + static_cast<ptrdiff_t>(w.y0()) * width,
-                   [](float value) { return static_cast<uint8_t>(value > 0.5f ? 1 : 0); });
-    covered = w.y1();
-  }
-  if (covered != height)
-    throw BadInput("the windows' upsamples of " + label + " do not cover the frame's rows once each, in place");
   TaskOutput output;
+  const std::vector<uint8_t> mask = joinRowWindows(lease, inputs, "upsamples", [](const FrameImage&) {}, output);
   requestRerender(lease.spec(), lease.params().frame(), mask, output);
-  output.joinedHeight = height;
-  auto channels = std::make_shared<std::vector<std::string>>();
-  for (TaskInput* window : windows)
-    output.rowWindows.push_back([window, channels, label] {
-      FrameImage rows = window->take();
-      if (channels->empty()) *channels = rows.channelNames();
-      if (rows.channelNames() != *channels)
-        throw BadInput("the windows' upsamples of " + label + " have different channels");
-      return rows;
-    });
   return output;
 }
 

@@ -24,7 +24,7 @@ void writing(Step&& step) {
 
 void writeOutputFrame(TaskOutput& output, const std::filesystem::path& file) {
   if (output.frame) {
-    writing([&] { writeExrInStrips(file, *output.frame, ExrCompression::Fast); });
+    writing([&] { writeExrInStrips(file, *output.frame, output.compression); });
     output.frame.reset();
     return;
   }
@@ -35,7 +35,7 @@ void writeOutputFrame(TaskOutput& output, const std::filesystem::path& file) {
     writing([&] {
       if (!writer)
         writer.emplace(file, rows.width(), output.joinedHeight, rows.channelNames(), rows.attributes(),
-                       ExrCompression::Fast);
+                       output.compression);
       writer->write(rows);
     });
   }

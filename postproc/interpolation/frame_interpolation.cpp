@@ -262,14 +262,17 @@ LayerKeyframes readKeyframes(const FrameImage& k0, const FrameImage& k1, Layer& 
 LayerOutcome interpolateLayer(const Layer& layer, const LayerKeyframes& keys, float s,
                               const InterpolationSettings& settings, int width, int height) {
   const SplatSettings splat{settings.depthTolerance, settings.minCoverage, 0.25f};
-  const SplatResult a = splatLayer(keys.primary[0], s, splat);
-  const SplatResult b = splatLayer(keys.primary[1], 1.0f - s, splat);
-  LayerOutcome out = combine(keys.primary[0], keys.primary[1], a, b, s, settings, width, height);
+  // Each pair of splats lives only until it is combined: at 4K a splat is a dozen planes of
+  // 33 MB, and a worker interpolates two layers at once.
+  const auto splattedAndCombined = [&](const std::array<KeyframeLayer, 2>& from) {
+    const SplatResult a = splatLayer(from[0], s, splat);
+    const SplatResult b = splatLayer(from[1], 1.0f - s, splat);
+    return combine(from[0], from[1], a, b, s, settings, width, height);
+  };
+  LayerOutcome out = splattedAndCombined(keys.primary);
   if (!layer.irradianceMotion) return out;
   // The paper's scheme: irradiance along its own motion times reflectance along the primary.
-  const SplatResult ea = splatLayer(keys.irradiance[0], s, splat);
-  const SplatResult eb = splatLayer(keys.irradiance[1], 1.0f - s, splat);
-  const LayerOutcome e = combine(keys.irradiance[0], keys.irradiance[1], ea, eb, s, settings, width, height);
+  const LayerOutcome e = splattedAndCombined(keys.irradiance);
   const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
   for (size_t t = 0; t < pixels; ++t) {
     for (size_t c = 0; c < 3; ++c) out.color[c][t] = modulateIrradiance(e.color[c][t], out.color[6 + c][t]);

@@ -13,6 +13,7 @@
 #include "image/exr_io.h"
 #include "postproc/filters/component_denoiser.h"
 #include "postproc/filters/decomposed_frame.h"
+#include "task_output_bytes.h"
 #include "test_support.h"
 #include "worker/direct_emission.h"
 #include "worker/task_runner.h"
@@ -202,21 +203,20 @@ TEST(CompositeTask, WindowsComposedApartAndJoinedAreTheWholeFramesBytes) {
   std::atomic<double> progress{0};
   std::atomic<bool> abandon{false};
   const auto run = [&](const Lease& lease) {
-    return runner.run(lease, [&](const ChunkRef& ref) { return chunks.at(ref.sha256()); }, progress, abandon).chunk;
+    return outputBytes(runner.run(lease, [&](const ChunkRef& ref) { return chunks.at(ref.sha256()); }, progress, abandon));
   };
   const std::string expected = run(whole);
   // A worker that keeps no frame decoded reads a window's rows of the stage from its file.
   const auto folder = test_support::processTemporaryFolder("pathfarm_composite_files");
   TaskRunner fromFiles(1, folder / "scenes", folder / "outgoing", 0);
   const auto runFromFiles = [&](const Lease& lease) {
-    return fromFiles
-        .run(lease, [](const ChunkRef&) -> std::string { throw std::logic_error("read in place"); }, progress, abandon,
-             [&](const ChunkRef& ref) {
-               const std::filesystem::path file = folder / (ref.sha256() + ".exr");
-               if (!std::filesystem::exists(file)) std::ofstream(file, std::ios::binary) << chunks.at(ref.sha256());
-               return file;
-             })
-        .chunk;
+    return outputBytes(fromFiles.run(
+        lease, [](const ChunkRef&) -> std::string { throw std::logic_error("read in place"); }, progress, abandon,
+        [&](const ChunkRef& ref) {
+          const std::filesystem::path file = folder / (ref.sha256() + ".exr");
+          if (!std::filesystem::exists(file)) std::ofstream(file, std::ios::binary) << chunks.at(ref.sha256());
+          return file;
+        }));
   };
 
   const std::vector<RowWindow> windows = filterWindowsOf(whole.spec());
@@ -245,6 +245,7 @@ TEST(CompositeTask, WindowsComposedApartAndJoinedAreTheWholeFramesBytes) {
   EXPECT_EQ(tilesGiven, (std::vector<size_t>{0, 0, 1, 2, 1, 2})) << "the halo left no tile out";
   const std::string joined = run(join);
   EXPECT_TRUE(joined == expected) << "the joined windows differ from the whole frame's composite";
+  EXPECT_TRUE(runFromFiles(join) == expected) << "joined from files";
   const FrameImage frame = decodeExr(joined, "joined");
   EXPECT_NE(frame.attributes().at("pathfarm.rerender_pixels"), "0");
   // Not the stage's pixels alone: the re-rendered ones at the borders are the denoised render.
