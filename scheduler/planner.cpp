@@ -288,7 +288,7 @@ void planFiltering(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
     for (int64_t frame = k0 + 1; frame < k1; ++frame) {
       std::vector<size_t> inputs = interpolationInputs;
       inputs.push_back(rendered.at(frame));
-      finalOf[frame] = push(between(TASK_INTERPOLATE, frame, inputs), plan);
+      finalOf[frame] = push(inWindows(between(TASK_INTERPOLATE, frame, inputs), spec, plan), plan);
       evaluated[frame] = {finalOf[frame]};
     }
   }

@@ -110,15 +110,17 @@ TaskTotals addUpTasks(ShotReport& report, const std::vector<TaskRecord>& tasks) 
       if (task.kind == TASK_ASSEMBLE_FRAME && !task.params.has_window())  // a whole frame, not a region of one
         totals.baselineRenders.insert({task.params.frame(), task.params.baseline_repeat()});
     }
+    // A frame filtered in windows of rows: each window counts its causes, the join the frame.
     if (task.kind == TASK_INTERPOLATE) {
-      totals.interpolationRerender += metric(task, "rerender_pixels");
       addRerenderCauses(*report.mutable_interpolation_rerender_causes(), task,
                         {"holes", "silhouettes", "untracked", "illumination", "mismatch", "light_edges", "light_mismatch",
                          "moving_caustics"});
-      ++totals.interpolated;
+      if (!task.params.has_window()) {
+        totals.interpolationRerender += metric(task, "rerender_pixels");
+        ++totals.interpolated;
+      }
     }
     if (task.kind == TASK_UPSAMPLE) {
-      // A frame upsampled in windows: each window counts its causes, the join the frame.
       addRerenderCauses(*report.mutable_upsample_rerender_causes(), task, {"moving_caustics", "light_edges"});
       if (!task.params.has_window()) {
         totals.upsampleRerender += metric(task, "rerender_pixels");

@@ -230,7 +230,7 @@ TaskOutput joinedWindows(const Lease& lease, std::vector<TaskInput>& inputs) {
   const std::string label = "a window's composite of " + frameLabel(lease);
   TaskOutput output;
   const std::vector<uint8_t> mask = joinRowWindows(
-      lease, inputs, "composites", [&label](const FrameImage& rows) { requireFinalColors(rows, label); }, output);
+      lease, inputs, "composites", [label](const FrameImage& rows) { requireFinalColors(rows, label); }, output);
   output.compression = ExrCompression::Small;  // the shot's frame
   auto record = std::make_shared<std::map<std::string, std::string>>();
   recordRerender(*record, static_cast<size_t>(std::count(mask.begin(), mask.end(), 1)), lease.spec().pipeline(),

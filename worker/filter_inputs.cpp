@@ -96,6 +96,15 @@ const TaskInput& filteredKeyframe(const std::vector<TaskInput>& inputs, int64_t 
   return upsampled != inputs.end() ? *upsampled : inputOf(inputs, TASK_DENOISE, frame);
 }
 
+RowWindow rowsOf(const Lease& lease, const std::string& what) {
+  const int width = lease.spec().width(), height = lease.spec().height();
+  if (!lease.params().has_window()) return {0, height};
+  const PixelWindow& w = lease.params().window();
+  if (w.x0() != 0 || w.x1() != width || w.y0() < 0 || w.y1() > height || w.y0() >= w.y1())
+    throw BadInput(what + " of frame " + std::to_string(lease.params().frame()) + " is not of whole rows of the frame");
+  return {w.y0(), w.y1()};
+}
+
 std::vector<uint8_t> joinRowWindows(const Lease& lease, std::vector<TaskInput>& inputs, const std::string& what,
                                     const std::function<void(const FrameImage&)>& check, TaskOutput& output) {
   const int width = lease.spec().width(), height = lease.spec().height();

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "contract/pipeline.h"
 #include "postproc/filters/warp.h"
 #include "worker/filter_tasks.h"
 
@@ -34,6 +35,10 @@ FrameImage partOf(const FrameImage& frame, const InputPart& wanted);
 // at a time: a 1080p keyframe's render is more than a gigabyte whole. Both steps are per
 // pixel and per block, so the bits are those of the whole frame reduced at once.
 FrameImage reducedWithoutLight(const TaskInput& input, int width, int height, int factor);
+
+// The rows of its frame a filter task computes: its window's (whole rows, else BadInput
+// naming `what`, e.g. "the upsample"), or every row without a window.
+RowWindow rowsOf(const Lease& lease, const std::string& what);
 
 // The join of a frame filtered in windows of rows (a filter task per window, and the
 // frame's task of the same kind joining them; contract/pipeline.h, filterWindowsOf): its

@@ -71,9 +71,8 @@ struct TaskOutput {
 };
 
 // Writes a task's `frame` or `rowWindows` (whichever it has) to `file` a strip of rows at a
-// time, and lets go of it. A failed write is this
-// worker's (std::runtime_error), not the task's input's; a window's function throws what
-// it throws.
+// time, and lets go of it. A failed write is this worker's (std::runtime_error), not the
+// task's input's; a window's function throws what it throws.
 void writeOutputFrame(TaskOutput& output, const std::filesystem::path& file);
 
 // A keyframe denoised with its neighbouring keyframes (at half resolution when upsampling).

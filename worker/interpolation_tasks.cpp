@@ -4,7 +4,9 @@
 #include <cmath>
 #include <memory>
 #include <mutex>
+#include <string_view>
 
+#include "contract/pipeline.h"
 #include "image/exr_io.h"
 #include "postproc/filters/decomposed_frame.h"
 #include "postproc/interpolation/caustic_check.h"
@@ -34,6 +36,54 @@ bool componentIsEmpty(const FrameImage& frame, const std::string& component) {
   for (const char* c : {"R", "G", "B"})
     if (!isZero(frame.channel(component + ".irradiance." + c))) return false;
   return true;
+}
+
+// Rows `rows` of a frame `width` pixels wide held as an image or a byte per pixel, and
+// some of those rows cut out of it.
+struct Rows {
+  RowWindow rows;
+  int width;
+
+  FrameImage crop(const FrameImage& image, const RowWindow& part) const {
+    if (part.first == rows.first && part.end == rows.end) return image;
+    return image.crop(0, part.first - rows.first, width, part.end - part.first);
+  }
+  std::vector<uint8_t> crop(const std::vector<uint8_t>& flags, const RowWindow& part) const {
+    const auto row = [&](int y) { return flags.begin() + static_cast<ptrdiff_t>(y - rows.first) * width; };
+    return std::vector<uint8_t>(row(part.first), row(part.end));
+  }
+};
+
+// Whether a channel is the vertical part of a motion: of a keyframe's motion vectors or a
+// flow's irradiance motion.
+bool isVerticalMotion(const std::string& name) {
+  for (const char* buffer : {"motion.Y", "motion_back.Y", "irradiance_forward.Y", "irradiance_backward.Y"}) {
+    const std::string_view suffix(buffer);
+    if (name.size() >= suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0 &&
+        (name.size() == suffix.size() || name[name.size() - suffix.size() - 1] == '.'))
+      return true;
+  }
+  return false;
+}
+
+// The most rows any motion of the keyframes or their flows moves a pixel by (finite
+// values), read a strip of rows at a time: the rows around a window whose content can
+// move into it.
+int largestVerticalMotion(const std::vector<TaskInput>& inputs, const std::array<const TaskInput*, 2>& keyframes,
+                          int height) {
+  constexpr int kStrip = 256;
+  std::vector<const TaskInput*> moving(keyframes.begin(), keyframes.end());
+  for (const TaskInput& input : inputs)
+    if (input.kind == TASK_FLOW) moving.push_back(&input);
+  float largest = 0.0f;
+  for (const TaskInput* input : moving)
+    for (int y = 0; y < height; y += kStrip) {
+      const FrameImage strip = input->part({isVerticalMotion, y, std::min(height, y + kStrip)});
+      for (const std::string& name : strip.channelNames())
+        for (const float value : strip.channel(name))
+          if (std::isfinite(value)) largest = std::max(largest, std::abs(value));
+    }
+  return static_cast<int>(std::min(std::ceil(largest), static_cast<float>(height)));
 }
 
 }  // namespace
@@ -74,24 +124,49 @@ TaskOutput runFlowTask(const Lease& lease, std::vector<TaskInput>& inputs) {
 }
 
 TaskOutput runInterpolateTask(const Lease& lease, std::vector<TaskInput>& inputs) {
+  const auto isWindow = [](const TaskInput& input) { return input.kind == TASK_INTERPOLATE; };
+  if (!lease.params().has_window() && std::any_of(inputs.begin(), inputs.end(), isWindow)) {
+    TaskOutput output;
+    const std::vector<uint8_t> mask = joinRowWindows(lease, inputs, "interpolations", [](const FrameImage&) {}, output);
+    requestRerender(lease.spec(), lease.params().frame(), mask, output);
+    return output;
+  }
   const TaskParams& params = lease.params();
+  const int width = lease.spec().width(), height = lease.spec().height();
   const int64_t before = params.keyframe_before(), after = params.keyframe_after();
   const std::array<const TaskInput*, 2> keyframes = {&filteredKeyframe(inputs, before),
                                                      &filteredKeyframe(inputs, after)};
+  // Light seen by one keyframe only, with nothing nearby to tell whether it changed, is
+  // left to the radiance check below: it compares the frame's own render there.
+  InterpolationSettings settings;
+  settings.unknownChangeMasks = false;
+  // The rows computed (a window's, or all), the rows the checks read around them, and the
+  // rows of the keyframes whose content can move into those (all of them without a window).
+  const RowWindow wanted = rowsOf(lease, "the interpolation");
+  const int reach = std::max({radianceCheckReach({}), causticCheckReach({}), kLightEdgeReach, settings.illuminationRadius});
+  const RowWindow checked{std::max(0, wanted.first - reach), std::min(height, wanted.end + reach)};
+  RowWindow read{0, height};
+  if (params.has_window()) {
+    // A source lands on the rows around its row plus its motion (bilinear footprints).
+    const int moved = largestVerticalMotion(inputs, keyframes, height) + 2;
+    read = {std::max(0, checked.first - moved), std::min(height, checked.end + moved)};
+  }
+
   // The keyframes are read a component at a time (a 1080p pair is gigabytes); first their
   // frame-wide channels, with each component's colors and emission for a moment: directly
   // seen light is not interpolated (the frame's own feature render has it exactly), so it
   // leaves the beauty here and each component's colors when the component is read.
   std::array<FrameImage, 2> frameWide;
   for (size_t k = 0; k < 2; ++k) {
-    FrameImage read = keyframes[k]->part({[](const std::string& name) {
-      return isFrameWideChannel(name) || name.find(".color.") != std::string::npos ||
-             name.find(".emission.") != std::string::npos;
-    }});
-    for (const std::string& component : decompositionComponents(read))
-      takeFromBeauty(read, directEmissionOf(read, component), component);
-    read.removeChannels([](const std::string& name) { return !isFrameWideChannel(name); });
-    frameWide[k] = std::move(read);
+    FrameImage part = keyframes[k]->part({[](const std::string& name) {
+                                            return isFrameWideChannel(name) || name.find(".color.") != std::string::npos ||
+                                                   name.find(".emission.") != std::string::npos;
+                                          },
+                                          read.first, read.end});
+    for (const std::string& component : decompositionComponents(part))
+      takeFromBeauty(part, directEmissionOf(part, component), component);
+    part.removeChannels([](const std::string& name) { return !isFrameWideChannel(name); });
+    frameWide[k] = std::move(part);
   }
   const std::vector<std::string> components = decompositionComponents(frameWide[0]);
   for (const TaskInput& input : inputs)
@@ -110,64 +185,69 @@ TaskOutput runInterpolateTask(const Lease& lease, std::vector<TaskInput>& inputs
     std::array<std::shared_ptr<FrameImage>, 2> parts;
     {
       const std::lock_guard lock(reading);
-      for (size_t k = 0; k < 2; ++k) parts[k] = std::make_shared<FrameImage>(keyframes[k]->part({ofComponent}));
+      for (size_t k = 0; k < 2; ++k)
+        parts[k] = std::make_shared<FrameImage>(keyframes[k]->part({ofComponent, read.first, read.end}));
     }
     for (const auto& part : parts) takeComponentEmission(*part, component);
     auto motion = std::make_shared<ComponentMotion>(keyframeMotion(*parts[0], *parts[1], component));
     for (const TaskInput& input : inputs) {
       if (input.kind != TASK_FLOW || input.params.component() != component) continue;
       const std::lock_guard lock(reading);
-      motion->irradianceForward = readMotionField(input.image(), component + ".irradiance_forward");
-      motion->irradianceBackward = readMotionField(input.image(), component + ".irradiance_backward");
+      const FrameImage flow = input.part({{}, read.first, read.end});
+      motion->irradianceForward = readMotionField(flow, component + ".irradiance_forward");
+      motion->irradianceBackward = readMotionField(flow, component + ".irradiance_backward");
       motion->hasIrradianceMotion = true;
     }
     return KeyframeComponent{{parts[0], parts[1]}, motion};
   };
   const float fraction = static_cast<float>(params.frame() - before) / static_cast<float>(after - before);
-  // Light seen by one keyframe only, with nothing nearby to tell whether it changed, is
-  // left to the radiance check below: it compares the frame's own render there.
-  InterpolationSettings settings;
-  settings.unknownChangeMasks = false;
   InterpolationResult result = interpolateFrameDetailed(keys, fraction, settings);
   for (const auto& [key, value] : frameWide[0].attributes()) result.frame.attributes().emplace(key, value);
   result.frame.attributes()["pathfarm.frame"] = std::to_string(params.frame());
   result.frame.attributes()["pathfarm.interpolated"] =
       "between keyframes " + std::to_string(before) + " and " + std::to_string(after);
-  // The keyframes are let go before the frame's feature render is decoded.
+  // The interpolation's own rate leaves out the checks below; the frame's re-render is
+  // counted by its composite.
+  result.frame.attributes().erase("pathfarm.rerender_rate");
+  // The keyframes are let go before the frame's feature render is read.
   frameWide = {};
-  const FrameImage& features = inputOf(inputs, TASK_ASSEMBLE_FRAME, params.frame()).image();
+  const Rows inRead{read, width};
+  FrameImage interpolated = inRead.crop(result.frame, checked);
+  const FrameImage features = inputOf(inputs, TASK_ASSEMBLE_FRAME, params.frame()).part({{}, checked.first, checked.end});
   const FrameImage directLight = directEmissionOf(features);
-  addDirectEmission(result.frame, directLight);
+  addDirectEmission(interpolated, directLight);
   // Where the frame's own features or their light disagree, the interpolation is wrong;
   // where its directly seen light has an edge, the feature render's few samples are; a
   // moving caustic no keyframe can carry: re-render there too.
-  const std::vector<uint8_t> mismatch = featureMismatch(result.frame, features);
-  const std::vector<uint8_t> edges = directLightEdges(directLight, features);
-  const std::vector<uint8_t> lightMismatch = radianceMismatch(result.frame, features);
-  const std::vector<uint8_t> caustics = movingCausticPixels(features);
-  size_t mismatched = 0, edgePixels = 0, lightMismatched = 0, causticPixels = 0;
-  std::vector<float>& flagged = result.frame.channel("rerender.Y");
-  for (size_t p = 0; p < mismatch.size(); ++p) {
-    mismatched += mismatch[p];
-    edgePixels += edges[p];
-    lightMismatched += lightMismatch[p];
-    causticPixels += caustics[p];
+  const Rows inChecked{checked, width};
+  const std::vector<uint8_t> mismatch = inChecked.crop(featureMismatch(interpolated, features), wanted);
+  const std::vector<uint8_t> edges = inChecked.crop(directLightEdges(directLight, features), wanted);
+  const std::vector<uint8_t> lightMismatch = inChecked.crop(radianceMismatch(interpolated, features), wanted);
+  const std::vector<uint8_t> caustics = inChecked.crop(movingCausticPixels(features), wanted);
+  interpolated = inChecked.crop(interpolated, wanted);
+  std::vector<uint8_t> mask = inRead.crop(result.mask, wanted);
+  std::vector<float>& flagged = interpolated.channel("rerender.Y");
+  for (size_t p = 0; p < mask.size(); ++p) {
     if (!mismatch[p] && !edges[p] && !lightMismatch[p] && !caustics[p]) continue;
-    result.mask[p] = 1;
+    mask[p] = 1;
     flagged[p] = 1.0f;
   }
   TaskOutput output;
-  requestRerender(lease.spec(), params.frame(), result.mask, output);
+  // A window's flags go to the re-render with the frame's, from the join.
+  if (!params.has_window()) requestRerender(lease.spec(), params.frame(), mask, output);
   // Why pixels were flagged (a pixel may have several causes).
-  output.metrics["rerender_holes"] = static_cast<double>(result.holePixels);
-  output.metrics["rerender_silhouettes"] = static_cast<double>(result.silhouettePixels);
-  output.metrics["rerender_untracked"] = static_cast<double>(result.untrackedPixels);
-  output.metrics["rerender_illumination"] = static_cast<double>(result.illuminationPixels);
-  output.metrics["rerender_mismatch"] = static_cast<double>(mismatched);
-  output.metrics["rerender_light_edges"] = static_cast<double>(edgePixels);
-  output.metrics["rerender_light_mismatch"] = static_cast<double>(lightMismatched);
-  output.metrics["rerender_moving_caustics"] = static_cast<double>(causticPixels);
-  output.chunk = encodeExr(result.frame, ExrCompression::Fast);
+  const auto count = [](const std::vector<uint8_t>& flags) {
+    return static_cast<double>(std::count(flags.begin(), flags.end(), 1));
+  };
+  output.metrics["rerender_holes"] = count(inRead.crop(result.holes, wanted));
+  output.metrics["rerender_silhouettes"] = count(inRead.crop(result.silhouettes, wanted));
+  output.metrics["rerender_untracked"] = count(inRead.crop(result.untracked, wanted));
+  output.metrics["rerender_illumination"] = count(inRead.crop(result.illumination, wanted));
+  output.metrics["rerender_mismatch"] = count(mismatch);
+  output.metrics["rerender_light_edges"] = count(edges);
+  output.metrics["rerender_light_mismatch"] = count(lightMismatch);
+  output.metrics["rerender_moving_caustics"] = count(caustics);
+  output.frame = std::move(interpolated);
   return output;
 }
 

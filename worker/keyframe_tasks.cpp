@@ -37,17 +37,6 @@ void pasteFiltered(const FrameImage& filtered, const std::string& record, FrameI
     if (key.rfind(record, 0) == 0) frame.attributes()[key] = value;
 }
 
-// The frame rows an upsample task computes: its window's, or every row.
-FrameRows upsampledRows(const Lease& lease) {
-  const int width = lease.spec().width(), height = lease.spec().height();
-  if (!lease.params().has_window()) return {0, height};
-  const PixelWindow& w = lease.params().window();
-  if (w.x0() != 0 || w.x1() != width || w.y0() < 0 || w.y1() > height || w.y0() >= w.y1())
-    throw BadInput("the upsample of frame " + std::to_string(lease.params().frame()) +
-                   " is not of whole rows of the frame");
-  return {w.y0(), w.y1()};
-}
-
 // The upsampled keyframe from its windows' (written from them a window at a time, so that
 // it is never held whole), and the re-render of the pixels they flagged.
 TaskOutput joinedUpsampleWindows(const Lease& lease, std::vector<TaskInput>& inputs) {
@@ -117,7 +106,8 @@ TaskOutput runUpsampleTask(const Lease& lease, std::vector<TaskInput>& inputs) {
   const int64_t frame = lease.params().frame();
   const int width = lease.spec().width(), height = lease.spec().height();
   const FilteringStages stages = stagesOf(lease.spec().pipeline());
-  const FrameRows wanted = upsampledRows(lease);
+  const RowWindow rows = rowsOf(lease, "the upsample");
+  const FrameRows wanted{rows.first, rows.end};
   UpsampleSettings settings;
   settings.guided.factor = kUpsampleFactor;
   // The rows the filters read around the wanted ones: the guided filter's strips and

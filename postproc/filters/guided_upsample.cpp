@@ -24,6 +24,9 @@ constexpr int kStripRows = 64;
 // Pixels solved together (structure of arrays).
 constexpr int kBatch = 8;
 
+// Whether only some rows are wanted (GuidedUpsampleSettings::onlyFirst, onlyEnd).
+bool isBand(const GuidedUpsampleSettings& settings) { return settings.onlyEnd != settings.onlyFirst; }
+
 void checkPlanes(const Planes& planes, const std::string& what) {
   if (planes.width < 0 || planes.height < 0)
     throw std::invalid_argument("guidedUpsample: the " + what + " has a negative size");
@@ -62,9 +65,8 @@ class Upsampler {
     // Coefficients per pixel: a (n m, a[c * m + j]), then b (m).
     C_ = n_ * m_ + m_;
     ringRows_ = 2 * R_ + 2;
-    const bool band = settings.onlyEnd != settings.onlyFirst;
-    onlyFirst_ = band ? settings.onlyFirst - settings.firstRow : 0;
-    onlyEnd_ = band ? settings.onlyEnd - settings.firstRow : height_;
+    onlyFirst_ = isBand(settings) ? settings.onlyFirst - settings.firstRow : 0;
+    onlyEnd_ = isBand(settings) ? settings.onlyEnd - settings.firstRow : height_;
     lowColumn_.resize(static_cast<size_t>(width_));
     for (int x = 0; x < width_; ++x) lowColumn_[static_cast<size_t>(x)] = x / factor_;
   }
@@ -341,7 +343,7 @@ GuidedUpsampleResult guidedUpsample(const Planes& low, const Planes& guide, cons
                                 sizeText(low.width * settings.factor, low.height * settings.factor) +
                                 " guide, not " + sizeText(guide.width, guide.height));
 
-  const bool band = settings.onlyEnd != settings.onlyFirst;
+  const bool band = isBand(settings);
   if (settings.firstRow < 0 || settings.firstRow % settings.factor != 0 ||
       (band && (settings.onlyFirst < settings.firstRow || settings.onlyEnd > settings.firstRow + guide.height ||
                 settings.onlyFirst > settings.onlyEnd)))

@@ -16,12 +16,17 @@ float depthOf(const SplatSource& source, size_t p) {
   return d > 0.0f ? d : kInf;
 }
 
-// Calls f(target, weight) for the bilinear footprint of a source landing at (x, y).
+// Calls f(target, weight) for the bilinear footprint of the source at pixel (px, py)
+// moved by (dx, dy). The targets and weights follow from the displacement's whole and
+// fractional parts, not from the position it lands at, so that they are the same bits
+// wherever the source is: in a frame, or in a band of its rows (the interpolation's
+// windows of rows), and at 4K's large coordinates as at small ones.
 template <typename F>
-void footprint(float x, float y, int width, int height, F&& f) {
-  const float fx = std::floor(x), fy = std::floor(y);
-  const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
-  const float ax = x - fx, ay = y - fy;
+void footprint(int px, int py, float dx, float dy, int width, int height, F&& f) {
+  const float fx = std::floor(dx), fy = std::floor(dy);
+  if (!(std::abs(fx) <= static_cast<float>(width) && std::abs(fy) <= static_cast<float>(height))) return;
+  const int x0 = px + static_cast<int>(fx), y0 = py + static_cast<int>(fy);
+  const float ax = dx - fx, ay = dy - fy;
   const float wx[2] = {1.0f - ax, ax}, wy[2] = {1.0f - ay, ay};
   for (int j = 0; j < 2; ++j) {
     const int ty = y0 + j;
@@ -47,23 +52,20 @@ SplatResult forwardSplat(const SplatSource& source, const SplatSettings& setting
                                 std::to_string(height) + " values");
   const size_t channels = values.channels.size();
 
-  // Where each source lands; false: it does not splat.
-  auto landing = [&](size_t p, float& x, float& y) {
-    if (!source.active.empty() && source.active[p] == 0) return false;
+  // Calls f(target, weight) for where source p lands, if it splats.
+  auto landing = [&](size_t p, auto&& f) {
+    if (!source.active.empty() && source.active[p] == 0) return;
+    if (!std::isfinite(source.dx[p]) || !std::isfinite(source.dy[p])) return;
     const int px = static_cast<int>(p % static_cast<size_t>(width)), py = static_cast<int>(p / static_cast<size_t>(width));
-    x = static_cast<float>(px) + source.dx[p];
-    y = static_cast<float>(py) + source.dy[p];
-    return std::isfinite(x) && std::isfinite(y);
+    footprint(px, py, source.dx[p], source.dy[p], width, height, f);
   };
 
   // Pass 1: the reference (nearest strong) depth of every target.
   std::vector<float> nearest(pixels, kInf);
   std::vector<uint8_t> strong(pixels, 0);
   for (size_t p = 0; p < pixels; ++p) {
-    float x, y;
-    if (!landing(p, x, y)) continue;
     const float d = depthOf(source, p);
-    footprint(x, y, width, height, [&](size_t t, float w) {
+    landing(p, [&](size_t t, float w) {
       if (w >= settings.strongFootprint) {
         if (!strong[t] || d < nearest[t]) nearest[t] = d;
         strong[t] = 1;
@@ -78,10 +80,8 @@ SplatResult forwardSplat(const SplatSource& source, const SplatSettings& setting
   std::vector<double> sums(pixels * channels, 0.0);
   std::vector<double> weights(pixels, 0.0), finiteWeights(pixels, 0.0);
   for (size_t p = 0; p < pixels; ++p) {
-    float x, y;
-    if (!landing(p, x, y)) continue;
     const float d = depthOf(source, p);
-    footprint(x, y, width, height, [&](size_t t, float w) {
+    landing(p, [&](size_t t, float w) {
       if (strong[t] && !(d <= nearest[t] * (1.0f + settings.depthTolerance) + 1e-6f)) return;
       weights[t] += w;
       if (std::isfinite(d)) {

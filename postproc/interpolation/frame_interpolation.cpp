@@ -339,8 +339,10 @@ void markSilhouetteTargets(const std::vector<float>& silhouette, const KeyframeL
   for (size_t p = 0; p < silhouette.size(); ++p) {
     if (silhouette[p] <= 0.5f || !layer.active[p]) continue;
     const int px = static_cast<int>(p % static_cast<size_t>(width)), py = static_cast<int>(p / static_cast<size_t>(width));
-    const int tx = static_cast<int>(std::lround(static_cast<float>(px) + fraction * layer.dx[p]));
-    const int ty = static_cast<int>(std::lround(static_cast<float>(py) + fraction * layer.dy[p]));
+    // The nearest pixel, from the displacement alone (as the splat's footprints are).
+    const float mx = std::floor(fraction * layer.dx[p] + 0.5f), my = std::floor(fraction * layer.dy[p] + 0.5f);
+    if (!(std::abs(mx) <= static_cast<float>(width) && std::abs(my) <= static_cast<float>(height))) continue;
+    const int tx = px + static_cast<int>(mx), ty = py + static_cast<int>(my);
     if (tx < 0 || tx >= width || ty < 0 || ty >= height) continue;
     targets[static_cast<size_t>(ty) * static_cast<size_t>(width) + static_cast<size_t>(tx)] = 1;
     landed[p] = 1;
@@ -359,6 +361,9 @@ void addRerenderMask(InterpolationResult& result, const RerenderCauses& causes) 
   const size_t pixels = causes.hole.size();
   result.mask.assign(pixels, 0);
   result.holes = causes.hole;
+  result.silhouettes = causes.silhouette;
+  result.untracked = causes.untracked;
+  result.illumination = causes.illumination;
   std::vector<float>& rerender = result.frame.addChannel("rerender.Y");
   size_t masked = 0;
   for (size_t t = 0; t < pixels; ++t) {

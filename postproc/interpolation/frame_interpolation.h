@@ -89,8 +89,9 @@ struct InterpolationResult {
   FrameImage frame;              // R, G, B, `<c>.color.R/G/B`, `<c>.depth.Z`, `rerender.Y`
   double rerenderRate = 0;       // fraction of pixels in the mask
   std::vector<uint8_t> mask;     // per pixel, 1 = re-render
-  std::vector<uint8_t> holes;    // per pixel, 1 = a significant hole (always in the mask)
-  size_t holePixels = 0, silhouettePixels = 0, untrackedPixels = 0, illuminationPixels = 0;  // per cause
+  // Per pixel, 1 where that cause flags it (each always in the mask), and their counts.
+  std::vector<uint8_t> holes, silhouettes, untracked, illumination;
+  size_t holePixels = 0, silhouettePixels = 0, untrackedPixels = 0, illuminationPixels = 0;
 };
 
 // Throws std::invalid_argument for s outside (0, 1), mismatched sizes or decompositions,

@@ -40,22 +40,20 @@ std::vector<uint8_t> radianceMismatch(const FrameImage& interpolated, const Fram
     throw std::invalid_argument("radiance check: the interpolated frame and the features differ in size");
   const int width = features.width(), height = features.height();
   std::vector<uint8_t> mismatch(features.pixelCount(), 0), weak(features.pixelCount(), 0);
-  const WindowSums beauty(luminancePlane(features, "", kFeatures), width, height);
+  const std::vector<double> beauty = boxSums(luminancePlane(features, "", kFeatures), width, height, settings.radius);
   for (const std::string& c : decompositionComponents(interpolated)) {
     std::vector<double> difference = luminancePlane(interpolated, c + ".color.", kInterpolated);
     const std::vector<double> rendered = luminancePlane(features, c + ".color.", kFeatures);
     for (size_t p = 0; p < difference.size(); ++p) difference[p] -= rendered[p];
-    const WindowSums differences(difference, width, height);
-    const WindowSums variances(luminancePlane(features, c + ".variance.", kFeatures, true), width, height);
-    for (int y = 0; y < height; ++y)
-      for (int x = 0; x < width; ++x) {
-        const double d = std::abs(differences.around(x, y, settings.radius));
-        const double deviation = std::sqrt(variances.around(x, y, settings.radius));
-        const double light = beauty.around(x, y, settings.radius);
-        const size_t p = static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
-        if (d > settings.z * deviation && d > settings.relative * light) mismatch[p] = 1;
-        if (d > settings.growZ * deviation && d > settings.growRelative * light) weak[p] = 1;
-      }
+    const std::vector<double> differences = boxSums(difference, width, height, settings.radius);
+    const std::vector<double> variances =
+        boxSums(luminancePlane(features, c + ".variance.", kFeatures, true), width, height, settings.radius);
+    for (size_t p = 0; p < mismatch.size(); ++p) {
+      const double d = std::abs(differences[p]);
+      const double deviation = std::sqrt(variances[p]);
+      if (d > settings.z * deviation && d > settings.relative * beauty[p]) mismatch[p] = 1;
+      if (d > settings.growZ * deviation && d > settings.growRelative * beauty[p]) weak[p] = 1;
+    }
   }
   return grownRegions(solidRegions(mismatch, width, height, settings.solidRadius), weak, width, height,
                       settings.growReach);

@@ -41,6 +41,13 @@ struct RadianceCheckSettings {
   int growReach = 4;           // by at most this many pixels
 };
 
+// How many rows (and columns) away a pixel's flag reads: its window, the solid square
+// around it and the growth. A band of rows with this many rows around it has its rows'
+// flags in the same bits as the whole frame.
+inline int radianceCheckReach(const RadianceCheckSettings& settings) {
+  return settings.radius + 2 * settings.solidRadius + settings.growReach;
+}
+
 // One byte per pixel, 1 where any component's light disagrees. Throws
 // std::invalid_argument for frames of different sizes or a missing channel (naming it).
 std::vector<uint8_t> radianceMismatch(const FrameImage& interpolated, const FrameImage& features,

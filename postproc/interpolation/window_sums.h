@@ -1,7 +1,8 @@
 #pragma once
 // Sums of a per-pixel value over the square window of a given radius around every pixel
-// (cut at the frame's edges), from a summed-area table: the checks that judge a pixel by its
-// neighbourhood (radiance_check.h, caustic_check.h) read windows of any size in O(1).
+// (cut at the frame's edges), from a summed-area table: the checks that count flagged
+// pixels in a neighbourhood (solid_regions.h, flag_regions.h) read windows of any size in
+// O(1), exactly, as the counts are whole numbers.
 #include <algorithm>
 #include <cstddef>
 #include <vector>
@@ -31,5 +32,26 @@ class WindowSums {
   int width_, height_;
   std::vector<double> table_;
 };
+
+// Sums of a per-pixel value over the (2 radius + 1)^2 window around every pixel (cut at the
+// frame's edges), columns first, then rows, each added in the same order wherever the
+// frame starts. So a band of a frame's rows, given `radius` rows around it, has its rows'
+// sums in the same bits as the whole frame (the filters' windows of rows), which a
+// summed-area table's differences of large sums would not give for values that are not
+// whole numbers. O(radius) per pixel.
+inline std::vector<double> boxSums(const std::vector<double>& values, int width, int height, int radius) {
+  std::vector<double> columns(values.size(), 0.0), sums(values.size(), 0.0);
+  const auto at = [width](int x, int y) {
+    return static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
+  };
+  for (int y = 0; y < height; ++y)
+    for (int v = std::max(0, y - radius); v <= std::min(height - 1, y + radius); ++v)
+      for (int x = 0; x < width; ++x) columns[at(x, y)] += values[at(x, v)];
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      for (int u = std::max(0, x - radius); u <= std::min(width - 1, x + radius); ++u)
+        sums[at(x, y)] += columns[at(u, y)];
+  return sums;
+}
 
 }  // namespace pathfarm

@@ -323,6 +323,12 @@ TEST(GuidedUpsample, ABandOfRowsGivenTheRowsItReadsIsThoseRowsOfTheWholeFramesBi
           else
             ASSERT_EQ(value, 0.0f) << "a row outside the band at " << y;
         }
+    for (int y = wanted.first; y < wanted.end; ++y)
+      for (int x = 0; x < width; ++x) {
+        const size_t inBand = static_cast<size_t>(y - reads.first) * width + x, inFrame = static_cast<size_t>(y) * width + x;
+        ASSERT_EQ(part.rerender[inBand], frame.rerender[inFrame]);
+        ASSERT_EQ(part.deficit[inBand], frame.deficit[inFrame]);
+      }
   }
   // Fewer rows than it reads: rows near the band's border come out otherwise.
   const FrameRows wanted{100, 177};
@@ -340,6 +346,7 @@ TEST(GuidedUpsample, ABandOfRowsGivenTheRowsItReadsIsThoseRowsOfTheWholeFramesBi
   EXPECT_THROW(guidedUpsample(rowsOf(low, band.firstRow, reads.end, factor), rowsOf(guide, band.firstRow, reads.end), band),
                std::invalid_argument);
   band.onlyEnd = wanted.end;
+  band.onlyFirst = wanted.first + 1;
   band.firstRow = wanted.first + 1;  // odd
   EXPECT_THROW(guidedUpsample(rowsOf(low, 100, reads.end, factor), rowsOf(guide, 100, reads.end), band),
                std::invalid_argument)

@@ -2,7 +2,7 @@
 // blocks of tiles into regions, regions into the frame. Every tile lands in exactly one
 // region, the regions tile the frame, and no assemble task reads more than
 // kMaxAssemblyInputs inputs. A filtering shot's frame taller than a filter window is
-// upsampled and composited window by window in the same way.
+// upsampled, interpolated and composited window by window in the same way.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -72,10 +72,11 @@ TEST(PlannerRegions, AFrameThatFitsOneAssemblyHasNoRegions) {
   for (size_t i = 0; i + 1 < plan.size(); ++i) EXPECT_EQ(plan[i].kind, TASK_RENDER_TILE);
 }
 
-// A frame taller than a filter window is upsampled and composited by a task per window,
-// whole rows that cover it once with the inputs of the frame's task, and the frame's task
-// (the composite: the shot's output) joins them; what reads a frame's upsample reads the join.
-TEST(Planner, AFrameTallerThanAFilterWindowIsUpsampledAndCompositedWindowByWindow) {
+// A frame taller than a filter window is upsampled, interpolated and composited by a task
+// per window, whole rows that cover it once with the inputs of the frame's task, and the
+// frame's task (the composite: the shot's output) joins them; what reads a frame's upsample
+// or interpolation reads the join.
+TEST(Planner, AFrameTallerThanAFilterWindowIsFilteredWindowByWindow) {
   // Frames 10 to 19 of 64x64, keyframes every 4th (10, 14, 18, 19): 10 frames, each composited.
   ShotSpec spec = bigFrame(64, 64, 32);
   spec.set_pipeline(PIPELINE_DUI);
@@ -92,7 +93,8 @@ TEST(Planner, AFrameTallerThanAFilterWindowIsUpsampledAndCompositedWindowByWindo
     for (const size_t d : dependencies) kinds.insert(plan[d].kind);
     return kinds;
   };
-  for (const auto& [kind, frames] : {std::pair{TASK_COMPOSITE, 10}, std::pair{TASK_UPSAMPLE, 4}}) {
+  for (const auto& [kind, frames] :
+       {std::pair{TASK_COMPOSITE, 10}, std::pair{TASK_UPSAMPLE, 4}, std::pair{TASK_INTERPOLATE, 6}}) {
     EXPECT_EQ(std::count_if(plan.begin(), plan.end(), [&](const PlannedTask& task) { return task.kind == kind; }),
               frames * 5);
     int joins = 0;
@@ -115,6 +117,14 @@ TEST(Planner, AFrameTallerThanAFilterWindowIsUpsampledAndCompositedWindowByWindo
           EXPECT_EQ(kindsOf(window.dependencies), (std::multiset<TaskKind>{TASK_DENOISE, TASK_ASSEMBLE_FRAME}));
           continue;
         }
+        if (kind == TASK_INTERPOLATE) {  // both keyframes' joined upsamples, the pair's flows, its features
+          EXPECT_EQ(kindsOf(window.dependencies), (std::multiset<TaskKind>{TASK_UPSAMPLE, TASK_UPSAMPLE, TASK_FLOW,
+                                                                           TASK_FLOW, TASK_ASSEMBLE_FRAME}));
+          EXPECT_EQ(window.params.keyframe_before(), task.params.keyframe_before());
+          EXPECT_EQ(window.params.keyframe_after(), task.params.keyframe_after());
+          for (const size_t d : window.dependencies) EXPECT_FALSE(plan[d].params.has_window());
+          continue;
+        }
         ASSERT_EQ(window.dependencies.size(), 1u);  // the stage output; re-render tiles join later
         const PlannedTask& stage = plan[window.dependencies[0]];
         EXPECT_TRUE(stage.kind == TASK_UPSAMPLE || stage.kind == TASK_INTERPOLATE);
@@ -125,9 +135,8 @@ TEST(Planner, AFrameTallerThanAFilterWindowIsUpsampledAndCompositedWindowByWindo
     EXPECT_EQ(joins, frames);
   }
   for (const PlannedTask& task : plan)
-    if (task.kind == TASK_FLOW || task.kind == TASK_INTERPOLATE)
-      for (const size_t d : task.dependencies)
-        EXPECT_FALSE(plan[d].params.has_window()) << "a flow or interpolation reads the joined upsample";
+    if (task.kind == TASK_FLOW)
+      for (const size_t d : task.dependencies) EXPECT_FALSE(plan[d].params.has_window()) << "a flow reads the joined upsample";
   for (const int refused : {-1, kMinFilterWindowRows - 1}) {
     spec.set_filter_window_rows(refused);
     EXPECT_THROW(planShot(spec), PlanError) << refused;

@@ -6,11 +6,15 @@
 // compares such light with the frame's render).
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <map>
 
+#include "contract/pipeline.h"
 #include "image/exr_io.h"
 #include "postproc/filters/decomposed_frame.h"
 #include "postproc/interpolation/frame_interpolation.h"
+#include "task_output_bytes.h"
 #include "test_support.h"
 #include "worker/direct_emission.h"
 #include "worker/filter_inputs.h"
@@ -68,7 +72,7 @@ double stripFlagged(const std::shared_ptr<FrameImage>& k0, const std::shared_ptr
   };
   std::vector<TaskInput> inputs = {input(TASK_UPSAMPLE, kBefore, k0), input(TASK_UPSAMPLE, kAfter, k1),
                                    input(TASK_ASSEMBLE_FRAME, kFrame, std::make_shared<FrameImage>(features))};
-  const FrameImage result = decodeExr(runInterpolateTask(lease, inputs).chunk, "interpolated frame");
+  const FrameImage result = decodeExr(outputBytes(runInterpolateTask(lease, inputs)), "interpolated frame");
   const std::vector<float>& flagged = result.channel("rerender.Y");
   size_t count = 0;
   for (int y = 0; y < kHeight; ++y)
@@ -93,72 +97,93 @@ TEST(InterpolateTask, LightThatChangedAtTheEdgeTheCameraTurnsToIsReRendered) {
   EXPECT_LT(unchanged, 0.5);
 }
 
-// The task reads its keyframes a component at a time, each decoded alone from its file when
-// the worker keeps no decoded frames: its frame is the same bits as interpolating the whole
-// keyframes (their directly seen light taken out) with every component's motion at once.
-TEST(InterpolateTask, KeyframesReadAComponentAtATimeGiveTheWholeFramesInterpolation) {
-  const MotionSpan span{kAfter - kBefore, kAfter - kBefore};
-  const FrameImage k0 = render(kBefore, 8, span), k1 = render(kAfter, 8, span), features = render(kFrame, 4, {});
-  const auto folder = test_support::processTemporaryFolder("pathfarm_interpolate_parts");
-  std::map<std::string, std::filesystem::path> files = {
-      {"k0", folder / "k0.exr"}, {"k1", folder / "k1.exr"}, {"features", folder / "features.exr"}};
-  writeExr(files["k0"], k0);
-  writeExr(files["k1"], k1);
-  writeExr(files["features"], features);
+// The walkthrough's keyframes kBefore and kAfter, frame kFrame's features and an irradiance
+// flow for one component (made up, but valid: `flowDy` rows forward and back), in files, and
+// an interpolate lease reading them.
+struct InterpolationFiles {
+  FrameImage k0, k1, features;
+  std::string flowing;
+  MotionField field;
+  std::filesystem::path folder;
+  std::map<std::string, std::filesystem::path> files;
   Lease lease = interpolateLease();
-  const auto addInput = [&](const std::string& name, TaskKind kind, int64_t frame, const std::string& component) {
+
+  InterpolationFiles(const std::string& name, float flowDy) {
+    const MotionSpan span{kAfter - kBefore, kAfter - kBefore};
+    k0 = render(kBefore, 8, span);
+    k1 = render(kAfter, 8, span);
+    features = render(kFrame, 4, {});
+    folder = test_support::processTemporaryFolder(name);
+    files = {{"k0", folder / "k0.exr"}, {"k1", folder / "k1.exr"}, {"features", folder / "features.exr"},
+             {"flow", folder / "flow.exr"}};
+    writeExr(files["k0"], k0);
+    writeExr(files["k1"], k1);
+    writeExr(files["features"], features);
+    addInput(lease, "k0", TASK_UPSAMPLE, kBefore, "");
+    addInput(lease, "k1", TASK_UPSAMPLE, kAfter, "");
+    addInput(lease, "features", TASK_ASSEMBLE_FRAME, kFrame, "");
+    flowing = decompositionComponents(k0).front();
+    FrameImage flow(kWidth, kHeight);
+    field = MotionField{kWidth, kHeight, std::vector<float>(k0.pixelCount(), 1.5f),
+                        std::vector<float>(k0.pixelCount(), flowDy), std::vector<float>(k0.pixelCount(), 1.0f)};
+    writeMotionField(flow, flowing + ".irradiance_forward", field);
+    writeMotionField(flow, flowing + ".irradiance_backward", field);
+    writeExr(files["flow"], flow);
+    addInput(lease, "flow", TASK_FLOW, kBefore, flowing);
+  }
+
+  static void addInput(Lease& lease, const std::string& name, TaskKind kind, int64_t frame, const std::string& component) {
     lease.add_inputs()->set_sha256(name);
     lease.add_input_kinds(kind);
     TaskParams& params = *lease.add_input_params();
     params.set_frame(frame);
     params.set_component(component);
-  };
-  addInput("k0", TASK_UPSAMPLE, kBefore, "");
-  addInput("k1", TASK_UPSAMPLE, kAfter, "");
-  addInput("features", TASK_ASSEMBLE_FRAME, kFrame, "");
-  // An irradiance flow for one component (made up, but valid), so that both ways of moving
-  // a component are compared.
-  const std::string flowing = decompositionComponents(k0).front();
-  FrameImage flow(kWidth, kHeight);
-  MotionField field{kWidth, kHeight, std::vector<float>(k0.pixelCount(), 1.5f), std::vector<float>(k0.pixelCount(), -0.5f),
-                    std::vector<float>(k0.pixelCount(), 1.0f)};
-  writeMotionField(flow, flowing + ".irradiance_forward", field);
-  writeMotionField(flow, flowing + ".irradiance_backward", field);
-  files["flow"] = folder / "flow.exr";
-  writeExr(files["flow"], flow);
-  addInput("flow", TASK_FLOW, kBefore, flowing);
+    if (kind == TASK_INTERPOLATE) {
+      params.set_keyframe_before(kBefore);
+      params.set_keyframe_after(kAfter);
+    }
+  }
 
-  const auto run = [&](uint64_t decodedBytes) {
-    // Two threads: components are read and interpolated two at a time, as on a worker.
+  // Runs `task` on a worker with two threads (components are read and interpolated two at
+  // a time, as on a worker) keeping `decodedBytes` of decoded inputs.
+  TaskOutput run(const Lease& task, uint64_t decodedBytes) const {
     TaskRunner runner(2, folder / "scenes", folder / ("outgoing" + std::to_string(decodedBytes)), decodedBytes);
     std::atomic<double> progress{0};
     std::atomic<bool> abandon{false};
-    return runner.run(lease, [](const ChunkRef&) -> std::string { throw std::logic_error("read in place"); },
-                      progress, abandon, [&](const ChunkRef& ref) { return files.at(ref.sha256()); });
-  };
-  const TaskOutput outputs[2] = {run(0), run(TaskRunner::kDefaultDecodedInputBytes)};
-  const FrameImage alone = decodeExr(outputs[0].chunk, "alone"), fromWhole = decodeExr(outputs[1].chunk, "from whole");
+    return runner.run(task, [](const ChunkRef&) -> std::string { throw std::logic_error("read in place"); }, progress,
+                      abandon, [&](const ChunkRef& ref) { return files.at(ref.sha256()); });
+  }
+};
+
+// The task reads its keyframes a component at a time, each decoded alone from its file when
+// the worker keeps no decoded frames: its frame is the same bits as interpolating the whole
+// keyframes (their directly seen light taken out) with every component's motion at once.
+TEST(InterpolateTask, KeyframesReadAComponentAtATimeGiveTheWholeFramesInterpolation) {
+  const InterpolationFiles in("pathfarm_interpolate_parts", -0.5f);
+  const TaskOutput outputs[2] = {in.run(in.lease, 0), in.run(in.lease, TaskRunner::kDefaultDecodedInputBytes)};
+  const FrameImage alone = decodeExr(outputBytes(outputs[0]), "alone");
+  const FrameImage fromWhole = decodeExr(outputBytes(outputs[1]), "from whole");
 
   // The whole keyframes, interpolated at once.
-  FrameImage w0 = k0, w1 = k1;
+  FrameImage w0 = in.k0, w1 = in.k1;
   takeDirectEmission(w0);
   takeDirectEmission(w1);
   ComponentMotions motions;
-  std::vector<std::string> layers = decompositionComponents(k0);
+  std::vector<std::string> layers = decompositionComponents(in.k0);
   layers.emplace_back();
   for (const std::string& layer : layers) {
     const std::string prefix = layer.empty() ? "" : layer + ".";
     motions.components[layer] = ComponentMotion(motionTowards(w0, NeighbourFrame::Next, prefix, "k0"),
                                                 motionTowards(w1, NeighbourFrame::Previous, prefix, "k1"));
   }
-  motions.components[flowing].irradianceForward = field;
-  motions.components[flowing].irradianceBackward = field;
-  motions.components[flowing].hasIrradianceMotion = true;
+  motions.components[in.flowing].irradianceForward = in.field;
+  motions.components[in.flowing].irradianceBackward = in.field;
+  motions.components[in.flowing].hasIrradianceMotion = true;
   InterpolationSettings settings;
   settings.unknownChangeMasks = false;  // as the task
   const InterpolationResult whole = interpolateFrameDetailed(w0, w1, motions, 1.0f / 3.0f, settings);
   FrameImage expected = whole.frame;
-  addDirectEmission(expected, directEmissionOf(features));
+  addDirectEmission(expected, directEmissionOf(in.features));
   // The interpolation's own re-render causes (the task adds its checks' as other causes).
   for (const TaskOutput& output : outputs) {
     EXPECT_EQ(output.metrics.at("rerender_holes"), static_cast<double>(whole.holePixels));
@@ -174,8 +199,52 @@ TEST(InterpolateTask, KeyframesReadAComponentAtATimeGiveTheWholeFramesInterpolat
       ASSERT_TRUE(result->hasChannel(name)) << name;
       EXPECT_TRUE(result->channel(name) == expected.channel(name)) << name;
     }
-  for (const std::string& name : {std::string("R"), flowing + ".color.G"})
-    EXPECT_NE(expected.channel(name), features.channel(name)) << "not interpolated: " << name;
+  for (const std::string& name : {std::string("R"), in.flowing + ".color.G"})
+    EXPECT_NE(expected.channel(name), in.features.channel(name)) << "not interpolated: " << name;
+}
+
+// An in-between frame interpolated window by window (each task reading the keyframe rows
+// whose content its motion can bring into its rows, and the feature rows its checks reach)
+// and joined is the same bytes, the same re-render and the same counts as the frame
+// interpolated by one task. One component's light moves 7 rows between the keyframes, so
+// content crosses every window border.
+TEST(InterpolateTask, WindowsInterpolatedApartAndJoinedAreTheWholeFramesBytes) {
+  InterpolationFiles in("pathfarm_interpolate_windows", 7.0f);
+  in.lease.mutable_spec()->set_filter_window_rows(16);
+  const TaskOutput one = in.run(in.lease, 0);
+  const std::string expected = outputBytes(one);
+  const std::vector<RowWindow> windows = filterWindowsOf(in.lease.spec());
+  ASSERT_EQ(windows.size(), 4u);
+  Lease join = interpolateLease();
+  *join.mutable_spec() = in.lease.spec();
+  std::map<std::string, double> summed;
+  InterpolationFiles& files = in;
+  for (const RowWindow& rows : windows) {
+    Lease part = in.lease;
+    PixelWindow& w = *part.mutable_params()->mutable_window();
+    w.set_x1(kWidth);
+    w.set_y0(rows.first);
+    w.set_y1(rows.end);
+    const TaskOutput output = in.run(part, rows.first % 2 == 0 ? 0 : TaskRunner::kDefaultDecodedInputBytes);
+    EXPECT_TRUE(output.followUps.empty()) << "a window's re-render goes with the join's";
+    for (const auto& [name, value] : output.metrics) summed[name] += value;
+    const std::string name = "window" + std::to_string(rows.first);
+    files.files[name] = in.folder / (name + ".exr");
+    std::ofstream(files.files[name], std::ios::binary) << outputBytes(output);
+    InterpolationFiles::addInput(join, name, TASK_INTERPOLATE, kFrame, "");
+    *join.mutable_input_params(join.input_params_size() - 1)->mutable_window() = w;
+  }
+  const TaskOutput joined = in.run(join, 0);
+  EXPECT_TRUE(outputBytes(joined) == expected) << "the joined windows differ from the whole frame's interpolation";
+  ASSERT_EQ(joined.followUps.size(), one.followUps.size());
+  ASSERT_GT(one.followUps.size(), 0u);
+  for (size_t t = 0; t < one.followUps.size(); ++t)
+    EXPECT_EQ(joined.followUps[t].SerializeAsString(), one.followUps[t].SerializeAsString()) << "re-render tile " << t;
+  EXPECT_EQ(joined.metrics.at("rerender_pixels"), one.metrics.at("rerender_pixels"));
+  for (const char* cause : {"rerender_holes", "rerender_silhouettes", "rerender_untracked", "rerender_illumination",
+                            "rerender_mismatch", "rerender_light_edges", "rerender_light_mismatch",
+                            "rerender_moving_caustics"})
+    EXPECT_EQ(summed.at(cause), one.metrics.at(cause)) << cause;
 }
 
 }  // namespace

@@ -18,6 +18,7 @@
 #include "test_support.h"
 #include "task_output_bytes.h"
 #include "worker/direct_emission.h"
+#include "worker/failure_class.h"
 #include "worker/filter_tasks.h"
 #include "worker/task_runner.h"
 
@@ -191,7 +192,7 @@ TEST(UpsampleTask, AJoinOfWindowsThatLeaveRowsOutIsRefused) {
   try {
     runUpsampleTask(join, inputs);
     FAIL() << "a join of rows 0-4 of 8 was accepted";
-  } catch (const std::runtime_error& e) {
+  } catch (const BadInput& e) {
     EXPECT_NE(std::string(e.what()).find("do not cover the frame's rows once each"), std::string::npos) << e.what();
   }
 }
