@@ -247,6 +247,8 @@ TaskOutput runInterpolateTask(const Lease& lease, std::vector<TaskInput>& inputs
   output.metrics["rerender_light_edges"] = count(edges);
   output.metrics["rerender_light_mismatch"] = count(lightMismatch);
   output.metrics["rerender_moving_caustics"] = count(caustics);
+  // How much of the keyframes a window read: all of them when the motion is large.
+  output.metrics["keyframe_rows_read"] = static_cast<double>(read.end - read.first);
   output.frame = std::move(interpolated);
   return output;
 }

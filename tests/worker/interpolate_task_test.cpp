@@ -227,6 +227,9 @@ TEST(InterpolateTask, WindowsInterpolatedApartAndJoinedAreTheWholeFramesBytes) {
     w.set_y1(rows.end);
     const TaskOutput output = in.run(part, rows.first % 2 == 0 ? 0 : TaskRunner::kDefaultDecodedInputBytes);
     EXPECT_TRUE(output.followUps.empty()) << "a window's re-render goes with the join's";
+    // Its rows, the checks' 9 around them and the largest motion (7 rows) and 2 beyond that.
+    EXPECT_EQ(output.metrics.at("keyframe_rows_read"),
+              std::min(kHeight, rows.end + 9 + 9) - std::max(0, rows.first - 9 - 9));
     for (const auto& [name, value] : output.metrics) summed[name] += value;
     const std::string name = "window" + std::to_string(rows.first);
     files.files[name] = in.folder / (name + ".exr");
