@@ -247,9 +247,7 @@ TaskOutput joinedWindows(const Lease& lease, std::vector<TaskInput>& inputs) {
 }  // namespace
 
 TaskOutput runCompositeTask(const Lease& lease, std::vector<TaskInput>& inputs) {
-  const auto isWindow = [](const TaskInput& input) { return input.kind == TASK_COMPOSITE; };
-  if (!lease.params().has_window() && std::any_of(inputs.begin(), inputs.end(), isWindow))
-    return joinedWindows(lease, inputs);
+  if (joinsWindows(lease, inputs)) return joinedWindows(lease, inputs);
   std::vector<uint8_t> mask;
   FrameImage result = compositedRows(lease, inputs, mask);
   if (!lease.params().has_window()) return finishedFinalFrame(std::move(result), mask, lease.spec().pipeline());

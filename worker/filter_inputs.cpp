@@ -145,6 +145,18 @@ std::vector<uint8_t> joinRowWindows(const Lease& lease, std::vector<TaskInput>& 
   return mask;
 }
 
+bool joinsWindows(const Lease& lease, const std::vector<TaskInput>& inputs) {
+  return !lease.params().has_window() &&
+         std::any_of(inputs.begin(), inputs.end(), [&](const TaskInput& input) { return input.kind == lease.kind(); });
+}
+
+TaskOutput joinedWithRerender(const Lease& lease, std::vector<TaskInput>& inputs, const std::string& what) {
+  TaskOutput output;
+  const std::vector<uint8_t> mask = joinRowWindows(lease, inputs, what, [](const FrameImage&) {}, output);
+  requestRerender(lease.spec(), lease.params().frame(), mask, output);
+  return output;
+}
+
 void writeMotionField(FrameImage& image, const std::string& name, const MotionField& field) {
   image.addChannel(name + ".X") = field.x;
   image.addChannel(name + ".Y") = field.y;

@@ -50,6 +50,13 @@ RowWindow rowsOf(const Lease& lease, const std::string& what);
 std::vector<uint8_t> joinRowWindows(const Lease& lease, std::vector<TaskInput>& inputs, const std::string& what,
                                     const std::function<void(const FrameImage&)>& check, TaskOutput& output);
 
+// Whether the lease is the join of its frame's windows: a task without a window whose
+// inputs include tasks of its own kind.
+bool joinsWindows(const Lease& lease, const std::vector<TaskInput>& inputs);
+// A join whose frame goes on to other filters (an upsample's, an interpolation's): the
+// windows written a window at a time, and the re-render of every pixel they flagged.
+TaskOutput joinedWithRerender(const Lease& lease, std::vector<TaskInput>& inputs, const std::string& what);
+
 // A motion field stored as `<name>.X`, `<name>.Y`, `<name>.valid`.
 void writeMotionField(FrameImage& image, const std::string& name, const MotionField& field);
 MotionField readMotionField(const FrameImage& image, const std::string& name);

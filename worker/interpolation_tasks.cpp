@@ -4,7 +4,8 @@
 #include <cmath>
 #include <memory>
 #include <mutex>
-#include <string_view>
+#include <optional>
+#include <stdexcept>
 
 #include "contract/pipeline.h"
 #include "image/exr_io.h"
@@ -39,50 +40,63 @@ bool componentIsEmpty(const FrameImage& frame, const std::string& component) {
 }
 
 // Rows `rows` of a frame `width` pixels wide held as an image or a byte per pixel, and
-// some of those rows cut out of it.
+// some of those rows cut out of it (the image moved on when they are all of it).
 struct Rows {
   RowWindow rows;
   int width;
 
-  FrameImage crop(const FrameImage& image, const RowWindow& part) const {
+  FrameImage crop(FrameImage image, const RowWindow& part) const {
     if (part.first == rows.first && part.end == rows.end) return image;
     return image.crop(0, part.first - rows.first, width, part.end - part.first);
   }
   std::vector<uint8_t> crop(const std::vector<uint8_t>& flags, const RowWindow& part) const {
+    if (flags.size() != static_cast<size_t>(rows.end - rows.first) * static_cast<size_t>(width))
+      throw std::logic_error("a mask is not of the rows it is cut from");
     const auto row = [&](int y) { return flags.begin() + static_cast<ptrdiff_t>(y - rows.first) * width; };
     return std::vector<uint8_t>(row(part.first), row(part.end));
   }
 };
 
-// Whether a channel is the vertical part of a motion: of a keyframe's motion vectors or a
-// flow's irradiance motion.
-bool isVerticalMotion(const std::string& name) {
-  for (const char* buffer : {"motion.Y", "motion_back.Y", "irradiance_forward.Y", "irradiance_backward.Y"}) {
-    const std::string_view suffix(buffer);
-    if (name.size() >= suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0 &&
-        (name.size() == suffix.size() || name[name.size() - suffix.size() - 1] == '.'))
-      return true;
-  }
-  return false;
+// Whether a channel is the vertical part of `buffer` ("motion", "irradiance_forward"),
+// frame-wide or a component's.
+bool isVerticalPartOf(const std::string& name, const std::string& buffer) {
+  const std::string suffix = buffer + ".Y";
+  return name == suffix || (name.size() > suffix.size() && name.ends_with("." + suffix));
 }
 
-// The most rows any motion of the keyframes or their flows moves a pixel by (finite
-// values), read a strip of rows at a time: the rows around a window whose content can
-// move into it.
-int largestVerticalMotion(const std::vector<TaskInput>& inputs, const std::array<const TaskInput*, 2>& keyframes,
-                          int height) {
+// The largest magnitude of the finite values of the channels `keep` accepts, read a strip
+// of rows at a time.
+float largestOf(const TaskInput& input, const ChannelFilter& keep, int height) {
   constexpr int kStrip = 256;
-  std::vector<const TaskInput*> moving(keyframes.begin(), keyframes.end());
-  for (const TaskInput& input : inputs)
-    if (input.kind == TASK_FLOW) moving.push_back(&input);
   float largest = 0.0f;
-  for (const TaskInput* input : moving)
-    for (int y = 0; y < height; y += kStrip) {
-      const FrameImage strip = input->part({isVerticalMotion, y, std::min(height, y + kStrip)});
-      for (const std::string& name : strip.channelNames())
-        for (const float value : strip.channel(name))
-          if (std::isfinite(value)) largest = std::max(largest, std::abs(value));
-    }
+  for (int y = 0; y < height; y += kStrip) {
+    const FrameImage strip = input.part({keep, y, std::min(height, y + kStrip)});
+    for (const std::string& name : strip.channelNames())
+      for (const float value : strip.channel(name))
+        if (std::isfinite(value)) largest = std::max(largest, std::abs(value));
+  }
+  return largest;
+}
+
+// The most rows the interpolation at `fraction` moves content by: keyframe 0's motions
+// towards keyframe 1 and the flows' forward ones times the fraction, keyframe 1's and the
+// backward ones times the rest (every finite value, valid or not: a bound). The rows
+// around a window whose content can land in it.
+int largestDisplacement(const std::vector<TaskInput>& inputs, const std::array<const TaskInput*, 2>& keyframes,
+                        float fraction, int height) {
+  float forward = largestOf(*keyframes[0], [](const std::string& n) { return isVerticalPartOf(n, "motion"); }, height);
+  float backward =
+      largestOf(*keyframes[1], [](const std::string& n) { return isVerticalPartOf(n, "motion_back"); }, height);
+  for (const TaskInput& input : inputs) {
+    if (input.kind != TASK_FLOW) continue;
+    forward = std::max(forward, largestOf(input, [](const std::string& n) {
+                         return isVerticalPartOf(n, "irradiance_forward");
+                       }, height));
+    backward = std::max(backward, largestOf(input, [](const std::string& n) {
+                          return isVerticalPartOf(n, "irradiance_backward");
+                        }, height));
+  }
+  const float largest = std::max(fraction * forward, (1.0f - fraction) * backward);
   return static_cast<int>(std::min(std::ceil(largest), static_cast<float>(height)));
 }
 
@@ -124,13 +138,7 @@ TaskOutput runFlowTask(const Lease& lease, std::vector<TaskInput>& inputs) {
 }
 
 TaskOutput runInterpolateTask(const Lease& lease, std::vector<TaskInput>& inputs) {
-  const auto isWindow = [](const TaskInput& input) { return input.kind == TASK_INTERPOLATE; };
-  if (!lease.params().has_window() && std::any_of(inputs.begin(), inputs.end(), isWindow)) {
-    TaskOutput output;
-    const std::vector<uint8_t> mask = joinRowWindows(lease, inputs, "interpolations", [](const FrameImage&) {}, output);
-    requestRerender(lease.spec(), lease.params().frame(), mask, output);
-    return output;
-  }
+  if (joinsWindows(lease, inputs)) return joinedWithRerender(lease, inputs, "interpolations");
   const TaskParams& params = lease.params();
   const int width = lease.spec().width(), height = lease.spec().height();
   const int64_t before = params.keyframe_before(), after = params.keyframe_after();
@@ -140,15 +148,19 @@ TaskOutput runInterpolateTask(const Lease& lease, std::vector<TaskInput>& inputs
   // left to the radiance check below: it compares the frame's own render there.
   InterpolationSettings settings;
   settings.unknownChangeMasks = false;
+  const RadianceCheckSettings radianceCheck;
+  const CausticCheckSettings causticCheck;
+  const float fraction = static_cast<float>(params.frame() - before) / static_cast<float>(after - before);
   // The rows computed (a window's, or all), the rows the checks read around them, and the
   // rows of the keyframes whose content can move into those (all of them without a window).
   const RowWindow wanted = rowsOf(lease, "the interpolation");
-  const int reach = std::max({radianceCheckReach({}), causticCheckReach({}), kLightEdgeReach, settings.illuminationRadius});
+  const int reach = std::max(
+      {radianceCheckReach(radianceCheck), causticCheckReach(causticCheck), kLightEdgeReach, settings.illuminationRadius});
   const RowWindow checked{std::max(0, wanted.first - reach), std::min(height, wanted.end + reach)};
   RowWindow read{0, height};
   if (params.has_window()) {
-    // A source lands on the rows around its row plus its motion (bilinear footprints).
-    const int moved = largestVerticalMotion(inputs, keyframes, height) + 2;
+    // A source lands on its row plus its displacement's whole rows, and the row below.
+    const int moved = largestDisplacement(inputs, keyframes, fraction, height) + 2;
     read = {std::max(0, checked.first - moved), std::min(height, checked.end + moved)};
   }
 
@@ -200,7 +212,6 @@ TaskOutput runInterpolateTask(const Lease& lease, std::vector<TaskInput>& inputs
     }
     return KeyframeComponent{{parts[0], parts[1]}, motion};
   };
-  const float fraction = static_cast<float>(params.frame() - before) / static_cast<float>(after - before);
   InterpolationResult result = interpolateFrameDetailed(keys, fraction, settings);
   for (const auto& [key, value] : frameWide[0].attributes()) result.frame.attributes().emplace(key, value);
   result.frame.attributes()["pathfarm.frame"] = std::to_string(params.frame());
@@ -212,8 +223,12 @@ TaskOutput runInterpolateTask(const Lease& lease, std::vector<TaskInput>& inputs
   // The keyframes are let go before the frame's feature render is read.
   frameWide = {};
   const Rows inRead{read, width};
-  FrameImage interpolated = inRead.crop(result.frame, checked);
-  const FrameImage features = inputOf(inputs, TASK_ASSEMBLE_FRAME, params.frame()).part({{}, checked.first, checked.end});
+  FrameImage interpolated = inRead.crop(std::move(result.frame), checked);
+  // The feature render's rows the checks read: the decoded frame itself when they are all of it.
+  const TaskInput& featureInput = inputOf(inputs, TASK_ASSEMBLE_FRAME, params.frame());
+  std::optional<FrameImage> featureRows;
+  if (checked.first != 0 || checked.end != height) featureRows = featureInput.part({{}, checked.first, checked.end});
+  const FrameImage& features = featureRows ? *featureRows : featureInput.image();
   const FrameImage directLight = directEmissionOf(features);
   addDirectEmission(interpolated, directLight);
   // Where the frame's own features or their light disagree, the interpolation is wrong;
@@ -222,9 +237,10 @@ TaskOutput runInterpolateTask(const Lease& lease, std::vector<TaskInput>& inputs
   const Rows inChecked{checked, width};
   const std::vector<uint8_t> mismatch = inChecked.crop(featureMismatch(interpolated, features), wanted);
   const std::vector<uint8_t> edges = inChecked.crop(directLightEdges(directLight, features), wanted);
-  const std::vector<uint8_t> lightMismatch = inChecked.crop(radianceMismatch(interpolated, features), wanted);
-  const std::vector<uint8_t> caustics = inChecked.crop(movingCausticPixels(features), wanted);
-  interpolated = inChecked.crop(interpolated, wanted);
+  const std::vector<uint8_t> lightMismatch =
+      inChecked.crop(radianceMismatch(interpolated, features, radianceCheck), wanted);
+  const std::vector<uint8_t> caustics = inChecked.crop(movingCausticPixels(features, causticCheck), wanted);
+  interpolated = inChecked.crop(std::move(interpolated), wanted);
   std::vector<uint8_t> mask = inRead.crop(result.mask, wanted);
   std::vector<float>& flagged = interpolated.channel("rerender.Y");
   for (size_t p = 0; p < mask.size(); ++p) {

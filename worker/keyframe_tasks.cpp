@@ -37,15 +37,6 @@ void pasteFiltered(const FrameImage& filtered, const std::string& record, FrameI
     if (key.rfind(record, 0) == 0) frame.attributes()[key] = value;
 }
 
-// The upsampled keyframe from its windows' (written from them a window at a time, so that
-// it is never held whole), and the re-render of the pixels they flagged.
-TaskOutput joinedUpsampleWindows(const Lease& lease, std::vector<TaskInput>& inputs) {
-  TaskOutput output;
-  const std::vector<uint8_t> mask = joinRowWindows(lease, inputs, "upsamples", [](const FrameImage&) {}, output);
-  requestRerender(lease.spec(), lease.params().frame(), mask, output);
-  return output;
-}
-
 }  // namespace
 
 TaskOutput runDenoiseTask(const Lease& lease, std::vector<TaskInput>& inputs) {
@@ -100,9 +91,8 @@ TaskOutput runDenoiseTask(const Lease& lease, std::vector<TaskInput>& inputs) {
 }
 
 TaskOutput runUpsampleTask(const Lease& lease, std::vector<TaskInput>& inputs) {
-  const auto isWindow = [](const TaskInput& input) { return input.kind == TASK_UPSAMPLE; };
-  if (!lease.params().has_window() && std::any_of(inputs.begin(), inputs.end(), isWindow))
-    return joinedUpsampleWindows(lease, inputs);
+  // The join of a keyframe upsampled in windows writes it a window at a time, never whole.
+  if (joinsWindows(lease, inputs)) return joinedWithRerender(lease, inputs, "upsamples");
   const int64_t frame = lease.params().frame();
   const int width = lease.spec().width(), height = lease.spec().height();
   const FilteringStages stages = stagesOf(lease.spec().pipeline());

@@ -27,8 +27,8 @@ namespace {
 constexpr int kWidth = 96, kHeight = 54, kBefore = 0, kFrame = 1, kAfter = 3;
 constexpr int kStrip = 8;  // the changed columns at the left edge
 
-FrameImage render(int64_t frame, int spp, MotionSpan span) {
-  return test_support::renderDecomposed("scenes/walkthrough/scene.json", kWidth, kHeight, spp, frame, span);
+FrameImage render(int64_t frame, int spp, MotionSpan span, int width = kWidth, int height = kHeight) {
+  return test_support::renderDecomposed("scenes/walkthrough/scene.json", width, height, spp, frame, span);
 }
 
 // Scales every light buffer of the left strip: a lamp out of view switched on there.
@@ -98,8 +98,8 @@ TEST(InterpolateTask, LightThatChangedAtTheEdgeTheCameraTurnsToIsReRendered) {
 }
 
 // The walkthrough's keyframes kBefore and kAfter, frame kFrame's features and an irradiance
-// flow for one component (made up, but valid: `flowDy` rows forward and back), in files, and
-// an interpolate lease reading them.
+// flow for one component (made up, but valid: 1.5 columns and `flowDy` rows forward and
+// back), in files, and an interpolate lease reading them; width x height pixels.
 struct InterpolationFiles {
   FrameImage k0, k1, features;
   std::string flowing;
@@ -108,11 +108,13 @@ struct InterpolationFiles {
   std::map<std::string, std::filesystem::path> files;
   Lease lease = interpolateLease();
 
-  InterpolationFiles(const std::string& name, float flowDy) {
+  InterpolationFiles(const std::string& name, float flowDy, int width = kWidth, int height = kHeight) {
     const MotionSpan span{kAfter - kBefore, kAfter - kBefore};
-    k0 = render(kBefore, 8, span);
-    k1 = render(kAfter, 8, span);
-    features = render(kFrame, 4, {});
+    k0 = render(kBefore, 8, span, width, height);
+    k1 = render(kAfter, 8, span, width, height);
+    features = render(kFrame, 4, {}, width, height);
+    lease.mutable_spec()->set_width(width);
+    lease.mutable_spec()->set_height(height);
     folder = test_support::processTemporaryFolder(name);
     files = {{"k0", folder / "k0.exr"}, {"k1", folder / "k1.exr"}, {"features", folder / "features.exr"},
              {"flow", folder / "flow.exr"}};
@@ -123,8 +125,8 @@ struct InterpolationFiles {
     addInput(lease, "k1", TASK_UPSAMPLE, kAfter, "");
     addInput(lease, "features", TASK_ASSEMBLE_FRAME, kFrame, "");
     flowing = decompositionComponents(k0).front();
-    FrameImage flow(kWidth, kHeight);
-    field = MotionField{kWidth, kHeight, std::vector<float>(k0.pixelCount(), 1.5f),
+    FrameImage flow(width, height);
+    field = MotionField{width, height, std::vector<float>(k0.pixelCount(), 1.5f),
                         std::vector<float>(k0.pixelCount(), flowDy), std::vector<float>(k0.pixelCount(), 1.0f)};
     writeMotionField(flow, flowing + ".irradiance_forward", field);
     writeMotionField(flow, flowing + ".irradiance_backward", field);
@@ -206,11 +208,12 @@ TEST(InterpolateTask, KeyframesReadAComponentAtATimeGiveTheWholeFramesInterpolat
 // An in-between frame interpolated window by window (each task reading the keyframe rows
 // whose content its motion can bring into its rows, and the feature rows its checks reach)
 // and joined is the same bytes, the same re-render and the same counts as the frame
-// interpolated by one task. One component's light moves 7 rows between the keyframes, so
-// content crosses every window border.
+// interpolated by one task. One component's light moves 15 rows from the first keyframe
+// and 30 from the second, farther than the checks' reach, across every window border.
 TEST(InterpolateTask, WindowsInterpolatedApartAndJoinedAreTheWholeFramesBytes) {
-  InterpolationFiles in("pathfarm_interpolate_windows", 7.0f);
-  in.lease.mutable_spec()->set_filter_window_rows(16);
+  constexpr int kTall = 160, kFlowRows = 45;
+  InterpolationFiles in("pathfarm_interpolate_windows", static_cast<float>(kFlowRows), 48, kTall);
+  in.lease.mutable_spec()->set_filter_window_rows(40);
   const TaskOutput one = in.run(in.lease, 0);
   const std::string expected = outputBytes(one);
   const std::vector<RowWindow> windows = filterWindowsOf(in.lease.spec());
@@ -218,22 +221,21 @@ TEST(InterpolateTask, WindowsInterpolatedApartAndJoinedAreTheWholeFramesBytes) {
   Lease join = interpolateLease();
   *join.mutable_spec() = in.lease.spec();
   std::map<std::string, double> summed;
-  InterpolationFiles& files = in;
   for (const RowWindow& rows : windows) {
     Lease part = in.lease;
     PixelWindow& w = *part.mutable_params()->mutable_window();
-    w.set_x1(kWidth);
+    w.set_x1(48);
     w.set_y0(rows.first);
     w.set_y1(rows.end);
-    const TaskOutput output = in.run(part, rows.first % 2 == 0 ? 0 : TaskRunner::kDefaultDecodedInputBytes);
+    const TaskOutput output = in.run(part, rows.first % 80 == 0 ? 0 : TaskRunner::kDefaultDecodedInputBytes);
     EXPECT_TRUE(output.followUps.empty()) << "a window's re-render goes with the join's";
-    // Its rows, the checks' 9 around them and the largest motion (7 rows) and 2 beyond that.
+    // Its rows, the checks' 9 around them, and the largest displacement (30 rows) and 2.
     EXPECT_EQ(output.metrics.at("keyframe_rows_read"),
-              std::min(kHeight, rows.end + 9 + 9) - std::max(0, rows.first - 9 - 9));
+              std::min(kTall, rows.end + 9 + 32) - std::max(0, rows.first - 9 - 32));
     for (const auto& [name, value] : output.metrics) summed[name] += value;
     const std::string name = "window" + std::to_string(rows.first);
-    files.files[name] = in.folder / (name + ".exr");
-    std::ofstream(files.files[name], std::ios::binary) << outputBytes(output);
+    in.files[name] = in.folder / (name + ".exr");
+    std::ofstream(in.files[name], std::ios::binary) << outputBytes(output);
     InterpolationFiles::addInput(join, name, TASK_INTERPOLATE, kFrame, "");
     *join.mutable_input_params(join.input_params_size() - 1)->mutable_window() = w;
   }
