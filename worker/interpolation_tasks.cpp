@@ -158,10 +158,11 @@ TaskOutput runInterpolateTask(const Lease& lease, std::vector<TaskInput>& inputs
       {radianceCheckReach(radianceCheck), causticCheckReach(causticCheck), kLightEdgeReach, settings.illuminationRadius});
   const RowWindow checked{std::max(0, wanted.first - reach), std::min(height, wanted.end + reach)};
   RowWindow read{0, height};
+  int displacement = 0;
   if (params.has_window()) {
     // A source lands on its row plus its displacement's whole rows, and the row below.
-    const int moved = largestDisplacement(inputs, keyframes, fraction, height) + 2;
-    read = {std::max(0, checked.first - moved), std::min(height, checked.end + moved)};
+    displacement = largestDisplacement(inputs, keyframes, fraction, height);
+    read = {std::max(0, checked.first - displacement - 2), std::min(height, checked.end + displacement + 2)};
   }
 
   // The keyframes are read a component at a time (a 1080p pair is gigabytes); first their
@@ -263,8 +264,11 @@ TaskOutput runInterpolateTask(const Lease& lease, std::vector<TaskInput>& inputs
   output.metrics["rerender_light_edges"] = count(edges);
   output.metrics["rerender_light_mismatch"] = count(lightMismatch);
   output.metrics["rerender_moving_caustics"] = count(caustics);
-  // How much of the keyframes a window read: all of them when the motion is large.
-  output.metrics["keyframe_rows_read"] = static_cast<double>(read.end - read.first);
+  // How much of the keyframes a window read, and why: all of them when the motion is large.
+  if (params.has_window()) {
+    output.metrics["keyframe_rows_read"] = static_cast<double>(read.end - read.first);
+    output.metrics["displacement_rows"] = static_cast<double>(displacement);
+  }
   output.frame = std::move(interpolated);
   return output;
 }
