@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <utility>
+#include <vector>
 
 #include "scheduler/task_records.h"
 
@@ -128,17 +129,24 @@ TEST(ShotReport, PtsCostPerFrameIsPerRenderWhenTheBaselineIsRenderedSeveralTimes
   EXPECT_EQ(report.baseline_source(), "measured: pt at 8 spp on 1 frame(s), 3 independent renders");
 }
 
-TEST(ShotReport, AnUpsampledKeyframesReRenderIsSplitByCause) {
-  // Two keyframes of 10x10 pixels: 30 re-rendered in all, 20 on edges of directly seen
-  // light and 6 on moving caustics (the rest flagged by the upsampler itself).
-  std::vector<TaskRecord> tasks;
-  tasks.push_back(taskRecord(TASK_UPSAMPLE, ROLE_UNSPECIFIED, 0, 1.0));
-  tasks.back().metrics = {{"rerender_pixels", 10}, {"rerender_light_edges", 8}, {"rerender_moving_caustics", 2}};
+// The report of two upsampled keyframes of 10x10 pixels, the first's tasks given, the
+// second's one task re-rendering 20 pixels, 12 on edges of directly seen light and 4 on
+// moving caustics.
+ShotReport reportOfTwoKeyframes(std::vector<TaskRecord> firstKeyframe) {
+  std::vector<TaskRecord> tasks = std::move(firstKeyframe);
   tasks.push_back(taskRecord(TASK_UPSAMPLE, ROLE_UNSPECIFIED, 3, 1.0));
   tasks.back().metrics = {{"rerender_pixels", 20}, {"rerender_light_edges", 12}, {"rerender_moving_caustics", 4}};
   ShotSummary summary;
   summary.set_state(SHOT_DONE);
-  const ShotReport report = buildReport(summary, spec(), tasks);
+  return buildReport(summary, spec(), tasks);
+}
+
+TEST(ShotReport, AnUpsampledKeyframesReRenderIsSplitByCause) {
+  // The first keyframe re-renders 10 pixels, 8 on light edges and 2 on caustics: 30 in
+  // all, 20 and 6 (the rest flagged by the upsampler itself).
+  std::vector<TaskRecord> first = {taskRecord(TASK_UPSAMPLE, ROLE_UNSPECIFIED, 0, 1.0)};
+  first.back().metrics = {{"rerender_pixels", 10}, {"rerender_light_edges", 8}, {"rerender_moving_caustics", 2}};
+  const ShotReport report = reportOfTwoKeyframes(first);
   EXPECT_DOUBLE_EQ(report.upsample_rerender_rate(), 30.0 / 200);
   EXPECT_DOUBLE_EQ(report.upsample_rerender_causes().at("light_edges"), 20.0 / 200);
   EXPECT_DOUBLE_EQ(report.upsample_rerender_causes().at("moving_caustics"), 6.0 / 200);
@@ -148,26 +156,27 @@ TEST(ShotReport, AnUpsampledKeyframesReRenderIsSplitByCause) {
   EXPECT_NE(markdown.find("| &nbsp; of which light_edges | 10.00% |", rate), std::string::npos) << markdown;
 }
 
-TEST(ShotReport, AKeyframeUpsampledInWindowsCountsAsOneFrameWithItsWindowsCauses) {
+TEST(ShotReport, AFrameFilteredInWindowsCountsAsOneFrameWithItsWindowsCauses) {
   // The first keyframe of the test above in two windows of rows, which count its causes
-  // (8 on light edges, 2 on caustics), and their join, which counts its re-render (10).
-  std::vector<TaskRecord> tasks;
-  for (const auto& [edges, caustics] : {std::pair{5, 2}, std::pair{3, 0}}) {
-    tasks.push_back(taskRecord(TASK_UPSAMPLE, ROLE_UNSPECIFIED, 0, 0.5));
-    tasks.back().params.mutable_window()->set_x1(10);
-    tasks.back().params.mutable_window()->set_y1(5);
-    tasks.back().metrics = {{"rerender_light_edges", edges}, {"rerender_moving_caustics", caustics}};
+  // (8 on light edges, 2 on caustics), and their join, which counts its re-render (10);
+  // an in-between frame the same way, beside it.
+  std::vector<TaskRecord> first;
+  for (const TaskKind kind : {TASK_UPSAMPLE, TASK_INTERPOLATE}) {
+    for (const auto& [edges, caustics] : {std::pair{5, 2}, std::pair{3, 0}}) {
+      first.push_back(taskRecord(kind, ROLE_UNSPECIFIED, kind == TASK_UPSAMPLE ? 0 : 1, 0.5));
+      first.back().params.mutable_window()->set_x1(10);
+      first.back().params.mutable_window()->set_y1(5);
+      first.back().metrics = {{"rerender_light_edges", edges}, {"rerender_moving_caustics", caustics}};
+    }
+    first.push_back(taskRecord(kind, ROLE_UNSPECIFIED, kind == TASK_UPSAMPLE ? 0 : 1, 0.1));
+    first.back().metrics = {{"rerender_pixels", 10}, {"pixels", 100}};
   }
-  tasks.push_back(taskRecord(TASK_UPSAMPLE, ROLE_UNSPECIFIED, 0, 0.1));
-  tasks.back().metrics = {{"rerender_pixels", 10}, {"pixels", 100}};
-  tasks.push_back(taskRecord(TASK_UPSAMPLE, ROLE_UNSPECIFIED, 3, 1.0));
-  tasks.back().metrics = {{"rerender_pixels", 20}, {"rerender_light_edges", 12}, {"rerender_moving_caustics", 4}};
-  ShotSummary summary;
-  summary.set_state(SHOT_DONE);
-  const ShotReport report = buildReport(summary, spec(), tasks);
+  const ShotReport report = reportOfTwoKeyframes(first);
   EXPECT_DOUBLE_EQ(report.upsample_rerender_rate(), 30.0 / 200);
   EXPECT_DOUBLE_EQ(report.upsample_rerender_causes().at("light_edges"), 20.0 / 200);
   EXPECT_DOUBLE_EQ(report.upsample_rerender_causes().at("moving_caustics"), 6.0 / 200);
+  EXPECT_DOUBLE_EQ(report.interpolation_rerender_rate(), 10.0 / 100);  // one frame of 100 pixels
+  EXPECT_DOUBLE_EQ(report.interpolation_rerender_causes().at("light_edges"), 8.0 / 100);
 }
 
 TEST(ShotReport, TheVerdictSaysPlainlyWhenThePipelineLost) {
