@@ -105,8 +105,13 @@ int largestDisplacement(const std::vector<TaskInput>& inputs, const std::array<c
 TaskOutput runFlowTask(const Lease& lease, std::vector<TaskInput>& inputs) {
   const TaskParams& params = lease.params();
   const std::string& component = params.component();
-  // The component's channels alone: a 1080p keyframe's others are gigabytes.
-  const auto ofComponent = [&](const std::string& name) { return name.rfind(component + ".", 0) == 0; };
+  // The component's irradiance and motion alone, what the flow reads: a 4K keyframe's
+  // other channels are gigabytes.
+  const auto ofComponent = [&](const std::string& name) {
+    if (name.rfind(component + ".", 0) != 0) return false;
+    const std::string buffer = name.substr(component.size() + 1, name.rfind('.') - component.size() - 1);
+    return buffer == "irradiance" || buffer == "motion" || buffer == "motion_back" || buffer == "motion_valid";
+  };
   const FrameImage k0 = filteredKeyframe(inputs, params.keyframe_before()).part({ofComponent});
   const FrameImage k1 = filteredKeyframe(inputs, params.keyframe_after()).part({ofComponent});
   const std::vector<std::string> components = decompositionComponents(k0);
