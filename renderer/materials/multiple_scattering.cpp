@@ -51,7 +51,7 @@ float MultipleScattering::albedo(float cosTheta) const {
 }
 
 float MultipleScattering::eval(float cosO, float cosI) const {
-  if (cosO <= 0 || cosI <= 0 || !(1 - average_ > kNothingLost)) return 0;
+  if (!(cosO > 0) || !(cosI > 0) || !(1 - average_ > kNothingLost)) return 0;  // NaN too
   return lost(cosO) * lost(cosI) * cosI / (kPi * (1 - average_));
 }
 

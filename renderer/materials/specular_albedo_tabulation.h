@@ -45,7 +45,8 @@ inline Cell roughnessCell(float alpha) { return cell(std::sqrt(std::max(0.0f, al
 // The cell of cos(theta) among the mu nodes, its weight linear in cos(theta) between them
 // (as the tables' averages assume; the node spacing is what is quadratic).
 inline Cell muCell(float cosTheta) {
-  const float mu = std::clamp(cosTheta, 0.0f, 1.0f);
+  // A NaN cosine (a degenerate direction) reads the grazing node, not past the table.
+  const float mu = cosTheta > 0.0f ? std::min(cosTheta, 1.0f) : 0.0f;
   const int i = cell(std::sqrt(mu) * (kMu - 1), kMu).index;
   const float a = muNode(i), b = muNode(i + 1);
   return {i, std::clamp((mu - a) / (b - a), 0.0f, 1.0f)};

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "renderer/materials/bsdf.h"
 #include "renderer/materials/microfacet.h"
@@ -60,6 +61,17 @@ TEST(MultipleScattering, TableBoundsTheSingleScatteringAlbedoClosely) {
   // Smooth surfaces lose nothing; GGX of alpha 1 seen head-on keeps about a third.
   EXPECT_NEAR(MultipleScattering(MicrofacetType::GGX, 0).albedo(0.7f), 1.0f, 1e-3f);
   EXPECT_NEAR(MultipleScattering(MicrofacetType::GGX, 1).albedo(1.0f), 0.31f, 0.02f);
+}
+
+// A degenerate direction (a Metropolis mutation's, whose cosine came out NaN) read past
+// the albedo table and crashed the benchmark; it is a grazing albedo and no lobe.
+TEST(MultipleScattering, ANaNCosineReadsTheTableAndScattersNothing) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const MultipleScattering rough(MicrofacetType::GGX, 0.6f);
+  EXPECT_EQ(rough.albedo(nan), rough.albedo(0.0f));
+  EXPECT_EQ(rough.eval(nan, 0.5f), 0.0f);
+  EXPECT_EQ(rough.eval(0.5f, nan), 0.0f);
+  EXPECT_GT(rough.eval(0.5f, 0.5f), 0.0f);
 }
 
 TEST(MultipleScattering, LobeReturnsWhatSingleScatteringLoses) {
