@@ -112,6 +112,7 @@ class BandFilter {
     const size_t w = static_cast<size_t>(in_.width);
     const size_t rows = static_cast<size_t>(y1 - y0 + 2 * s.patch);
     distance_.resize(rows * w);
+    pixelDistance_.resize(w);
     mask_.resize(rows * w);
     columnDistance_.resize(w);
     columnMask_.resize(w);
@@ -140,8 +141,9 @@ class BandFilter {
     const bool center = t == 0 && dx == 0 && dy == 0;
     computePixelDistances(pt, dx, dy, reach);
 
-    // Column sums over the patch rows, slid down the band (in double: the distances can be
-    // large, and what is subtracted must come back off exactly enough).
+    // Column sums over the patch rows, slid down the band, and row sums of those: exact, as
+    // the distances lie on a grid (Prepared::distanceSnap), so a pixel's patch distance is
+    // the same bits wherever the band or the image starts (a window of rows, a cropped box).
     const int f = s_.patch;
     std::fill(columnDistance_.begin(), columnDistance_.end(), 0.0);
     std::fill(columnMask_.begin(), columnMask_.end(), 0.0f);
@@ -212,8 +214,10 @@ class BandFilter {
     const float kc2 = s_.kc * s_.kc, alpha = s_.alpha, inverseChannels = 1.0f / static_cast<float>(in_.channels);
     const float low = -in_.distanceLow, high = in_.distanceHigh;
     for (int y = reach.ry0; y < reach.ry1; ++y) {
-      float* d = distance_.data() + static_cast<size_t>(y - reach.ry0) * W;
+      double* snapped = distance_.data() + static_cast<size_t>(y - reach.ry0) * W;
       float* m = mask_.data() + static_cast<size_t>(y - reach.ry0) * W;
+      float* d = pixelDistance_.data();
+      std::fill(snapped, snapped + W, 0.0);
       std::fill(d, d + W, 0.0f);
       std::fill(m, m + W, 0.0f);
       if (y + dy < 0 || y + dy >= h) continue;
@@ -232,9 +236,11 @@ class BandFilter {
       }
       const float* validP = p0.valid + rowP;
       const float* validQ = pt.valid + rowQ;
+      const double snap = in_.distanceSnap;
       for (int x = reach.xa; x < reach.xb; ++x) {
         const float both = validP[x] * validQ[x];
-        d[x] = std::min(std::max(d[x] * inverseChannels, low), high) * both;
+        const float clamped = std::min(std::max(d[x] * inverseChannels, low), high) * both;
+        snapped[x] = (static_cast<double>(clamped) + snap) - snap;
         m[x] = both;
       }
     }
@@ -243,13 +249,13 @@ class BandFilter {
   // Adds (sign 1) or takes off (sign -1) row y's distances and masses to the column sums.
   void addRow(const Reach& reach, int y, double sign) {
     const size_t W = static_cast<size_t>(in_.width);
-    const float* d = distance_.data() + static_cast<size_t>(y - reach.ry0) * W;
+    const double* d = distance_.data() + static_cast<size_t>(y - reach.ry0) * W;
     const float* m = mask_.data() + static_cast<size_t>(y - reach.ry0) * W;
     double* cd = columnDistance_.data();
     float* cm = columnMask_.data();
     const float signF = static_cast<float>(sign);
     for (int x = reach.xa; x < reach.xb; ++x) {
-      cd[x] += sign * static_cast<double>(d[x]);
+      cd[x] += sign * d[x];
       cm[x] += signF * m[x];
     }
   }
@@ -351,7 +357,9 @@ class BandFilter {
   int y0_, y1_;
   bool keep_;
   const RowSpans* spans_;
-  std::vector<float> distance_, mask_;
+  std::vector<double> distance_;    // per-pixel distances on the band's rows, on the grid
+  std::vector<float> pixelDistance_;  // one row's, summed over the channels
+  std::vector<float> mask_;
   std::vector<double> columnDistance_;
   std::vector<float> columnMask_;
   std::vector<double> prefixDistance_, prefixMask_;

@@ -44,8 +44,13 @@
 //
 // Numerics: e^-x is a polynomial of fixed precision (relative error < 1e-6, 0 beyond
 // x = 87), and per-pixel distances are clamped at a bound so large that any patch
-// holding a clamped pixel has weight 0 anyway. Rows are filtered in fixed bands in
-// parallel (TBB), so the output is the same bits for any thread count.
+// holding a clamped pixel has weight 0 anyway. They are then rounded to a grid fine
+// enough for a double to sum a row of them exactly (about 1e-6 with the defaults, for
+// images up to 2^16 pixels wide), so that their patch sums are exact: a
+// pixel's output depends only on the pixels within radius + patch of it and on where the
+// image ends, not on where the image or a band of rows starts. So the output is the same
+// bits for any thread count, and a window of rows cut out with that margin filters to the
+// whole image's bits.
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -111,8 +116,7 @@ Planes jointNlMeans(const NlMeansInput& input, const NlMeansSettings& settings, 
 // is invalid, grown by 2 (radius + patch), so that every pixel whose value can be other
 // than 0 sees its whole neighbourhood; everything else is 0, as jointNlMeans makes it.
 // A component that lives on a few objects (a mirror's reflection, glass) is filtered at
-// the cost of their area. The result equals jointNlMeans's up to float rounding (its sums
-// start elsewhere) and is the same bits for the same input.
+// the cost of their area. The result is jointNlMeans's, bit for bit.
 // With `wanted`, only the pixels of that rectangle matter to the caller: the filtered
 // part shrinks to it, grown by radius + patch (the partners its pixels compare and their
 // patches), and pixels outside it may come out otherwise than jointNlMeans makes them.

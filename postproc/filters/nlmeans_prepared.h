@@ -4,6 +4,7 @@
 // missing feature variances and validity filled in, and each continuous feature's
 // normalization at frame 0's pixels.
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <deque>
 #include <stdexcept>
@@ -20,6 +21,8 @@ inline constexpr float kMaxVariance = 1e30f;
 // The largest exponent a weight e^-x is computed for (nlmeans.cpp, expNegative): beyond it
 // the weight is 0.
 inline constexpr float kExpClamp = 88.0f;
+// The widest image whose patch distances are exact sums (Prepared::distanceSnap): 2^16.
+inline constexpr int kWidthBits = 16;
 
 inline void validate(const NlMeansInput& input, const NlMeansSettings& s) {
   if (s.radius < 0 || s.patch < 0)
@@ -92,6 +95,10 @@ class Prepared {
   std::vector<uint8_t> invalidCenter;
   size_t invalidCenters = 0;
   float distanceLow = 0, distanceHigh = 0;  // per-pixel color distances are clamped to [-low, high]
+  // Adding and subtracting this rounds a clamped distance to a grid on which a double sums
+  // a row of patch columns exactly, in any order (nlmeans.cpp's box sums), for images up
+  // to 2^16 pixels wide: 52 bits hold the bound, the patch's rows and the width.
+  double distanceSnap = 0;
 
   Prepared(const NlMeansInput& input, const NlMeansSettings& s) {
     validate(input, s);
@@ -150,6 +157,9 @@ class Prepared {
     distanceLow = s.kc > 0.0f ? std::min(1e6f, std::max(0.0f, 2.0f * s.alpha / (s.kc * s.kc))) : 1e6f;
     if (!(s.alpha > 0.0f)) distanceLow = 0.0f;
     distanceHigh = patchPixels * kExpClamp + (patchPixels - 1.0f) * distanceLow;
+    const int boundExponent = std::ilogb(std::max(distanceHigh, distanceLow)) + 1;
+    const int patchRowBits = std::bit_width(static_cast<unsigned>(2 * s.patch + 1));
+    distanceSnap = std::ldexp(1.5, boundExponent + patchRowBits + kWidthBits);
   }
 
  private:

@@ -1,8 +1,12 @@
-// jointNlMeansOnContent against jointNlMeans itself: the same image up to float rounding,
-// exact zeros away from what the frames hold, the same broken-pixel counts and errors.
+// jointNlMeansOnContent against jointNlMeans itself: the same bits, exact zeros away from
+// what the frames hold, the same broken-pixel counts and errors; and a window of rows cut
+// out of the frames filters to the whole frames' bits.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <random>
 
@@ -47,14 +51,18 @@ void expectSameImage(const Planes& cropped, const Planes& whole) {
   ASSERT_EQ(cropped.channels.size(), whole.channels.size());
   for (size_t c = 0; c < whole.channels.size(); ++c)
     for (size_t p = 0; p < whole.pixelCount(); ++p) {
-      const float expected = whole.channels[c][p];
-      if (expected == 0.0f) {
-        ASSERT_EQ(cropped.channels[c][p], 0.0f) << "channel " << c << " pixel " << p;
-      } else {
-        ASSERT_NEAR(cropped.channels[c][p], expected, 1e-5f * std::abs(expected) + 1e-7f)
-            << "channel " << c << " pixel " << p;
-      }
+      ASSERT_EQ(std::bit_cast<uint32_t>(cropped.channels[c][p]), std::bit_cast<uint32_t>(whole.channels[c][p]))
+          << "channel " << c << " pixel " << p;
     }
+}
+
+// Rows [first, end) of every plane of every frame.
+Planes planeRows(const Planes& planes, int first, int end) {
+  Planes out(planes.width, end - first, static_cast<int>(planes.channels.size()));
+  for (size_t c = 0; c < planes.channels.size(); ++c)
+    std::copy(planes.channels[c].begin() + static_cast<std::ptrdiff_t>(first) * planes.width,
+              planes.channels[c].begin() + static_cast<std::ptrdiff_t>(end) * planes.width, out.channels[c].begin());
+  return out;
 }
 
 TEST(NlMeansOnContent, FiltersLikeTheWholeFrameWhereverTheContentSits) {
@@ -91,7 +99,7 @@ TEST(NlMeansOnContent, AWantedAreaIsFilteredLikeTheWholeFrame) {
     for (int y = wanted.y0; y < wanted.y1; ++y)
       for (int x = wanted.x0; x < wanted.x1; ++x) {
         const size_t p = static_cast<size_t>(y) * kContentWidth + x;
-        ASSERT_NEAR(part.channels[c][p], whole.channels[c][p], 1e-5f * std::abs(whole.channels[c][p]) + 1e-7f);
+        ASSERT_EQ(std::bit_cast<uint32_t>(part.channels[c][p]), std::bit_cast<uint32_t>(whole.channels[c][p]));
       }
   // Far from it, nothing was filtered.
   EXPECT_EQ(part.channels[0][static_cast<size_t>(60) * kContentWidth + 80], 0.0f);
@@ -156,6 +164,52 @@ TEST(NlMeansOnContent, NothingAnywhereIsZeroAndMismatchedInputIsRefusedAlike) {
   NlMeansInput mismatched = empty;
   mismatched.frames[0].variance = Planes(kContentWidth - 1, kContentHeight, 3);
   EXPECT_THROW(jointNlMeansOnContent(mismatched, NlMeansSettings{}), std::invalid_argument);
+}
+
+// A window of rows with radius + patch rows around it, filtered alone (its bands start
+// elsewhere: 37 is no multiple of the filter's bands), is the whole frames' filter there,
+// bit for bit, and one row fewer around it is not.
+TEST(NlMeansOnContent, AWindowOfRowsWithItsReachIsTheWholeFramesBits) {
+  std::mt19937 rng(5);
+  const NlMeansSettings settings{.radius = 5, .patch = 3};
+  const int first = 45, end = 61, reach = settings.radius + settings.patch;
+  // Rows [first - margin, end + margin) of the frames, filtered, at rows [first, end).
+  const auto window = [&](const NlMeansInput& input, int margin) {
+    NlMeansInput part;
+    part.featureKinds = input.featureKinds;
+    for (const NlMeansFrame& frame : input.frames) {
+      NlMeansFrame& rows = part.frames.emplace_back();
+      rows.color = planeRows(frame.color, first - margin, end + margin);
+      rows.variance = planeRows(frame.variance, first - margin, end + margin);
+      rows.features.push_back(planeRows(frame.features[0], first - margin, end + margin));
+      if (!frame.valid.empty())
+        rows.valid.assign(frame.valid.begin() + static_cast<std::ptrdiff_t>(first - margin) * kContentWidth,
+                          frame.valid.begin() + static_cast<std::ptrdiff_t>(end + margin) * kContentWidth);
+    }
+    return planeRows(jointNlMeans(part, settings), margin, margin + end - first);
+  };
+  // Noisy light, and a dim, nearly even wall with a few bright specks and no variance (the
+  // specks' distances at the clamp, the wall's tiny: the sums' widest range of magnitudes).
+  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+  size_t shortDiffers = 0;
+  for (const bool specks : {false, true}) {
+    NlMeansInput input = sparseInput(0, 0, rng);
+    for (NlMeansFrame& frame : input.frames)
+      for (size_t c = 0; c < 3; ++c)
+        for (size_t p = 0; p < frame.color.pixelCount(); ++p) {
+          const bool speck = uniform(rng) < 0.03f;
+          frame.color.channels[c][p] =
+              specks ? (speck ? 1.0f : 1e-3f * (1.0f + 1e-6f * uniform(rng))) : 2.0f * uniform(rng);
+          frame.variance.channels[c][p] = specks ? 0.0f : 0.05f;
+        }
+    const Planes wanted = planeRows(jointNlMeans(input, settings), first, end);
+    SCOPED_TRACE(specks ? "a wall with specks" : "noisy light");
+    expectSameImage(window(input, reach), wanted);
+    const Planes short_ = window(input, reach - 1);
+    for (size_t c = 0; c < wanted.channels.size(); ++c)
+      for (size_t p = 0; p < wanted.pixelCount(); ++p) shortDiffers += short_.channels[c][p] != wanted.channels[c][p];
+  }
+  EXPECT_GT(shortDiffers, 0u) << "a row less of reach changes the window's edge rows";
 }
 
 }  // namespace
