@@ -80,7 +80,8 @@ struct RowWindow {
   int first = 0, end = 0;
 };
 // The windows a frame of the shot is filtered in, top to bottom: as few as hold at most
-// filter_window_rows rows each, of heights that differ by at most one row.
+// filter_window_rows rows each (one more where a border moves up to an even row, so that
+// a half-resolution denoise has whole rows), of heights that differ by at most two rows.
 std::vector<RowWindow> filterWindowsOf(const ShotSpec& spec);
 
 }  // namespace pathfarm::farm

@@ -381,6 +381,7 @@ FrameImage framePart(Imf::InputFile& in, const ChannelFilter& keep, int from = 0
   std::vector<float*> planes;
   for (const std::string& name : names) planes.push_back(frame.addChannel(name).data());
   frame.attributes() = stringAttributes(in.header());
+  if (names.empty()) return frame;  // the header alone: OpenEXR reads pixels into a buffer
   in.setFrameBuffer(frameBufferOf(window, names, planes, window.min.y + from));
   in.readPixels(window.min.y + from, window.min.y + to - 1);
   return frame;

@@ -261,10 +261,10 @@ void planFiltering(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
     if (denoiseIsFinal) {
       denoise.params.set_role(ROLE_OUTPUT);
       denoise.output = true;
-      evaluated[frame] = {rendered.at(frame), push(std::move(denoise), plan)};
+      evaluated[frame] = {rendered.at(frame), push(inWindows(std::move(denoise), spec, plan), plan)};
       continue;
     }
-    finalOf[frame] = push(std::move(denoise), plan);
+    finalOf[frame] = push(inWindows(std::move(denoise), spec, plan), plan);
     if (stages.upsample)
       finalOf[frame] = push(inWindows(task(TASK_UPSAMPLE, frame, {finalOf[frame], rendered.at(frame)}), spec, plan), plan);
     evaluated[frame] = {rendered.at(frame), finalOf[frame]};

@@ -53,19 +53,29 @@ FrameImage TaskInput::take() {
   return std::move(*held);
 }
 
-FrameImage reducedWithoutLight(const TaskInput& input, int width, int height, int factor) {
+FrameImage reducedWithoutLight(const TaskInput& input, int width, int height, int factor, const InputPart& rows) {
+  const int first = rows.firstRow, end = rows.endRow > 0 ? rows.endRow : height;
+  if (first % factor != 0 || end % factor != 0 || first < 0 || end > height || first >= end)
+    throw BadInput("rows " + std::to_string(first) + " to " + std::to_string(end) + " of a render of " +
+                   std::to_string(height) + " rows are not whole blocks of " + std::to_string(factor));
   // Rows read at a time: whole blocks.
-  const int strip = std::max(64 / factor, 1) * factor;
-  FrameImage reduced(width / factor, height / factor);
-  for (int y = 0; y < height; y += strip) {
-    FrameImage rows = input.part({{}, y, std::min(height, y + strip)});
-    if (rows.width() != width) throw BadInput("a render to reduce is not " + std::to_string(width) + " pixels wide");
-    takeDirectEmission(rows);
-    const FrameImage low = boxDownsample(rows, factor);
+  const int stripRows = std::max(64 / factor, 1) * factor;
+  FrameImage reduced(width / factor, (end - first) / factor);
+  for (int y = first; y < end; y += stripRows) {
+    FrameImage strip = input.part({rows.keep, y, std::min(end, y + stripRows)});
+    if (strip.width() != width) throw BadInput("a render to reduce is not " + std::to_string(width) + " pixels wide");
+    takeDirectEmission(strip);
+    const FrameImage low = boxDownsample(strip, factor);
     reduced.attributes() = low.attributes();
-    reduced.paste(low, 0, y / factor);
+    reduced.paste(low, 0, (y - first) / factor);
   }
   return reduced;
+}
+
+void pasteFiltered(const FrameImage& filtered, const std::string& record, FrameImage& frame) {
+  frame.paste(filtered, 0, 0);
+  for (const auto& [key, value] : filtered.attributes())
+    if (key.rfind(record, 0) == 0) frame.attributes()[key] = value;
 }
 
 const TaskInput& findInput(const std::vector<TaskInput>& inputs, const std::function<bool(const TaskInput&)>& matches,
@@ -106,8 +116,10 @@ RowWindow rowsOf(const Lease& lease, const std::string& what) {
 }
 
 std::vector<uint8_t> joinRowWindows(const Lease& lease, std::vector<TaskInput>& inputs, const std::string& what,
-                                    const std::function<void(const FrameImage&)>& check, TaskOutput& output) {
-  const int width = lease.spec().width(), height = lease.spec().height();
+                                    const std::function<void(const FrameImage&)>& check, TaskOutput& output,
+                                    JoinedFrame joined) {
+  const int factor = joined.factor, width = lease.spec().width() / factor, height = lease.spec().height() / factor;
+  const bool flagged = joined.flagged;
   const std::string label = "frame " + std::to_string(lease.params().frame());
   const std::string refused = "the windows' " + what + " of " + label;
   std::vector<TaskInput*> windows;
@@ -122,14 +134,17 @@ std::vector<uint8_t> joinRowWindows(const Lease& lease, std::vector<TaskInput>& 
   int covered = 0;  // rows 0 .. covered - 1 are the windows' so far
   for (const TaskInput* window : windows) {
     const PixelWindow& w = window->params.window();
-    const FrameImage flags = window->part({[](const std::string& name) { return name == "rerender.Y"; }});
-    if (w.x0() != 0 || w.x1() != width || w.y0() != covered || w.y1() > height || w.y1() <= w.y0() ||
-        flags.width() != width || flags.height() != w.y1() - w.y0())
+    const FrameImage flags =
+        window->part({[flagged](const std::string& name) { return flagged && name == "rerender.Y"; }});
+    const int first = w.y0() / factor, end = w.y1() / factor;
+    if (w.x0() != 0 || w.x1() != width * factor || w.y0() != covered * factor || w.y1() % factor != 0 ||
+        end > height || end <= first || flags.width() != width || flags.height() != end - first)
       throw BadInput(refused + " do not cover the frame's rows once each, in place");
-    const std::vector<float>& flagged = channelOf(flags, "rerender.Y", refused);
-    std::transform(flagged.begin(), flagged.end(), mask.begin() + static_cast<ptrdiff_t>(w.y0()) * width,
+    covered = end;
+    if (!flagged) continue;
+    const std::vector<float>& rows = channelOf(flags, "rerender.Y", refused);
+    std::transform(rows.begin(), rows.end(), mask.begin() + static_cast<ptrdiff_t>(first) * width,
                    [](float value) { return static_cast<uint8_t>(value > 0.5f ? 1 : 0); });
-    covered = w.y1();
   }
   if (covered != height) throw BadInput(refused + " do not cover the frame's rows once each, in place");
   output.joinedHeight = height;

@@ -12,6 +12,10 @@
 
 namespace pathfarm::farm {
 
+// The upsampling pipelines' keyframes are denoised at 1 / kUpsampleFactor of the shot's
+// resolution (in each dimension) and upsampled back.
+inline constexpr int kUpsampleFactor = 2;
+
 // The first input `matches` accepts; throws std::runtime_error naming `what` when none does.
 const TaskInput& findInput(const std::vector<TaskInput>& inputs, const std::function<bool(const TaskInput&)>& matches,
                            const std::string& what);
@@ -34,7 +38,13 @@ FrameImage partOf(const FrameImage& frame, const InputPart& wanted);
 // (takeDirectEmission), box-downsampled by `factor` (boxDownsample), read a strip of rows
 // at a time: a 1080p keyframe's render is more than a gigabyte whole. Both steps are per
 // pixel and per block, so the bits are those of the whole frame reduced at once.
-FrameImage reducedWithoutLight(const TaskInput& input, int width, int height, int factor);
+// A window of rows (`rows`, full-resolution rows, whole blocks) reduces to those rows / factor.
+FrameImage reducedWithoutLight(const TaskInput& input, int width, int height, int factor, const InputPart& rows = {});
+
+// Pastes a filter's output over the frame whose features it was given, with the filter's
+// record of what it did (its attributes named `record*`, e.g. pathfarm.denoise_skipped):
+// FrameImage::paste moves pixels only.
+void pasteFiltered(const FrameImage& filtered, const std::string& record, FrameImage& frame);
 
 // The rows of its frame a filter task computes: its window's (whole rows, else BadInput
 // naming `what`, e.g. "the upsample"), or every row without a window.
@@ -47,8 +57,15 @@ RowWindow rowsOf(const Lease& lease, const std::string& what);
 // frame's mask (a byte per pixel), read before anything else, and sets `output` to write
 // the windows top to bottom, each taken from its input when its turn comes, checked by
 // `check` and to have the first window's channels (whose attributes the frame takes).
+// A denoise's windows differ in two ways (JoinedFrame): they flag nothing, so hold no
+// `rerender.Y`, and dui's are of the frame at half resolution (the windows' rows / factor).
+struct JoinedFrame {
+  bool flagged = true;
+  int factor = 1;
+};
 std::vector<uint8_t> joinRowWindows(const Lease& lease, std::vector<TaskInput>& inputs, const std::string& what,
-                                    const std::function<void(const FrameImage&)>& check, TaskOutput& output);
+                                    const std::function<void(const FrameImage&)>& check, TaskOutput& output,
+                                    JoinedFrame joined = {});
 
 // Whether the lease is the join of its frame's windows: a task without a window whose
 // inputs include tasks of its own kind.

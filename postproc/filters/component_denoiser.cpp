@@ -125,13 +125,32 @@ struct Neighbour {
   const FrameImage* frame;
   NeighbourFrame which;
   const std::string* label;
+  int top = 0;  // the frame row of its row 0
 };
+
+// The current frame's motion towards a neighbour, placed in its frame for a window.
+MotionField motionOf(const FrameImage& current, NeighbourFrame which, const LayerSpec& layer, const DenoiseSettings& s) {
+  MotionField motion = motionTowards(current, which, layer.motionPrefix, s.label);
+  if (s.window) {
+    motion.top = s.window->currentTop;
+    motion.frameHeight = s.window->frameHeight;
+  }
+  return motion;
+}
+
+// Whether a neighbour takes part in a layer's filter: some pixel warps validly onto it.
+bool takesPart(const Neighbour& n, const LayerSpec& layer, const std::vector<float>& valid, const DenoiseSettings& s) {
+  if (!s.window) return std::any_of(valid.begin(), valid.end(), [](float v) { return v != 0.0f; });
+  const std::set<std::string>& reached =
+      n.which == NeighbourFrame::Previous ? s.window->previousReached : s.window->nextReached;
+  return reached.count(layer.component) > 0;
+}
 
 struct LayerResult {
   Planes color;  // filtered (irradiance for a component)
   std::vector<uint8_t> invalid;
   int frames = 1;
-  size_t fireflies = 0;  // of the current frame, spread instead of filtered
+  std::vector<size_t> fireflies;  // of the current frame, spread instead of filtered
 };
 
 // The guides of a firefly's spread among a layer's features (featureBuffers' order).
@@ -156,15 +175,17 @@ LayerResult filterLayer(const FrameImage& current, const std::vector<Neighbour>&
   std::vector<LayerFrame> loaded;
   std::vector<MotionField> motions;
   std::vector<std::vector<float>> valids;
+  std::vector<int> tops;
   for (const Neighbour& n : neighbours) {
-    MotionField motion = motionTowards(current, n.which, layer.motionPrefix, s.label);
+    MotionField motion = motionOf(current, n.which, layer, s);
     std::vector<float> valid = warpValidity(motion);
-    if (std::none_of(valid.begin(), valid.end(), [](float v) { return v != 0.0f; })) continue;
+    if (!takesPart(n, layer, valid, s)) continue;
     LayerFrame frame = loadLayer(*n.frame, layer, features, s);
     zero = zero && allZero(frame.color) && allZero(frame.variance);
     loaded.push_back(std::move(frame));
     motions.push_back(std::move(motion));
     valids.push_back(std::move(valid));
+    tops.push_back(n.top);
   }
   if (zero) {
     result.color = Planes(current.width(), current.height(), 3);
@@ -178,12 +199,12 @@ LayerResult filterLayer(const FrameImage& current, const std::vector<Neighbour>&
   center.features = std::move(first.features);
   for (size_t i = 0; i < loaded.size(); ++i) {
     NlMeansFrame& frame = input.frames.emplace_back();
-    frame.color = warpPlanes(loaded[i].color, motions[i]);
-    frame.variance = warpPlanes(loaded[i].variance, motions[i]);
+    frame.color = warpPlanes(loaded[i].color, motions[i], WarpLookup::Bilinear, tops[i]);
+    frame.variance = warpPlanes(loaded[i].variance, motions[i], WarpLookup::Bilinear, tops[i]);
     for (size_t g = 0; g < features.size(); ++g)
-      frame.features.push_back(
-          warpPlanes(loaded[i].features[g], motions[i],
-                     features[g].kind == FeatureKind::ExactMatch ? WarpLookup::Nearest : WarpLookup::Bilinear));
+      frame.features.push_back(warpPlanes(
+          loaded[i].features[g], motions[i],
+          features[g].kind == FeatureKind::ExactMatch ? WarpLookup::Nearest : WarpLookup::Bilinear, tops[i]));
     frame.valid = std::move(valids[i]);
   }
   // Every frame's fireflies are filtered without their excess, and the excess, spread,
@@ -200,7 +221,7 @@ LayerResult filterLayer(const FrameImage& current, const std::vector<Neighbour>&
         result.fireflies = split.fireflies;
         excess = Planes(current.width(), current.height(), static_cast<int>(split.excess.channels.size()));
       }
-      spread = spread || split.fireflies > 0;
+      spread = spread || !split.fireflies.empty();
       for (size_t p = 0; p < frames.size(); ++p) {
         const float weight = frame.valid.empty() ? 1.0f : frame.valid[p];
         frames[p] += weight;
@@ -222,6 +243,55 @@ LayerResult filterLayer(const FrameImage& current, const std::vector<Neighbour>&
   result.invalid = std::move(stats.invalidCenter);
   result.frames = static_cast<int>(input.frames.size());
   return result;
+}
+
+// The layers to filter.
+std::vector<LayerSpec> layersOf(const FrameImage& current, const DenoiseSettings& s) {
+  const std::vector<std::string> components = decompositionComponents(current);
+  std::vector<LayerSpec> layers;
+  if (s.mode == DenoiseMode::ColorOnly) {
+    LayerSpec beauty;
+    if (!components.empty()) {
+      const bool direct = std::find(components.begin(), components.end(), "diffuse_direct") != components.end();
+      beauty.featureComponent = direct ? "diffuse_direct" : components.front();
+    }
+    layers.push_back(beauty);
+    return layers;
+  }
+  if (components.empty())
+    throw std::invalid_argument(s.label +
+                                ": no \"pathfarm.decomposition\" attribute (not a decomposed render); the "
+                                "color-only mode filters such frames");
+  for (const std::string& c : components) layers.push_back({c, s.mode == DenoiseMode::Decomposition ? c : "", c + "."});
+  return layers;
+}
+
+// The rows of the current frame whose warped neighbours a wanted row depends on, on either
+// side: the search radius and patch, and the fireflies' reach in the warped frames.
+int warpedReach(const DenoiseSettings& s) {
+  return std::max(s.spatialRadius, s.temporalRadius) + s.patch + (s.spreadFireflies ? fireflyReach(s.fireflies) : 0);
+}
+
+int prefilterReach(const DenoiseSettings& s) {
+  return s.prefilterFeatures ? s.prefilter.radius + s.prefilter.patch : 0;
+}
+
+// Rows [first, end) of a motion field, placed in its frame.
+MotionField motionRows(const MotionField& motion, int first, int end) {
+  MotionField rows;
+  rows.width = motion.width;
+  rows.height = end - first;
+  rows.top = motion.top + first;
+  rows.frameHeight = motion.rowsOfFrame();
+  const auto cut = [&](const std::vector<float>& plane) {
+    if (plane.empty()) return plane;
+    return std::vector<float>(plane.begin() + static_cast<std::ptrdiff_t>(first) * motion.width,
+                              plane.begin() + static_cast<std::ptrdiff_t>(end) * motion.width);
+  };
+  rows.x = cut(motion.x);
+  rows.y = cut(motion.y);
+  rows.valid = cut(motion.valid);
+  return rows;
 }
 
 std::string describe(const DenoiseSettings& s, int framesGiven) {
@@ -259,32 +329,22 @@ FrameImage denoiseFrame(const FrameImage& current, const FrameImage* previous, c
   const DenoiseSettings& s = settings;
   if (current.width() <= 0 || current.height() <= 0) throw std::invalid_argument(s.label + ": the frame is empty");
   std::vector<Neighbour> neighbours;
-  if (previous != nullptr) neighbours.push_back({previous, NeighbourFrame::Previous, &s.previousLabel});
-  if (next != nullptr) neighbours.push_back({next, NeighbourFrame::Next, &s.nextLabel});
+  const DenoiseWindow whole{current.height(), 0, current.height()};
+  const DenoiseWindow& rows = s.window ? *s.window : whole;
+  if (rows.currentTop < 0 || rows.currentTop + current.height() > rows.frameHeight)
+    throw std::invalid_argument(s.label + ": its rows are not rows of a frame " + std::to_string(rows.frameHeight) +
+                                " rows tall");
+  if (previous != nullptr) neighbours.push_back({previous, NeighbourFrame::Previous, &s.previousLabel, rows.previousTop});
+  if (next != nullptr) neighbours.push_back({next, NeighbourFrame::Next, &s.nextLabel, rows.nextTop});
+  // A window's frames hold rows of their frames; whole frames are the same size.
   for (const Neighbour& n : neighbours)
-    if (n.frame->width() != current.width() || n.frame->height() != current.height())
+    if (n.frame->width() != current.width() ||
+        (s.window ? n.top < 0 || n.top + n.frame->height() > rows.frameHeight : n.frame->height() != current.height()))
       throw std::invalid_argument(*n.label + " is " + std::to_string(n.frame->width()) + "x" +
                                   std::to_string(n.frame->height()) + ", " + s.label + " is " +
                                   std::to_string(current.width()) + "x" + std::to_string(current.height()));
 
-  // The layers to filter.
-  const std::vector<std::string> components = decompositionComponents(current);
-  std::vector<LayerSpec> layers;
-  if (s.mode == DenoiseMode::ColorOnly) {
-    LayerSpec beauty;
-    if (!components.empty()) {
-      const bool direct = std::find(components.begin(), components.end(), "diffuse_direct") != components.end();
-      beauty.featureComponent = direct ? "diffuse_direct" : components.front();
-    }
-    layers.push_back(beauty);
-  } else {
-    if (components.empty())
-      throw std::invalid_argument(s.label +
-                                  ": no \"pathfarm.decomposition\" attribute (not a decomposed render); the "
-                                  "color-only mode filters such frames");
-    for (const std::string& c : components)
-      layers.push_back({c, s.mode == DenoiseMode::Decomposition ? c : "", c + "."});
-  }
+  const std::vector<LayerSpec> layers = layersOf(current, s);
 
   // Every channel, checked before any work.
   for (const LayerSpec& layer : layers) {
@@ -300,13 +360,24 @@ FrameImage denoiseFrame(const FrameImage& current, const FrameImage* previous, c
     }
   }
 
+  // The rows wanted, in the current frame's rows.
+  int first = 0, end = current.height();
+  if (s.window) {
+    first = s.window->first - s.window->currentTop;
+    end = s.window->end - s.window->currentTop;
+    if (first < 0 || end > current.height() || first >= end)
+      throw std::invalid_argument(s.label + ": the rows wanted are not among the rows given");
+  }
+  const size_t width = static_cast<size_t>(current.width());
   FrameImage out(current.width(), current.height());
   for (const char* c : kRgbChannels) out.addChannel(c);
   std::vector<uint8_t> skipped(current.pixelCount(), 0);
   size_t fireflies = 0;
   for (const LayerSpec& layer : layers) {
     const LayerResult filtered = filterLayer(current, neighbours, layer, s);
-    fireflies += filtered.fireflies;
+    fireflies += static_cast<size_t>(std::count_if(filtered.fireflies.begin(), filtered.fireflies.end(), [&](size_t p) {
+      return p / width >= static_cast<size_t>(first) && p / width < static_cast<size_t>(end);
+    }));
     for (size_t p = 0; p < skipped.size(); ++p) skipped[p] |= filtered.invalid[p];
     const std::vector<float>* coverage = coverageOf(current, layer);
     for (size_t c = 0; c < 3; ++c) {
@@ -329,9 +400,46 @@ FrameImage denoiseFrame(const FrameImage& current, const FrameImage* previous, c
 
   out.attributes() = current.attributes();
   out.attributes()["pathfarm.denoise"] = describe(s, 1 + static_cast<int>(neighbours.size()));
-  out.attributes()["pathfarm.denoise_skipped"] = std::to_string(std::count(skipped.begin(), skipped.end(), uint8_t{1}));
+  out.attributes()["pathfarm.denoise_skipped"] =
+      std::to_string(std::count(skipped.begin() + static_cast<std::ptrdiff_t>(first * width),
+                                skipped.begin() + static_cast<std::ptrdiff_t>(end * width), uint8_t{1}));
   out.attributes()["pathfarm.denoise_fireflies"] = std::to_string(fireflies);
-  return out;
+  if (first == 0 && end == current.height()) return out;
+  return out.crop(0, first, current.width(), end - first);
+}
+
+int denoiseReach(const DenoiseSettings& settings) { return warpedReach(settings) + prefilterReach(settings); }
+
+std::pair<int, int> denoiseNeighbourRows(const FrameImage& current, NeighbourFrame neighbour,
+                                         const DenoiseSettings& settings) {
+  const DenoiseSettings& s = settings;
+  if (!s.window) throw std::invalid_argument(s.label + ": neighbour rows are a window's question");
+  const int top = s.window->currentTop;
+  const int first = std::max(0, s.window->first - warpedReach(s) - top);
+  const int end = std::min(current.height(), s.window->end + warpedReach(s) - top);
+  int low = s.window->frameHeight, high = 0;
+  for (const LayerSpec& layer : layersOf(current, s)) {
+    if (first >= end) break;
+    const auto [from, to] = warpSourceRows(motionRows(motionOf(current, neighbour, layer, s), first, end));
+    if (from >= to) continue;
+    low = std::min(low, from - prefilterReach(s));
+    high = std::max(high, to + prefilterReach(s));
+  }
+  if (low >= high) return {0, 0};
+  return {std::max(0, low), std::min(s.window->frameHeight, high)};
+}
+
+std::set<std::string> neighbourLayersReaching(const FrameImage& rows, NeighbourFrame neighbour, int top,
+                                              int frameHeight, const DenoiseSettings& settings) {
+  std::set<std::string> reaching;
+  for (const LayerSpec& layer : layersOf(rows, settings)) {
+    MotionField motion = motionTowards(rows, neighbour, layer.motionPrefix, settings.label);
+    motion.top = top;
+    motion.frameHeight = frameHeight;
+    const std::vector<float> valid = warpValidity(motion);
+    if (std::any_of(valid.begin(), valid.end(), [](float v) { return v != 0.0f; })) reaching.insert(layer.component);
+  }
+  return reaching;
 }
 
 }  // namespace pathfarm

@@ -45,13 +45,16 @@
 // filtered (firefly_spread.h), are counted in `pathfarm.denoise_fireflies`. A non-finite
 // reflectance modulates as 0 (the guard: the filtered irradiance is the color).
 #include <optional>
+#include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "image/frame_image.h"
 #include "postproc/filters/decomposed_frame.h"
 #include "postproc/filters/firefly_spread.h"
 #include "postproc/filters/nlmeans.h"
+#include "postproc/filters/warp.h"
 
 namespace pathfarm {
 
@@ -64,6 +67,20 @@ enum class DenoiseMode {
 // "decomposition", "color", "no-features"; parseDenoiseMode throws std::invalid_argument.
 std::string denoiseModeName(DenoiseMode mode);
 DenoiseMode parseDenoiseMode(const std::string& name);
+
+// A window of rows denoised apart, as a filter task in windows does: the frames given hold
+// rows of frames `frameHeight` rows tall (the current frame from row currentTop, each
+// neighbour from its own), and only rows [first, end) of the frame are wanted. Given the
+// rows denoiseReach and denoiseNeighbourRows name, those rows are the whole frame's bits.
+// Whether a neighbour takes part is the whole frame's call (it does when some pixel warps
+// validly onto it, neighbourLayersReaching), which the rows alone cannot make: the layers
+// whose previous and next frame do are given (a component's name; "" the beauty).
+struct DenoiseWindow {
+  int frameHeight = 0;
+  int first = 0, end = 0;
+  int currentTop = 0, previousTop = 0, nextTop = 0;
+  std::set<std::string> previousReached, nextReached;
+};
 
 struct DenoiseSettings {
   DenoiseMode mode = DenoiseMode::Decomposition;
@@ -85,6 +102,8 @@ struct DenoiseSettings {
   // jointNlMeansOnContent and NlMeansSettings::validCentersOnly): the filter skips what no
   // such pixel compares. Pixels outside, and pixels without a sample, come out unspecified.
   std::optional<NlMeansArea> onlyWithin;
+  // Rows denoised apart from the rest of their frame (denoiseWindow...).
+  std::optional<DenoiseWindow> window;
   // Name the frames in error messages (their files, say).
   std::string label = "frame";
   std::string previousLabel = "previous frame";
@@ -93,8 +112,24 @@ struct DenoiseSettings {
 
 // The denoised frame: R, G, B, and in the decomposition modes every component's filtered
 // `c.color.R/G/B`; the attributes of `current` plus `pathfarm.denoise` (the mode and
-// parameters) and `pathfarm.denoise_skipped`. `previous` and `next` may be null.
+// parameters) and `pathfarm.denoise_skipped`. `previous` and `next` may be null. With a
+// window, its wanted rows alone, and the counts are theirs.
 FrameImage denoiseFrame(const FrameImage& current, const FrameImage* previous, const FrameImage* next,
                         const DenoiseSettings& settings);
+
+// The rows of the current frame a denoised row depends on, on either side: the search
+// radius and patch, the fireflies' reach (firefly_spread.h) and the features' prefilter.
+int denoiseReach(const DenoiseSettings& settings);
+
+// The rows [first, end) of the neighbour that the window's rows of `current` (the rows
+// [first - denoiseReach, end + denoiseReach) of its frame, or fewer at its edges) warp
+// from, with the reach of the neighbour's own feature prefilter; {0, 0} when none.
+std::pair<int, int> denoiseNeighbourRows(const FrameImage& current, NeighbourFrame neighbour,
+                                         const DenoiseSettings& settings);
+
+// The layers (component names; "" the beauty) of which some pixel of `rows` (rows
+// [top, top + height) of a frame frameHeight rows tall) warps validly onto the neighbour.
+std::set<std::string> neighbourLayersReaching(const FrameImage& rows, NeighbourFrame neighbour, int top,
+                                              int frameHeight, const DenoiseSettings& settings);
 
 }  // namespace pathfarm

@@ -181,7 +181,6 @@ FireflySplit splitFireflies(Planes& color, Planes& variance, const std::vector<f
   for (int y = 0; y < color.height; ++y)
     for (int x = 0; x < color.width; ++x)
       if (Firefly f; judge.judge(x, y, settings, f)) fireflies.push_back(f);
-  split.fireflies = fireflies.size();
   if (fireflies.empty()) return split;
 
   const std::vector<float> receiverLevel = receiverLevels(judge, fireflies, surface, color.width, color.height);
@@ -210,10 +209,8 @@ FireflySplit splitFireflies(Planes& color, Planes& variance, const std::vector<f
       }
     // The firefly itself is a receiver, so this holds unless its whole surround is black:
     // then nothing tells where its light belongs, and it stays.
-    if (!(total > 0.0f)) {
-      --split.fireflies;
-      continue;
-    }
+    if (!(total > 0.0f)) continue;
+    split.fireflies.push_back(p);
     for (size_t c = 0; c < channels; ++c) {
       const float excess = color.channels[c][p] * (1.0f - f.scale);
       color.channels[c][p] *= f.scale;

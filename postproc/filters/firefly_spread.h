@@ -60,7 +60,7 @@ struct FireflySurface {
 
 struct FireflySplit {
   Planes excess;          // the fireflies' light, spread; same size and channels as color
-  size_t fireflies = 0;   // pixels clamped
+  std::vector<size_t> fireflies;  // the pixels clamped, in row order
 };
 
 // How far the input reaches into a pixel's result: the color, clamped color and excess of

@@ -14,7 +14,8 @@ void checkField(const MotionField& motion) {
   const size_t pixels =
       static_cast<size_t>(std::max(0, motion.width)) * static_cast<size_t>(std::max(0, motion.height));
   if (motion.width <= 0 || motion.height <= 0 || motion.x.size() != pixels || motion.y.size() != pixels ||
-      (!motion.valid.empty() && motion.valid.size() != pixels))
+      (!motion.valid.empty() && motion.valid.size() != pixels) || motion.top < 0 ||
+      (motion.frameHeight > 0 && motion.top + motion.height > motion.frameHeight))
     throw std::invalid_argument("warp: the motion field's planes do not match its " + std::to_string(motion.width) +
                                 "x" + std::to_string(motion.height) + " pixels");
 }
@@ -25,13 +26,19 @@ struct Source {
   bool inside;
 };
 
+// Pixel (px, py) of the field, py its row in the field; the source's y is in frame rows.
 Source sourceOf(const MotionField& motion, size_t p, int px, int py) {
   const float mx = motion.x[p], my = motion.y[p];
-  if (!std::isfinite(mx) || !std::isfinite(my)) return {static_cast<float>(px), static_cast<float>(py), false};
-  const float sx = static_cast<float>(px) + mx, sy = static_cast<float>(py) + my;
+  const float frameY = static_cast<float>(motion.top + py);
+  if (!std::isfinite(mx) || !std::isfinite(my)) return {static_cast<float>(px), frameY, false};
+  const float sx = static_cast<float>(px) + mx, sy = frameY + my;
   const bool inside = sx >= -0.5f && sx < static_cast<float>(motion.width) - 0.5f && sy >= -0.5f &&
-                      sy < static_cast<float>(motion.height) - 0.5f;
+                      sy < static_cast<float>(motion.rowsOfFrame()) - 0.5f;
   return {sx, sy, inside};
+}
+
+bool motionHolds(const MotionField& motion, size_t p) {
+  return motion.valid.empty() || (motion.valid[p] != 0.0f && !std::isnan(motion.valid[p]));
 }
 
 }  // namespace
@@ -54,24 +61,44 @@ std::vector<float> warpValidity(const MotionField& motion) {
   for (int y = 0; y < motion.height; ++y) {
     for (int x = 0; x < motion.width; ++x) {
       const size_t p = static_cast<size_t>(y) * static_cast<size_t>(motion.width) + static_cast<size_t>(x);
-      const bool motionHolds = motion.valid.empty() || (motion.valid[p] != 0.0f && !std::isnan(motion.valid[p]));
-      valid[p] = motionHolds && sourceOf(motion, p, x, y).inside ? 1.0f : 0.0f;
+      valid[p] = motionHolds(motion, p) && sourceOf(motion, p, x, y).inside ? 1.0f : 0.0f;
     }
   }
   return valid;
 }
 
-Planes warpPlanes(const Planes& neighbour, const MotionField& motion, WarpLookup lookup) {
+std::pair<int, int> warpSourceRows(const MotionField& motion) {
   checkField(motion);
-  if (neighbour.width != motion.width || neighbour.height != motion.height)
+  int first = motion.rowsOfFrame(), end = 0;
+  for (int y = 0; y < motion.height; ++y)
+    for (int x = 0; x < motion.width; ++x) {
+      const size_t p = static_cast<size_t>(y) * static_cast<size_t>(motion.width) + static_cast<size_t>(x);
+      const Source source = sourceOf(motion, p, x, y);
+      if (!motionHolds(motion, p) || !source.inside) continue;
+      // Bilinear taps at floor(y) and the row below; the nearest pixel is one of them.
+      const int row = static_cast<int>(std::floor(std::max(source.y, 0.0f)));
+      first = std::min(first, row);
+      end = std::max(end, std::min(row + 2, motion.rowsOfFrame()));
+    }
+  return first < end ? std::pair{first, end} : std::pair{0, 0};
+}
+
+Planes warpPlanes(const Planes& neighbour, const MotionField& motion, WarpLookup lookup, int neighbourTop) {
+  checkField(motion);
+  const int frameRows = motion.rowsOfFrame();
+  if (neighbour.width != motion.width || neighbour.height <= 0 || neighbourTop < 0 ||
+      neighbourTop + neighbour.height > frameRows)
     throw std::invalid_argument("warp: the neighbour frame is " + std::to_string(neighbour.width) + "x" +
-                                std::to_string(neighbour.height) + ", its motion field " +
-                                std::to_string(motion.width) + "x" + std::to_string(motion.height));
+                                std::to_string(neighbour.height) + " from row " + std::to_string(neighbourTop) +
+                                ", its motion field " + std::to_string(motion.width) + "x" +
+                                std::to_string(frameRows));
   for (const auto& plane : neighbour.channels)
     if (plane.size() != neighbour.pixelCount())
       throw std::invalid_argument("warp: a plane does not hold the frame's pixels");
   const int w = motion.width, h = motion.height;
   const size_t W = static_cast<size_t>(w);
+  // A frame row of the source, as a row of `neighbour`.
+  const auto held = [&](int frameRow) { return std::clamp(frameRow - neighbourTop, 0, neighbour.height - 1); };
   Planes out(w, h, static_cast<int>(neighbour.channels.size()));
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y != rows.end(); ++y) {
@@ -79,15 +106,16 @@ Planes warpPlanes(const Planes& neighbour, const MotionField& motion, WarpLookup
         const size_t p = static_cast<size_t>(y) * W + static_cast<size_t>(x);
         const Source source = sourceOf(motion, p, x, y);
         const float sx = std::clamp(source.x, 0.0f, static_cast<float>(w - 1));
-        const float sy = std::clamp(source.y, 0.0f, static_cast<float>(h - 1));
+        const float sy = std::clamp(source.y, 0.0f, static_cast<float>(frameRows - 1));
         if (lookup == WarpLookup::Nearest) {
-          const size_t q = static_cast<size_t>(std::lround(sy)) * W + static_cast<size_t>(std::lround(sx));
+          const size_t q = static_cast<size_t>(held(static_cast<int>(std::lround(sy)))) * W +
+                           static_cast<size_t>(std::lround(sx));
           for (size_t c = 0; c < out.channels.size(); ++c) out.channels[c][p] = neighbour.channels[c][q];
           continue;
         }
-        const int x0 = static_cast<int>(std::floor(sx)), y0 = static_cast<int>(std::floor(sy));
-        const float fx = sx - static_cast<float>(x0), fy = sy - static_cast<float>(y0);
-        const int x1 = std::min(x0 + 1, w - 1), y1 = std::min(y0 + 1, h - 1);
+        const int x0 = static_cast<int>(std::floor(sx)), frameY0 = static_cast<int>(std::floor(sy));
+        const float fx = sx - static_cast<float>(x0), fy = sy - static_cast<float>(frameY0);
+        const int x1 = std::min(x0 + 1, w - 1), y0 = held(frameY0), y1 = held(std::min(frameY0 + 1, frameRows - 1));
         // Only taps of non-zero weight are read: an integer motion copies exactly, and a
         // broken value next to the source does not leak into it.
         const size_t taps[4] = {static_cast<size_t>(y0) * W + static_cast<size_t>(x0),

@@ -326,3 +326,61 @@ TEST(ComponentDenoiser, DecomposedDenoiseBeatsColorOnlyOnARenderedFrame) {
 
 }  // namespace
 }  // namespace pathfarm
+
+namespace pathfarm {
+namespace {
+
+// Rows of a frame denoised apart, given the rows denoiseReach and denoiseNeighbourRows name
+// and which neighbours the whole frame's motion reaches, are the whole frame's rows, bit
+// for bit, with the counts of those rows. The light moves 100 rows a frame, so the
+// neighbours' rows lie far from the window's, and a firefly sits above the window. Read at
+// the window's own rows instead, the neighbours give other bits.
+TEST(ComponentDenoiser, AWindowOfRowsIsTheWholeFramesRows) {
+  constexpr int kFirst = 150, kEnd = 180, kMotionRows = 100;
+  SyntheticShot shot;
+  shot.width = 32;
+  shot.height = 300;
+  std::vector<FrameImage> frames = {shot.frame(-1, 11), shot.frame(0, 12), shot.frame(1, 13)};
+  for (FrameImage& frame : frames)
+    for (const std::string prefix : {"diffuse.", ""}) {
+      std::fill(frame.channel(prefix + "motion.Y").begin(), frame.channel(prefix + "motion.Y").end(),
+                static_cast<float>(kMotionRows));
+      std::fill(frame.channel(prefix + "motion_back.Y").begin(), frame.channel(prefix + "motion_back.Y").end(),
+                -static_cast<float>(kMotionRows));
+    }
+  addFirefly(frames[1], 10, kFirst - 20, 60.0f);
+  const FrameImage whole = denoiseFrame(frames[1], &frames[0], &frames[2], DenoiseSettings{});
+  ASSERT_NE(whole.attributes().at("pathfarm.denoise_fireflies"), "0");
+  const FrameImage expected = whole.crop(0, kFirst, shot.width, kEnd - kFirst);
+
+  const auto windowed = [&](bool rowsTheMotionLeadsTo) {
+    DenoiseSettings s;
+    DenoiseWindow& window = s.window.emplace();
+    window.frameHeight = shot.height;
+    window.first = kFirst;
+    window.end = kEnd;
+    window.previousReached = neighbourLayersReaching(frames[1], NeighbourFrame::Previous, 0, shot.height, s);
+    window.nextReached = neighbourLayersReaching(frames[1], NeighbourFrame::Next, 0, shot.height, s);
+    window.currentTop = std::max(0, kFirst - denoiseReach(s));
+    const int currentEnd = std::min(shot.height, kEnd + denoiseReach(s));
+    const FrameImage current = frames[1].crop(0, window.currentTop, shot.width, currentEnd - window.currentTop);
+    const auto rowsOf = [&](const FrameImage& frame, NeighbourFrame which, int& top) {
+      auto [first, end] = std::pair{window.currentTop, currentEnd};
+      if (rowsTheMotionLeadsTo) std::tie(first, end) = denoiseNeighbourRows(current, which, s);
+      top = first;
+      return frame.crop(0, first, shot.width, end - first);
+    };
+    const FrameImage previous = rowsOf(frames[0], NeighbourFrame::Previous, window.previousTop);
+    const FrameImage next = rowsOf(frames[2], NeighbourFrame::Next, window.nextTop);
+    return denoiseFrame(current, &previous, &next, s);
+  };
+  const FrameImage rows = windowed(true);
+  ASSERT_EQ(rows.channelNames(), expected.channelNames());
+  for (const std::string& name : expected.channelNames())
+    ASSERT_EQ(rows.channel(name), expected.channel(name)) << name;
+  EXPECT_EQ(rows.attributes().at("pathfarm.denoise_fireflies"), "0") << "the firefly is above the window";
+  EXPECT_NE(windowed(false).channel("G"), expected.channel("G"));
+}
+
+}  // namespace
+}  // namespace pathfarm

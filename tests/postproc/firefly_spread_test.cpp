@@ -50,7 +50,7 @@ TEST(FireflySpread, AFireflysLightIsKeptAndSpreadByTheGaussian) {
   image.set(kFlatCenter, kFlatCenter, 50.0f, 2500.0f);  // one sample of 50 x spp: its error is its value
   const double before = sumOf(image.color.channels[1]);
   const FireflySplit split = splitFireflies(image.color, image.variance, {}, {}, radiusEight());
-  ASSERT_EQ(split.fireflies, 1u);
+  ASSERT_EQ(split.fireflies.size(), 1u);
   const size_t center = static_cast<size_t>(kFlatCenter * kFlatSize + kFlatCenter);
   // Clamped to twice its neighbours' median, its relative error unchanged.
   EXPECT_FLOAT_EQ(image.color.channels[1][center], 2.0f);
@@ -74,7 +74,7 @@ TEST(FireflySpread, ABrighterFireflySpreadsFartherToTheSameFaintGlow) {
     FlatWall image;
     image.set(kFlatCenter, kFlatCenter, light, light * light);
     const FireflySplit split = splitFireflies(image.color, image.variance, {}, {});
-    ASSERT_EQ(split.fireflies, 1u);
+    ASSERT_EQ(split.fireflies.size(), 1u);
     const double excess = light - 2.0;
     int radius = 1;
     while (excess / gaussianMass(radius, radius / 2.0) > glow) ++radius;
@@ -96,7 +96,7 @@ TEST(FireflySpread, ACrowdOfThemIsACausticAndKeepsItsLight) {
     for (int x = kFlatCenter - 3; x <= kFlatCenter + 3; ++x) caustic.set(x, y, 20.0f, 400.0f);
   const double before = sumOf(caustic.color.channels[0]);
   const FireflySplit split = splitFireflies(caustic.color, caustic.variance, {}, {});
-  EXPECT_EQ(split.fireflies, 12u);
+  EXPECT_EQ(split.fireflies.size(), 12u);
   double inside = 0;
   for (int y = kFlatCenter - 3; y <= kFlatCenter + 3; ++y)
     for (int x = kFlatCenter - 3; x <= kFlatCenter + 3; ++x) {
@@ -109,7 +109,7 @@ TEST(FireflySpread, ACrowdOfThemIsACausticAndKeepsItsLight) {
   FlatWall pair;
   pair.set(kFlatCenter, kFlatCenter, 20.0f, 400.0f);
   pair.set(kFlatCenter + 1, kFlatCenter + 1, 20.0f, 400.0f);
-  EXPECT_EQ(splitFireflies(pair.color, pair.variance, {}, {}).fireflies, 2u);
+  EXPECT_EQ(splitFireflies(pair.color, pair.variance, {}, {}).fireflies.size(), 2u);
 }
 
 TEST(FireflySpread, ABrightDetailEverySampleSeesIsKept) {
@@ -117,7 +117,7 @@ TEST(FireflySpread, ABrightDetailEverySampleSeesIsKept) {
   image.set(kFlatCenter, kFlatCenter, 50.0f, 0.25f);  // bright, but a standard error of 1 %
   const Planes before = image.color;
   const FireflySplit split = splitFireflies(image.color, image.variance, {}, {});
-  EXPECT_EQ(split.fireflies, 0u);
+  EXPECT_EQ(split.fireflies.size(), 0u);
   EXPECT_EQ(image.color.channels, before.channels);
   EXPECT_EQ(sumOf(split.excess.channels[0]), 0.0);
 }
@@ -126,9 +126,9 @@ TEST(FireflySpread, NoiseOfTheNeighboursOwnSizeIsNoFirefly) {
   FlatWall image;
   for (auto& plane : image.variance.channels) std::fill(plane.begin(), plane.end(), 1.0f);  // error 1 on a value of 1
   image.set(kFlatCenter, kFlatCenter, 3.5f, 4.0f);  // 2.5 of its neighbours' errors above: noise, not a firefly
-  EXPECT_EQ(splitFireflies(image.color, image.variance, {}, {}).fireflies, 0u);
+  EXPECT_EQ(splitFireflies(image.color, image.variance, {}, {}).fireflies.size(), 0u);
   image.set(kFlatCenter, kFlatCenter, 5.5f, 4.0f);  // 4.5 errors above
-  EXPECT_EQ(splitFireflies(image.color, image.variance, {}, {}).fireflies, 1u);
+  EXPECT_EQ(splitFireflies(image.color, image.variance, {}, {}).fireflies.size(), 1u);
 }
 
 TEST(FireflySpread, TheLightStaysOnItsSurface) {
@@ -143,7 +143,7 @@ TEST(FireflySpread, TheLightStaysOnItsSurface) {
     }
   image.set(kFlatCenter, kFlatCenter, 50.0f, 2500.0f);
   const FireflySplit split = splitFireflies(image.color, image.variance, {}, {&normal, &objectId}, radiusEight());
-  ASSERT_EQ(split.fireflies, 1u);
+  ASSERT_EQ(split.fireflies.size(), 1u);
   double kept = 0;
   for (int y = 0; y < kFlatSize; ++y)
     for (int x = 0; x < kFlatSize; ++x) {
@@ -165,7 +165,7 @@ TEST(FireflySpread, AShadowBesideTheFireflyTakesLittle) {
     for (int x = 24; x < kFlatSize; ++x) image.set(x, y, 0.1f, 1e-4f);
   image.set(kFlatCenter, kFlatCenter, 50.0f, 2500.0f);
   const FireflySplit split = splitFireflies(image.color, image.variance, {}, {}, radiusEight());
-  ASSERT_EQ(split.fireflies, 1u);
+  ASSERT_EQ(split.fireflies.size(), 1u);
   const auto at = [&](int x, int y) { return split.excess.channels[0][static_cast<size_t>(y * kFlatSize + x)]; };
   EXPECT_NEAR(at(kFlatCenter + 6, kFlatCenter), 0.1f * at(kFlatCenter - 6, kFlatCenter), 1e-6f);
   EXPECT_NEAR(at(kFlatCenter + 5, kFlatCenter + 3), 0.1f * at(kFlatCenter - 5, kFlatCenter + 3), 1e-6f);
@@ -181,7 +181,7 @@ TEST(FireflySpread, PixelsWithoutASampleTakeTheirShareAway) {
     for (int x = kFlatCenter - 1; x <= kFlatCenter + 1; ++x) valid[static_cast<size_t>(y * kFlatSize + x)] = 1.0f;
   image.set(kFlatCenter, kFlatCenter, 50.0f, 2500.0f);
   const FireflySplit split = splitFireflies(image.color, image.variance, valid, {}, radiusEight());
-  ASSERT_EQ(split.fireflies, 1u);
+  ASSERT_EQ(split.fireflies.size(), 1u);
   EXPECT_NEAR(sumOf(split.excess.channels[2]), 48.0 * gaussianMass(1) / gaussianMass(8), 1e-4);
   for (size_t p = 0; p < valid.size(); ++p)
     if (valid[p] == 0.0f) {

@@ -94,7 +94,8 @@ TEST(Planner, AFrameTallerThanAFilterWindowIsFilteredWindowByWindow) {
     return kinds;
   };
   for (const auto& [kind, frames] :
-       {std::pair{TASK_COMPOSITE, 10}, std::pair{TASK_UPSAMPLE, 4}, std::pair{TASK_INTERPOLATE, 6}}) {
+       {std::pair{TASK_COMPOSITE, 10}, std::pair{TASK_DENOISE, 4}, std::pair{TASK_UPSAMPLE, 4},
+        std::pair{TASK_INTERPOLATE, 6}}) {
     EXPECT_EQ(std::count_if(plan.begin(), plan.end(), [&](const PlannedTask& task) { return task.kind == kind; }),
               frames * 5);
     int joins = 0;
@@ -113,8 +114,14 @@ TEST(Planner, AFrameTallerThanAFilterWindowIsFilteredWindowByWindow) {
         EXPECT_EQ(window.params.window().x1(), 64);
         EXPECT_EQ(window.params.window().y1() - window.params.window().y0(), 16);
         for (int y = window.params.window().y0(); y < window.params.window().y1(); ++y) ++rows[static_cast<size_t>(y)];
+        if (kind == TASK_DENOISE) {  // the renders of the keyframe and its neighbours, whole
+          EXPECT_GE(window.dependencies.size(), 2u);
+          for (const size_t d : window.dependencies) EXPECT_EQ(plan[d].kind, TASK_ASSEMBLE_FRAME);
+          continue;
+        }
         if (kind == TASK_UPSAMPLE) {
           EXPECT_EQ(kindsOf(window.dependencies), (std::multiset<TaskKind>{TASK_DENOISE, TASK_ASSEMBLE_FRAME}));
+          for (const size_t d : window.dependencies) EXPECT_FALSE(plan[d].params.has_window()) << "the joined denoise";
           continue;
         }
         if (kind == TASK_INTERPOLATE) {  // both keyframes' joined upsamples, the pair's flows, its features
@@ -137,6 +144,15 @@ TEST(Planner, AFrameTallerThanAFilterWindowIsFilteredWindowByWindow) {
   for (const PlannedTask& task : plan)
     if (task.kind == TASK_FLOW)
       for (const size_t d : task.dependencies) EXPECT_FALSE(plan[d].params.has_window()) << "a flow reads the joined upsample";
+  // d: the denoise writes the shot's frame, so its join is the shot's output.
+  spec.set_pipeline(PIPELINE_D);
+  size_t denoiseWindows = 0;
+  for (const PlannedTask& task : planShot(spec)) {
+    if (task.kind != TASK_DENOISE) continue;
+    EXPECT_EQ(task.output, !task.params.has_window());
+    denoiseWindows += task.params.has_window();
+  }
+  EXPECT_EQ(denoiseWindows, 10u * 4u);
   for (const int refused : {-1, kMinFilterWindowRows - 1}) {
     spec.set_filter_window_rows(refused);
     EXPECT_THROW(planShot(spec), PlanError) << refused;

@@ -3,6 +3,8 @@
 // That frame must be the one the composite would have written.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <map>
 
 #include "image/exr_io.h"
@@ -13,6 +15,7 @@
 #include "test_support.h"
 #include "task_output_bytes.h"
 #include "worker/direct_emission.h"
+#include "contract/pipeline.h"
 #include "worker/task_runner.h"
 
 namespace pathfarm::farm {
@@ -124,6 +127,87 @@ TEST(DenoiseTask, DsFullSampleKeyframesErrLessThanWithThePapersCancellation) {
   const double unfiltered = compareImages(decodeExr(chunks.at("render1"), "render"), reference, beauty).relMse;
   EXPECT_LT(withOne, withFour) << "cancellation 1: " << withOne << ", 4: " << withFour;
   EXPECT_LT(withFour, 0.5 * unfiltered) << "cancellation 4: " << withFour << ", unfiltered: " << unfiltered;
+}
+
+// A keyframe denoised window by window (each task reading the rows its filter reaches, of
+// it and of its neighbours where its motion leads) and joined is the same bytes as the
+// keyframe denoised by one task: d's final frame, and dui's half-resolution keyframe; read
+// from files by a worker that keeps nothing decoded, too. The walkthrough's camera moves,
+// and its lamps make fireflies, whose spread crosses the window borders.
+TEST(DenoiseTask, WindowsDenoisedApartAndJoinedAreTheWholeFramesBytes) {
+  constexpr int kWidth = 32, kHeight = 600, kFrame = 12;
+  std::map<std::string, std::string> chunks;
+  for (int64_t frame = kFrame - 2; frame <= kFrame + 2; ++frame)
+    chunks["render" + std::to_string(frame)] = encodeExr(
+        test_support::renderDecomposed("scenes/walkthrough/scene.json", kWidth, kHeight, 4, frame), ExrCompression::Fast);
+  const auto folder = test_support::processTemporaryFolder("pathfarm_denoise_windows");
+  TaskRunner runner(1, folder / "scenes", folder / "outgoing");
+  TaskRunner fromFiles(1, folder / "scenes", folder / "outgoing", 0);
+  std::atomic<double> progress{0};
+  std::atomic<bool> abandon{false};
+  const auto run = [&](const Lease& lease, bool files) {
+    if (!files) return runner.run(lease, [&](const ChunkRef& ref) { return chunks.at(ref.sha256()); }, progress, abandon);
+    return fromFiles.run(
+        lease, [](const ChunkRef&) -> std::string { throw std::logic_error("read in place"); }, progress, abandon,
+        [&](const ChunkRef& ref) {
+          const std::filesystem::path file = folder / (ref.sha256() + ".exr");
+          std::ofstream(file, std::ios::binary) << chunks.at(ref.sha256());
+          return file;
+        });
+  };
+  const auto addInput = [](Lease& lease, const std::string& name, TaskKind kind, const TaskParams& params) {
+    lease.add_inputs()->set_sha256(name);
+    lease.add_input_kinds(kind);
+    *lease.add_input_params() = params;
+  };
+  for (const Pipeline pipeline : {PIPELINE_D, PIPELINE_DUI}) {
+    SCOPED_TRACE(pipelineName(pipeline));
+    const int interval = pipeline == PIPELINE_DUI ? 2 : 1;
+    Lease noInputs;
+    noInputs.set_kind(TASK_DENOISE);
+    ShotSpec& spec = *noInputs.mutable_spec();
+    spec.set_width(kWidth);
+    spec.set_height(kHeight);
+    spec.set_spp(16);
+    spec.set_tile(16);
+    spec.set_pipeline(pipeline);
+    spec.set_frame_start(kFrame - interval);
+    spec.set_frame_end(kFrame + interval);
+    spec.set_keyframe_interval(interval);
+    spec.set_filter_window_rows(150);
+    noInputs.mutable_params()->set_frame(kFrame);
+    noInputs.mutable_params()->set_role(pipeline == PIPELINE_D ? ROLE_OUTPUT : ROLE_UNSPECIFIED);
+    const auto withRenders = [&](Lease lease) {
+      for (int64_t frame = kFrame - interval; frame <= kFrame + interval; frame += interval) {
+        TaskParams params;
+        params.set_frame(frame);
+        addInput(lease, "render" + std::to_string(frame), TASK_ASSEMBLE_FRAME, params);
+      }
+      return lease;
+    };
+    const std::string expected = outputBytes(run(withRenders(noInputs), false));
+    const FrameImage whole = decodeExr(expected, "the whole frame's denoise");
+    ASSERT_NE(whole.attributes().at("pathfarm.denoise_fireflies"), "0") << "no firefly: their spread is not tried";
+
+    const std::vector<RowWindow> windows = filterWindowsOf(spec);
+    ASSERT_EQ(windows.size(), 4u);
+    Lease join = noInputs;
+    for (const RowWindow& rows : windows) {
+      Lease part = noInputs;
+      PixelWindow& w = *part.mutable_params()->mutable_window();
+      w.set_x1(kWidth);
+      w.set_y0(rows.first);
+      w.set_y1(rows.end);
+      part = withRenders(part);
+      const TaskOutput output = run(part, false);
+      const std::string name = std::string(pipelineName(pipeline)) + "window" + std::to_string(rows.first);
+      chunks[name] = outputBytes(output);
+      EXPECT_TRUE(outputBytes(run(part, true)) == chunks[name]) << "rows " << rows.first << " read from files";
+      addInput(join, name, TASK_DENOISE, part.params());
+    }
+    EXPECT_TRUE(outputBytes(run(join, false)) == expected) << "the joined windows differ from the whole frame's";
+    EXPECT_TRUE(outputBytes(run(join, true)) == expected) << "joined from files";
+  }
 }
 
 }  // namespace
