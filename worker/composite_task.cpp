@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <limits>
 #include <map>
-#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <tuple>
@@ -232,15 +231,10 @@ TaskOutput joinedWindows(const Lease& lease, std::vector<TaskInput>& inputs) {
   const std::vector<uint8_t> mask = joinRowWindows(
       lease, inputs, "composites", [label](const FrameImage& rows) { requireFinalColors(rows, label); }, output);
   output.compression = ExrCompression::Small;  // the shot's frame
-  auto record = std::make_shared<std::map<std::string, std::string>>();
-  recordRerender(*record, static_cast<size_t>(std::count(mask.begin(), mask.end(), 1)), lease.spec().pipeline(),
+  std::map<std::string, std::string> record;
+  recordRerender(record, static_cast<size_t>(std::count(mask.begin(), mask.end(), 1)), lease.spec().pipeline(),
                  output);
-  // The frame's attributes are the first window's, with the record.
-  output.rowWindows.front() = [first = std::move(output.rowWindows.front()), record] {
-    FrameImage rows = first();
-    for (const auto& [key, value] : *record) rows.attributes()[key] = value;
-    return rows;
-  };
+  addJoinedAttributes(output, std::move(record));
   return output;
 }
 

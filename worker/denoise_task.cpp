@@ -1,9 +1,12 @@
 // Denoising of keyframes (worker/filter_tasks.h), whole or in windows of rows.
 #include <algorithm>
-#include <memory>
+#include <map>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <string>
+#include <tuple>
+#include <utility>
 
 #include "contract/pipeline.h"
 #include "postproc/filters/component_denoiser.h"
@@ -96,7 +99,7 @@ TaskOutput joinedDenoise(const Lease& lease, std::vector<TaskInput>& inputs) {
         if (final) requireFinalColors(rows, label);
       },
       output, {.flagged = final, .factor = stagesOf(lease.spec().pipeline()).upsample ? kUpsampleFactor : 1});
-  auto record = std::make_shared<std::map<std::string, std::string>>();
+  std::map<std::string, std::string> record;
   for (const char* count : kDenoiseCounts) {
     size_t sum = 0;
     for (const TaskInput& window : inputs) {
@@ -109,18 +112,14 @@ TaskOutput joinedDenoise(const Lease& lease, std::vector<TaskInput>& inputs) {
         throw BadInput("a window's denoise of " + label + " has " + count + " \"" + found->second + "\"");
       }
     }
-    (*record)[count] = std::to_string(sum);
+    record[count] = std::to_string(sum);
   }
   // d: the shot's frame, which nothing re-renders.
   if (final) {
     output.compression = ExrCompression::Small;
-    recordRerender(*record, 0, lease.spec().pipeline(), output);
+    recordRerender(record, 0, lease.spec().pipeline(), output);
   }
-  output.rowWindows.front() = [first = std::move(output.rowWindows.front()), record] {
-    FrameImage rows = first();
-    for (const auto& [key, value] : *record) rows.attributes()[key] = value;
-    return rows;
-  };
+  addJoinedAttributes(output, std::move(record));
   return output;
 }
 

@@ -160,6 +160,15 @@ std::vector<uint8_t> joinRowWindows(const Lease& lease, std::vector<TaskInput>& 
   return mask;
 }
 
+void addJoinedAttributes(TaskOutput& output, std::map<std::string, std::string> attributes) {
+  if (output.rowWindows.empty()) throw std::logic_error("addJoinedAttributes: the output joins no windows");
+  output.rowWindows.front() = [first = std::move(output.rowWindows.front()), added = std::move(attributes)] {
+    FrameImage rows = first();
+    for (const auto& [key, value] : added) rows.attributes()[key] = value;
+    return rows;
+  };
+}
+
 bool joinsWindows(const Lease& lease, const std::vector<TaskInput>& inputs) {
   return !lease.params().has_window() &&
          std::any_of(inputs.begin(), inputs.end(), [&](const TaskInput& input) { return input.kind == lease.kind(); });

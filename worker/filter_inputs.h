@@ -3,6 +3,7 @@
 // re-render mask into render tiles.
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -66,6 +67,9 @@ struct JoinedFrame {
 std::vector<uint8_t> joinRowWindows(const Lease& lease, std::vector<TaskInput>& inputs, const std::string& what,
                                     const std::function<void(const FrameImage&)>& check, TaskOutput& output,
                                     JoinedFrame joined = {});
+
+// Adds `attributes` to the frame a join writes (it takes its first window's attributes).
+void addJoinedAttributes(TaskOutput& output, std::map<std::string, std::string> attributes);
 
 // Whether the lease is the join of its frame's windows: a task without a window whose
 // inputs include tasks of its own kind.

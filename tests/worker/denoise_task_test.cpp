@@ -193,12 +193,7 @@ TEST(DenoiseTask, WindowsDenoisedApartAndJoinedAreTheWholeFramesBytes) {
     ASSERT_EQ(windows.size(), 4u);
     Lease join = noInputs;
     for (const RowWindow& rows : windows) {
-      Lease part = noInputs;
-      PixelWindow& w = *part.mutable_params()->mutable_window();
-      w.set_x1(kWidth);
-      w.set_y0(rows.first);
-      w.set_y1(rows.end);
-      part = withRenders(part);
+      const Lease part = withRenders(windowOf(noInputs, rows));
       const TaskOutput output = run(part, false);
       const std::string name = std::string(pipelineName(pipeline)) + "window" + std::to_string(rows.first);
       chunks[name] = outputBytes(output);

@@ -1,7 +1,7 @@
 #pragma once
 // The bytes of a filter task's output chunk, however the task gave them (TaskOutput: the
 // bytes, a file holding them, or a frame or windows of rows the worker writes to a file,
-// written here as the worker writes them).
+// written here as the worker writes them); and a filter task's lease for a window of rows.
 #include <unistd.h>
 
 #include <filesystem>
@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "contract/pipeline.h"
 #include "image/exr_io.h"
 #include "worker/filter_tasks.h"
 
@@ -26,6 +27,16 @@ inline std::string outputBytes(TaskOutput output) {
   std::ostringstream bytes;
   bytes << file.rdbuf();
   return bytes.str();
+}
+
+// `lease` (of no window, with no inputs) for rows [first, end) of its frame, whole rows.
+inline Lease windowOf(Lease lease, const RowWindow& rows) {
+  PixelWindow& window = *lease.mutable_params()->mutable_window();
+  window.set_x0(0);
+  window.set_x1(lease.spec().width());
+  window.set_y0(rows.first);
+  window.set_y1(rows.end);
+  return lease;
 }
 
 }  // namespace pathfarm::farm

@@ -147,11 +147,7 @@ TEST(UpsampleTask, WindowsUpsampledApartAndJoinedAreTheWholeFramesBytes) {
   Lease join = noInputs;
   std::map<std::string, double> summed;
   for (const RowWindow& rows : windows) {
-    Lease part = noInputs;
-    PixelWindow& w = *part.mutable_params()->mutable_window();
-    w.set_x1(kWidth);
-    w.set_y0(rows.first);
-    w.set_y1(rows.end);
+    Lease part = windowOf(noInputs, rows);
     addInput(part, "low", TASK_DENOISE, params);
     addInput(part, "render", TASK_ASSEMBLE_FRAME, params);
     const TaskOutput output = run(part);
