@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 #include <set>
 #include <vector>
 
 #include "image/exr_io.h"
 #include "worker/failure_class.h"
+#include "worker/filter_tasks.h"
 
 namespace pathfarm::farm {
 namespace {
@@ -82,8 +84,12 @@ void assembleFrame(const Lease& lease, const ChunkFileFetcher& fetch, const std:
   const bool keptFrame = !lease.params().has_window() &&
                          (lease.params().role() == ROLE_OUTPUT || lease.params().role() == ROLE_UNSPECIFIED);
   const std::vector<std::string> channels(header.channels.begin(), header.channels.end());
-  ExrStripWriter writer(file, width, height, channels, header.attributes,
-                        keptFrame ? ExrCompression::Small : ExrCompression::Fast);
+  // The tiles are the task's input; the file it writes is this worker's.
+  std::optional<ExrStripWriter> writer;
+  writingOutput([&] {
+    writer.emplace(file, width, height, channels, header.attributes,
+                   keptFrame ? ExrCompression::Small : ExrCompression::Fast);
+  });
 
   // Then strip by strip: the rows of every tile the strip crosses, pasted in input order.
   int top = 0;
@@ -99,11 +105,11 @@ void assembleFrame(const Lease& lease, const ChunkFileFetcher& fetch, const std:
         throw BadInput(labelOf(ref) + " holds a non-finite value (" + bad + "): not pasted into the frame");
       strip.paste(rows, tile.x0, from - top);
     }
-    writer.write(strip);
+    writingOutput([&] { writer->write(strip); });
     top = bottom;
     progress = 0.5 + 0.5 * static_cast<double>(bottom) / static_cast<double>(height);
   }
-  writer.finish();
+  writingOutput([&] { writer->finish(); });
 }
 
 }  // namespace pathfarm::farm

@@ -74,6 +74,9 @@ struct TaskOutput {
 // time, and lets go of it. A failed write is this worker's (std::runtime_error), not the
 // task's input's; a window's function throws what it throws.
 void writeOutputFrame(TaskOutput& output, const std::filesystem::path& file);
+// Runs a step of writing a task's output file: an ExrError there is this worker's disk,
+// not the task's input, so it becomes a std::runtime_error (a worker fault).
+void writingOutput(const std::function<void()>& step);
 
 // A keyframe denoised with its neighbouring keyframes (at half resolution when upsampling).
 TaskOutput runDenoiseTask(const Lease& lease, std::vector<TaskInput>& inputs);

@@ -8,11 +8,8 @@
 #include "worker/filter_tasks.h"
 
 namespace pathfarm::farm {
-namespace {
 
-// Runs a step of writing the output: an ExrError there is this worker's disk.
-template <typename Step>
-void writing(Step&& step) {
+void writingOutput(const std::function<void()>& step) {
   try {
     step();
   } catch (const ExrError& e) {
@@ -20,11 +17,9 @@ void writing(Step&& step) {
   }
 }
 
-}  // namespace
-
 void writeOutputFrame(TaskOutput& output, const std::filesystem::path& file) {
   if (output.frame) {
-    writing([&] { writeExrInStrips(file, *output.frame, output.compression); });
+    writingOutput([&] { writeExrInStrips(file, *output.frame, output.compression); });
     output.frame.reset();
     return;
   }
@@ -32,7 +27,7 @@ void writeOutputFrame(TaskOutput& output, const std::filesystem::path& file) {
   for (std::function<FrameImage()>& window : output.rowWindows) {
     const FrameImage rows = window();
     window = {};
-    writing([&] {
+    writingOutput([&] {
       if (!writer)
         writer.emplace(file, rows.width(), output.joinedHeight, rows.channelNames(), rows.attributes(),
                        output.compression);
@@ -40,7 +35,7 @@ void writeOutputFrame(TaskOutput& output, const std::filesystem::path& file) {
     });
   }
   if (!writer) throw std::logic_error("a task output without a frame or windows to write");
-  writing([&] { writer->finish(); });
+  writingOutput([&] { writer->finish(); });
   output.rowWindows.clear();
 }
 

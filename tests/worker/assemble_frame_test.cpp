@@ -97,6 +97,28 @@ TEST(AssembleFrame, ATileHoldingANanIsRefusedNotPasted) {
   }
 }
 
+// Good tiles and a frame file that cannot be written (its folder is gone): the worker's
+// disk failed, not the task's input, so the task is not charged with bad input.
+TEST(AssembleFrame, AFrameThatCannotBeWrittenIsTheWorkersFaultNotTheInputs) {
+  Assembly assembly;
+  assembly.add(0, tile(2, 2, 1.0f));
+  assembly.add(2, tile(2, 2, 2.0f));
+  const auto folder = test_support::processTemporaryFolder("pathfarm_assemble_unwritable");
+  const auto fetch = [&](const ChunkRef& ref) {
+    const std::filesystem::path file = folder / (ref.sha256() + ".exr");
+    std::ofstream(file, std::ios::binary) << assembly.chunks.at(ref.sha256());
+    return file;
+  };
+  std::atomic<double> progress{0};
+  try {
+    assembleFrame(assembly.lease, fetch, folder / "gone" / "frame.exr", progress);
+    FAIL() << "a frame was written into a folder that does not exist";
+  } catch (const std::exception& e) {
+    EXPECT_EQ(classifyFailure(e), FAILURE_WORKER_FAULT) << e.what();
+    EXPECT_NE(std::string(e.what()).find("cannot write the task's output"), std::string::npos) << e.what();
+  }
+}
+
 TEST(AssembleFrame, ARegionIsAssembledAtItsWindowAndRegionsMakeTheFrame) {
   // The frame's right half as a region of its own (a large frame's first step).
   Assembly region;
