@@ -93,7 +93,8 @@ std::vector<RowWindow> filterWindowsOf(const ShotSpec& spec) {
   const int64_t count = (height + rows - 1) / rows;
   std::vector<RowWindow> windows;
   // Borders on even rows, so that a window of a frame at half resolution is whole rows.
-  const auto border = [&](int64_t i) { return static_cast<int>(i == count ? height : (i * height / count) & ~int64_t{1}); };
+  const int64_t pairs = (height + 1) / 2;
+  const auto border = [&](int64_t i) { return static_cast<int>(i == count ? height : 2 * (i * pairs / count)); };
   for (int64_t i = 0; i < count; ++i) windows.push_back({border(i), border(i + 1)});
   return windows;
 }

@@ -107,7 +107,8 @@ double area(const PixelWindow& w) { return static_cast<double>(w.x1() - w.x0()) 
 // Windows side by side in a row of tiles, joined wherever one neighbourhood around both
 // costs no more than two: each window is denoised in its neighbourhood, and neighbouring
 // windows' neighbourhoods hold mostly the same pixels. Which windows are joined changes
-// nothing but float rounding (every neighbourhood holds all that decides its pixels).
+// no bit (every neighbourhood holds all that decides its pixels, and NL-means sums its
+// patch distances exactly wherever a neighbourhood starts).
 std::vector<PixelWindow> joinedAlongRows(std::vector<PixelWindow> windows, int margin, int width, int height) {
   std::sort(windows.begin(), windows.end(), [](const PixelWindow& a, const PixelWindow& b) {
     return std::make_tuple(a.y0(), a.y1(), a.x0(), a.x1()) < std::make_tuple(b.y0(), b.y1(), b.x0(), b.x1());

@@ -63,7 +63,7 @@ class KeyframeReader {
   }
 
   // Its motion channels alone, as rows() reduces them (the light is in no motion).
-  FrameImage motionRows(int64_t keyframe, int first, int end) const {
+  FrameImage motionChannels(int64_t keyframe, int first, int end) const {
     const FrameImage rows =
         inputOf(inputs_, TASK_ASSEMBLE_FRAME, keyframe).part({isMotionChannel, first * factor_, end * factor_});
     return factor_ > 1 ? boxDownsample(rows, factor_) : rows;
@@ -75,17 +75,36 @@ class KeyframeReader {
   int factor_, height_;
 };
 
-// The layers of the keyframe whose motion reaches a neighbour somewhere in the frame: the
-// whole frame's call, made from its motion a strip at a time.
-std::set<std::string> layersReaching(const KeyframeReader& reader, int64_t keyframe, NeighbourFrame neighbour,
-                                     const DenoiseSettings& settings) {
-  std::set<std::string> reaching;
+// Which layers of the keyframe reach each neighbour it has somewhere in the frame
+// (DenoiseWindow): the whole frame's call, made from its motion a strip at a time, until
+// every layer reaches every neighbour (mostly in the first strip).
+void findLayersReaching(const KeyframeReader& reader, int64_t keyframe, bool previous, bool next,
+                        DenoiseSettings& settings) {
+  DenoiseWindow& window = *settings.window;
+  size_t layers = 0;
+  const auto done = [&] {
+    return (!previous || window.previousReached.size() == layers) && (!next || window.nextReached.size() == layers);
+  };
   for (int y = 0; y < reader.height(); y += kMotionStripRows) {
     const int end = std::min(reader.height(), y + kMotionStripRows);
-    const FrameImage motion = reader.motionRows(keyframe, y, end);
-    reaching.merge(neighbourLayersReaching(motion, neighbour, y, reader.height(), settings));
+    const FrameImage motion = reader.motionChannels(keyframe, y, end);
+    layers = decompositionComponents(motion).size();
+    if (previous)
+      window.previousReached.merge(
+          neighbourLayersReaching(motion, NeighbourFrame::Previous, y, reader.height(), settings));
+    if (next)
+      window.nextReached.merge(neighbourLayersReaching(motion, NeighbourFrame::Next, y, reader.height(), settings));
+    if (done()) return;
   }
-  return reaching;
+}
+
+// A count of the denoiser's record, as a window wrote it.
+size_t countOf(const FrameImage& window, const std::string& count, const std::string& label) {
+  const auto found = window.attributes().find(count);
+  const std::string text = found == window.attributes().end() ? "" : found->second;
+  if (text.empty() || text.size() > 18 || !std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; }))
+    throw BadInput("a window's denoise of " + label + " has " + count + " \"" + text + "\", not a count");
+  return std::stoull(text);
 }
 
 // The frames' join: the windows written one at a time, with the denoiser's counts summed.
@@ -100,18 +119,11 @@ TaskOutput joinedDenoise(const Lease& lease, std::vector<TaskInput>& inputs) {
       },
       output, {.flagged = final, .factor = stagesOf(lease.spec().pipeline()).upsample ? kUpsampleFactor : 1});
   std::map<std::string, std::string> record;
+  std::vector<FrameImage> headers;
+  for (const TaskInput& window : inputs) headers.push_back(window.part({[](const std::string&) { return false; }}));
   for (const char* count : kDenoiseCounts) {
     size_t sum = 0;
-    for (const TaskInput& window : inputs) {
-      const FrameImage header = window.part({[](const std::string&) { return false; }});
-      const auto found = header.attributes().find(count);
-      if (found == header.attributes().end()) throw BadInput("a window's denoise of " + label + " has no " + count);
-      try {
-        sum += std::stoull(found->second);
-      } catch (const std::exception&) {
-        throw BadInput("a window's denoise of " + label + " has " + count + " \"" + found->second + "\"");
-      }
-    }
+    for (const FrameImage& header : headers) sum += countOf(header, count, label);
     record[count] = std::to_string(sum);
   }
   // d: the shot's frame, which nothing re-renders.
@@ -157,9 +169,7 @@ TaskOutput runDenoiseTask(const Lease& lease, std::vector<TaskInput>& inputs) {
     currentFirst = std::max(0, window.first - denoiseReach(settings));
     currentEnd = std::min(reader.height(), window.end + denoiseReach(settings));
     window.currentTop = currentFirst;
-    if (previousKeyframe)
-      window.previousReached = layersReaching(reader, frame, NeighbourFrame::Previous, settings);
-    if (nextKeyframe) window.nextReached = layersReaching(reader, frame, NeighbourFrame::Next, settings);
+    findLayersReaching(reader, frame, previousKeyframe.has_value(), nextKeyframe.has_value(), settings);
   }
   // Each frame is reduced (its directly seen light out; with u, to half resolution) before
   // the next is decoded.

@@ -149,7 +149,6 @@ bool takesPart(const Neighbour& n, const LayerSpec& layer, const std::vector<flo
 struct LayerResult {
   Planes color;  // filtered (irradiance for a component)
   std::vector<uint8_t> invalid;
-  int frames = 1;
   std::vector<size_t> fireflies;  // of the current frame, spread instead of filtered
 };
 
@@ -241,7 +240,6 @@ LayerResult filterLayer(const FrameImage& current, const std::vector<Neighbour>&
     for (size_t c = 0; c < result.color.channels.size(); ++c)
       for (size_t p = 0; p < result.color.pixelCount(); ++p) result.color.channels[c][p] += excess.channels[c][p];
   result.invalid = std::move(stats.invalidCenter);
-  result.frames = static_cast<int>(input.frames.size());
   return result;
 }
 
@@ -277,7 +275,7 @@ int prefilterReach(const DenoiseSettings& s) {
 }
 
 // Rows [first, end) of a motion field, placed in its frame.
-MotionField motionRows(const MotionField& motion, int first, int end) {
+MotionField fieldRows(const MotionField& motion, int first, int end) {
   MotionField rows;
   rows.width = motion.width;
   rows.height = end - first;
@@ -332,8 +330,8 @@ FrameImage denoiseFrame(const FrameImage& current, const FrameImage* previous, c
   const DenoiseWindow whole{current.height(), 0, current.height()};
   const DenoiseWindow& rows = s.window ? *s.window : whole;
   if (rows.currentTop < 0 || rows.currentTop + current.height() > rows.frameHeight)
-    throw std::invalid_argument(s.label + ": its rows are not rows of a frame " + std::to_string(rows.frameHeight) +
-                                " rows tall");
+    throw std::logic_error(s.label + ": its rows are not rows of a frame " + std::to_string(rows.frameHeight) +
+                           " rows tall");
   if (previous != nullptr) neighbours.push_back({previous, NeighbourFrame::Previous, &s.previousLabel, rows.previousTop});
   if (next != nullptr) neighbours.push_back({next, NeighbourFrame::Next, &s.nextLabel, rows.nextTop});
   // A window's frames hold rows of their frames; whole frames are the same size.
@@ -366,7 +364,7 @@ FrameImage denoiseFrame(const FrameImage& current, const FrameImage* previous, c
     first = s.window->first - s.window->currentTop;
     end = s.window->end - s.window->currentTop;
     if (first < 0 || end > current.height() || first >= end)
-      throw std::invalid_argument(s.label + ": the rows wanted are not among the rows given");
+      throw std::logic_error(s.label + ": the rows wanted are not among the rows given");
   }
   const size_t width = static_cast<size_t>(current.width());
   FrameImage out(current.width(), current.height());
@@ -413,14 +411,14 @@ int denoiseReach(const DenoiseSettings& settings) { return warpedReach(settings)
 std::pair<int, int> denoiseNeighbourRows(const FrameImage& current, NeighbourFrame neighbour,
                                          const DenoiseSettings& settings) {
   const DenoiseSettings& s = settings;
-  if (!s.window) throw std::invalid_argument(s.label + ": neighbour rows are a window's question");
+  if (!s.window) throw std::logic_error(s.label + ": neighbour rows are a window's question");
   const int top = s.window->currentTop;
   const int first = std::max(0, s.window->first - warpedReach(s) - top);
   const int end = std::min(current.height(), s.window->end + warpedReach(s) - top);
+  if (first >= end) return {0, 0};
   int low = s.window->frameHeight, high = 0;
   for (const LayerSpec& layer : layersOf(current, s)) {
-    if (first >= end) break;
-    const auto [from, to] = warpSourceRows(motionRows(motionOf(current, neighbour, layer, s), first, end));
+    const auto [from, to] = warpSourceRows(fieldRows(motionOf(current, neighbour, layer, s), first, end));
     if (from >= to) continue;
     low = std::min(low, from - prefilterReach(s));
     high = std::max(high, to + prefilterReach(s));

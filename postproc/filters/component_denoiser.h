@@ -68,8 +68,8 @@ enum class DenoiseMode {
 std::string denoiseModeName(DenoiseMode mode);
 DenoiseMode parseDenoiseMode(const std::string& name);
 
-// A window of rows denoised apart, as a filter task in windows does: the frames given hold
-// rows of frames `frameHeight` rows tall (the current frame from row currentTop, each
+// A window of rows denoised apart, as a filter task in windows does (a bug in these rows is
+// the caller's: std::logic_error): the frames given hold rows of frames `frameHeight` rows tall (the current frame from row currentTop, each
 // neighbour from its own), and only rows [first, end) of the frame are wanted. Given the
 // rows denoiseReach and denoiseNeighbourRows name, those rows are the whole frame's bits.
 // Whether a neighbour takes part is the whole frame's call (it does when some pixel warps
@@ -102,7 +102,7 @@ struct DenoiseSettings {
   // jointNlMeansOnContent and NlMeansSettings::validCentersOnly): the filter skips what no
   // such pixel compares. Pixels outside, and pixels without a sample, come out unspecified.
   std::optional<NlMeansArea> onlyWithin;
-  // Rows denoised apart from the rest of their frame (denoiseWindow...).
+  // Rows denoised apart from the rest of their frame (DenoiseWindow).
   std::optional<DenoiseWindow> window;
   // Name the frames in error messages (their files, say).
   std::string label = "frame";
@@ -121,9 +121,9 @@ FrameImage denoiseFrame(const FrameImage& current, const FrameImage* previous, c
 // radius and patch, the fireflies' reach (firefly_spread.h) and the features' prefilter.
 int denoiseReach(const DenoiseSettings& settings);
 
-// The rows [first, end) of the neighbour that the window's rows of `current` (the rows
-// [first - denoiseReach, end + denoiseReach) of its frame, or fewer at its edges) warp
-// from, with the reach of the neighbour's own feature prefilter; {0, 0} when none.
+// The rows [first, end) of the neighbour that the rows of `current` a window's rows depend
+// on warp from (those within denoiseReach less the features' prefilter, whose reach is
+// added in the neighbour's own rows instead); {0, 0} when none.
 std::pair<int, int> denoiseNeighbourRows(const FrameImage& current, NeighbourFrame neighbour,
                                          const DenoiseSettings& settings);
 

@@ -157,9 +157,10 @@ std::vector<float> receiverLevels(const Judge& judge, const std::vector<Firefly>
 }  // namespace
 
 int fireflyReach(const FireflySettings& settings) {
-  // A firefly up to maxRadius away, judged on its 5x5 window; its weights normalized over
-  // the pixels up to maxRadius from it, each weighted by its 3x3 window.
-  return 2 * std::max(1, settings.maxRadius) + std::max(kJudgeRadius, 1);
+  // A firefly up to maxRadius away; its weights normalized over the pixels up to
+  // maxRadius from it, each weighted by its 3x3 window, whose pixels' firefly judgement
+  // reads their 5x5 windows.
+  return 2 * std::max(1, settings.maxRadius) + 1 + kJudgeRadius;
 }
 
 FireflySplit splitFireflies(Planes& color, Planes& variance, const std::vector<float>& valid,

@@ -35,6 +35,9 @@ inline void validate(const NlMeansInput& input, const NlMeansSettings& s) {
   const int w = first.color.width, h = first.color.height;
   const size_t colorChannels = first.color.channels.size();
   if (w <= 0 || h <= 0 || colorChannels == 0) throw std::invalid_argument("NL-means: frame 0 has no color to filter");
+  if (w > (1 << kWidthBits))
+    throw std::invalid_argument("NL-means: frames wider than " + std::to_string(1 << kWidthBits) +
+                                " pixels are not filtered (their patch sums would round)");
   const size_t pixels = first.color.pixelCount();
   const auto check = [&](const Planes& planes, size_t channels, const std::string& what) {
     if (planes.width != w || planes.height != h)
@@ -97,7 +100,8 @@ class Prepared {
   float distanceLow = 0, distanceHigh = 0;  // per-pixel color distances are clamped to [-low, high]
   // Adding and subtracting this rounds a clamped distance to a grid on which a double sums
   // a row of patch columns exactly, in any order (nlmeans.cpp's box sums), for images up
-  // to 2^16 pixels wide: 52 bits hold the bound, the patch's rows and the width.
+  // to 2^16 pixels wide (validate refuses wider ones): 52 bits hold the bound, the patch's
+  // rows and the width. (The build's -fno-fast-math keeps the compiler from folding it.)
   double distanceSnap = 0;
 
   Prepared(const NlMeansInput& input, const NlMeansSettings& s) {

@@ -14,10 +14,14 @@ void checkField(const MotionField& motion) {
   const size_t pixels =
       static_cast<size_t>(std::max(0, motion.width)) * static_cast<size_t>(std::max(0, motion.height));
   if (motion.width <= 0 || motion.height <= 0 || motion.x.size() != pixels || motion.y.size() != pixels ||
-      (!motion.valid.empty() && motion.valid.size() != pixels) || motion.top < 0 ||
-      (motion.frameHeight > 0 && motion.top + motion.height > motion.frameHeight))
+      (!motion.valid.empty() && motion.valid.size() != pixels))
     throw std::invalid_argument("warp: the motion field's planes do not match its " + std::to_string(motion.width) +
                                 "x" + std::to_string(motion.height) + " pixels");
+  // Where a window's rows lie is the caller's arithmetic, not the frame's content.
+  if (motion.top < 0 || (motion.frameHeight > 0 ? motion.top + motion.height > motion.frameHeight : motion.top != 0))
+    throw std::logic_error("warp: rows " + std::to_string(motion.top) + " to " +
+                           std::to_string(motion.top + motion.height) + " are not rows of a frame " +
+                           std::to_string(motion.frameHeight) + " rows tall");
 }
 
 // Where pixel (px, py) looks up, and whether that is a valid source.
@@ -86,12 +90,15 @@ std::pair<int, int> warpSourceRows(const MotionField& motion) {
 Planes warpPlanes(const Planes& neighbour, const MotionField& motion, WarpLookup lookup, int neighbourTop) {
   checkField(motion);
   const int frameRows = motion.rowsOfFrame();
-  if (neighbour.width != motion.width || neighbour.height <= 0 || neighbourTop < 0 ||
-      neighbourTop + neighbour.height > frameRows)
+  if (neighbour.width != motion.width || neighbour.height <= 0 || (motion.frameHeight == 0 && neighbour.height != frameRows))
     throw std::invalid_argument("warp: the neighbour frame is " + std::to_string(neighbour.width) + "x" +
                                 std::to_string(neighbour.height) + " from row " + std::to_string(neighbourTop) +
                                 ", its motion field " + std::to_string(motion.width) + "x" +
                                 std::to_string(frameRows));
+  if (neighbourTop < 0 || neighbourTop + neighbour.height > frameRows)
+    throw std::logic_error("warp: the neighbour's rows " + std::to_string(neighbourTop) + " to " +
+                           std::to_string(neighbourTop + neighbour.height) + " are not rows of a frame " +
+                           std::to_string(frameRows) + " rows tall");
   for (const auto& plane : neighbour.channels)
     if (plane.size() != neighbour.pixelCount())
       throw std::invalid_argument("warp: a plane does not hold the frame's pixels");

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -170,6 +171,32 @@ TEST(ShotFile, FilterWindowRowsAreReadForTheFilteringPipelines) {
   EXPECT_EQ(windows.front().first, 0);
   EXPECT_EQ(windows[1].first, 50);
   EXPECT_EQ(windows.back().end, 200);
+}
+
+// Every height and window size: the windows cover the frame's rows once each, top to
+// bottom, their borders on even rows (a half-resolution denoise's windows are whole rows),
+// each at most one row more than asked, their heights within two rows of each other.
+TEST(ShotFile, FilterWindowsCoverTheFrameWithBordersOnEvenRows) {
+  ShotSpec spec;
+  for (const int rows : {16, 17, 33, 50, 512})
+    for (int height = 1; height <= 700; ++height) {
+      spec.set_height(height);
+      spec.set_filter_window_rows(rows);
+      const std::vector<RowWindow> windows = filterWindowsOf(spec);
+      ASSERT_FALSE(windows.empty());
+      int covered = 0, shortest = height, tallest = 0;
+      for (const RowWindow& window : windows) {
+        ASSERT_EQ(window.first, covered) << height << " rows in windows of " << rows;
+        ASSERT_GT(window.end, window.first) << height << " rows in windows of " << rows;
+        if (window.end != height) ASSERT_EQ(window.end % 2, 0) << height << " rows in windows of " << rows;
+        ASSERT_LE(window.end - window.first, rows + 1) << height << " rows in windows of " << rows;
+        shortest = std::min(shortest, window.end - window.first);
+        tallest = std::max(tallest, window.end - window.first);
+        covered = window.end;
+      }
+      ASSERT_EQ(covered, height);
+      ASSERT_LE(tallest - shortest, 2) << height << " rows in windows of " << rows;
+    }
 }
 
 TEST(ShotFile, ReadingRunsNoProbeAndPreparingRunsTheKeyframeProbe) {

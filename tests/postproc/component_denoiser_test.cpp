@@ -330,11 +330,50 @@ TEST(ComponentDenoiser, DecomposedDenoiseBeatsColorOnlyOnARenderedFrame) {
 namespace pathfarm {
 namespace {
 
+// Rows [first, end) of frames[1] denoised apart with frames[0] and frames[2], as a
+// window's task does: the rows of the current frame within denoiseReach, the neighbours'
+// rows denoiseNeighbourRows names (or, when not `followMotion`, the current frame's own),
+// and the neighbours that the whole frame's motion reaches (or only the window's rows').
+FrameImage denoisedWindow(const std::vector<FrameImage>& frames, int first, int end, bool followMotion,
+                          bool reachedFromWholeFrame) {
+  const int width = frames[1].width(), height = frames[1].height();
+  DenoiseSettings s;
+  DenoiseWindow& window = s.window.emplace();
+  window.frameHeight = height;
+  window.first = first;
+  window.end = end;
+  window.currentTop = std::max(0, first - denoiseReach(s));
+  const int currentEnd = std::min(height, end + denoiseReach(s));
+  const FrameImage current = frames[1].crop(0, window.currentTop, width, currentEnd - window.currentTop);
+  const FrameImage& judged = reachedFromWholeFrame ? frames[1] : current;
+  const int judgedTop = reachedFromWholeFrame ? 0 : window.currentTop;
+  window.previousReached = neighbourLayersReaching(judged, NeighbourFrame::Previous, judgedTop, height, s);
+  window.nextReached = neighbourLayersReaching(judged, NeighbourFrame::Next, judgedTop, height, s);
+  const auto rowsOf = [&](const FrameImage& frame, NeighbourFrame which, int& top) {
+    auto [from, to] = std::pair{window.currentTop, currentEnd};
+    if (followMotion) std::tie(from, to) = denoiseNeighbourRows(current, which, s);
+    if (from >= to) std::tie(from, to) = std::pair{0, 1};
+    top = from;
+    return frame.crop(0, from, width, to - from);
+  };
+  const FrameImage previous = rowsOf(frames[0], NeighbourFrame::Previous, window.previousTop);
+  const FrameImage next = rowsOf(frames[2], NeighbourFrame::Next, window.nextTop);
+  return denoiseFrame(current, &previous, &next, s);
+}
+
+void expectSameFrame(const FrameImage& rows, const FrameImage& expected) {
+  ASSERT_EQ(rows.channelNames(), expected.channelNames());
+  for (const std::string& name : expected.channelNames()) ASSERT_EQ(rows.channel(name), expected.channel(name)) << name;
+}
+
 // Rows of a frame denoised apart, given the rows denoiseReach and denoiseNeighbourRows name
 // and which neighbours the whole frame's motion reaches, are the whole frame's rows, bit
 // for bit, with the counts of those rows. The light moves 100 rows a frame, so the
 // neighbours' rows lie far from the window's, and a firefly sits above the window. Read at
-// the window's own rows instead, the neighbours give other bits.
+// the window's own rows instead, the neighbours give other bits. Where no pixel near the
+// window has valid motion, its neighbours still take part, as the rest of the frame's
+// motion reaches them; judged from the window's rows alone they would not, and the filter
+// would search farther (its spatial radius).
 TEST(ComponentDenoiser, AWindowOfRowsIsTheWholeFramesRows) {
   constexpr int kFirst = 150, kEnd = 180, kMotionRows = 100;
   SyntheticShot shot;
@@ -349,37 +388,22 @@ TEST(ComponentDenoiser, AWindowOfRowsIsTheWholeFramesRows) {
                 -static_cast<float>(kMotionRows));
     }
   addFirefly(frames[1], 10, kFirst - 20, 60.0f);
-  const FrameImage whole = denoiseFrame(frames[1], &frames[0], &frames[2], DenoiseSettings{});
-  ASSERT_NE(whole.attributes().at("pathfarm.denoise_fireflies"), "0");
-  const FrameImage expected = whole.crop(0, kFirst, shot.width, kEnd - kFirst);
-
-  const auto windowed = [&](bool rowsTheMotionLeadsTo) {
-    DenoiseSettings s;
-    DenoiseWindow& window = s.window.emplace();
-    window.frameHeight = shot.height;
-    window.first = kFirst;
-    window.end = kEnd;
-    window.previousReached = neighbourLayersReaching(frames[1], NeighbourFrame::Previous, 0, shot.height, s);
-    window.nextReached = neighbourLayersReaching(frames[1], NeighbourFrame::Next, 0, shot.height, s);
-    window.currentTop = std::max(0, kFirst - denoiseReach(s));
-    const int currentEnd = std::min(shot.height, kEnd + denoiseReach(s));
-    const FrameImage current = frames[1].crop(0, window.currentTop, shot.width, currentEnd - window.currentTop);
-    const auto rowsOf = [&](const FrameImage& frame, NeighbourFrame which, int& top) {
-      auto [first, end] = std::pair{window.currentTop, currentEnd};
-      if (rowsTheMotionLeadsTo) std::tie(first, end) = denoiseNeighbourRows(current, which, s);
-      top = first;
-      return frame.crop(0, first, shot.width, end - first);
-    };
-    const FrameImage previous = rowsOf(frames[0], NeighbourFrame::Previous, window.previousTop);
-    const FrameImage next = rowsOf(frames[2], NeighbourFrame::Next, window.nextTop);
-    return denoiseFrame(current, &previous, &next, s);
+  const auto wholeRows = [&] {
+    const FrameImage whole = denoiseFrame(frames[1], &frames[0], &frames[2], DenoiseSettings{});
+    return whole.crop(0, kFirst, shot.width, kEnd - kFirst);
   };
-  const FrameImage rows = windowed(true);
-  ASSERT_EQ(rows.channelNames(), expected.channelNames());
-  for (const std::string& name : expected.channelNames())
-    ASSERT_EQ(rows.channel(name), expected.channel(name)) << name;
+  const FrameImage expected = wholeRows();
+  const FrameImage rows = denoisedWindow(frames, kFirst, kEnd, true, true);
+  expectSameFrame(rows, expected);
   EXPECT_EQ(rows.attributes().at("pathfarm.denoise_fireflies"), "0") << "the firefly is above the window";
-  EXPECT_NE(windowed(false).channel("G"), expected.channel("G"));
+  EXPECT_NE(denoisedWindow(frames, kFirst, kEnd, false, true).channel("G"), expected.channel("G"));
+
+  // No valid motion within 120 rows of the window; the frame's first rows have some.
+  std::vector<float>& valid = frames[1].channel("diffuse.motion_valid.Y");
+  std::fill(valid.begin() + (kFirst - 120) * shot.width, valid.end(), 0.0f);
+  const FrameImage unreached = wholeRows();
+  expectSameFrame(denoisedWindow(frames, kFirst, kEnd, true, true), unreached);
+  EXPECT_NE(denoisedWindow(frames, kFirst, kEnd, true, false).channel("G"), unreached.channel("G"));
 }
 
 }  // namespace

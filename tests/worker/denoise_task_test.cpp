@@ -94,7 +94,7 @@ TEST(DenoiseTask, DsFinalFrameIsTheOneACompositeOfItsDenoisedFrameWrites) {
 }
 
 // Keyframes rendered at the shot's full spp are filtered with a variance cancellation of 1
-// (keyframe_tasks.cpp): their filter's bias outweighs its leftover noise. Against an
+// (denoise_task.cpp): their filter's bias outweighs its leftover noise. Against an
 // independent 512-spp render, the d frame must err less than the same filter with the
 // paper's cancellation of 4, and both far less than the unfiltered render.
 TEST(DenoiseTask, DsFullSampleKeyframesErrLessThanWithThePapersCancellation) {
