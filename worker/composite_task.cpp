@@ -230,7 +230,7 @@ TaskOutput joinedWindows(const Lease& lease, std::vector<TaskInput>& inputs) {
   const std::string label = "a window's composite of " + frameLabel(lease);
   TaskOutput output;
   const std::vector<uint8_t> mask = joinRowWindows(
-      lease, inputs, "composites", [label](const FrameImage& rows) { requireFinalColors(rows, label); }, output);
+      lease, inputs, "composites", [label](const FrameImage& rows) { requireFinalColors(rows, label); }, output).mask;
   output.compression = ExrCompression::Small;  // the shot's frame
   std::map<std::string, std::string> record;
   recordRerender(record, static_cast<size_t>(std::count(mask.begin(), mask.end(), 1)), lease.spec().pipeline(),

@@ -99,9 +99,10 @@ void findLayersReaching(const KeyframeReader& reader, int64_t keyframe, bool pre
 }
 
 // A count of the denoiser's record, as a window wrote it.
-size_t countOf(const FrameImage& window, const std::string& count, const std::string& label) {
-  const auto found = window.attributes().find(count);
-  const std::string text = found == window.attributes().end() ? "" : found->second;
+size_t countOf(const std::map<std::string, std::string>& attributes, const std::string& count,
+               const std::string& label) {
+  const auto found = attributes.find(count);
+  const std::string text = found == attributes.end() ? "" : found->second;
   if (text.empty() || text.size() > 18 || !std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; }))
     throw BadInput("a window's denoise of " + label + " has " + count + " \"" + text + "\", not a count");
   return std::stoull(text);
@@ -112,18 +113,16 @@ TaskOutput joinedDenoise(const Lease& lease, std::vector<TaskInput>& inputs) {
   const bool final = lease.params().role() == ROLE_OUTPUT;
   const std::string label = "frame " + std::to_string(lease.params().frame());
   TaskOutput output;
-  joinRowWindows(
+  const JoinedWindows windows = joinRowWindows(
       lease, inputs, "denoises",
       [final, label](const FrameImage& rows) {
         if (final) requireFinalColors(rows, label);
       },
       output, {.flagged = final, .factor = stagesOf(lease.spec().pipeline()).upsample ? kUpsampleFactor : 1});
   std::map<std::string, std::string> record;
-  std::vector<FrameImage> headers;
-  for (const TaskInput& window : inputs) headers.push_back(window.part({[](const std::string&) { return false; }}));
   for (const char* count : kDenoiseCounts) {
     size_t sum = 0;
-    for (const FrameImage& header : headers) sum += countOf(header, count, label);
+    for (const auto& attributes : windows.attributes) sum += countOf(attributes, count, label);
     record[count] = std::to_string(sum);
   }
   // d: the shot's frame, which nothing re-renders.

@@ -115,9 +115,9 @@ RowWindow rowsOf(const Lease& lease, const std::string& what) {
   return {w.y0(), w.y1()};
 }
 
-std::vector<uint8_t> joinRowWindows(const Lease& lease, std::vector<TaskInput>& inputs, const std::string& what,
-                                    const std::function<void(const FrameImage&)>& check, TaskOutput& output,
-                                    JoinedFrame joined) {
+JoinedWindows joinRowWindows(const Lease& lease, std::vector<TaskInput>& inputs, const std::string& what,
+                             const std::function<void(const FrameImage&)>& check, TaskOutput& output,
+                             JoinedFrame joined) {
   const int factor = joined.factor, width = lease.spec().width() / factor, height = lease.spec().height() / factor;
   const bool flagged = joined.flagged;
   const std::string label = "frame " + std::to_string(lease.params().frame());
@@ -130,7 +130,8 @@ std::vector<uint8_t> joinRowWindows(const Lease& lease, std::vector<TaskInput>& 
   }
   std::sort(windows.begin(), windows.end(),
             [](const TaskInput* a, const TaskInput* b) { return a->params.window().y0() < b->params.window().y0(); });
-  std::vector<uint8_t> mask(static_cast<size_t>(width) * static_cast<size_t>(height), 0);
+  JoinedWindows read;
+  read.mask.assign(static_cast<size_t>(width) * static_cast<size_t>(height), 0);
   int covered = 0;  // rows 0 .. covered - 1 are the windows' so far
   for (const TaskInput* window : windows) {
     const PixelWindow& w = window->params.window();
@@ -141,9 +142,10 @@ std::vector<uint8_t> joinRowWindows(const Lease& lease, std::vector<TaskInput>& 
         end > height || end <= first || flags.width() != width || flags.height() != end - first)
       throw BadInput(refused + " do not cover the frame's rows once each, in place");
     covered = end;
+    read.attributes.push_back(flags.attributes());
     if (!flagged) continue;
     const std::vector<float>& rows = channelOf(flags, "rerender.Y", refused);
-    std::transform(rows.begin(), rows.end(), mask.begin() + static_cast<ptrdiff_t>(first) * width,
+    std::transform(rows.begin(), rows.end(), read.mask.begin() + static_cast<ptrdiff_t>(first) * width,
                    [](float value) { return static_cast<uint8_t>(value > 0.5f ? 1 : 0); });
   }
   if (covered != height) throw BadInput(refused + " do not cover the frame's rows once each, in place");
@@ -157,7 +159,7 @@ std::vector<uint8_t> joinRowWindows(const Lease& lease, std::vector<TaskInput>& 
       if (rows.channelNames() != *channels) throw BadInput(refused + " have different channels");
       return rows;
     });
-  return mask;
+  return read;
 }
 
 void addJoinedAttributes(TaskOutput& output, std::map<std::string, std::string> attributes) {
@@ -176,7 +178,7 @@ bool joinsWindows(const Lease& lease, const std::vector<TaskInput>& inputs) {
 
 TaskOutput joinedWithRerender(const Lease& lease, std::vector<TaskInput>& inputs, const std::string& what) {
   TaskOutput output;
-  const std::vector<uint8_t> mask = joinRowWindows(lease, inputs, what, [](const FrameImage&) {}, output);
+  const std::vector<uint8_t> mask = joinRowWindows(lease, inputs, what, [](const FrameImage&) {}, output).mask;
   requestRerender(lease.spec(), lease.params().frame(), mask, output);
   return output;
 }

@@ -55,7 +55,8 @@ RowWindow rowsOf(const Lease& lease, const std::string& what);
 // frame's task of the same kind joining them; contract/pipeline.h, filterWindowsOf): its
 // inputs, each a window of the lease's frame, must cover the frame's rows once each, whole
 // rows, else BadInput naming `what` ("upsamples"). Returns their `rerender.Y` flags as the
-// frame's mask (a byte per pixel), read before anything else, and sets `output` to write
+// frame's mask (a byte per pixel) and their attributes, top to bottom, read before
+// anything else, and sets `output` to write
 // the windows top to bottom, each taken from its input when its turn comes, checked by
 // `check` and to have the first window's channels (whose attributes the frame takes).
 // A denoise's windows differ in two ways (JoinedFrame): they flag nothing, so hold no
@@ -64,7 +65,11 @@ struct JoinedFrame {
   bool flagged = true;
   int factor = 1;
 };
-std::vector<uint8_t> joinRowWindows(const Lease& lease, std::vector<TaskInput>& inputs, const std::string& what,
+struct JoinedWindows {
+  std::vector<uint8_t> mask;
+  std::vector<std::map<std::string, std::string>> attributes;
+};
+JoinedWindows joinRowWindows(const Lease& lease, std::vector<TaskInput>& inputs, const std::string& what,
                                     const std::function<void(const FrameImage&)>& check, TaskOutput& output,
                                     JoinedFrame joined = {});
 
