@@ -14,12 +14,14 @@ double seconds(Work work) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// A frame at the scene's max depth; with `decompose`, split by the default decomposition.
+// A frame at the scene's max depth; with `decompose`, split by the default decomposition,
+// its motion vectors reaching `motionSpan` frames.
 // A reference passes a `firstSample` of its own, so that it shares no sample with the
 // frames it measures.
 inline FrameImage render(const Scene& scene, int width, int height, int spp, int64_t frame, bool decompose,
-                         uint32_t firstSample = 0) {
+                         uint32_t firstSample = 0, MotionSpan motionSpan = {}) {
   RenderSettings settings;
+  settings.motionSpan = motionSpan;
   settings.firstSample = firstSample;
   settings.width = width;
   settings.height = height;

@@ -3,6 +3,8 @@
 //
 //   build/bin/interpolation_benchmark [--scene scenes/cornell/scene.json] [--keyframes 4]
 //                                     [--spp 16] [--reference-spp 512] [--size 128]
+//   build/bin/interpolation_benchmark --bands --scene scenes/walkthrough/scene.json
+//                                     [--width 1920 --height 1080] [--spp 16] [--reference-spp 512]
 //
 // Part 1 times flow (one 1280x720 irradiance layer), interpolation and motion blur of a
 // 1280x720 decomposed frame. Part 2 renders frames 0..2k at SIZE x SIZE (keyframes every k
@@ -10,12 +12,21 @@
 // from its keyframes per component and color-only, re-renders each method's masked
 // pixels (from a render at --spp), and prints per frame the relMSE of both against a
 // --reference-spp render, and the re-render rates.
+//
+// With --bands it instead measures what solving the irradiance flow in bands of rows
+// (irradiance_flow.h; the farm's flow tasks) costs against one solve over the frame:
+// keyframes 0 and 2 at WIDTH x HEIGHT, the flows with each halo, their distance from the
+// one-solve flows, and frame 1 interpolated with each, against a --reference-spp render.
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "bench/command_line.h"
 #include "postproc/flow/optical_flow.h"
 #include "postproc/interpolation/frame_interpolation.h"
+#include "postproc/interpolation/irradiance_flow.h"
 #include "postproc/metrics/image_metrics.h"
 #include "postproc/motion_blur/motion_blur.h"
 #include "bench/bench_support.h"
@@ -45,6 +56,50 @@ Planes irradiance(const FrameImage& frame) {
   return planes;
 }
 
+// Frame 1 between keyframes 0 and 2 with flows solved in bands of each halo, against the
+// flows of one solve over the frame.
+int flowBands(const Scene& scene, int width, int height, int spp, int referenceSpp) {
+  const MotionSpan reach{2, 2};
+  const FrameImage k0 = render(scene, width, height, spp, 0, true, 0, reach);
+  const FrameImage k1 = render(scene, width, height, spp, 2, true, 0, reach);
+  const FrameImage between = render(scene, width, height, spp, 1, true);
+  const FrameImage reference = render(scene, width, height, referenceSpp, 1, false, kIndependentFirstSample);
+  const ComponentMotions primary = concatenatePrimaryMotion({k0, k1});
+  std::printf("%dx%d, %d spp keyframes 0 and 2, frame 1 against %d spp; bands of at most %d rows\n", width, height,
+              spp, referenceSpp, FlowBanding{}.rows);
+  std::printf("halo  flow s  |flow - one solve| mean  p99    max   relMSE frame 1  re-render\n");
+  ComponentMotions whole;
+  for (const int halo : {-1, 32, 64, 128, 256}) {
+    ComponentMotions motions = primary;
+    const FlowBanding banding = halo < 0 ? FlowBanding{0, 0} : FlowBanding{FlowBanding{}.rows, halo};
+    const double took = seconds([&] { addIrradianceFlow(motions, k0, k1, FlowSettings{}, banding); });
+    if (halo < 0) whole = motions;
+    std::vector<float> distances;
+    for (const auto& [name, motion] : motions.components) {
+      if (name.empty()) continue;
+      const ComponentMotion& one = whole.components.at(name);
+      for (const auto* pair : {&motion.irradianceForward, &motion.irradianceBackward}) {
+        const MotionField& reference = pair == &motion.irradianceForward ? one.irradianceForward : one.irradianceBackward;
+        for (size_t p = 0; p < pair->x.size(); ++p)
+          if (pair->valid[p] >= 0.5f && reference.valid[p] >= 0.5f)
+            distances.push_back(std::hypot(pair->x[p] - reference.x[p], pair->y[p] - reference.y[p]));
+      }
+    }
+    std::sort(distances.begin(), distances.end());
+    double mean = 0.0;
+    for (const float d : distances) mean += d;
+    mean /= std::max<size_t>(1, distances.size());
+    const float p99 = distances.empty() ? 0.0f : distances[distances.size() * 99 / 100];
+    const float largest = distances.empty() ? 0.0f : distances.back();
+    const InterpolationResult result = interpolateFrameDetailed(k0, k1, motions, 0.5f, {});
+    std::printf("%4s  %6.2f  %22.4f  %5.3f  %5.2f  %14.5f  %7.2f %%\n", halo < 0 ? "none" : std::to_string(halo).c_str(),
+                took, mean, p99, largest,
+                compareImages(withRerender(result, between), reference, {"R", "G", "B"}).relMse,
+                100 * result.rerenderRate);
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -56,8 +111,14 @@ int main(int argc, char** argv) {
   app.option("--spp", spp);
   app.option("--reference-spp", referenceSpp);
   app.option("--size", size);
+  bool bands = false;
+  int width = 1920, height = 1080;
+  app.flag("--bands", bands, "measure the flow solved in bands of rows against one solve");
+  app.option("--width", width, "with --bands").positive();
+  app.option("--height", height, "with --bands").positive();
   if (const auto exit = app.parse(argc, argv)) return *exit;
   const Scene scene = loadScene(scenePath);
+  if (bands) return flowBands(scene, width, height, spp, referenceSpp);
 
   // Part 1: speed at 1280x720.
   const FrameImage a = render(scene, 1280, 720, 2, 4, true), b = render(scene, 1280, 720, 2, 5, true);

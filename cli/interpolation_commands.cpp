@@ -7,6 +7,7 @@
 #include "cli/command.h"
 #include "image/exr_io.h"
 #include "postproc/interpolation/frame_interpolation.h"
+#include "postproc/interpolation/irradiance_flow.h"
 #include "postproc/motion_blur/motion_blur.h"
 
 namespace pathfarm {

@@ -283,7 +283,7 @@ void planFiltering(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
     for (const std::string& component : components) {
       PlannedTask flow = between(TASK_FLOW, k0, {finalOf.at(k0), finalOf.at(k1)});
       flow.params.set_component(component);
-      interpolationInputs.push_back(push(std::move(flow), plan));
+      interpolationInputs.push_back(push(inWindows(std::move(flow), spec, plan), plan));
     }
     for (int64_t frame = k0 + 1; frame < k1; ++frame) {
       std::vector<size_t> inputs = interpolationInputs;

@@ -31,7 +31,7 @@ constexpr float kFullSampleCancellation = 1.0f;
 // components reach (denoised rows).
 constexpr int kMotionStripRows = 64;
 // The counts of the denoiser's record, summed over a frame's windows by their join.
-const char* const kDenoiseCounts[] = {"pathfarm.denoise_skipped", "pathfarm.denoise_fireflies"};
+const std::vector<std::string> kDenoiseCounts = {"pathfarm.denoise_skipped", "pathfarm.denoise_fireflies"};
 
 bool isMotionChannel(const std::string& name) {
   return name.find(".motion") != std::string::npos || name.rfind("motion", 0) == 0;
@@ -98,16 +98,6 @@ void findLayersReaching(const KeyframeReader& reader, int64_t keyframe, bool pre
   }
 }
 
-// A count of the denoiser's record, as a window wrote it.
-size_t countOf(const std::map<std::string, std::string>& attributes, const std::string& count,
-               const std::string& label) {
-  const auto found = attributes.find(count);
-  const std::string text = found == attributes.end() ? "" : found->second;
-  if (text.empty() || text.size() > 18 || !std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; }))
-    throw BadInput("a window's denoise of " + label + " has " + count + " \"" + text + "\", not a count");
-  return std::stoull(text);
-}
-
 // The frames' join: the windows written one at a time, with the denoiser's counts summed.
 TaskOutput joinedDenoise(const Lease& lease, std::vector<TaskInput>& inputs) {
   const bool final = lease.params().role() == ROLE_OUTPUT;
@@ -119,12 +109,7 @@ TaskOutput joinedDenoise(const Lease& lease, std::vector<TaskInput>& inputs) {
         if (final) requireFinalColors(rows, label);
       },
       output, {.flagged = final, .factor = stagesOf(lease.spec().pipeline()).upsample ? kUpsampleFactor : 1});
-  std::map<std::string, std::string> record;
-  for (const char* count : kDenoiseCounts) {
-    size_t sum = 0;
-    for (const auto& attributes : windows.attributes) sum += countOf(attributes, count, label);
-    record[count] = std::to_string(sum);
-  }
+  std::map<std::string, std::string> record = summedCounts(windows, kDenoiseCounts, "the denoise of " + label);
   // d: the shot's frame, which nothing re-renders.
   if (final) {
     output.compression = ExrCompression::Small;

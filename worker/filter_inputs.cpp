@@ -154,12 +154,29 @@ JoinedWindows joinRowWindows(const Lease& lease, std::vector<TaskInput>& inputs,
   for (TaskInput* window : windows)
     output.rowWindows.push_back([window, channels, check, refused] {
       FrameImage rows = window->take();
-      check(rows);
+      if (check) check(rows);
       if (channels->empty()) *channels = rows.channelNames();
       if (rows.channelNames() != *channels) throw BadInput(refused + " have different channels");
       return rows;
     });
   return read;
+}
+
+std::map<std::string, std::string> summedCounts(const JoinedWindows& windows, const std::vector<std::string>& names,
+                                                const std::string& what) {
+  std::map<std::string, std::string> sums;
+  for (const std::string& name : names) {
+    size_t sum = 0;
+    for (const auto& attributes : windows.attributes) {
+      const auto found = attributes.find(name);
+      const std::string text = found == attributes.end() ? "" : found->second;
+      if (text.empty() || text.size() > 18 || !std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; }))
+        throw BadInput("a window of " + what + " has " + name + " \"" + text + "\", not a count");
+      sum += std::stoull(text);
+    }
+    sums[name] = std::to_string(sum);
+  }
+  return sums;
 }
 
 void addJoinedAttributes(TaskOutput& output, std::map<std::string, std::string> attributes) {

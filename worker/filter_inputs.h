@@ -58,7 +58,7 @@ RowWindow rowsOf(const Lease& lease, const std::string& what);
 // frame's mask (a byte per pixel) and their attributes, top to bottom, read before
 // anything else, and sets `output` to write
 // the windows top to bottom, each taken from its input when its turn comes, checked by
-// `check` and to have the first window's channels (whose attributes the frame takes).
+// `check` (when given) and to have the first window's channels (whose attributes the frame takes).
 // A denoise's windows differ in two ways (JoinedFrame): they flag nothing, so hold no
 // `rerender.Y`, and dui's are of the frame at half resolution (the windows' rows / factor).
 struct JoinedFrame {
@@ -72,6 +72,11 @@ struct JoinedWindows {
 JoinedWindows joinRowWindows(const Lease& lease, std::vector<TaskInput>& inputs, const std::string& what,
                                     const std::function<void(const FrameImage&)>& check, TaskOutput& output,
                                     JoinedFrame joined = {});
+
+// The counts `names` of a join's windows' attributes, each summed over the windows;
+// BadInput naming `what` ("the denoise of frame 4") when a window's is not a count.
+std::map<std::string, std::string> summedCounts(const JoinedWindows& windows, const std::vector<std::string>& names,
+                                                const std::string& what);
 
 // Adds `attributes` to the frame a join writes (it takes its first window's attributes).
 void addJoinedAttributes(TaskOutput& output, std::map<std::string, std::string> attributes);

@@ -13,6 +13,8 @@
 #include "postproc/interpolation/caustic_check.h"
 #include "postproc/interpolation/feature_check.h"
 #include "postproc/interpolation/frame_interpolation.h"
+#include "postproc/interpolation/interpolation_input.h"
+#include "postproc/interpolation/irradiance_flow.h"
 #include "postproc/interpolation/radiance_check.h"
 #include "worker/direct_emission.h"
 #include "worker/failure_class.h"
@@ -27,16 +29,6 @@ ComponentMotion keyframeMotion(const FrameImage& k0, const FrameImage& k1, const
   const std::string prefix = layer.empty() ? "" : layer + ".";
   return ComponentMotion(motionTowards(k0, NeighbourFrame::Next, prefix, "keyframe 0"),
                          motionTowards(k1, NeighbourFrame::Previous, prefix, "keyframe 1"));
-}
-
-bool isZero(const std::vector<float>& values) {
-  return std::all_of(values.begin(), values.end(), [](float v) { return v == 0.0f; });
-}
-
-bool componentIsEmpty(const FrameImage& frame, const std::string& component) {
-  for (const char* c : {"R", "G", "B"})
-    if (!isZero(frame.channel(component + ".irradiance." + c))) return false;
-  return true;
 }
 
 // Rows `rows` of a frame `width` pixels wide held as an image or a byte per pixel, and
@@ -100,43 +92,72 @@ int largestDisplacement(const std::vector<TaskInput>& inputs, const std::array<c
   return static_cast<int>(std::min(std::ceil(largest), static_cast<float>(height)));
 }
 
+// The channels of a keyframe's component the flow reads: its irradiance and motion alone
+// (a 4K keyframe's other channels are gigabytes).
+ChannelFilter ofComponent(const std::string& component) {
+  return [component](const std::string& name) {
+    if (name.rfind(component + ".", 0) != 0) return false;
+    const std::string buffer = name.substr(component.size() + 1, name.rfind('.') - component.size() - 1);
+    return buffer == "irradiance" || buffer == "motion" || buffer == "motion_back" || buffer == "motion_valid";
+  };
+}
+
+// A keyframe's component as a flow band reads it: rows of its irradiance and of its motion
+// `towards` the other keyframe, decoded a band's rows at a time.
+ComponentRows flowRowsOf(const TaskInput& keyframe, const std::string& component, NeighbourFrame towards, int width,
+                         int height, const std::string& label) {
+  ComponentRows rows{width, height, {}, {}};
+  rows.irradiance = [&keyframe, component, width, label](int first, int end) {
+    const std::string prefix = component + ".irradiance.";
+    const FrameImage part =
+        keyframe.part({[&](const std::string& name) { return name.rfind(prefix, 0) == 0; }, first, end});
+    Planes planes(width, end - first, 0);
+    for (const char* rgb : {"R", "G", "B"}) planes.channels.push_back(finiteChannel(part, prefix + rgb, label));
+    return planes;
+  };
+  rows.motion = [&keyframe, component, towards, height, label](int first, int end) {
+    MotionField field = motionTowards(keyframe.part({ofComponent(component), first, end}), towards, component + ".", label);
+    field.top = first;
+    field.frameHeight = height;
+    return field;
+  };
+  return rows;
+}
+
 }  // namespace
 
 TaskOutput runFlowTask(const Lease& lease, std::vector<TaskInput>& inputs) {
   const TaskParams& params = lease.params();
   const std::string& component = params.component();
-  // The component's irradiance and motion alone, what the flow reads: a 4K keyframe's
-  // other channels are gigabytes.
-  const auto ofComponent = [&](const std::string& name) {
-    if (name.rfind(component + ".", 0) != 0) return false;
-    const std::string buffer = name.substr(component.size() + 1, name.rfind('.') - component.size() - 1);
-    return buffer == "irradiance" || buffer == "motion" || buffer == "motion_back" || buffer == "motion_valid";
-  };
-  const FrameImage k0 = filteredKeyframe(inputs, params.keyframe_before()).part({ofComponent});
-  const FrameImage k1 = filteredKeyframe(inputs, params.keyframe_after()).part({ofComponent});
-  const std::vector<std::string> components = decompositionComponents(k0);
+  if (joinsWindows(lease, inputs)) {
+    for (const TaskInput& input : inputs)
+      if (input.params.component() != component)
+        throw BadInput("the join of component " + component + "'s flow takes a window of component " +
+                       input.params.component());
+    TaskOutput output;
+    joinRowWindows(lease, inputs, "flows", {}, output, {.flagged = false});
+    return output;
+  }
+  const int width = lease.spec().width(), height = lease.spec().height();
+  const RowWindow wanted = rowsOf(lease, "the flow");
+  TaskInput& k0 = filteredKeyframe(inputs, params.keyframe_before());
+  TaskInput& k1 = filteredKeyframe(inputs, params.keyframe_after());
+  const std::vector<std::string> components = decompositionComponents(k0.part({ofComponent(component), 0, 1}));
   if (component.empty() || std::find(components.begin(), components.end(), component) == components.end())
     throw BadInput("the keyframes have no component " + component);
-
-  ComponentMotions motions;
-  motions.components[component] = keyframeMotion(k0, k1, component);
-  FrameImage chunk(k0.width(), k0.height());
-  // A component both keyframes lack has nothing to track: its (absent) flow is invalid
-  // everywhere and interpolation falls back to the primary motion.
-  if (componentIsEmpty(k0, component) && componentIsEmpty(k1, component)) {
-    ComponentMotion& motion = motions.components[component];
-    motion.irradianceForward = MotionField{k0.width(), k0.height(), std::vector<float>(k0.pixelCount(), 0.0f),
-                                           std::vector<float>(k0.pixelCount(), 0.0f),
-                                           std::vector<float>(k0.pixelCount(), 0.0f)};
-    motion.irradianceBackward = motion.irradianceForward;
-    chunk.attributes()["pathfarm.flow"] = "skipped: the component is empty in both keyframes";
-  } else {
-    addIrradianceFlow(motions, k0, k1, FlowSettings{});
-    chunk.attributes()["pathfarm.flow"] = "irradiance flow, log domain, bootstrapped by the primary motion";
-  }
-  const ComponentMotion& motion = motions.components.at(component);
-  writeMotionField(chunk, component + ".irradiance_forward", motion.irradianceForward);
-  writeMotionField(chunk, component + ".irradiance_backward", motion.irradianceBackward);
+  // Each band of the flow reads the rows it is solved on alone (irradiance_flow.h).
+  const IrradianceFlows flows = irradianceFlowRows(
+      flowRowsOf(k0, component, NeighbourFrame::Next, width, height, "keyframe 0"),
+      flowRowsOf(k1, component, NeighbourFrame::Previous, width, height, "keyframe 1"), wanted.first, wanted.end,
+      FlowSettings{});
+  FrameImage chunk(width, wanted.end - wanted.first);
+  // Bands where both keyframes lack the component have nothing to track: their flow is
+  // invalid and interpolation falls back to the primary motion there.
+  chunk.attributes()["pathfarm.flow"] =
+      "irradiance flow, log domain, bootstrapped by the primary motion, in bands of at most " +
+      std::to_string(FlowBanding{}.rows) + " rows";
+  writeMotionField(chunk, component + ".irradiance_forward", flows.forward);
+  writeMotionField(chunk, component + ".irradiance_backward", flows.backward);
   TaskOutput output;
   output.chunk = encodeExr(chunk, ExrCompression::Fast);
   return output;

@@ -470,9 +470,25 @@ FlowField computeFlow(const Planes& a, const Planes& b, const FlowSettings& sett
 }
 
 FlowField bootstrappedFlow(const Planes& a, const Planes& b, const FlowField& primaryMotion,
-                           const FlowSettings& settings, const std::vector<float>* occlusionMask) {
+                           const FlowSettings& settings, const std::vector<float>* occlusionMask, FlowRows rows) {
   checkSettings(settings);
-  checkPair(a, b);
+  const bool band = rows.frameHeight > 0;
+  if (!band) {
+    if (rows.top != 0 || rows.neighbourTop != 0)
+      throw std::invalid_argument("optical flow: rows placed in a frame of unknown height");
+    checkPair(a, b);
+  } else {
+    checkPlanes(a, "A");
+    if (rows.top < 0 || rows.top + a.height > rows.frameHeight)
+      throw std::invalid_argument("optical flow: A's rows " + std::to_string(rows.top) + " to " +
+                                  std::to_string(rows.top + a.height) + " are not rows of a frame " +
+                                  std::to_string(rows.frameHeight) + " rows tall");
+    if (b.height > 0) checkPlanes(b, "B");
+    if (b.width != a.width || b.channels.size() != a.channels.size())
+      throw std::invalid_argument("optical flow: image B's rows are " + std::to_string(b.width) + " wide with " +
+                                  std::to_string(b.channels.size()) + " channels, image A " +
+                                  std::to_string(a.width) + " wide with " + std::to_string(a.channels.size()));
+  }
   checkFlow(primaryMotion, a.width, a.height, "the primary motion");
   checkMask(occlusionMask, a.pixelCount());
   MotionField motion;
@@ -480,10 +496,20 @@ FlowField bootstrappedFlow(const Planes& a, const Planes& b, const FlowField& pr
   motion.height = a.height;
   motion.x = primaryMotion.dx;
   motion.y = primaryMotion.dy;
-  const Planes warped = warpPlanes(b, motion, WarpLookup::Bilinear);
-  std::vector<float> mask = warpValidity(motion);
+  motion.top = rows.top;
+  motion.frameHeight = rows.frameHeight;
+  const std::vector<float> inside = warpValidity(motion);
+  Planes warped = a;
+  if (std::find(inside.begin(), inside.end(), 1.0f) != inside.end()) {
+    if (b.height <= 0) throw std::invalid_argument("optical flow: image B holds no rows, but the primary motion leads into it");
+    const Planes fromB = warpPlanes(b, motion, WarpLookup::Bilinear, rows.neighbourTop);
+    for (size_t c = 0; c < warped.channels.size(); ++c)
+      for (size_t p = 0; p < inside.size(); ++p)
+        if (inside[p] == 1.0f) warped.channels[c][p] = fromB.channels[c][p];
+  }
+  std::vector<float> mask(inside.size());
   for (size_t p = 0; p < mask.size(); ++p) {
-    mask[p] = 1.0f - mask[p];
+    mask[p] = 1.0f - inside[p];
     if (occlusionMask != nullptr && !occlusionMask->empty()) mask[p] = std::max(mask[p], (*occlusionMask)[p]);
   }
   const FlowField residual = solve(a, warped, settings, &mask);

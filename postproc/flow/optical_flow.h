@@ -85,13 +85,25 @@ struct FlowSettings {
 FlowField computeFlow(const Planes& a, const Planes& b, const FlowSettings& settings,
                       const std::vector<float>* occlusionMask = nullptr);
 
+// Where the images of a bootstrapped flow lie in their frames: A is rows [top, top + its
+// height) of a frame `frameHeight` rows tall (0: A is the frame), B holds rows
+// [neighbourTop, neighbourTop + its height) of the other frame, the same size.
+struct FlowRows {
+  int top = 0, frameHeight = 0, neighbourTop = 0;
+};
+
 // Bootstrapping (Zimmer et al. 2015, Section 4.3): B is warped to A along `primaryMotion`
 // (B(p + primary(p)), bilinear, postproc/filters/warp.h), the residual flow r from A to the
 // warped B is computed (data term off where p + primary(p) leaves B, and at `occlusionMask`),
-// and the result is r(p) + primary(p + r(p)) (primary looked up bilinearly, clamped to the
-// image), so that A(p) ~ B(p + result(p)).
+// and the result is r(p) + primary(p + r(p)) (primary looked up bilinearly, clamped to A's
+// rows), so that A(p) ~ B(p + result(p)). Where p + primary(p) leaves B's frame the warped
+// B takes A's own value: the presmoothing and derivatives then see no edge A lacks, and
+// the result does not depend on which rows of B are held. So for a band of rows (`rows`)
+// B need hold only the rows warpSourceRows names for the primary motion placed there (no
+// rows at all when no source lies inside B's frame).
 FlowField bootstrappedFlow(const Planes& a, const Planes& b, const FlowField& primaryMotion,
-                           const FlowSettings& settings, const std::vector<float>* occlusionMask = nullptr);
+                           const FlowSettings& settings, const std::vector<float>* occlusionMask = nullptr,
+                           FlowRows rows = {});
 
 struct OcclusionResult {
   int width = 0, height = 0;

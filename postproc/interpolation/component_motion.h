@@ -9,7 +9,6 @@
 
 #include "image/frame_image.h"
 #include "postproc/filters/warp.h"
-#include "postproc/flow/optical_flow.h"
 
 namespace pathfarm {
 
@@ -17,7 +16,7 @@ namespace pathfarm {
 // K1; backward: pixel p of K1 is at p + backward(p) in K0. `valid` (empty: everywhere)
 // marks where the motion holds.
 // irradianceForward/irradianceBackward: the same for the component's irradiance (its optical
-// flow between the keyframes, addIrradianceFlow), used when hasIrradianceMotion; their
+// flow between the keyframes, irradiance_flow.h), used when hasIrradianceMotion; their
 // `valid` (empty: everywhere) marks where the flow holds, elsewhere the primary motion is used.
 struct ComponentMotion {
   ComponentMotion() = default;
@@ -44,16 +43,5 @@ struct ComponentMotions {
 // `motion`/`motion_back`. Throws std::invalid_argument for fewer than two frames,
 // mismatched sizes or decompositions, missing motion channels or non-finite motion.
 ComponentMotions concatenatePrimaryMotion(const std::vector<FrameImage>& frames);
-
-// Adds the irradiance motion of every component of `motions` but "" (the frame-wide motion):
-// the optical flow of `<c>.irradiance.R/G/B` from k0 to k1 and from k1 to k0 with
-// bootstrappedFlow (postproc/flow/optical_flow.h) in the log domain (settings.logDomain is
-// forced on), bootstrapped by the component's primary motion forward/backward (0 where that
-// is invalid). The flow is valid where p + flow(p) is inside the image. Sets
-// hasIrradianceMotion. Throws std::invalid_argument for mismatched sizes or decompositions,
-// missing irradiance channels, non-finite values or a component of `motions` the keyframes
-// do not have.
-void addIrradianceFlow(ComponentMotions& motions, const FrameImage& k0, const FrameImage& k1,
-                       const FlowSettings& settings);
 
 }  // namespace pathfarm

@@ -2,6 +2,7 @@
 // masked, a rendered in-between frame is closer to the reference per component than with
 // the beauty alone, and bad input is refused with the frame and layer named.
 #include "postproc/interpolation/frame_interpolation.h"
+#include "postproc/interpolation/irradiance_flow.h"
 
 #include <gtest/gtest.h>
 

@@ -72,10 +72,10 @@ TEST(PlannerRegions, AFrameThatFitsOneAssemblyHasNoRegions) {
   for (size_t i = 0; i + 1 < plan.size(); ++i) EXPECT_EQ(plan[i].kind, TASK_RENDER_TILE);
 }
 
-// A frame taller than a filter window is upsampled, interpolated and composited by a task
-// per window, whole rows that cover it once with the inputs of the frame's task, and the
-// frame's task (the composite: the shot's output) joins them; what reads a frame's upsample
-// or interpolation reads the join.
+// A frame taller than a filter window is denoised, upsampled, flowed, interpolated and
+// composited by a task per window, whole rows that cover it once with the inputs of the
+// frame's task, and the frame's task (the composite: the shot's output) joins them; what
+// reads a frame's upsample, flow or interpolation reads the join.
 TEST(Planner, AFrameTallerThanAFilterWindowIsFilteredWindowByWindow) {
   // Frames 10 to 19 of 64x64, keyframes every 4th (10, 14, 18, 19): 10 frames, each composited.
   ShotSpec spec = bigFrame(64, 64, 32);
@@ -95,7 +95,7 @@ TEST(Planner, AFrameTallerThanAFilterWindowIsFilteredWindowByWindow) {
   };
   for (const auto& [kind, frames] :
        {std::pair{TASK_COMPOSITE, 10}, std::pair{TASK_DENOISE, 4}, std::pair{TASK_UPSAMPLE, 4},
-        std::pair{TASK_INTERPOLATE, 6}}) {
+        std::pair{TASK_INTERPOLATE, 6}, std::pair{TASK_FLOW, 4}}) {  // flows: 2 pairs of keyframes, 2 components
     EXPECT_EQ(std::count_if(plan.begin(), plan.end(), [&](const PlannedTask& task) { return task.kind == kind; }),
               frames * 5);
     int joins = 0;
@@ -132,6 +132,13 @@ TEST(Planner, AFrameTallerThanAFilterWindowIsFilteredWindowByWindow) {
           for (const size_t d : window.dependencies) EXPECT_FALSE(plan[d].params.has_window());
           continue;
         }
+        if (kind == TASK_FLOW) {  // both keyframes' joined upsamples
+          EXPECT_EQ(kindsOf(window.dependencies), (std::multiset<TaskKind>{TASK_UPSAMPLE, TASK_UPSAMPLE}));
+          EXPECT_EQ(window.params.component(), task.params.component());
+          EXPECT_EQ(window.params.keyframe_after(), task.params.keyframe_after());
+          for (const size_t d : window.dependencies) EXPECT_FALSE(plan[d].params.has_window()) << "the joined upsample";
+          continue;
+        }
         ASSERT_EQ(window.dependencies.size(), 1u);  // the stage output; re-render tiles join later
         const PlannedTask& stage = plan[window.dependencies[0]];
         EXPECT_TRUE(stage.kind == TASK_UPSAMPLE || stage.kind == TASK_INTERPOLATE);
@@ -141,9 +148,6 @@ TEST(Planner, AFrameTallerThanAFilterWindowIsFilteredWindowByWindow) {
     }
     EXPECT_EQ(joins, frames);
   }
-  for (const PlannedTask& task : plan)
-    if (task.kind == TASK_FLOW)
-      for (const size_t d : task.dependencies) EXPECT_FALSE(plan[d].params.has_window()) << "a flow reads the joined upsample";
   // d: the denoise writes the shot's frame, so its join is the shot's output.
   spec.set_pipeline(PIPELINE_D);
   size_t denoiseWindows = 0;

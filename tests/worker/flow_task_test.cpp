@@ -5,10 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <fstream>
 
 #include "image/exr_io.h"
 #include "postproc/filters/decomposed_frame.h"
 #include "test_support.h"
+#include "worker/task_output_bytes.h"
 #include "worker/task_runner.h"
 
 namespace pathfarm::farm {
@@ -18,57 +20,104 @@ constexpr int kFlowWidth = 64, kFlowHeight = 36, kKeyframeBefore = 0, kKeyframeA
 
 // The walkthrough's keyframe `frame`, decomposed, with motion reaching the other keyframe
 // and the effective irradiance a filtered keyframe carries.
-FrameImage keyframe(int64_t frame) {
+FrameImage keyframe(int64_t frame, int width = kFlowWidth, int height = kFlowHeight) {
   const int reach = kKeyframeAfter - kKeyframeBefore;
   FrameImage image =
-      test_support::renderDecomposed("scenes/walkthrough/scene.json", kFlowWidth, kFlowHeight, 16, frame, {reach, reach});
+      test_support::renderDecomposed("scenes/walkthrough/scene.json", width, height, 16, frame, {reach, reach});
   deriveIrradiance(image);
   return image;
 }
 
-// The flow chunk of `component` made by a worker that keeps `decodedBytes` of decoded inputs.
-std::string flowChunk(const std::map<std::string, std::filesystem::path>& files, const std::string& component,
-                      uint64_t decodedBytes) {
+// Both keyframes, written to files in `folder`, by the names the leases give their inputs.
+std::map<std::string, std::filesystem::path> keyframeFiles(const std::filesystem::path& folder, int width, int height) {
+  std::map<std::string, std::filesystem::path> files;
+  for (const int64_t frame : {kKeyframeBefore, kKeyframeAfter}) {
+    files[std::to_string(frame)] = folder / (std::to_string(frame) + ".exr");
+    writeExr(files[std::to_string(frame)], keyframe(frame, width, height));
+  }
+  return files;
+}
+
+// A flow task of `component` for a dui shot of width x height, without inputs.
+Lease flowLease(const std::string& component, int width, int height) {
   Lease lease;
   lease.set_kind(TASK_FLOW);
   ShotSpec& spec = *lease.mutable_spec();
   spec.set_pipeline(PIPELINE_DUI);
-  spec.set_width(kFlowWidth);
-  spec.set_height(kFlowHeight);
+  spec.set_width(width);
+  spec.set_height(height);
   TaskParams& params = *lease.mutable_params();
   params.set_frame(kKeyframeBefore);
   params.set_keyframe_before(kKeyframeBefore);
   params.set_keyframe_after(kKeyframeAfter);
   params.set_component(component);
+  return lease;
+}
+
+// The lease with the two keyframes (joined upsamples) as its inputs.
+Lease withKeyframes(Lease lease) {
   for (const int64_t frame : {kKeyframeBefore, kKeyframeAfter}) {
     lease.add_inputs()->set_sha256(std::to_string(frame));
     lease.add_input_kinds(TASK_UPSAMPLE);
     lease.add_input_params()->set_frame(frame);
   }
+  return lease;
+}
+
+// The output chunk of `lease` run by a worker that keeps `decodedBytes` of decoded inputs,
+// its inputs read from `files`.
+std::string flowChunk(const Lease& lease, const std::map<std::string, std::filesystem::path>& files,
+                      uint64_t decodedBytes) {
   const auto folder = test_support::processTemporaryFolder("pathfarm_flow_" + std::to_string(decodedBytes));
   TaskRunner runner(1, folder / "scenes", folder / "outgoing", decodedBytes);
   std::atomic<double> progress{0};
   std::atomic<bool> abandon{false};
-  return runner
-      .run(lease, [](const ChunkRef&) -> std::string { throw std::logic_error("read in place"); }, progress, abandon,
-           [&](const ChunkRef& ref) { return files.at(ref.sha256()); })
-      .chunk;
+  return outputBytes(runner.run(
+      lease, [](const ChunkRef&) -> std::string { throw std::logic_error("read in place"); }, progress, abandon,
+      [&](const ChunkRef& ref) { return files.at(ref.sha256()); }));
 }
 
 TEST(FlowTask, AComponentsFlowIsTheSameBitsDecodedAloneOrFromTheWholeFrame) {
-  const auto folder = test_support::processTemporaryFolder("pathfarm_flow_inputs");
-  std::map<std::string, std::filesystem::path> files;
-  for (const int64_t frame : {kKeyframeBefore, kKeyframeAfter}) {
-    files[std::to_string(frame)] = folder / (std::to_string(frame) + ".exr");
-    writeExr(files[std::to_string(frame)], keyframe(frame));
-  }
+  const auto files = keyframeFiles(test_support::processTemporaryFolder("pathfarm_flow_inputs"), kFlowWidth, kFlowHeight);
   for (const std::string component : {"diffuse_direct", "reflection"}) {
-    const std::string alone = flowChunk(files, component, 0);  // nothing kept: the component decoded alone
-    const std::string whole = flowChunk(files, component, TaskRunner::kDefaultDecodedInputBytes);
+    const Lease lease = withKeyframes(flowLease(component, kFlowWidth, kFlowHeight));
+    const std::string alone = flowChunk(lease, files, 0);  // nothing kept: the component decoded alone
+    const std::string whole = flowChunk(lease, files, TaskRunner::kDefaultDecodedInputBytes);
     EXPECT_EQ(alone, whole) << component;
     const FrameImage flow = decodeExr(alone, "flow");
     EXPECT_TRUE(flow.hasChannel(component + ".irradiance_forward.X")) << component;
   }
+}
+
+// A keyframe pair taller than a flow band (irradiance_flow.h: two bands of 300 rows here),
+// flowed in three windows of 200 rows (the middle one across the bands' border) and
+// joined, is the bytes of the pair flowed by one task.
+TEST(FlowTask, WindowsFlowedApartAndJoinedAreTheWholeFramesBytes) {
+  constexpr int kNarrow = 32, kTall = 600;
+  const auto folder = test_support::processTemporaryFolder("pathfarm_flow_windows");
+  auto files = keyframeFiles(folder, kNarrow, kTall);
+  const std::string component = "diffuse_direct";
+  Lease whole = withKeyframes(flowLease(component, kNarrow, kTall));
+  whole.mutable_spec()->set_filter_window_rows(200);
+  const std::string expected = flowChunk(whole, files, TaskRunner::kDefaultDecodedInputBytes);
+
+  const std::vector<RowWindow> windows = filterWindowsOf(whole.spec());
+  ASSERT_EQ(windows.size(), 3u);
+  Lease join = flowLease(component, kNarrow, kTall);
+  *join.mutable_spec() = whole.spec();
+  for (const RowWindow& rows : windows) {
+    const Lease part = windowOf(whole, rows);
+    const std::string name = "window" + std::to_string(rows.first);
+    files[name] = folder / (name + ".exr");
+    std::ofstream(files[name], std::ios::binary) << flowChunk(part, files, rows.first == 0 ? 0 : TaskRunner::kDefaultDecodedInputBytes);
+    join.add_inputs()->set_sha256(name);
+    join.add_input_kinds(TASK_FLOW);
+    *join.add_input_params() = part.params();
+  }
+  EXPECT_TRUE(flowChunk(join, files, 0) == expected) << "the joined windows differ from the pair's flow";
+  // A window of another component is not the join's.
+  join.mutable_input_params(1)->set_component("reflection");
+  EXPECT_THROW(flowChunk(join, files, 0), std::exception);
 }
 
 }  // namespace

@@ -1,0 +1,174 @@
+#include "postproc/interpolation/irradiance_flow.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "postproc/filters/decomposed_frame.h"
+#include "postproc/interpolation/interpolation_input.h"
+
+namespace pathfarm {
+namespace {
+
+bool holdsNothing(const Planes& planes) {
+  for (const auto& plane : planes.channels)
+    if (std::any_of(plane.begin(), plane.end(), [](float v) { return v != 0.0f; })) return false;
+  return true;
+}
+
+// A field of rows [first, end) of a frame `frameHeight` rows tall, zero and invalid.
+MotionField invalidRows(int width, int first, int end, int frameHeight) {
+  const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(end - first);
+  MotionField field{width, end - first, std::vector<float>(pixels, 0.0f), std::vector<float>(pixels, 0.0f),
+                    std::vector<float>(pixels, 0.0f)};
+  field.top = first;
+  field.frameHeight = frameHeight;
+  return field;
+}
+
+// The flow of one band from the keyframe `from` (its irradiance `fromIrradiance` on the
+// band's halo) to `to`, written into the rows of `out` it keeps.
+void solveBand(const FlowBand& band, const Planes& fromIrradiance, const ComponentRows& from, const ComponentRows& to,
+               const FlowSettings& settings, MotionField& out) {
+  const int width = from.width, frameHeight = from.height;
+  const MotionField primary = from.motion(band.haloFirst, band.haloEnd);
+  checkField(primary, width, band.haloEnd - band.haloFirst, "the primary motion");
+  // The initial guess: the primary motion, 0 where it is invalid.
+  FlowField guess(width, primary.height);
+  for (size_t p = 0; p < guess.pixelCount(); ++p)
+    if (primary.valid.empty() || primary.valid[p] >= 0.5f) {
+      guess.dx[p] = primary.x[p];
+      guess.dy[p] = primary.y[p];
+    }
+  MotionField placed{width, guess.height, guess.dx, guess.dy, {}};
+  placed.top = band.haloFirst;
+  placed.frameHeight = frameHeight;
+  const auto [sourceFirst, sourceEnd] = warpSourceRows(placed);
+  const Planes target =
+      sourceFirst < sourceEnd ? to.irradiance(sourceFirst, sourceEnd) : Planes(width, 0, static_cast<int>(fromIrradiance.channels.size()));
+  const FlowField flow =
+      bootstrappedFlow(fromIrradiance, target, guess, settings, nullptr, {band.haloFirst, frameHeight, sourceFirst});
+  const int keptFirst = std::max(band.first, out.top), keptEnd = std::min(band.end, out.top + out.height);
+  const size_t W = static_cast<size_t>(width);
+  for (int y = keptFirst; y < keptEnd; ++y)
+    for (int x = 0; x < width; ++x) {
+      const size_t p = static_cast<size_t>(y - band.haloFirst) * W + static_cast<size_t>(x);
+      const size_t q = static_cast<size_t>(y - out.top) * W + static_cast<size_t>(x);
+      out.x[q] = flow.dx[p];
+      out.y[q] = flow.dy[p];
+      const float tx = static_cast<float>(x) + flow.dx[p], ty = static_cast<float>(y) + flow.dy[p];
+      const bool inside = std::isfinite(tx) && std::isfinite(ty) && tx > -0.5f &&
+                          tx < static_cast<float>(width) - 0.5f && ty > -0.5f &&
+                          ty < static_cast<float>(frameHeight) - 0.5f;
+      out.valid[q] = inside ? 1.0f : 0.0f;
+    }
+}
+
+// Rows [first, end) of a whole-frame field, placed in the frame.
+MotionField rowsOfField(const MotionField& field, int first, int end) {
+  const size_t W = static_cast<size_t>(field.width);
+  const auto slice = [&](const std::vector<float>& plane) {
+    if (plane.empty()) return plane;
+    return std::vector<float>(plane.begin() + static_cast<ptrdiff_t>(first * W),
+                              plane.begin() + static_cast<ptrdiff_t>(end * W));
+  };
+  MotionField rows{field.width, end - first, slice(field.x), slice(field.y), slice(field.valid)};
+  rows.top = first;
+  rows.frameHeight = field.height;
+  return rows;
+}
+
+}  // namespace
+
+std::vector<FlowBand> flowBandsOf(int frameHeight, FlowBanding banding) {
+  if (frameHeight <= 0) throw std::invalid_argument("flow bands: the frame has no rows");
+  if (banding.rows < 0 || banding.halo < 0) throw std::invalid_argument("flow bands: negative rows or halo");
+  const int count = banding.rows == 0 ? 1 : (frameHeight + banding.rows - 1) / banding.rows;
+  const auto border = [&](int i) {
+    return static_cast<int>(static_cast<int64_t>(i) * frameHeight / count);
+  };
+  std::vector<FlowBand> bands;
+  for (int i = 0; i < count; ++i) {
+    const int first = border(i), end = border(i + 1);
+    bands.push_back({first, end, std::max(0, first - banding.halo), std::min(frameHeight, end + banding.halo)});
+  }
+  return bands;
+}
+
+IrradianceFlows irradianceFlowRows(const ComponentRows& k0, const ComponentRows& k1, int first, int end,
+                                   const FlowSettings& settings, FlowBanding banding) {
+  const int width = k0.width, height = k0.height;
+  if (width <= 0 || height <= 0) throw std::invalid_argument("irradiance flow: keyframe 0 is empty");
+  if (k1.width != width || k1.height != height)
+    throw std::invalid_argument("irradiance flow: keyframe 1 is " + std::to_string(k1.width) + "x" +
+                                std::to_string(k1.height) + ", keyframe 0 " + std::to_string(width) + "x" +
+                                std::to_string(height));
+  if (first < 0 || end > height || first >= end)
+    throw std::invalid_argument("irradiance flow: rows " + std::to_string(first) + " to " + std::to_string(end) +
+                                " are not rows of a frame " + std::to_string(height) + " rows tall");
+  FlowSettings logSettings = settings;
+  logSettings.logDomain = true;
+  IrradianceFlows flows{invalidRows(width, first, end, height), invalidRows(width, first, end, height)};
+  for (const FlowBand& band : flowBandsOf(height, banding)) {
+    if (band.end <= first || band.first >= end) continue;
+    ++flows.bands;
+    const Planes e0 = k0.irradiance(band.haloFirst, band.haloEnd), e1 = k1.irradiance(band.haloFirst, band.haloEnd);
+    if (holdsNothing(e0) && holdsNothing(e1)) {
+      ++flows.bandsSkipped;
+      continue;
+    }
+    solveBand(band, e0, k0, k1, logSettings, flows.forward);
+    solveBand(band, e1, k1, k0, logSettings, flows.backward);
+  }
+  return flows;
+}
+
+void addIrradianceFlow(ComponentMotions& motions, const FrameImage& k0, const FrameImage& k1,
+                       const FlowSettings& settings, FlowBanding banding) {
+  const int width = k0.width(), height = k0.height();
+  if (width <= 0 || height <= 0) throw std::invalid_argument("irradiance flow: keyframe 0 is empty");
+  checkSameLayout(k0, k1, "keyframe 0", "keyframe 1");
+  const std::vector<std::string> components = decompositionComponents(k0);
+  std::vector<std::pair<const std::string, ComponentMotion>*> flowing;
+  for (auto& entry : motions.components) {
+    if (entry.first.empty()) continue;
+    if (std::find(components.begin(), components.end(), entry.first) == components.end())
+      throw std::invalid_argument("irradiance flow: the keyframes have no component \"" + entry.first + "\"");
+    flowing.push_back(&entry);
+  }
+  tbb::parallel_for(size_t(0), flowing.size(), [&](size_t i) {
+    const std::string& c = flowing[i]->first;
+    ComponentMotion& motion = flowing[i]->second;
+    const std::string what = "irradiance flow: component \"" + c + "\"";
+    checkField(motion.forward, width, height, what + " forward motion");
+    checkField(motion.backward, width, height, what + " backward motion");
+    const auto rowsOf = [&](const FrameImage& frame, const MotionField& towards, const std::string& label) {
+      ComponentRows rows{width, height, {}, {}};
+      rows.irradiance = [&frame, &c, label, width](int first, int end) {
+        Planes planes(width, end - first, 0);
+        for (const char* rgb : {"R", "G", "B"}) {
+          const std::vector<float>& channel = finiteChannel(frame, c + ".irradiance." + rgb, label);
+          const size_t W = static_cast<size_t>(width);
+          planes.channels.emplace_back(channel.begin() + static_cast<ptrdiff_t>(first * W),
+                                       channel.begin() + static_cast<ptrdiff_t>(end * W));
+        }
+        return planes;
+      };
+      rows.motion = [&towards](int first, int end) { return rowsOfField(towards, first, end); };
+      return rows;
+    };
+    const IrradianceFlows flows = irradianceFlowRows(rowsOf(k0, motion.forward, "keyframe 0"),
+                                                     rowsOf(k1, motion.backward, "keyframe 1"), 0, height, settings,
+                                                     banding);
+    motion.irradianceForward = flows.forward;
+    motion.irradianceBackward = flows.backward;
+    motion.irradianceForward.top = motion.irradianceBackward.top = 0;
+    motion.irradianceForward.frameHeight = motion.irradianceBackward.frameHeight = 0;
+    motion.hasIrradianceMotion = true;
+  });
+}
+
+}  // namespace pathfarm

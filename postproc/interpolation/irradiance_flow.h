@@ -1,0 +1,66 @@
+#pragma once
+// A component's irradiance motion between two keyframes (component_motion.h): the optical
+// flow of its irradiance, bootstrapped by its primary motion (Zimmer et al. 2015, Section
+// 4.3), solved in bands of rows.
+//
+// Why bands: the flow is a global variational solve, so every pixel's flow depends a
+// little on every row of the frame, and a task computing it would hold whole keyframes
+// (gigabytes at 4K). A frame taller than a band is cut into bands of at most
+// FlowBanding::rows rows; each is solved on its rows and `halo` rows on either side and
+// keeps its own rows. A band's flow depends only on the keyframes' rows of its halo and on
+// the rows of the other keyframe its primary motion leads to, so rows computed alone are
+// the bits the whole frame gets. What the bands cost in accuracy against one solve over
+// the frame is measured by bench/interpolation_benchmark (docs/performance.md).
+#include <functional>
+#include <vector>
+
+#include "postproc/filters/nlmeans.h"
+#include "postproc/filters/warp.h"
+#include "postproc/flow/optical_flow.h"
+#include "postproc/interpolation/component_motion.h"
+
+namespace pathfarm {
+
+struct FlowBanding {
+  int rows = 512;  // a band keeps at most this many rows (0: the frame is one band)
+  int halo = 128;  // rows solved on either side of them
+};
+
+struct FlowBand {
+  int first = 0, end = 0;          // the rows it keeps
+  int haloFirst = 0, haloEnd = 0;  // the rows it is solved on
+};
+
+// The bands of a frame `frameHeight` rows tall, top to bottom: as few as keep at most
+// banding.rows rows each, of heights that differ by at most one row.
+std::vector<FlowBand> flowBandsOf(int frameHeight, FlowBanding banding = {});
+
+// Rows [first, end) of one keyframe's component, as a band reads them: its irradiance
+// (R, G, B planes, finite), and its primary motion towards the other keyframe, placed in
+// the frame (MotionField::top, frameHeight).
+struct ComponentRows {
+  int width = 0, height = 0;  // the frame's
+  std::function<Planes(int first, int end)> irradiance;
+  std::function<MotionField(int first, int end)> motion;
+};
+
+// The flows of rows [first, end): forward from keyframe 0 to 1, backward from 1 to 0, each
+// valid where p + flow(p) lies inside the frame. A band whose rows hold no irradiance of
+// the component in either keyframe has nothing to track: its flows are invalid there.
+struct IrradianceFlows {
+  MotionField forward, backward;
+  int bands = 0, bandsSkipped = 0;
+};
+IrradianceFlows irradianceFlowRows(const ComponentRows& k0, const ComponentRows& k1, int first, int end,
+                                   const FlowSettings& settings, FlowBanding banding = {});
+
+// Adds the irradiance motion of every component of `motions` but "" (the frame-wide motion):
+// irradianceFlowRows of `<c>.irradiance.R/G/B` over the whole frame, in the log domain
+// (settings.logDomain is forced on), bootstrapped by the component's primary motion
+// forward/backward (0 where that is invalid). Sets hasIrradianceMotion. Throws
+// std::invalid_argument for mismatched sizes or decompositions, missing irradiance
+// channels, non-finite values or a component of `motions` the keyframes do not have.
+void addIrradianceFlow(ComponentMotions& motions, const FrameImage& k0, const FrameImage& k1,
+                       const FlowSettings& settings, FlowBanding banding = {});
+
+}  // namespace pathfarm

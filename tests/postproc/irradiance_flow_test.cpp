@@ -1,0 +1,162 @@
+// The irradiance flow solved in bands of rows (postproc/interpolation/irradiance_flow.h):
+// the bands' layout, rows computed alone being the whole frame's bits while reading only
+// their bands' rows, the flow of a known translation recovered across band borders, and
+// bands without the component left invalid.
+#include "postproc/interpolation/irradiance_flow.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+namespace pathfarm {
+namespace {
+
+constexpr int kBandedWidth = 48, kBandedHeight = 200;
+constexpr float kBandedShiftX = 2.4f, kBandedShiftY = 6.6f;  // keyframe 1 is keyframe 0 moved by this
+const FlowBanding kBanding{64, 16};              // four bands of 50 rows
+
+// A smooth, positive texture (the flow matches its log).
+float bandedTexture(float x, float y) {
+  return 1.0f + 0.6f * std::sin(0.7f * x + 0.3f * y) * std::cos(0.45f * y - 0.2f * x) +
+         0.3f * std::sin(0.23f * x * 0.5f + 0.61f * y);
+}
+
+// A keyframe's component, made on demand a band at a time, recording the rows asked for.
+struct SyntheticKeyframe {
+  float shiftX = 0.0f, shiftY = 0.0f;  // its texture is moved by this
+  float motionX = 0.0f, motionY = 0.0f;  // its primary motion towards the other keyframe
+  int emptyEnd = 0;                      // rows [0, emptyEnd) hold no irradiance
+  std::vector<std::pair<int, int>> irradianceRead, motionRead;
+
+  ComponentRows rows() {
+    ComponentRows rows{kBandedWidth, kBandedHeight, {}, {}};
+    rows.irradiance = [this](int first, int end) {
+      irradianceRead.emplace_back(first, end);
+      Planes planes(kBandedWidth, end - first, 3);
+      for (int y = first; y < end; ++y)
+        for (int x = 0; x < kBandedWidth; ++x)
+          for (int c = 0; c < 3; ++c)
+            planes.channels[static_cast<size_t>(c)][static_cast<size_t>((y - first) * kBandedWidth + x)] =
+                y < emptyEnd ? 0.0f : (0.5f + 0.25f * static_cast<float>(c)) * bandedTexture(x - shiftX, y - shiftY);
+      return planes;
+    };
+    rows.motion = [this](int first, int end) {
+      motionRead.emplace_back(first, end);
+      const size_t pixels = static_cast<size_t>(kBandedWidth * (end - first));
+      MotionField field{kBandedWidth, end - first, std::vector<float>(pixels, motionX), std::vector<float>(pixels, motionY), {}};
+      field.top = first;
+      field.frameHeight = kBandedHeight;
+      return field;
+    };
+    return rows;
+  }
+};
+
+// Keyframe 0 and keyframe 1 = keyframe 0 moved by the shift; the primary motion is the
+// shift rounded (the flow finds the rest).
+std::pair<SyntheticKeyframe, SyntheticKeyframe> translatedPair() {
+  return {SyntheticKeyframe{0.0f, 0.0f, 2.0f, 7.0f}, SyntheticKeyframe{kBandedShiftX, kBandedShiftY, -2.0f, -7.0f}};
+}
+
+TEST(IrradianceFlow, BandsCoverTheFrameOnceWithTheirHalo) {
+  for (const int height : {1, 180, 512, 513, 1080, 2160}) {
+    const std::vector<FlowBand> bands = flowBandsOf(height);
+    ASSERT_FALSE(bands.empty());
+    EXPECT_EQ(bands.size(), static_cast<size_t>((height + 511) / 512)) << height;
+    int next = 0;
+    for (const FlowBand& band : bands) {
+      EXPECT_EQ(band.first, next);
+      EXPECT_LE(band.end - band.first, 512);
+      EXPECT_GE(band.end - band.first, bands.front().end - bands.front().first - 1);
+      EXPECT_EQ(band.haloFirst, std::max(0, band.first - 128));
+      EXPECT_EQ(band.haloEnd, std::min(height, band.end + 128));
+      next = band.end;
+    }
+    EXPECT_EQ(next, height);
+  }
+  EXPECT_EQ(flowBandsOf(1080, {0, 0}).size(), 1u) << "rows 0: one band";
+  EXPECT_THROW(flowBandsOf(0), std::invalid_argument);
+  EXPECT_THROW(flowBandsOf(100, {-1, 0}), std::invalid_argument);
+}
+
+TEST(IrradianceFlow, RowsComputedAloneAreTheWholeFramesBitsAndReadOnlyTheirBands) {
+  auto [k0, k1] = translatedPair();
+  const IrradianceFlows whole = irradianceFlowRows(k0.rows(), k1.rows(), 0, kBandedHeight, FlowSettings{}, kBanding);
+  EXPECT_EQ(whole.bands, 4);
+  auto [a0, a1] = translatedPair();
+  const int first = 70, end = 120;  // within bands 1 ([50, 100)) and 2 ([100, 150))
+  const IrradianceFlows alone = irradianceFlowRows(a0.rows(), a1.rows(), first, end, FlowSettings{}, kBanding);
+  EXPECT_EQ(alone.bands, 2);
+  const size_t offset = static_cast<size_t>(first * kBandedWidth), count = static_cast<size_t>((end - first) * kBandedWidth);
+  const auto rowsOf = [&](const std::vector<float>& plane) {
+    return std::vector<float>(plane.begin() + static_cast<ptrdiff_t>(offset),
+                              plane.begin() + static_cast<ptrdiff_t>(offset + count));
+  };
+  for (const auto& [field, rows] : {std::pair{&whole.forward, &alone.forward}, std::pair{&whole.backward, &alone.backward}}) {
+    EXPECT_EQ(rows->top, first);
+    EXPECT_EQ(rows->frameHeight, kBandedHeight);
+    EXPECT_TRUE(rowsOf(field->x) == rows->x);
+    EXPECT_TRUE(rowsOf(field->y) == rows->y);
+    EXPECT_TRUE(rowsOf(field->valid) == rows->valid);
+  }
+  // Each keyframe's own rows: the two bands' halos, [34, 116) and [84, 166); the other
+  // keyframe's: where the primary motion (7 rows) leads from them, and the row below.
+  for (const SyntheticKeyframe* keyframe : {&a0, &a1})
+    EXPECT_EQ(keyframe->motionRead, (std::vector<std::pair<int, int>>{{34, 116}, {84, 166}}));
+  EXPECT_EQ(a0.irradianceRead,
+            (std::vector<std::pair<int, int>>{{34, 116}, {27, 110}, {84, 166}, {77, 160}}));
+  EXPECT_EQ(a1.irradianceRead,
+            (std::vector<std::pair<int, int>>{{34, 116}, {41, 124}, {84, 166}, {91, 174}}));
+}
+
+// The worst distance from the true translation, away from the frame's edges (where the
+// data term holds), rows next to the band borders (50, 100, 150) included.
+double worstFlowError(FlowBanding banding) {
+  auto [k0, k1] = translatedPair();
+  const IrradianceFlows flows = irradianceFlowRows(k0.rows(), k1.rows(), 0, kBandedHeight, FlowSettings{}, banding);
+  double worst = 0.0;
+  for (int y = 12; y < kBandedHeight - 12; ++y)
+    for (int x = 6; x < kBandedWidth - 6; ++x) {
+      const size_t p = static_cast<size_t>(y * kBandedWidth + x);
+      const double forward = std::hypot(flows.forward.x[p] - kBandedShiftX, flows.forward.y[p] - kBandedShiftY);
+      const double backward = std::hypot(flows.backward.x[p] + kBandedShiftX, flows.backward.y[p] + kBandedShiftY);
+      worst = std::max({worst, forward, backward});
+    }
+  return worst;
+}
+
+TEST(IrradianceFlow, AKnownTranslationIsFoundAcrossBandBorders) {
+  EXPECT_LT(worstFlowError(FlowBanding{0, 0}), 0.05) << "one solve";
+  EXPECT_LT(worstFlowError(kBanding), 0.05) << "bands with their halo";
+  EXPECT_GT(worstFlowError(FlowBanding{kBanding.rows, 0}), 0.05) << "bands without a halo err at their borders";
+}
+
+TEST(IrradianceFlow, ABandWithoutTheComponentInEitherKeyframeIsLeftInvalid) {
+  auto [k0, k1] = translatedPair();
+  k0.emptyEnd = k1.emptyEnd = 66;  // band 0's halo, [0, 66)
+  const IrradianceFlows flows = irradianceFlowRows(k0.rows(), k1.rows(), 0, kBandedHeight, FlowSettings{}, kBanding);
+  EXPECT_EQ(flows.bands, 4);
+  EXPECT_EQ(flows.bandsSkipped, 1);
+  // Band 0's rows are invalid; the others valid where the flow lands inside the frame.
+  for (const MotionField* flow : {&flows.forward, &flows.backward})
+    for (int y = 0; y < kBandedHeight; ++y)
+      for (int x = 0; x < kBandedWidth; ++x) {
+        const size_t p = static_cast<size_t>(y * kBandedWidth + x);
+        const float tx = static_cast<float>(x) + flow->x[p], ty = static_cast<float>(y) + flow->y[p];
+        const bool lands = tx > -0.5f && tx < kBandedWidth - 0.5f && ty > -0.5f && ty < kBandedHeight - 0.5f;
+        ASSERT_EQ(flow->valid[p], y >= 50 && lands ? 1.0f : 0.0f) << x << ", " << y;
+      }
+}
+
+TEST(IrradianceFlow, RowsOutsideTheFrameAreRefused) {
+  auto [k0, k1] = translatedPair();
+  EXPECT_THROW(irradianceFlowRows(k0.rows(), k1.rows(), 150, kBandedHeight + 1, FlowSettings{}, kBanding),
+               std::invalid_argument);
+  EXPECT_THROW(irradianceFlowRows(k0.rows(), k1.rows(), 20, 20, FlowSettings{}, kBanding), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace pathfarm
