@@ -87,9 +87,10 @@ std::vector<FlowBand> flowBandsOf(int frameHeight, FlowBanding banding) {
   if (frameHeight <= 0) throw std::invalid_argument("flow bands: the frame has no rows");
   if (banding.rows < 0 || banding.halo < 0) throw std::invalid_argument("flow bands: negative rows or halo");
   const int count = banding.rows == 0 ? 1 : (frameHeight + banding.rows - 1) / banding.rows;
-  const auto border = [&](int i) {
-    return static_cast<int>(static_cast<int64_t>(i) * frameHeight / count);
-  };
+  // Borders on even rows, as the farm's filter windows (contract/pipeline.h), so that with
+  // windows of as many rows each window solves one band.
+  const int64_t pairs = (frameHeight + 1) / 2;
+  const auto border = [&](int i) { return i == count ? frameHeight : static_cast<int>(2 * (i * pairs / count)); };
   std::vector<FlowBand> bands;
   for (int i = 0; i < count; ++i) {
     const int first = border(i), end = border(i + 1);

@@ -32,7 +32,8 @@ struct FlowBand {
 };
 
 // The bands of a frame `frameHeight` rows tall, top to bottom: as few as keep at most
-// banding.rows rows each, of heights that differ by at most one row.
+// banding.rows rows each (one more where a border moves up to an even row), of heights
+// that differ by at most two rows.
 std::vector<FlowBand> flowBandsOf(int frameHeight, FlowBanding banding = {});
 
 // Rows [first, end) of one keyframe's component, as a band reads them: its irradiance

@@ -9,6 +9,7 @@
 
 #include "image/exr_io.h"
 #include "postproc/filters/decomposed_frame.h"
+#include "postproc/interpolation/irradiance_flow.h"
 #include "test_support.h"
 #include "worker/task_output_bytes.h"
 #include "worker/task_runner.h"
@@ -86,6 +87,22 @@ TEST(FlowTask, AComponentsFlowIsTheSameBitsDecodedAloneOrFromTheWholeFrame) {
     EXPECT_EQ(alone, whole) << component;
     const FrameImage flow = decodeExr(alone, "flow");
     EXPECT_TRUE(flow.hasChannel(component + ".irradiance_forward.X")) << component;
+  }
+}
+
+// With the default filter windows, each flow window solves one band: the windows are the
+// bands (so no window solves a band another window solves too).
+TEST(FlowTask, TheDefaultFilterWindowsAreTheFlowsBands) {
+  for (const int height : {513, 777, 1080, 1100, 2160, 4321}) {
+    ShotSpec spec;
+    spec.set_height(height);
+    const std::vector<RowWindow> windows = filterWindowsOf(spec);
+    const std::vector<FlowBand> bands = flowBandsOf(height);
+    ASSERT_EQ(windows.size(), bands.size()) << height;
+    for (size_t i = 0; i < bands.size(); ++i) {
+      EXPECT_EQ(windows[i].first, bands[i].first) << height;
+      EXPECT_EQ(windows[i].end, bands[i].end) << height;
+    }
   }
 }
 
