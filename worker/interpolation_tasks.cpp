@@ -102,24 +102,27 @@ ChannelFilter ofComponent(const std::string& component) {
   };
 }
 
-// A keyframe's component as a flow band reads it: rows of its irradiance and of its motion
-// `towards` the other keyframe, decoded a band's rows at a time.
+// A keyframe's component as a flow band reads it (irradiance_flow.h), decoded a band's
+// rows at a time: its irradiance and its motion `towards` the other keyframe, or its
+// irradiance alone.
 ComponentRows flowRowsOf(const TaskInput& keyframe, const std::string& component, NeighbourFrame towards, int width,
                          int height, const std::string& label) {
-  ComponentRows rows{width, height, {}, {}};
-  rows.irradiance = [&keyframe, component, width, label](int first, int end) {
-    const std::string prefix = component + ".irradiance.";
-    const FrameImage part =
-        keyframe.part({[&](const std::string& name) { return name.rfind(prefix, 0) == 0; }, first, end});
-    Planes planes(width, end - first, 0);
+  const std::string prefix = component + ".irradiance.";
+  const auto irradianceOf = [prefix, width, label](const FrameImage& part) {
+    Planes planes(width, part.height(), 0);
     for (const char* rgb : {"R", "G", "B"}) planes.channels.push_back(finiteChannel(part, prefix + rgb, label));
     return planes;
   };
-  rows.motion = [&keyframe, component, towards, height, label](int first, int end) {
-    MotionField field = motionTowards(keyframe.part({ofComponent(component), first, end}), towards, component + ".", label);
-    field.top = first;
-    field.frameHeight = height;
-    return field;
+  ComponentRows rows{width, height, {}, {}};
+  rows.irradiance = [&keyframe, prefix, irradianceOf](int first, int end) {
+    return irradianceOf(keyframe.part({[&](const std::string& name) { return name.rfind(prefix, 0) == 0; }, first, end}));
+  };
+  rows.rows = [&keyframe, component, towards, height, label, irradianceOf](int first, int end) {
+    const FrameImage part = keyframe.part({ofComponent(component), first, end});
+    MotionField motion = motionTowards(part, towards, component + ".", label);
+    motion.top = first;
+    motion.frameHeight = height;
+    return ComponentBand{irradianceOf(part), std::move(motion)};
   };
   return rows;
 }

@@ -29,12 +29,43 @@ MotionField invalidRows(int width, int first, int end, int frameHeight) {
   return field;
 }
 
-// The flow of one band from the keyframe `from` (its irradiance `fromIrradiance` on the
-// band's halo) to `to`, written into the rows of `out` it keeps.
-void solveBand(const FlowBand& band, const Planes& fromIrradiance, const ComponentRows& from, const ComponentRows& to,
+// Rows [first, end) of `planes`, which hold rows [top, top + height) of the frame.
+Planes rowsOfPlanes(const Planes& planes, int top, int first, int end) {
+  const size_t W = static_cast<size_t>(planes.width);
+  Planes rows(planes.width, end - first, 0);
+  for (const auto& plane : planes.channels)
+    rows.channels.emplace_back(plane.begin() + static_cast<ptrdiff_t>((first - top) * W),
+                               plane.begin() + static_cast<ptrdiff_t>((end - top) * W));
+  return rows;
+}
+
+// Rows [first, end) of a keyframe's irradiance: those of its band's halo that `held`
+// holds (from row `top`), and the rest read.
+Planes irradianceRows(const ComponentRows& keyframe, const Planes& held, int top, int first, int end) {
+  const int heldEnd = top + held.height;
+  const int aboveEnd = std::min(end, top), heldFirst = std::max(first, top), heldLast = std::min(end, heldEnd),
+            belowFirst = std::max(first, heldEnd);
+  std::vector<Planes> parts;
+  if (first < aboveEnd) parts.push_back(keyframe.irradiance(first, aboveEnd));
+  if (heldFirst < heldLast) parts.push_back(rowsOfPlanes(held, top, heldFirst, heldLast));
+  if (belowFirst < end) parts.push_back(keyframe.irradiance(belowFirst, end));
+  if (parts.size() == 1) return std::move(parts.front());
+  Planes rows(held.width, 0, 0);
+  rows.channels.resize(held.channels.size());
+  for (const Planes& part : parts) {
+    rows.height += part.height;
+    for (size_t c = 0; c < rows.channels.size(); ++c)
+      rows.channels[c].insert(rows.channels[c].end(), part.channels[c].begin(), part.channels[c].end());
+  }
+  return rows;
+}
+
+// The flow of one band from the keyframe `from` to `to` (both on the band's halo), written
+// into the rows of `out` it keeps.
+void solveBand(const FlowBand& band, const ComponentBand& from, const ComponentBand& to, const ComponentRows& toRows,
                const FlowSettings& settings, MotionField& out) {
-  const int width = from.width, frameHeight = from.height;
-  const MotionField primary = from.motion(band.haloFirst, band.haloEnd);
+  const int width = toRows.width, frameHeight = toRows.height;
+  const MotionField& primary = from.motion;
   checkField(primary, width, band.haloEnd - band.haloFirst, "the primary motion");
   // The initial guess: the primary motion, 0 where it is invalid.
   FlowField guess(width, primary.height);
@@ -47,10 +78,11 @@ void solveBand(const FlowBand& band, const Planes& fromIrradiance, const Compone
   placed.top = band.haloFirst;
   placed.frameHeight = frameHeight;
   const auto [sourceFirst, sourceEnd] = warpSourceRows(placed);
-  const Planes target =
-      sourceFirst < sourceEnd ? to.irradiance(sourceFirst, sourceEnd) : Planes(width, 0, static_cast<int>(fromIrradiance.channels.size()));
+  const Planes target = sourceFirst < sourceEnd
+                            ? irradianceRows(toRows, to.irradiance, band.haloFirst, sourceFirst, sourceEnd)
+                            : Planes(width, 0, static_cast<int>(from.irradiance.channels.size()));
   const FlowField flow =
-      bootstrappedFlow(fromIrradiance, target, guess, settings, nullptr, {band.haloFirst, frameHeight, sourceFirst});
+      bootstrappedFlow(from.irradiance, target, guess, settings, nullptr, {band.haloFirst, frameHeight, sourceFirst});
   const int keptFirst = std::max(band.first, out.top), keptEnd = std::min(band.end, out.top + out.height);
   const size_t W = static_cast<size_t>(width);
   for (int y = keptFirst; y < keptEnd; ++y)
@@ -116,13 +148,13 @@ IrradianceFlows irradianceFlowRows(const ComponentRows& k0, const ComponentRows&
   for (const FlowBand& band : flowBandsOf(height, banding)) {
     if (band.end <= first || band.first >= end) continue;
     ++flows.bands;
-    const Planes e0 = k0.irradiance(band.haloFirst, band.haloEnd), e1 = k1.irradiance(band.haloFirst, band.haloEnd);
-    if (holdsNothing(e0) && holdsNothing(e1)) {
+    const ComponentBand b0 = k0.rows(band.haloFirst, band.haloEnd), b1 = k1.rows(band.haloFirst, band.haloEnd);
+    if (holdsNothing(b0.irradiance) && holdsNothing(b1.irradiance)) {
       ++flows.bandsSkipped;
       continue;
     }
-    solveBand(band, e0, k0, k1, logSettings, flows.forward);
-    solveBand(band, e1, k1, k0, logSettings, flows.backward);
+    solveBand(band, b0, b1, k1, logSettings, flows.forward);
+    solveBand(band, b1, b0, k0, logSettings, flows.backward);
   }
   return flows;
 }
@@ -158,7 +190,9 @@ void addIrradianceFlow(ComponentMotions& motions, const FrameImage& k0, const Fr
         }
         return planes;
       };
-      rows.motion = [&towards](int first, int end) { return rowsOfField(towards, first, end); };
+      rows.rows = [irradiance = rows.irradiance, &towards](int first, int end) {
+        return ComponentBand{irradiance(first, end), rowsOfField(towards, first, end)};
+      };
       return rows;
     };
     const IrradianceFlows flows = irradianceFlowRows(rowsOf(k0, motion.forward, "keyframe 0"),

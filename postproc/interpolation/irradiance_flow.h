@@ -36,13 +36,20 @@ struct FlowBand {
 // that differ by at most two rows.
 std::vector<FlowBand> flowBandsOf(int frameHeight, FlowBanding banding = {});
 
-// Rows [first, end) of one keyframe's component, as a band reads them: its irradiance
-// (R, G, B planes, finite), and its primary motion towards the other keyframe, placed in
-// the frame (MotionField::top, frameHeight).
+// One keyframe's component on rows [first, end): its irradiance (R, G, B planes, finite)
+// and its primary motion towards the other keyframe, placed in the frame
+// (MotionField::top, frameHeight).
+struct ComponentBand {
+  Planes irradiance;
+  MotionField motion;
+};
+
+// How a band reads a keyframe's component: its halo's rows (`rows`), and the irradiance
+// alone of the rows the other keyframe's motion leads to beyond them (`irradiance`).
 struct ComponentRows {
   int width = 0, height = 0;  // the frame's
+  std::function<ComponentBand(int first, int end)> rows;
   std::function<Planes(int first, int end)> irradiance;
-  std::function<MotionField(int first, int end)> motion;
 };
 
 // The flows of rows [first, end): forward from keyframe 0 to 1, backward from 1 to 0, each

@@ -29,12 +29,9 @@ struct SyntheticKeyframe {
   float shiftX = 0.0f, shiftY = 0.0f;  // its texture is moved by this
   float motionX = 0.0f, motionY = 0.0f;  // its primary motion towards the other keyframe
   int emptyEnd = 0;                      // rows [0, emptyEnd) hold no irradiance
-  std::vector<std::pair<int, int>> irradianceRead, motionRead;
+  std::vector<std::pair<int, int>> rowsRead, irradianceRead;
 
-  ComponentRows rows() {
-    ComponentRows rows{kBandedWidth, kBandedHeight, {}, {}};
-    rows.irradiance = [this](int first, int end) {
-      irradianceRead.emplace_back(first, end);
+  Planes irradiance(int first, int end) const {
       Planes planes(kBandedWidth, end - first, 3);
       for (int y = first; y < end; ++y)
         for (int x = 0; x < kBandedWidth; ++x)
@@ -42,14 +39,21 @@ struct SyntheticKeyframe {
             planes.channels[static_cast<size_t>(c)][static_cast<size_t>((y - first) * kBandedWidth + x)] =
                 y < emptyEnd ? 0.0f : (0.5f + 0.25f * static_cast<float>(c)) * bandedTexture(x - shiftX, y - shiftY);
       return planes;
-    };
-    rows.motion = [this](int first, int end) {
-      motionRead.emplace_back(first, end);
+  }
+
+  ComponentRows rows() {
+    ComponentRows rows{kBandedWidth, kBandedHeight, {}, {}};
+    rows.rows = [this](int first, int end) {
+      rowsRead.emplace_back(first, end);
       const size_t pixels = static_cast<size_t>(kBandedWidth * (end - first));
       MotionField field{kBandedWidth, end - first, std::vector<float>(pixels, motionX), std::vector<float>(pixels, motionY), {}};
       field.top = first;
       field.frameHeight = kBandedHeight;
-      return field;
+      return ComponentBand{irradiance(first, end), std::move(field)};
+    };
+    rows.irradiance = [this](int first, int end) {
+      irradianceRead.emplace_back(first, end);
+      return irradiance(first, end);
     };
     return rows;
   }
@@ -103,14 +107,13 @@ TEST(IrradianceFlow, RowsComputedAloneAreTheWholeFramesBitsAndReadOnlyTheirBands
     EXPECT_TRUE(rowsOf(field->y) == rows->y);
     EXPECT_TRUE(rowsOf(field->valid) == rows->valid);
   }
-  // Each keyframe's own rows: the two bands' halos, [34, 116) and [84, 166); the other
-  // keyframe's: where the primary motion (7 rows) leads from them, and the row below.
+  // Each keyframe's rows: the two bands' halos, [34, 116) and [84, 166), and beyond them
+  // the irradiance of the rows the other keyframe's motion (7 rows) leads to, and the row
+  // below: above the halo in keyframe 0, below it in keyframe 1.
   for (const SyntheticKeyframe* keyframe : {&a0, &a1})
-    EXPECT_EQ(keyframe->motionRead, (std::vector<std::pair<int, int>>{{34, 116}, {84, 166}}));
-  EXPECT_EQ(a0.irradianceRead,
-            (std::vector<std::pair<int, int>>{{34, 116}, {27, 110}, {84, 166}, {77, 160}}));
-  EXPECT_EQ(a1.irradianceRead,
-            (std::vector<std::pair<int, int>>{{34, 116}, {41, 124}, {84, 166}, {91, 174}}));
+    EXPECT_EQ(keyframe->rowsRead, (std::vector<std::pair<int, int>>{{34, 116}, {84, 166}}));
+  EXPECT_EQ(a0.irradianceRead, (std::vector<std::pair<int, int>>{{27, 34}, {77, 84}}));
+  EXPECT_EQ(a1.irradianceRead, (std::vector<std::pair<int, int>>{{116, 124}, {166, 174}}));
 }
 
 // The worst distance from the true translation, away from the frame's edges (where the
@@ -127,6 +130,26 @@ double worstFlowError(FlowBanding banding) {
       worst = std::max({worst, forward, backward});
     }
   return worst;
+}
+
+// A motion longer than a band's halo leads wholly outside it: the band reads those rows
+// alone, and rows computed alone are still the whole frame's bits.
+TEST(IrradianceFlow, AMotionBeyondTheHaloReadsTheRowsItLeadsTo) {
+  const auto farPair = [] {
+    return std::pair{SyntheticKeyframe{0.0f, 0.0f, 0.0f, 90.0f}, SyntheticKeyframe{0.0f, 90.0f, 0.0f, -90.0f}};
+  };
+  auto [k0, k1] = farPair();
+  const IrradianceFlows whole = irradianceFlowRows(k0.rows(), k1.rows(), 0, kBandedHeight, FlowSettings{}, kBanding);
+  auto [a0, a1] = farPair();
+  const IrradianceFlows alone = irradianceFlowRows(a0.rows(), a1.rows(), 50, 100, FlowSettings{}, kBanding);
+  const auto rows = [](const std::vector<float>& plane) {
+    return std::vector<float>(plane.begin() + 50 * kBandedWidth, plane.begin() + 100 * kBandedWidth);
+  };
+  EXPECT_TRUE(rows(whole.forward.x) == alone.forward.x && rows(whole.forward.y) == alone.forward.y);
+  EXPECT_TRUE(rows(whole.backward.x) == alone.backward.x && rows(whole.backward.y) == alone.backward.y);
+  // Band 1's halo is [34, 116): its sources lie 90 rows away, within the frame.
+  EXPECT_EQ(a1.irradianceRead, (std::vector<std::pair<int, int>>{{124, 200}}));
+  EXPECT_EQ(a0.irradianceRead, (std::vector<std::pair<int, int>>{{0, 27}}));
 }
 
 TEST(IrradianceFlow, AKnownTranslationIsFoundAcrossBandBorders) {
