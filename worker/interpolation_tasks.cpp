@@ -109,6 +109,8 @@ ComponentRows flowRowsOf(const TaskInput& keyframe, const std::string& component
                          int height, const std::string& label) {
   const std::string prefix = component + ".irradiance.";
   const auto irradianceOf = [prefix, width, label](const FrameImage& part) {
+    if (part.width() != width)
+      throw BadInput(label + " is " + std::to_string(part.width()) + " pixels wide, the shot " + std::to_string(width));
     Planes planes(width, part.height(), 0);
     for (const char* rgb : {"R", "G", "B"}) planes.channels.push_back(finiteChannel(part, prefix + rgb, label));
     return planes;
