@@ -4,7 +4,8 @@
 //   build/bin/interpolation_benchmark [--scene scenes/cornell/scene.json] [--keyframes 4]
 //                                     [--spp 16] [--reference-spp 512] [--size 128]
 //   build/bin/interpolation_benchmark --bands --scene scenes/walkthrough/scene.json
-//                                     [--width 1920 --height 1080] [--spp 16] [--reference-spp 512]
+//                                     [--width 1920 --height 1080] [--band-rows 512] [--spp 16]
+//                                     [--reference-spp 512]
 //
 // Part 1 times flow (one 1280x720 irradiance layer), interpolation and motion blur of a
 // 1280x720 decomposed frame. Part 2 renders frames 0..2k at SIZE x SIZE (keyframes every k
@@ -56,9 +57,51 @@ Planes irradiance(const FrameImage& frame) {
   return planes;
 }
 
+// What a component's flows are like where there is light to track (its irradiance in the
+// keyframe a flow starts from above a hundredth of its mean; in the dark the flow follows
+// its smoothness alone and moves nothing visible), over both directions: the pixels whose
+// flow departs more than a pixel from the primary motion it was bootstrapped by, those
+// whose forward and backward flows agree within half a pixel, and the mean distance from
+// the flows of one solve.
+struct FlowSummary {
+  size_t lit = 0, departing = 0, consistent = 0;
+  double distance = 0.0;
+};
+
+FlowSummary summarize(const ComponentMotion& motion, const ComponentMotion& oneSolve, const FrameImage& k0,
+                      const FrameImage& k1, const std::string& name) {
+  FlowSummary summary;
+  for (const bool forward : {true, false}) {
+    const MotionField& flow = forward ? motion.irradianceForward : motion.irradianceBackward;
+    const MotionField& other = forward ? motion.irradianceBackward : motion.irradianceForward;
+    const MotionField& primary = forward ? motion.forward : motion.backward;
+    const MotionField& reference = forward ? oneSolve.irradianceForward : oneSolve.irradianceBackward;
+    const std::vector<float>& light = (forward ? k0 : k1).channel(name + ".irradiance.G");
+    double mean = 0.0;
+    for (const float v : light) mean += v;
+    mean /= static_cast<double>(std::max<size_t>(1, light.size()));
+    const auto field = [](const MotionField& m) {
+      FlowField f(m.width, m.height);
+      f.dx = m.x;
+      f.dy = m.y;
+      return f;
+    };
+    const OcclusionResult check = forwardBackward(field(flow), field(other), 0.5f);
+    for (size_t p = 0; p < flow.x.size(); ++p) {
+      if (flow.valid[p] < 0.5f || reference.valid[p] < 0.5f || !(light[p] > 0.01 * mean)) continue;
+      ++summary.lit;
+      summary.distance += std::hypot(flow.x[p] - reference.x[p], flow.y[p] - reference.y[p]);
+      const bool primaryHolds = primary.valid.empty() || primary.valid[p] >= 0.5f;
+      if (primaryHolds && std::hypot(flow.x[p] - primary.x[p], flow.y[p] - primary.y[p]) > 1.0f) ++summary.departing;
+      if (check.mask[p] == 0.0f) ++summary.consistent;
+    }
+  }
+  return summary;
+}
+
 // Frame 1 between keyframes 0 and 2 with flows solved in bands of each halo, against the
 // flows of one solve over the frame.
-int flowBands(const Scene& scene, int width, int height, int spp, int referenceSpp) {
+int flowBands(const Scene& scene, int width, int height, int spp, int referenceSpp, int bandRows) {
   const MotionSpan reach{2, 2};
   const FrameImage k0 = render(scene, width, height, spp, 0, true, 0, reach);
   const FrameImage k1 = render(scene, width, height, spp, 2, true, 0, reach);
@@ -66,8 +109,9 @@ int flowBands(const Scene& scene, int width, int height, int spp, int referenceS
   const FrameImage reference = render(scene, width, height, referenceSpp, 1, false, kIndependentFirstSample);
   const ComponentMotions primary = concatenatePrimaryMotion({k0, k1});
   std::printf("%dx%d, %d spp keyframes 0 and 2, frame 1 against %d spp; bands of at most %d rows\n", width, height,
-              spp, referenceSpp, FlowBanding{}.rows);
-  std::printf("halo  flow s  |flow - one solve| mean  p99    max   relMSE frame 1  against one solve  re-render\n");
+              spp, referenceSpp, bandRows);
+  std::printf("halo  component        flow s  lit pixels  departing  consistent  from one solve  relMSE frame 1  "
+              "against one solve  re-render\n");
   // As the farm's interpolation task, which leaves light seen from one keyframe to its checks.
   InterpolationSettings settings;
   settings.unknownChangeMasks = false;
@@ -75,39 +119,30 @@ int flowBands(const Scene& scene, int width, int height, int spp, int referenceS
   FrameImage oneSolve;
   for (const int halo : {-1, 64, 128, 256}) {
     ComponentMotions motions = primary;
-    const FlowBanding banding = halo < 0 ? FlowBanding{0, 0} : FlowBanding{FlowBanding{}.rows, halo};
+    const FlowBanding banding = halo < 0 ? FlowBanding{0, 0} : FlowBanding{bandRows, halo};
     const double took = seconds([&] { addIrradianceFlow(motions, k0, k1, FlowSettings{}, banding); });
     if (halo < 0) whole = motions;
-    // Where there is light to track: pixels valid in both whose component's irradiance in
-    // the keyframe it flows from is above a hundredth of the component's mean there (in a
-    // dark region the flow comes from its smoothness alone and moves nothing visible).
-    std::vector<float> distances;
-    for (const auto& [name, motion] : motions.components) {
-      if (name.empty()) continue;
-      const ComponentMotion& one = whole.components.at(name);
-      for (const bool forward : {true, false}) {
-        const MotionField& flow = forward ? motion.irradianceForward : motion.irradianceBackward;
-        const MotionField& reference = forward ? one.irradianceForward : one.irradianceBackward;
-        const std::vector<float>& light = (forward ? k0 : k1).channel(name + ".irradiance.G");
-        double mean = 0.0;
-        for (const float v : light) mean += v;
-        mean /= static_cast<double>(std::max<size_t>(1, light.size()));
-        for (size_t p = 0; p < flow.x.size(); ++p)
-          if (flow.valid[p] >= 0.5f && reference.valid[p] >= 0.5f && light[p] > 0.01 * mean)
-            distances.push_back(std::hypot(flow.x[p] - reference.x[p], flow.y[p] - reference.y[p]));
-      }
-    }
-    std::sort(distances.begin(), distances.end());
-    double mean = 0.0;
-    for (const float d : distances) mean += d;
-    mean /= std::max<size_t>(1, distances.size());
-    const float p99 = distances.empty() ? 0.0f : distances[distances.size() * 99 / 100];
-    const float largest = distances.empty() ? 0.0f : distances.back();
     const InterpolationResult result = interpolateFrameDetailed(k0, k1, motions, 0.5f, settings);
     const FrameImage interpolated = withRerender(result, between);
     if (halo < 0) oneSolve = interpolated;
-    std::printf("%4s  %6.2f  %22.4f  %5.3f  %5.2f  %14.5f  %17.2e  %7.2f %%\n",
-                halo < 0 ? "none" : std::to_string(halo).c_str(), took, mean, p99, largest,
+    const std::string label = halo < 0 ? "none" : std::to_string(halo);
+    FlowSummary all;
+    for (const auto& [name, motion] : motions.components) {
+      if (name.empty()) continue;
+      const FlowSummary one = summarize(motion, whole.components.at(name), k0, k1, name);
+      const double lit = static_cast<double>(std::max<size_t>(1, one.lit));
+      std::printf("%4s  %-15s  %6s  %10zu  %8.1f %%  %8.1f %%  %11.2f px\n", label.c_str(), name.c_str(), "",
+                  one.lit, 100.0 * static_cast<double>(one.departing) / lit,
+                  100.0 * static_cast<double>(one.consistent) / lit, one.distance / lit);
+      all.lit += one.lit;
+      all.departing += one.departing;
+      all.consistent += one.consistent;
+      all.distance += one.distance;
+    }
+    const double lit = static_cast<double>(std::max<size_t>(1, all.lit));
+    std::printf("%4s  %-15s  %6.2f  %10zu  %8.1f %%  %8.1f %%  %11.2f px  %14.5f  %17.2e  %7.2f %%\n",
+                label.c_str(), "all", took, all.lit, 100.0 * static_cast<double>(all.departing) / lit,
+                100.0 * static_cast<double>(all.consistent) / lit, all.distance / lit,
                 compareImages(interpolated, reference, {"R", "G", "B"}).relMse,
                 compareImages(interpolated, oneSolve, {"R", "G", "B"}).relMse, 100 * result.rerenderRate);
   }
@@ -130,9 +165,11 @@ int main(int argc, char** argv) {
   app.flag("--bands", bands, "measure the flow solved in bands of rows against one solve");
   app.option("--width", width, "with --bands").positive();
   app.option("--height", height, "with --bands").positive();
+  int bandRows = FlowBanding{}.rows;
+  app.option("--band-rows", bandRows, "with --bands: the rows a band keeps (the farm's: 512)").positive();
   if (const auto exit = app.parse(argc, argv)) return *exit;
   const Scene scene = loadScene(scenePath);
-  if (bands) return flowBands(scene, width, height, spp, referenceSpp);
+  if (bands) return flowBands(scene, width, height, spp, referenceSpp, bandRows);
 
   // Part 1: speed at 1280x720.
   const FrameImage a = render(scene, 1280, 720, 2, 4, true), b = render(scene, 1280, 720, 2, 5, true);
