@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "image/row_bands.h"
+
 namespace pathfarm::farm {
 
 const std::vector<PipelineTraits>& allPipelines() {
@@ -89,13 +91,8 @@ std::vector<int64_t> keyframesOf(const ShotSpec& spec) {
 
 std::vector<RowWindow> filterWindowsOf(const ShotSpec& spec) {
   const int64_t rows = spec.filter_window_rows() > 0 ? spec.filter_window_rows() : kDefaultFilterWindowRows;
-  const int64_t height = std::max(spec.height(), 1);
-  const int64_t count = (height + rows - 1) / rows;
   std::vector<RowWindow> windows;
-  // Borders on even rows, so that a window of a frame at half resolution is whole rows.
-  const int64_t pairs = (height + 1) / 2;
-  const auto border = [&](int64_t i) { return static_cast<int>(i == count ? height : 2 * (i * pairs / count)); };
-  for (int64_t i = 0; i < count; ++i) windows.push_back({border(i), border(i + 1)});
+  for (const auto& [first, end] : evenRowBands(std::max(spec.height(), 1), rows)) windows.push_back({first, end});
   return windows;
 }
 

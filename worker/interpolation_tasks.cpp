@@ -92,14 +92,26 @@ int largestDisplacement(const std::vector<TaskInput>& inputs, const std::array<c
   return static_cast<int>(std::min(std::ceil(largest), static_cast<float>(height)));
 }
 
-// The channels of a keyframe's component the flow reads: its irradiance and motion alone
-// (a 4K keyframe's other channels are gigabytes).
-ChannelFilter ofComponent(const std::string& component) {
-  return [component](const std::string& name) {
+// The rows of a flow whose band held none of the component: summed over windows by the join.
+const char* const kFlowSkippedRows = "pathfarm.flow_skipped_rows";
+
+// The channels of a keyframe's component a flow band reads: its irradiance and its motion
+// `towards` the other keyframe alone (a 4K keyframe's other channels are gigabytes).
+ChannelFilter flowChannelsOf(const std::string& component, NeighbourFrame towards) {
+  const std::string motion = towards == NeighbourFrame::Next ? "motion" : "motion_back";
+  return [component, motion](const std::string& name) {
     if (name.rfind(component + ".", 0) != 0) return false;
     const std::string buffer = name.substr(component.size() + 1, name.rfind('.') - component.size() - 1);
-    return buffer == "irradiance" || buffer == "motion" || buffer == "motion_back" || buffer == "motion_valid";
+    return buffer == "irradiance" || buffer == motion || buffer == "motion_valid";
   };
+}
+
+// A keyframe of the shot's size, else BadInput: a band reads rows of it by the shot's.
+void checkKeyframeSize(const TaskInput& keyframe, int width, int height, const std::string& label) {
+  const FrameImage header = keyframe.part({[](const std::string&) { return false; }});
+  if (header.width() != width || header.height() != height)
+    throw BadInput(label + " is " + std::to_string(header.width()) + "x" + std::to_string(header.height()) +
+                   ", the shot " + std::to_string(width) + "x" + std::to_string(height));
 }
 
 // A keyframe's component as a flow band reads it (irradiance_flow.h), decoded a band's
@@ -109,8 +121,6 @@ ComponentRows flowRowsOf(const TaskInput& keyframe, const std::string& component
                          int height, const std::string& label) {
   const std::string prefix = component + ".irradiance.";
   const auto irradianceOf = [prefix, width, label](const FrameImage& part) {
-    if (part.width() != width)
-      throw BadInput(label + " is " + std::to_string(part.width()) + " pixels wide, the shot " + std::to_string(width));
     Planes planes(width, part.height(), 0);
     for (const char* rgb : {"R", "G", "B"}) planes.channels.push_back(finiteChannel(part, prefix + rgb, label));
     return planes;
@@ -120,7 +130,7 @@ ComponentRows flowRowsOf(const TaskInput& keyframe, const std::string& component
     return irradianceOf(keyframe.part({[&](const std::string& name) { return name.rfind(prefix, 0) == 0; }, first, end}));
   };
   rows.rows = [&keyframe, component, towards, height, label, irradianceOf](int first, int end) {
-    const FrameImage part = keyframe.part({ofComponent(component), first, end});
+    const FrameImage part = keyframe.part({flowChannelsOf(component, towards), first, end});
     MotionField motion = motionTowards(part, towards, component + ".", label);
     motion.top = first;
     motion.frameHeight = height;
@@ -140,14 +150,18 @@ TaskOutput runFlowTask(const Lease& lease, std::vector<TaskInput>& inputs) {
         throw BadInput("the join of component " + component + "'s flow takes a window of component " +
                        input.params.component());
     TaskOutput output;
-    joinRowWindows(lease, inputs, "flows", {}, output, {.flagged = false});
+    const JoinedWindows windows = joinRowWindows(lease, inputs, "flows", {}, output, {.flagged = false});
+    addJoinedAttributes(output, summedCounts(windows, {kFlowSkippedRows}, "the flow of component " + component));
     return output;
   }
   const int width = lease.spec().width(), height = lease.spec().height();
   const RowWindow wanted = rowsOf(lease, "the flow");
   TaskInput& k0 = filteredKeyframe(inputs, params.keyframe_before());
   TaskInput& k1 = filteredKeyframe(inputs, params.keyframe_after());
-  const std::vector<std::string> components = decompositionComponents(k0.part({ofComponent(component), 0, 1}));
+  checkKeyframeSize(k0, width, height, "keyframe 0");
+  checkKeyframeSize(k1, width, height, "keyframe 1");
+  const std::vector<std::string> components =
+      decompositionComponents(k0.part({flowChannelsOf(component, NeighbourFrame::Next), 0, 1}));
   if (component.empty() || std::find(components.begin(), components.end(), component) == components.end())
     throw BadInput("the keyframes have no component " + component);
   // Each band of the flow reads the rows it is solved on alone (irradiance_flow.h).
@@ -156,11 +170,12 @@ TaskOutput runFlowTask(const Lease& lease, std::vector<TaskInput>& inputs) {
       flowRowsOf(k1, component, NeighbourFrame::Previous, width, height, "keyframe 1"), wanted.first, wanted.end,
       FlowSettings{});
   FrameImage chunk(width, wanted.end - wanted.first);
-  // Bands where both keyframes lack the component have nothing to track: their flow is
-  // invalid and interpolation falls back to the primary motion there.
   chunk.attributes()["pathfarm.flow"] =
       "irradiance flow, log domain, bootstrapped by the primary motion, in bands of at most " +
       std::to_string(FlowBanding{}.rows) + " rows";
+  // Bands where both keyframes lack the component have nothing to track: their flow is
+  // invalid and interpolation falls back to the primary motion there.
+  chunk.attributes()[kFlowSkippedRows] = std::to_string(flows.skippedRows);
   writeMotionField(chunk, component + ".irradiance_forward", flows.forward);
   writeMotionField(chunk, component + ".irradiance_backward", flows.backward);
   TaskOutput output;

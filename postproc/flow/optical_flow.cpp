@@ -498,6 +498,17 @@ FlowField bootstrappedFlow(const Planes& a, const Planes& b, const FlowField& pr
   motion.y = primaryMotion.dy;
   motion.top = rows.top;
   motion.frameHeight = rows.frameHeight;
+  if (band) {
+    // B must hold the rows the warp reads, inside its frame: else lookups would clamp.
+    const auto [sourceFirst, sourceEnd] = warpSourceRows(motion);
+    const int heldEnd = rows.neighbourTop + b.height;
+    if (rows.neighbourTop < 0 || heldEnd > rows.frameHeight ||
+        (sourceFirst < sourceEnd && (sourceFirst < rows.neighbourTop || sourceEnd > heldEnd)))
+      throw std::invalid_argument("optical flow: image B holds rows " + std::to_string(rows.neighbourTop) + " to " +
+                                  std::to_string(heldEnd) + " of a frame " + std::to_string(rows.frameHeight) +
+                                  " rows tall; the primary motion reads rows " + std::to_string(sourceFirst) +
+                                  " to " + std::to_string(sourceEnd));
+  }
   const std::vector<float> inside = warpValidity(motion);
   Planes warped = a;
   if (std::find(inside.begin(), inside.end(), 1.0f) != inside.end()) {

@@ -100,7 +100,8 @@ struct FlowRows {
 // B takes A's own value: the presmoothing and derivatives then see no edge A lacks, and
 // the result does not depend on which rows of B are held. So for a band of rows (`rows`)
 // B need hold only the rows warpSourceRows names for the primary motion placed there (no
-// rows at all when no source lies inside B's frame).
+// rows at all when no source lies inside B's frame); rows of B outside its frame, or
+// missing some of those, are refused (std::invalid_argument).
 FlowField bootstrappedFlow(const Planes& a, const Planes& b, const FlowField& primaryMotion,
                            const FlowSettings& settings, const std::vector<float>* occlusionMask = nullptr,
                            FlowRows rows = {});

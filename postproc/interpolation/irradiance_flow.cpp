@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "image/row_bands.h"
 #include "postproc/filters/decomposed_frame.h"
 #include "postproc/interpolation/interpolation_input.h"
 
@@ -117,17 +118,11 @@ MotionField rowsOfField(const MotionField& field, int first, int end) {
 
 std::vector<FlowBand> flowBandsOf(int frameHeight, FlowBanding banding) {
   if (frameHeight <= 0) throw std::invalid_argument("flow bands: the frame has no rows");
-  if (banding.rows < 0 || banding.halo < 0) throw std::invalid_argument("flow bands: negative rows or halo");
-  const int count = banding.rows == 0 ? 1 : (frameHeight + banding.rows - 1) / banding.rows;
-  // Borders on even rows, as the farm's filter windows (contract/pipeline.h), so that with
-  // windows of as many rows each window solves one band.
-  const int64_t pairs = (frameHeight + 1) / 2;
-  const auto border = [&](int i) { return i == count ? frameHeight : static_cast<int>(2 * (i * pairs / count)); };
+  if (banding.rows < 0 || banding.rows == 1 || banding.halo < 0)
+    throw std::invalid_argument("flow bands: a band keeps 0 (the frame) or at least 2 rows, and no halo is negative");
   std::vector<FlowBand> bands;
-  for (int i = 0; i < count; ++i) {
-    const int first = border(i), end = border(i + 1);
+  for (const auto& [first, end] : evenRowBands(frameHeight, banding.rows))
     bands.push_back({first, end, std::max(0, first - banding.halo), std::min(frameHeight, end + banding.halo)});
-  }
   return bands;
 }
 
@@ -151,6 +146,7 @@ IrradianceFlows irradianceFlowRows(const ComponentRows& k0, const ComponentRows&
     const ComponentBand b0 = k0.rows(band.haloFirst, band.haloEnd), b1 = k1.rows(band.haloFirst, band.haloEnd);
     if (holdsNothing(b0.irradiance) && holdsNothing(b1.irradiance)) {
       ++flows.bandsSkipped;
+      flows.skippedRows += std::min(end, band.end) - std::max(first, band.first);
       continue;
     }
     solveBand(band, b0, b1, k1, logSettings, flows.forward);

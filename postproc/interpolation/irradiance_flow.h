@@ -31,9 +31,8 @@ struct FlowBand {
   int haloFirst = 0, haloEnd = 0;  // the rows it is solved on
 };
 
-// The bands of a frame `frameHeight` rows tall, top to bottom: as few as keep at most
-// banding.rows rows each (one more where a border moves up to an even row), of heights
-// that differ by at most two rows.
+// The bands of a frame `frameHeight` rows tall, top to bottom, cut as the farm's filter
+// windows are (evenRowBands, image/row_bands.h) with banding.rows rows at most.
 std::vector<FlowBand> flowBandsOf(int frameHeight, FlowBanding banding = {});
 
 // One keyframe's component on rows [first, end): its irradiance (R, G, B planes, finite)
@@ -53,11 +52,13 @@ struct ComponentRows {
 };
 
 // The flows of rows [first, end): forward from keyframe 0 to 1, backward from 1 to 0, each
-// valid where p + flow(p) lies inside the frame. A band whose rows hold no irradiance of
-// the component in either keyframe has nothing to track: its flows are invalid there.
+// valid where p + flow(p) lies inside the frame. A band whose halo holds no irradiance of
+// the component in either keyframe has nothing to track: its flows are invalid there
+// (`skippedRows` counts those of rows [first, end)). The callbacks of `k0` and `k1` are
+// called only during the call.
 struct IrradianceFlows {
   MotionField forward, backward;
-  int bands = 0, bandsSkipped = 0;
+  int bands = 0, bandsSkipped = 0, skippedRows = 0;
 };
 IrradianceFlows irradianceFlowRows(const ComponentRows& k0, const ComponentRows& k1, int first, int end,
                                    const FlowSettings& settings, FlowBanding banding = {});

@@ -169,6 +169,41 @@ TEST(OpticalFlow, BootstrappingRecoversAMovingShadowInTheLogDomain) {
 
 }
 
+// A band of rows (FlowRows) needs of B only the rows its primary motion reads: with those
+// alone, or with B whole, the flow is the same bits, also where the motion leaves the
+// frame (there the warped B is A's own value). B without them is refused.
+TEST(OpticalFlow, ABandNeedsOfBOnlyTheRowsItsMotionReads) {
+  const int w = 40, frameHeight = 90, top = 30, rows = 30;
+  const Texture texture(3, 7);
+  const Planes wholeB = render(w, frameHeight, 3, [&](int c, float x, float y) { return texture(c, x - 2.0f, y - 5.0f); });
+  const Planes a = render(w, rows, 3, [&](int c, float x, float y) { return texture(c, x, y + top); });
+  FlowField primary(w, rows, 2.0f, 5.0f);
+  // Some pixels' motion leaves the frame: sideways, and past its last row (which B's rows
+  // below do not hold).
+  for (int y = 0; y < rows; ++y) primary.dx[static_cast<size_t>(y * w + w - 1)] = 9.0f;
+  for (int x = 0; x < w; x += 3) primary.dy[static_cast<size_t>(x)] = 80.0f;
+  const FlowRows inWhole{top, frameHeight, 0};
+  const FlowField fromWhole = bootstrappedFlow(a, wholeB, primary, FlowSettings{}, nullptr, inWhole);
+  // The rows the bilinear lookups read: 35 to 64, and the row below.
+  const int first = top + 5, end = top + rows + 5 + 1;
+  Planes held(w, end - first, 0);
+  for (const auto& plane : wholeB.channels)
+    held.channels.emplace_back(plane.begin() + first * w, plane.begin() + end * w);
+  const FlowField fromRows = bootstrappedFlow(a, held, primary, FlowSettings{}, nullptr, {top, frameHeight, first});
+  EXPECT_TRUE(fromWhole.dx == fromRows.dx && fromWhole.dy == fromRows.dy);
+  Planes short1 = held;
+  short1.height -= 1;
+  for (auto& plane : short1.channels) plane.resize(short1.pixelCount());
+  EXPECT_THROW(bootstrappedFlow(a, short1, primary, FlowSettings{}, nullptr, {top, frameHeight, first}),
+               std::invalid_argument);
+  EXPECT_THROW(bootstrappedFlow(a, held, primary, FlowSettings{}, nullptr, {top, frameHeight, frameHeight - 10}),
+               std::invalid_argument)
+      << "rows past the frame";
+  EXPECT_THROW(bootstrappedFlow(a, wholeB, primary, FlowSettings{}, nullptr, {70, frameHeight, 0}),
+               std::invalid_argument)
+      << "A's rows past the frame";
+}
+
 TEST(OpticalFlow, BootstrappingComposesWithThePrimaryMotion) {
   // A moves by a known translation; the primary motion gives most of it, the residual the rest.
   const int w = 80, h = 80;

@@ -11,6 +11,7 @@
 #include "postproc/filters/decomposed_frame.h"
 #include "postproc/interpolation/irradiance_flow.h"
 #include "test_support.h"
+#include "worker/failure_class.h"
 #include "worker/task_output_bytes.h"
 #include "worker/task_runner.h"
 
@@ -134,7 +135,24 @@ TEST(FlowTask, WindowsFlowedApartAndJoinedAreTheWholeFramesBytes) {
   EXPECT_TRUE(flowChunk(join, files, 0) == expected) << "the joined windows differ from the pair's flow";
   // A window of another component is not the join's.
   join.mutable_input_params(1)->set_component("reflection");
-  EXPECT_THROW(flowChunk(join, files, 0), std::exception);
+  EXPECT_THROW(flowChunk(join, files, 0), BadInput);
+}
+
+// Keyframes of another size than the shot's are refused, with both sizes named.
+TEST(FlowTask, KeyframesOfAnotherSizeAreRefused) {
+  const auto files = keyframeFiles(test_support::processTemporaryFolder("pathfarm_flow_sizes"), kFlowWidth, kFlowHeight);
+  for (const auto& [width, height] : {std::pair{kFlowWidth, kFlowHeight + 2}, std::pair{kFlowWidth - 2, kFlowHeight}})
+    for (const uint64_t decodedBytes : {uint64_t{0}, TaskRunner::kDefaultDecodedInputBytes}) {
+      try {
+        flowChunk(withKeyframes(flowLease("diffuse_direct", width, height)), files, decodedBytes);
+        ADD_FAILURE() << width << "x" << height << " accepted";
+      } catch (const BadInput& e) {
+        EXPECT_NE(std::string(e.what()).find("keyframe 0 is 64x36, the shot " + std::to_string(width) + "x" +
+                                             std::to_string(height)),
+                  std::string::npos)
+            << e.what();
+      }
+    }
 }
 
 }  // namespace
