@@ -1,7 +1,7 @@
 // The irradiance flow of one component reads only that component's channels of its two
-// keyframes: decoded alone from the chunk files when the worker would not keep the frames
-// decoded (a 1080p keyframe), taken from the decoded frames when it would. Either way the
-// flow is the same bits.
+// keyframes, a band of rows at a time: decoded alone from the chunk files when the worker
+// would not keep the frames decoded (a 1080p keyframe), taken from the decoded frames when
+// it would. Either way, and flowed in windows of rows and joined, the flow is the same bits.
 #include <gtest/gtest.h>
 
 #include <atomic>
