@@ -6,6 +6,8 @@
 //   build/bin/interpolation_benchmark --bands --scene scenes/walkthrough/scene.json
 //                                     [--width 1920 --height 1080] [--band-rows 512] [--spp 16]
 //                                     [--reference-spp 512]
+//   build/bin/interpolation_benchmark --checks --scene scenes/walkthrough/scene.json
+//                                     [--width 320 --height 180] [--spp 16] [--reference-spp 256]
 //
 // Part 1 times flow (one 1280x720 irradiance layer), interpolation and motion blur of a
 // 1280x720 decomposed frame. Part 2 renders frames 0..2k at SIZE x SIZE (keyframes every k
@@ -18,11 +20,14 @@
 // (irradiance_flow.h; the farm's flow tasks) costs against one solve over the frame:
 // keyframes 0 and 2 at WIDTH x HEIGHT, the flows with each halo, their distance from the
 // one-solve flows, and frame 1 interpolated with each, against a --reference-spp render.
+// With --checks, the same for the farm's flows (their two directions checked against each
+// other) against flows unchecked, checked within 1 px, and of pyramids cut to 1 to 3 levels.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "bench/command_line.h"
 #include "postproc/flow/optical_flow.h"
@@ -99,54 +104,83 @@ FlowSummary summarize(const ComponentMotion& motion, const ComponentMotion& oneS
   return summary;
 }
 
-// Frame 1 between keyframes 0 and 2 with flows solved in bands of each halo, against the
-// flows of one solve over the frame.
-int flowBands(const Scene& scene, int width, int height, int spp, int referenceSpp, int bandRows) {
+// One way to solve the irradiance flows: in bands (or one solve) with some settings.
+struct FlowVariant {
+  std::string label;
+  FlowBanding banding;
+  FlowSettings settings;
+  float consistency = kFlowConsistency;
+};
+
+// Frame 1 between keyframes 0 and 2 with the flows of each variant, against those of the
+// first variant.
+int compareFlows(const Scene& scene, int width, int height, int spp, int referenceSpp,
+                 const std::vector<FlowVariant>& variants) {
   const MotionSpan reach{2, 2};
   const FrameImage k0 = render(scene, width, height, spp, 0, true, 0, reach);
   const FrameImage k1 = render(scene, width, height, spp, 2, true, 0, reach);
   const FrameImage between = render(scene, width, height, spp, 1, true);
   const FrameImage reference = render(scene, width, height, referenceSpp, 1, false, kIndependentFirstSample);
   const ComponentMotions primary = concatenatePrimaryMotion({k0, k1});
-  std::printf("%dx%d, %d spp keyframes 0 and 2, frame 1 against %d spp; bands of at most %d rows\n", width, height,
-              spp, referenceSpp, bandRows);
-  std::printf("halo  component        flow s  lit pixels  departing  consistent  from one solve  relMSE frame 1  "
-              "against one solve  re-render\n");
+  std::printf("%dx%d, %d spp keyframes 0 and 2, frame 1 against %d spp\n", width, height, spp, referenceSpp);
+  std::printf("%-8s  component        flow s  lit pixels  departing  consistent  from %-8s  relMSE frame 1  "
+              "against %-8s  re-render\n", "flow", variants.front().label.c_str(), variants.front().label.c_str());
   // As the farm's interpolation task, which leaves light seen from one keyframe to its checks.
   InterpolationSettings settings;
   settings.unknownChangeMasks = false;
-  ComponentMotions whole;
-  FrameImage oneSolve;
-  for (const int halo : {-1, 64, 128, 256}) {
+  ComponentMotions first;
+  FrameImage firstFrame;
+  for (const FlowVariant& variant : variants) {
     ComponentMotions motions = primary;
-    const FlowBanding banding = halo < 0 ? FlowBanding{0, 0} : FlowBanding{bandRows, halo};
-    const double took = seconds([&] { addIrradianceFlow(motions, k0, k1, FlowSettings{}, banding); });
-    if (halo < 0) whole = motions;
+    const double took = seconds(
+        [&] { addIrradianceFlow(motions, k0, k1, variant.settings, variant.banding, variant.consistency); });
+    const bool isFirst = &variant == &variants.front();
+    if (isFirst) first = motions;
     const InterpolationResult result = interpolateFrameDetailed(k0, k1, motions, 0.5f, settings);
     const FrameImage interpolated = withRerender(result, between);
-    if (halo < 0) oneSolve = interpolated;
-    const std::string label = halo < 0 ? "none" : std::to_string(halo);
+    if (isFirst) firstFrame = interpolated;
+    const char* label = variant.label.c_str();
     FlowSummary all;
     for (const auto& [name, motion] : motions.components) {
       if (name.empty()) continue;
-      const FlowSummary one = summarize(motion, whole.components.at(name), k0, k1, name);
+      const FlowSummary one = summarize(motion, first.components.at(name), k0, k1, name);
       const double lit = static_cast<double>(std::max<size_t>(1, one.lit));
-      std::printf("%4s  %-15s  %6s  %10zu  %8.1f %%  %8.1f %%  %11.2f px\n", label.c_str(), name.c_str(), "",
-                  one.lit, 100.0 * static_cast<double>(one.departing) / lit,
-                  100.0 * static_cast<double>(one.consistent) / lit, one.distance / lit);
+      std::printf("%-8s  %-15s  %6s  %10zu  %8.1f %%  %8.1f %%  %11.2f px\n", label, name.c_str(), "", one.lit,
+                  100.0 * static_cast<double>(one.departing) / lit, 100.0 * static_cast<double>(one.consistent) / lit,
+                  one.distance / lit);
       all.lit += one.lit;
       all.departing += one.departing;
       all.consistent += one.consistent;
       all.distance += one.distance;
     }
     const double lit = static_cast<double>(std::max<size_t>(1, all.lit));
-    std::printf("%4s  %-15s  %6.2f  %10zu  %8.1f %%  %8.1f %%  %11.2f px  %14.5f  %17.2e  %7.2f %%\n",
-                label.c_str(), "all", took, all.lit, 100.0 * static_cast<double>(all.departing) / lit,
+    std::printf("%-8s  %-15s  %6.2f  %10zu  %8.1f %%  %8.1f %%  %11.2f px  %14.5f  %17.2e  %7.2f %%\n", label, "all",
+                took, all.lit, 100.0 * static_cast<double>(all.departing) / lit,
                 100.0 * static_cast<double>(all.consistent) / lit, all.distance / lit,
                 compareImages(interpolated, reference, {"R", "G", "B"}).relMse,
-                compareImages(interpolated, oneSolve, {"R", "G", "B"}).relMse, 100 * result.rerenderRate);
+                compareImages(interpolated, firstFrame, {"R", "G", "B"}).relMse, 100 * result.rerenderRate);
   }
   return 0;
+}
+
+// Bands of at most `bandRows` rows with each halo, against one solve over the frame.
+std::vector<FlowVariant> bandVariants(int bandRows) {
+  std::vector<FlowVariant> variants{{"one", FlowBanding{0, 0}, FlowSettings{}}};
+  for (const int halo : {64, 128, 256}) variants.push_back({"halo " + std::to_string(halo), {bandRows, halo}, {}});
+  return variants;
+}
+
+// The farm's flows (their two directions checked against each other), against flows not
+// checked, flows checked within a looser bound and flows of shallower pyramids.
+std::vector<FlowVariant> checkVariants(int bandRows) {
+  const FlowBanding farm{bandRows, FlowBanding{}.halo};
+  std::vector<FlowVariant> variants{{"farm", farm, {}}, {"unchecked", farm, {}, 0.0f}, {"1 px", farm, {}, 1.0f}};
+  for (const int levels : {1, 2, 3}) {
+    FlowSettings settings;
+    settings.maxLevels = levels;
+    variants.push_back({std::to_string(levels) + " levels", farm, settings, 0.0f});
+  }
+  return variants;
 }
 
 }  // namespace
@@ -162,14 +196,17 @@ int main(int argc, char** argv) {
   app.option("--size", size);
   bool bands = false;
   int width = 1920, height = 1080;
+  bool checks = false;
   app.flag("--bands", bands, "measure the flow solved in bands of rows against one solve");
-  app.option("--width", width, "with --bands").positive();
-  app.option("--height", height, "with --bands").positive();
+  app.flag("--checks", checks, "measure the farm's flows against flows unchecked, checked looser, of fewer levels");
+  app.option("--width", width, "with --bands or --checks").positive();
+  app.option("--height", height, "with --bands or --checks").positive();
   int bandRows = FlowBanding{}.rows;
-  app.option("--band-rows", bandRows, "with --bands: the rows a band keeps (the farm's: 512)").positive();
+  app.option("--band-rows", bandRows, "with --bands or --checks: the rows a band keeps (the farm's: 512)").positive();
   if (const auto exit = app.parse(argc, argv)) return *exit;
   const Scene scene = loadScene(scenePath);
-  if (bands) return flowBands(scene, width, height, spp, referenceSpp, bandRows);
+  if (bands) return compareFlows(scene, width, height, spp, referenceSpp, bandVariants(bandRows));
+  if (checks) return compareFlows(scene, width, height, spp, referenceSpp, checkVariants(bandRows));
 
   // Part 1: speed at 1280x720.
   const FrameImage a = render(scene, 1280, 720, 2, 4, true), b = render(scene, 1280, 720, 2, 5, true);

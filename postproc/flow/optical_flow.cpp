@@ -85,6 +85,7 @@ void checkSettings(const FlowSettings& s) {
   if (!(s.gradientWeight >= 0.0f) || !std::isfinite(s.gradientWeight)) fail("gradientWeight must be >= 0");
   if (!(s.downsample >= 0.5f && s.downsample <= 0.9f)) fail("downsample must be in [0.5, 0.9]");
   if (s.minLevelSize < 1) fail("minLevelSize must be >= 1");
+  if (s.maxLevels < 0) fail("maxLevels must be >= 0");
   if (s.warps < 1 || s.fixedPointIterations < 1 || s.sorIterations < 1) fail("iteration counts must be >= 1");
   if (!(s.sorOmega > 0.0f && s.sorOmega < 2.0f)) fail("sorOmega must be in (0, 2)");
   if (!(s.epsilon > 0.0f) || !std::isfinite(s.epsilon)) fail("epsilon must be positive");
@@ -416,7 +417,7 @@ FlowField solve(const Planes& a, const Planes& b, const FlowSettings& s, const s
   levels.push_back(Level{w0, h0, preprocess(a), preprocess(b),
                          occlusionMask != nullptr && !occlusionMask->empty() ? *occlusionMask : Plane(n0, 0.0f)});
   const float sigma = 0.6f * std::sqrt(1.0f / (s.downsample * s.downsample) - 1.0f);
-  for (;;) {
+  while (s.maxLevels == 0 || levels.size() < static_cast<size_t>(s.maxLevels)) {
     const Level& fine = levels.back();
     const int nw = static_cast<int>(std::lround(static_cast<float>(fine.w) * s.downsample));
     const int nh = static_cast<int>(std::lround(static_cast<float>(fine.h) * s.downsample));

@@ -69,6 +69,7 @@ struct FlowSettings {
   float gradientWeight = 0.0f;   // gamma: weight of gradient constancy (0 = brightness constancy only)
   float downsample = 0.75f;      // pyramid factor, in [0.5, 0.9]
   int minLevelSize = 16;         // coarsest level: its smaller side is at least this (or the image's)
+  int maxLevels = 0;             // pyramid levels at most, the finest included (0: down to minLevelSize)
   int warps = 2;                 // re-linearizations (warps) per pyramid level
   int fixedPointIterations = 3;  // lagged-nonlinearity steps per warp
   int sorIterations = 10;        // red-black SOR sweeps per fixed-point step

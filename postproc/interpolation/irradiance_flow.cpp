@@ -61,10 +61,9 @@ Planes irradianceRows(const ComponentRows& keyframe, const Planes& held, int top
   return rows;
 }
 
-// The flow of one band from the keyframe `from` to `to` (both on the band's halo), written
-// into the rows of `out` it keeps.
-void solveBand(const FlowBand& band, const ComponentBand& from, const ComponentBand& to, const ComponentRows& toRows,
-               const FlowSettings& settings, MotionField& out) {
+// The flow of one band from the keyframe `from` to `to`, over the band's halo.
+FlowField solveBand(const FlowBand& band, const ComponentBand& from, const ComponentBand& to,
+                    const ComponentRows& toRows, const FlowSettings& settings) {
   const int width = toRows.width, frameHeight = toRows.height;
   const MotionField& primary = from.motion;
   checkField(primary, width, band.haloEnd - band.haloFirst, "the primary motion");
@@ -82,8 +81,15 @@ void solveBand(const FlowBand& band, const ComponentBand& from, const ComponentB
   const Planes target = sourceFirst < sourceEnd
                             ? irradianceRows(toRows, to.irradiance, band.haloFirst, sourceFirst, sourceEnd)
                             : Planes(width, 0, static_cast<int>(from.irradiance.channels.size()));
-  const FlowField flow =
-      bootstrappedFlow(from.irradiance, target, guess, settings, nullptr, {band.haloFirst, frameHeight, sourceFirst});
+  return bootstrappedFlow(from.irradiance, target, guess, settings, nullptr,
+                          {band.haloFirst, frameHeight, sourceFirst});
+}
+
+// Writes the band's rows of `flow` (over its halo) into the rows of `out` it keeps, valid
+// where p + flow(p) lies inside the frame and `inconsistent` (empty: nowhere) is 0.
+void keepBandRows(const FlowBand& band, const FlowField& flow, const std::vector<float>& inconsistent,
+                  int frameHeight, MotionField& out) {
+  const int width = flow.width;
   const int keptFirst = std::max(band.first, out.top), keptEnd = std::min(band.end, out.top + out.height);
   const size_t W = static_cast<size_t>(width);
   for (int y = keptFirst; y < keptEnd; ++y)
@@ -96,7 +102,7 @@ void solveBand(const FlowBand& band, const ComponentBand& from, const ComponentB
       const bool inside = std::isfinite(tx) && std::isfinite(ty) && tx > -0.5f &&
                           tx < static_cast<float>(width) - 0.5f && ty > -0.5f &&
                           ty < static_cast<float>(frameHeight) - 0.5f;
-      out.valid[q] = inside ? 1.0f : 0.0f;
+      out.valid[q] = inside && (inconsistent.empty() || inconsistent[p] == 0.0f) ? 1.0f : 0.0f;
     }
 }
 
@@ -127,7 +133,7 @@ std::vector<FlowBand> flowBandsOf(int frameHeight, FlowBanding banding) {
 }
 
 IrradianceFlows irradianceFlowRows(const ComponentRows& k0, const ComponentRows& k1, int first, int end,
-                                   const FlowSettings& settings, FlowBanding banding) {
+                                   const FlowSettings& settings, FlowBanding banding, float consistency) {
   const int width = k0.width, height = k0.height;
   if (width <= 0 || height <= 0) throw std::invalid_argument("irradiance flow: keyframe 0 is empty");
   if (k1.width != width || k1.height != height)
@@ -137,6 +143,8 @@ IrradianceFlows irradianceFlowRows(const ComponentRows& k0, const ComponentRows&
   if (first < 0 || end > height || first >= end)
     throw std::invalid_argument("irradiance flow: rows " + std::to_string(first) + " to " + std::to_string(end) +
                                 " are not rows of a frame " + std::to_string(height) + " rows tall");
+  if (!(consistency >= 0.0f) || !std::isfinite(consistency))
+    throw std::invalid_argument("irradiance flow: the consistency threshold must be finite and >= 0");
   FlowSettings logSettings = settings;
   logSettings.logDomain = true;
   IrradianceFlows flows{invalidRows(width, first, end, height), invalidRows(width, first, end, height)};
@@ -149,14 +157,21 @@ IrradianceFlows irradianceFlowRows(const ComponentRows& k0, const ComponentRows&
       flows.skippedRows += std::min(end, band.end) - std::max(first, band.first);
       continue;
     }
-    solveBand(band, b0, b1, k1, logSettings, flows.forward);
-    solveBand(band, b1, b0, k0, logSettings, flows.backward);
+    const FlowField forward = solveBand(band, b0, b1, k1, logSettings);
+    const FlowField backward = solveBand(band, b1, b0, k0, logSettings);
+    // Both directions are solved on the same halo, so each is checked against the other
+    // there; a flow leading beyond the halo counts as inconsistent.
+    const auto inconsistent = [&](const FlowField& there, const FlowField& back) {
+      return consistency > 0.0f ? forwardBackward(there, back, consistency).mask : std::vector<float>{};
+    };
+    keepBandRows(band, forward, inconsistent(forward, backward), height, flows.forward);
+    keepBandRows(band, backward, inconsistent(backward, forward), height, flows.backward);
   }
   return flows;
 }
 
 void addIrradianceFlow(ComponentMotions& motions, const FrameImage& k0, const FrameImage& k1,
-                       const FlowSettings& settings, FlowBanding banding) {
+                       const FlowSettings& settings, FlowBanding banding, float consistency) {
   const int width = k0.width(), height = k0.height();
   if (width <= 0 || height <= 0) throw std::invalid_argument("irradiance flow: keyframe 0 is empty");
   checkSameLayout(k0, k1, "keyframe 0", "keyframe 1");
@@ -193,7 +208,7 @@ void addIrradianceFlow(ComponentMotions& motions, const FrameImage& k0, const Fr
     };
     const IrradianceFlows flows = irradianceFlowRows(rowsOf(k0, motion.forward, "keyframe 0"),
                                                      rowsOf(k1, motion.backward, "keyframe 1"), 0, height, settings,
-                                                     banding);
+                                                     banding, consistency);
     motion.irradianceForward = flows.forward;
     motion.irradianceBackward = flows.backward;
     motion.irradianceForward.top = motion.irradianceBackward.top = 0;

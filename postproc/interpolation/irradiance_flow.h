@@ -51,8 +51,18 @@ struct ComponentRows {
   std::function<Planes(int first, int end)> irradiance;
 };
 
+// Where the forward and backward flows of a band disagree by more than this many pixels
+// (forwardBackward, optical_flow.h), neither is trusted. On noisy keyframes the pyramid's
+// coarse levels find matches in the noise, flows tens of pixels off the true motion that
+// their finest levels keep; the two directions then rarely agree, while flows of real
+// irradiance motion do (docs/performance.md, "Irradiance flows its two directions agree on").
+// The interpolation takes the primary motion where the flow is invalid.
+inline constexpr float kFlowConsistency = 0.5f;
+
 // The flows of rows [first, end): forward from keyframe 0 to 1, backward from 1 to 0, each
-// valid where p + flow(p) lies inside the frame. A band whose halo holds no irradiance of
+// valid where p + flow(p) lies inside the frame and, with `consistency` > 0, the other
+// direction's flow over the band's halo leads back within `consistency` pixels (a flow
+// leading beyond the halo is not). A band whose halo holds no irradiance of
 // the component in either keyframe has nothing to track: its flows are invalid there
 // (`skippedRows` counts those of rows [first, end)). The callbacks of `k0` and `k1` are
 // called only during the call.
@@ -61,15 +71,18 @@ struct IrradianceFlows {
   int bands = 0, bandsSkipped = 0, skippedRows = 0;
 };
 IrradianceFlows irradianceFlowRows(const ComponentRows& k0, const ComponentRows& k1, int first, int end,
-                                   const FlowSettings& settings, FlowBanding banding = {});
+                                   const FlowSettings& settings, FlowBanding banding = {},
+                                   float consistency = kFlowConsistency);
 
 // Adds the irradiance motion of every component of `motions` but "" (the frame-wide motion):
 // irradianceFlowRows of `<c>.irradiance.R/G/B` over the whole frame, in the log domain
 // (settings.logDomain is forced on), bootstrapped by the component's primary motion
-// forward/backward (0 where that is invalid). Sets hasIrradianceMotion. Throws
+// forward/backward (0 where that is invalid), valid where the two directions agree within
+// `consistency` pixels. Sets hasIrradianceMotion. Throws
 // std::invalid_argument for mismatched sizes or decompositions, missing irradiance
 // channels, non-finite values or a component of `motions` the keyframes do not have.
 void addIrradianceFlow(ComponentMotions& motions, const FrameImage& k0, const FrameImage& k1,
-                       const FlowSettings& settings, FlowBanding banding = {});
+                       const FlowSettings& settings, FlowBanding banding = {},
+                       float consistency = kFlowConsistency);
 
 }  // namespace pathfarm

@@ -1,6 +1,7 @@
-// Variational optical flow: sub-pixel translation and rotation of a smooth texture,
-// bootstrapping a moving soft shadow over a static floor in the log domain, forward-backward
-// occlusions of a moving square, determinism across thread counts, and bad input.
+// Variational optical flow: sub-pixel translation and rotation of a smooth texture, a
+// pyramid cut to one level missing a larger translation, bootstrapping a moving soft
+// shadow over a static floor in the log domain, forward-backward occlusions of a moving
+// square, determinism across thread counts, and bad input.
 #include "postproc/flow/optical_flow.h"
 
 #include <gtest/gtest.h>
@@ -92,6 +93,23 @@ TEST(OpticalFlow, SubPixelTranslationOfAnRgbTexture) {
       averageEpe(computeFlow(a, b, withGradient), 8, [&](float, float) { return std::pair{mx, my}; });
   std::printf("translation EPE with gradient constancy %.4f px\n", epeGradient);
   EXPECT_LT(epeGradient, 0.1);
+}
+
+// The pyramid is what finds motions longer than the texture's detail: cut to one level, the
+// solver settles in a local minimum near its start.
+TEST(OpticalFlow, APyramidCutToOneLevelMissesALargeMotion) {
+  const int w = 80, h = 80;
+  const float mx = 4.5f, my = -3.0f;
+  const Texture texture(3, 7);
+  const Planes a = render(w, h, 3, [&](int c, float x, float y) { return texture(c, x, y); });
+  const Planes b = render(w, h, 3, [&](int c, float x, float y) { return texture(c, x - mx, y - my); });
+  const auto epe = [&](int maxLevels) {
+    FlowSettings settings;
+    settings.maxLevels = maxLevels;
+    return averageEpe(computeFlow(a, b, settings), 12, [&](float, float) { return std::pair{mx, my}; });
+  };
+  EXPECT_LT(epe(0), 0.1) << "the whole pyramid";
+  EXPECT_GT(epe(1), 1.0) << "one level";
 }
 
 TEST(OpticalFlow, SmallRotationAboutTheCentre) {
@@ -354,6 +372,9 @@ TEST(OpticalFlow, BadInputThrows) {
   EXPECT_THROW(computeFlow(a, a, badSettings), std::invalid_argument);
   badSettings = FlowSettings{};
   badSettings.lambda = -1.0f;
+  EXPECT_THROW(computeFlow(a, a, badSettings), std::invalid_argument);
+  badSettings = FlowSettings{};
+  badSettings.maxLevels = -1;
   EXPECT_THROW(computeFlow(a, a, badSettings), std::invalid_argument);
   EXPECT_THROW(bootstrappedFlow(a, a, FlowField(8, 8), settings), std::invalid_argument);
   FlowField nanFlow(16, 16);

@@ -1,7 +1,8 @@
 // The irradiance flow solved in bands of rows (postproc/interpolation/irradiance_flow.h):
 // the bands' layout, rows computed alone being the whole frame's bits while reading only
-// their bands' rows, the flow of a known translation recovered across band borders, and
-// bands without the component left invalid.
+// their bands' rows, the flow of a known translation recovered across band borders and
+// trusted, flows whose two directions disagree left to the primary motion, and bands
+// without the component left invalid.
 #include "postproc/interpolation/irradiance_flow.h"
 
 #include <gtest/gtest.h>
@@ -31,13 +32,17 @@ struct SyntheticKeyframe {
   int emptyEnd = 0;                      // rows [0, emptyEnd) hold no irradiance
   std::vector<std::pair<int, int>> rowsRead, irradianceRead;
 
+  float value(int x, int y) const {
+    return bandedTexture(static_cast<float>(x) - shiftX, static_cast<float>(y) - shiftY);
+  }
+
   Planes irradiance(int first, int end) const {
       Planes planes(kBandedWidth, end - first, 3);
       for (int y = first; y < end; ++y)
         for (int x = 0; x < kBandedWidth; ++x)
           for (int c = 0; c < 3; ++c)
             planes.channels[static_cast<size_t>(c)][static_cast<size_t>((y - first) * kBandedWidth + x)] =
-                y < emptyEnd ? 0.0f : (0.5f + 0.25f * static_cast<float>(c)) * bandedTexture(x - shiftX, y - shiftY);
+                y < emptyEnd ? 0.0f : (0.5f + 0.25f * static_cast<float>(c)) * value(x, y);
       return planes;
   }
 
@@ -119,13 +124,18 @@ TEST(IrradianceFlow, RowsComputedAloneAreTheWholeFramesBitsAndReadOnlyTheirBands
 
 // The worst distance from the true translation, away from the frame's edges (where the
 // data term holds), rows next to the band borders (50, 100, 150) included.
-double worstFlowError(FlowBanding banding) {
+// With `trusted`, the flows are valid there too: their two directions agree.
+double worstFlowError(FlowBanding banding, bool trusted) {
   auto [k0, k1] = translatedPair();
   const IrradianceFlows flows = irradianceFlowRows(k0.rows(), k1.rows(), 0, kBandedHeight, FlowSettings{}, banding);
   double worst = 0.0;
   for (int y = 12; y < kBandedHeight - 12; ++y)
     for (int x = 6; x < kBandedWidth - 6; ++x) {
       const size_t p = static_cast<size_t>(y * kBandedWidth + x);
+      if (trusted && (flows.forward.valid[p] != 1.0f || flows.backward.valid[p] != 1.0f)) {
+        ADD_FAILURE() << "not trusted at " << x << ", " << y;
+        return 1e9;
+      }
       const double forward = std::hypot(flows.forward.x[p] - kBandedShiftX, flows.forward.y[p] - kBandedShiftY);
       const double backward = std::hypot(flows.backward.x[p] + kBandedShiftX, flows.backward.y[p] + kBandedShiftY);
       worst = std::max({worst, forward, backward});
@@ -154,18 +164,77 @@ TEST(IrradianceFlow, AMotionBeyondTheHaloReadsTheRowsItLeadsTo) {
 }
 
 TEST(IrradianceFlow, AKnownTranslationIsFoundAcrossBandBorders) {
-  EXPECT_LT(worstFlowError(FlowBanding{0, 0}), 0.05) << "one solve";
-  EXPECT_LT(worstFlowError(kBanding), 0.05) << "bands with their halo";
-  EXPECT_GT(worstFlowError(FlowBanding{kBanding.rows, 0}), 0.05) << "bands without a halo err at their borders";
+  EXPECT_LT(worstFlowError(FlowBanding{0, 0}, true), 0.05) << "one solve";
+  EXPECT_LT(worstFlowError(kBanding, false), 0.05) << "bands with their halo";
+  EXPECT_GT(worstFlowError(FlowBanding{kBanding.rows, 0}, false), 0.05) << "bands without a halo err at their borders";
+  // The check looks a pixel's flow up in the other direction's over the band's halo, a
+  // motion's length (7 rows) beyond the band, where a halo of 16 rows is not enough to
+  // agree within half a pixel; 24 rows are.
+  EXPECT_LT(worstFlowError(FlowBanding{kBanding.rows, 24}, true), 0.05) << "bands with a wider halo";
+}
+
+// Bilinear, clamped to the frame (as the forward-backward check looks the other flow up).
+float lookup(const std::vector<float>& plane, float x, float y) {
+  x = std::clamp(x, 0.0f, static_cast<float>(kBandedWidth - 1));
+  y = std::clamp(y, 0.0f, static_cast<float>(kBandedHeight - 1));
+  const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
+  const int x1 = std::min(x0 + 1, kBandedWidth - 1), y1 = std::min(y0 + 1, kBandedHeight - 1);
+  const float fx = x - static_cast<float>(x0), fy = y - static_cast<float>(y0);
+  const auto at = [&](int px, int py) { return plane[static_cast<size_t>(py * kBandedWidth + px)]; };
+  return (at(x0, y0) * (1 - fx) + at(x1, y0) * fx) * (1 - fy) + (at(x0, y1) * (1 - fx) + at(x1, y1) * fx) * fy;
+}
+
+// Where the two directions disagree, the flows are invalid (the interpolation then takes the
+// primary motion). Made to disagree here: keyframe 1's primary motion points the wrong way
+// (7 rows down, as keyframe 0's), and a pyramid of one level cannot find the true backward
+// motion 14 rows from that guess. The check changes validity only, and agrees with the
+// round trip computed here.
+TEST(IrradianceFlow, FlowsWhoseTwoDirectionsDisagreeAreInvalid) {
+  auto [k0, k1] = translatedPair();
+  k1.motionX = 2.0f;
+  k1.motionY = 7.0f;
+  FlowSettings oneLevel;
+  oneLevel.maxLevels = 1;
+  const FlowBanding oneSolve{0, 0};
+  const IrradianceFlows checked = irradianceFlowRows(k0.rows(), k1.rows(), 0, kBandedHeight, oneLevel, oneSolve);
+  const IrradianceFlows unchecked = irradianceFlowRows(k0.rows(), k1.rows(), 0, kBandedHeight, oneLevel, oneSolve, 0.0f);
+  size_t invalid = 0, uncheckedInvalid = 0, decided = 0;
+  for (const bool forward : {true, false}) {
+    const MotionField& flow = forward ? checked.forward : checked.backward;
+    const MotionField& back = forward ? checked.backward : checked.forward;
+    const MotionField& plain = forward ? unchecked.forward : unchecked.backward;
+    EXPECT_TRUE(flow.x == plain.x && flow.y == plain.y);
+    for (int y = 0; y < kBandedHeight; ++y)
+      for (int x = 0; x < kBandedWidth; ++x) {
+        const size_t p = static_cast<size_t>(y * kBandedWidth + x);
+        const float tx = static_cast<float>(x) + flow.x[p], ty = static_cast<float>(y) + flow.y[p];
+        const double roundTrip = std::hypot(flow.x[p] + lookup(back.x, tx, ty), flow.y[p] + lookup(back.y, tx, ty));
+        invalid += flow.valid[p] == 0.0f ? 1 : 0;
+        uncheckedInvalid += plain.valid[p] == 0.0f ? 1 : 0;
+        if (plain.valid[p] == 0.0f) {
+          ASSERT_EQ(flow.valid[p], 0.0f);
+        } else if (std::fabs(roundTrip - kFlowConsistency) > 1e-3) {  // clear of rounding at the bound
+          ASSERT_EQ(flow.valid[p], roundTrip <= kFlowConsistency ? 1.0f : 0.0f) << x << ", " << y << ": " << roundTrip;
+          ++decided;
+        }
+      }
+  }
+  const size_t pixels = 2 * static_cast<size_t>(kBandedWidth * kBandedHeight);
+  EXPECT_GT(decided, pixels * 9 / 10);
+  EXPECT_GT(invalid, uncheckedInvalid + pixels / 4) << "the check leaves the contradicted flows invalid";
+  EXPECT_THROW(irradianceFlowRows(k0.rows(), k1.rows(), 0, kBandedHeight, oneLevel, oneSolve, -1.0f),
+               std::invalid_argument);
 }
 
 TEST(IrradianceFlow, ABandWithoutTheComponentInEitherKeyframeIsLeftInvalid) {
   auto [k0, k1] = translatedPair();
   k0.emptyEnd = k1.emptyEnd = 66;  // band 0's halo, [0, 66)
-  const IrradianceFlows flows = irradianceFlowRows(k0.rows(), k1.rows(), 0, kBandedHeight, FlowSettings{}, kBanding);
+  const IrradianceFlows flows =
+      irradianceFlowRows(k0.rows(), k1.rows(), 0, kBandedHeight, FlowSettings{}, kBanding, 0.0f);
   EXPECT_EQ(flows.bands, 4);
   EXPECT_EQ(flows.bandsSkipped, 1);
-  // Band 0's rows are invalid; the others valid where the flow lands inside the frame.
+  // Band 0's rows are invalid; the others valid where the flow lands inside the frame (not
+  // checked against each other here).
   for (const MotionField* flow : {&flows.forward, &flows.backward})
     for (int y = 0; y < kBandedHeight; ++y)
       for (int x = 0; x < kBandedWidth; ++x) {
