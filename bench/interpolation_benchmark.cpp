@@ -65,22 +65,23 @@ Planes irradiance(const FrameImage& frame) {
 // What a component's flows are like where there is light to track (its irradiance in the
 // keyframe a flow starts from above a hundredth of its mean; in the dark the flow follows
 // its smoothness alone and moves nothing visible), over both directions: the pixels whose
-// flow departs more than a pixel from the primary motion it was bootstrapped by, those
-// whose forward and backward flows agree within half a pixel, and the mean distance from
-// the flows of one solve.
+// flow is valid (trusted by the interpolation), those valid and departing more than a pixel
+// from the primary motion they were bootstrapped by, those whose forward and backward flows
+// agree within half a pixel, and the mean distance from another way's flows where both are
+// valid.
 struct FlowSummary {
-  size_t lit = 0, departing = 0, consistent = 0;
+  size_t lit = 0, valid = 0, departing = 0, consistent = 0, compared = 0;
   double distance = 0.0;
 };
 
-FlowSummary summarize(const ComponentMotion& motion, const ComponentMotion& oneSolve, const FrameImage& k0,
+FlowSummary summarize(const ComponentMotion& motion, const ComponentMotion& other, const FrameImage& k0,
                       const FrameImage& k1, const std::string& name) {
   FlowSummary summary;
   for (const bool forward : {true, false}) {
     const MotionField& flow = forward ? motion.irradianceForward : motion.irradianceBackward;
-    const MotionField& other = forward ? motion.irradianceBackward : motion.irradianceForward;
+    const MotionField& back = forward ? motion.irradianceBackward : motion.irradianceForward;
     const MotionField& primary = forward ? motion.forward : motion.backward;
-    const MotionField& reference = forward ? oneSolve.irradianceForward : oneSolve.irradianceBackward;
+    const MotionField& reference = forward ? other.irradianceForward : other.irradianceBackward;
     const std::vector<float>& light = (forward ? k0 : k1).channel(name + ".irradiance.G");
     double mean = 0.0;
     for (const float v : light) mean += v;
@@ -91,17 +92,32 @@ FlowSummary summarize(const ComponentMotion& motion, const ComponentMotion& oneS
       f.dy = m.y;
       return f;
     };
-    const OcclusionResult check = forwardBackward(field(flow), field(other), 0.5f);
+    const OcclusionResult check = forwardBackward(field(flow), field(back), 0.5f);
     for (size_t p = 0; p < flow.x.size(); ++p) {
-      if (flow.valid[p] < 0.5f || reference.valid[p] < 0.5f || !(light[p] > 0.01 * mean)) continue;
+      if (!(light[p] > 0.01 * mean)) continue;
       ++summary.lit;
-      summary.distance += std::hypot(flow.x[p] - reference.x[p], flow.y[p] - reference.y[p]);
+      if (check.mask[p] == 0.0f) ++summary.consistent;
+      if (flow.valid[p] < 0.5f) continue;
+      ++summary.valid;
       const bool primaryHolds = primary.valid.empty() || primary.valid[p] >= 0.5f;
       if (primaryHolds && std::hypot(flow.x[p] - primary.x[p], flow.y[p] - primary.y[p]) > 1.0f) ++summary.departing;
-      if (check.mask[p] == 0.0f) ++summary.consistent;
+      if (reference.valid[p] < 0.5f) continue;
+      ++summary.compared;
+      summary.distance += std::hypot(flow.x[p] - reference.x[p], flow.y[p] - reference.y[p]);
     }
   }
   return summary;
+}
+
+// A summary's counts as shares of the lit pixels, and its mean distance.
+std::string shares(const FlowSummary& summary) {
+  const double lit = static_cast<double>(std::max<size_t>(1, summary.lit));
+  const auto share = [&](size_t count) { return 100.0 * static_cast<double>(count) / lit; };
+  char text[160];
+  std::snprintf(text, sizeof text, "%10zu  %5.1f %%  %7.1f %%  %8.1f %%  %12.2f px", summary.lit, share(summary.valid),
+                share(summary.departing), share(summary.consistent),
+                summary.distance / static_cast<double>(std::max<size_t>(1, summary.compared)));
+  return text;
 }
 
 // One way to solve the irradiance flows: in bands (or one solve) with some settings.
@@ -123,8 +139,9 @@ int compareFlows(const Scene& scene, int width, int height, int spp, int referen
   const FrameImage reference = render(scene, width, height, referenceSpp, 1, false, kIndependentFirstSample);
   const ComponentMotions primary = concatenatePrimaryMotion({k0, k1});
   std::printf("%dx%d, %d spp keyframes 0 and 2, frame 1 against %d spp\n", width, height, spp, referenceSpp);
-  std::printf("%-8s  component        flow s  lit pixels  departing  consistent  from %-8s  relMSE frame 1  "
-              "against %-8s  re-render\n", "flow", variants.front().label.c_str(), variants.front().label.c_str());
+  std::printf("%-9s  component        flow s  lit pixels  valid    departing  consistent  from %-9s  "
+              "relMSE frame 1  against %-9s  re-render\n", "flow", variants.front().label.c_str(),
+              variants.front().label.c_str());
   // As the farm's interpolation task, which leaves light seen from one keyframe to its checks.
   InterpolationSettings settings;
   settings.unknownChangeMasks = false;
@@ -144,19 +161,15 @@ int compareFlows(const Scene& scene, int width, int height, int spp, int referen
     for (const auto& [name, motion] : motions.components) {
       if (name.empty()) continue;
       const FlowSummary one = summarize(motion, first.components.at(name), k0, k1, name);
-      const double lit = static_cast<double>(std::max<size_t>(1, one.lit));
-      std::printf("%-8s  %-15s  %6s  %10zu  %8.1f %%  %8.1f %%  %11.2f px\n", label, name.c_str(), "", one.lit,
-                  100.0 * static_cast<double>(one.departing) / lit, 100.0 * static_cast<double>(one.consistent) / lit,
-                  one.distance / lit);
+      std::printf("%-9s  %-15s  %6s  %s\n", label, name.c_str(), "", shares(one).c_str());
       all.lit += one.lit;
+      all.valid += one.valid;
       all.departing += one.departing;
       all.consistent += one.consistent;
+      all.compared += one.compared;
       all.distance += one.distance;
     }
-    const double lit = static_cast<double>(std::max<size_t>(1, all.lit));
-    std::printf("%-8s  %-15s  %6.2f  %10zu  %8.1f %%  %8.1f %%  %11.2f px  %14.5f  %17.2e  %7.2f %%\n", label, "all",
-                took, all.lit, 100.0 * static_cast<double>(all.departing) / lit,
-                100.0 * static_cast<double>(all.consistent) / lit, all.distance / lit,
+    std::printf("%-9s  %-15s  %6.2f  %s  %14.5f  %17.2e  %7.2f %%\n", label, "all", took, shares(all).c_str(),
                 compareImages(interpolated, reference, {"R", "G", "B"}).relMse,
                 compareImages(interpolated, firstFrame, {"R", "G", "B"}).relMse, 100 * result.rerenderRate);
   }

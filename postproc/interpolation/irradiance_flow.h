@@ -55,7 +55,7 @@ struct ComponentRows {
 // (forwardBackward, optical_flow.h), neither is trusted. On noisy keyframes the pyramid's
 // coarse levels find matches in the noise, flows tens of pixels off the true motion that
 // their finest levels keep; the two directions then rarely agree, while flows of real
-// irradiance motion do (docs/performance.md, "Irradiance flows its two directions agree on").
+// irradiance motion do (docs/performance.md, "Irradiance flows checked forward and backward").
 // The interpolation takes the primary motion where the flow is invalid.
 inline constexpr float kFlowConsistency = 0.5f;
 
