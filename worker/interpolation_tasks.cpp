@@ -70,12 +70,19 @@ float largestOf(const TaskInput& input, const ChannelFilter& keep, int height) {
   return largest;
 }
 
-// The most rows the interpolation at `fraction` moves content by: keyframe 0's motions
-// towards keyframe 1 and the flows' forward ones times the fraction, keyframe 1's and the
-// backward ones times the rest (every finite value, valid or not: a bound). The rows
-// around a window whose content can land in it.
-int largestDisplacement(const std::vector<TaskInput>& inputs, const std::array<const TaskInput*, 2>& keyframes,
-                        float fraction, int height) {
+// How far, in rows, the interpolation at `fraction` reaches in the keyframes (every finite
+// value of their motions and the flows', valid or not: bounds).
+struct KeyframeReach {
+  // The most rows content moves by: keyframe 0's motions towards keyframe 1 and the flows'
+  // forward ones times the fraction, keyframe 1's and the backward ones times the rest.
+  int landing = 0;
+  // The most rows a whole motion spans: a pixel's depth at the in-between instant is read
+  // where its motion leads in the other keyframe.
+  int motion = 0;
+};
+
+KeyframeReach keyframeReach(const std::vector<TaskInput>& inputs, const std::array<const TaskInput*, 2>& keyframes,
+                            float fraction, int height) {
   float forward = largestOf(*keyframes[0], [](const std::string& n) { return isVerticalPartOf(n, "motion"); }, height);
   float backward =
       largestOf(*keyframes[1], [](const std::string& n) { return isVerticalPartOf(n, "motion_back"); }, height);
@@ -88,8 +95,8 @@ int largestDisplacement(const std::vector<TaskInput>& inputs, const std::array<c
                           return isVerticalPartOf(n, "irradiance_backward");
                         }, height));
   }
-  const float largest = std::max(fraction * forward, (1.0f - fraction) * backward);
-  return static_cast<int>(std::min(std::ceil(largest), static_cast<float>(height)));
+  const auto rows = [height](float value) { return static_cast<int>(std::min(std::ceil(value), static_cast<float>(height))); };
+  return {rows(std::max(fraction * forward, (1.0f - fraction) * backward)), rows(std::max(forward, backward))};
 }
 
 // The rows of a flow whose band held none of the component: summed over windows by the join.
@@ -206,9 +213,12 @@ TaskOutput runInterpolateTask(const Lease& lease, std::vector<TaskInput>& inputs
   RowWindow read{0, height};
   int displacement = 0;
   if (params.has_window()) {
-    // A source lands on its row plus its displacement's whole rows, and the row below.
-    displacement = largestDisplacement(inputs, keyframes, fraction, height);
-    read = {std::max(0, checked.first - displacement - 2), std::min(height, checked.end + displacement + 2)};
+    // A source lands on its row plus its displacement's whole rows, and the row below; its
+    // depth is read where its whole motion leads, rounded to a pixel.
+    const KeyframeReach reach = keyframeReach(inputs, keyframes, fraction, height);
+    displacement = reach.landing;
+    const int margin = reach.landing + reach.motion + 2;
+    read = {std::max(0, checked.first - margin), std::min(height, checked.end + margin)};
   }
 
   // The keyframes are read a component at a time (a 1080p pair is gigabytes); first their

@@ -87,10 +87,44 @@ KeyframeLayer readLayer(const FrameImage& frame, const Layer& layer, const Motio
   return out;
 }
 
-SplatResult splatLayer(const KeyframeLayer& layer, float fraction, const SplatSettings& settings) {
+// The depth each keyframe's pixel has at the in-between instant, for the depth tests: the
+// camera moves, so a surface near it is nearer or farther in one keyframe than in the
+// other by more than the tests' tolerance, and the keyframe it is nearer in would win it
+// alone. A pixel p of keyframe k whose motion leads to q in the other keyframe, whose
+// motion leads back within a pixel of p (the same surface, not an occluder), takes its
+// depth blended with the other keyframe's at q, as the instant lies between them
+// (`fraction` from keyframe 0); elsewhere its own depth.
+std::array<std::vector<float>, 2> depthsAtInstant(const std::array<KeyframeLayer, 2>& from, float fraction) {
+  std::array<std::vector<float>, 2> depths{from[0].depth, from[1].depth};
+  const int width = from[0].values.width, height = from[0].values.height;
+  const size_t W = static_cast<size_t>(width);
+  for (size_t k = 0; k < 2; ++k) {
+    const KeyframeLayer& own = from[k];
+    const KeyframeLayer& other = from[1 - k];
+    const float towardsOther = k == 0 ? fraction : 1.0f - fraction;
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) {
+        const size_t p = static_cast<size_t>(y) * W + static_cast<size_t>(x);
+        if (!own.splats[p] || !(own.depth[p] > 0.0f)) continue;
+        const int qx = static_cast<int>(std::lround(static_cast<float>(x) + own.dx[p]));
+        const int qy = static_cast<int>(std::lround(static_cast<float>(y) + own.dy[p]));
+        if (qx < 0 || qx >= width || qy < 0 || qy >= height) continue;
+        const size_t q = static_cast<size_t>(qy) * W + static_cast<size_t>(qx);
+        if (!other.splats[q] || !(other.depth[q] > 0.0f)) continue;
+        const float backX = static_cast<float>(qx) + other.dx[q] - static_cast<float>(x);
+        const float backY = static_cast<float>(qy) + other.dy[q] - static_cast<float>(y);
+        if (backX * backX + backY * backY > 1.0f) continue;
+        depths[k][p] = (1.0f - towardsOther) * own.depth[p] + towardsOther * other.depth[q];
+      }
+  }
+  return depths;
+}
+
+SplatResult splatLayer(const KeyframeLayer& layer, const std::vector<float>& depth, float fraction,
+                       const SplatSettings& settings) {
   SplatSource source;
   source.values = &layer.values;
-  source.depth = &layer.depth;
+  source.depth = &depth;
   source.active = layer.splats;
   source.dx.resize(layer.dx.size());
   source.dy.resize(layer.dy.size());
@@ -265,8 +299,9 @@ LayerOutcome interpolateLayer(const Layer& layer, const LayerKeyframes& keys, fl
   // Each pair of splats lives only until it is combined: at 4K a splat is a dozen planes of
   // 33 MB, and a worker interpolates two layers at once.
   const auto splattedAndCombined = [&](const std::array<KeyframeLayer, 2>& from) {
-    const SplatResult a = splatLayer(from[0], s, splat);
-    const SplatResult b = splatLayer(from[1], 1.0f - s, splat);
+    const std::array<std::vector<float>, 2> depths = depthsAtInstant(from, s);
+    const SplatResult a = splatLayer(from[0], depths[0], s, splat);
+    const SplatResult b = splatLayer(from[1], depths[1], 1.0f - s, splat);
     return combine(from[0], from[1], a, b, s, settings, width, height);
   };
   LayerOutcome out = splattedAndCombined(keys.primary);

@@ -87,6 +87,28 @@ TEST(Interpolation, SplatConflictsAreResolvedByDepth) {
   depthCase(8.0f, 0.5f);  // A behind B: B
 }
 
+// A camera moving away: a surface 25 % farther in the second keyframe than in the first,
+// beyond the depth test's tolerance. Taken at the in-between instant, both keyframes' depths
+// are one surface's and both are blended; taken as each keyframe saw it, the first
+// keyframe's would be nearer and win alone.
+TEST(Interpolation, ASurfaceTheCameraMovesAwayFromIsOneSurfaceInBothKeyframes) {
+  const int w = 16, h = 4;
+  const FrameImage k0 = flatFrame(w, h, 1.0f, 2.0f), k1 = flatFrame(w, h, 2.0f, 2.5f);
+  MotionField forward = zeroField(w, h), backward = zeroField(w, h);
+  for (size_t p = 0; p < forward.x.size(); ++p) {
+    forward.x[p] = 2.0f;
+    backward.x[p] = -2.0f;
+  }
+  const InterpolationResult r = interpolateFrameDetailed(k0, k1, motionsOf(forward, backward), 0.5f);
+  for (int y = 0; y < h; ++y)
+    for (int x = 2; x < w - 2; ++x) {
+      const size_t p = static_cast<size_t>(y * w + x);
+      EXPECT_FLOAT_EQ(r.frame.channel("R")[p], 1.5f) << x << ", " << y;
+      EXPECT_FLOAT_EQ(r.frame.channel("residual.depth.Z")[p], 2.25f) << x << ", " << y;
+      EXPECT_EQ(r.mask[p], 0) << x << ", " << y;
+    }
+}
+
 TEST(Interpolation, HolesAreInTheMask) {
   // Everything diverges from the middle column: nothing lands on the middle at s = 0.5.
   const int w = 16, h = 6;

@@ -229,9 +229,10 @@ TEST(InterpolateTask, WindowsInterpolatedApartAndJoinedAreTheWholeFramesBytes) {
     w.set_y1(rows.end);
     const TaskOutput output = in.run(part, rows.first % 80 == 0 ? 0 : TaskRunner::kDefaultDecodedInputBytes);
     EXPECT_TRUE(output.followUps.empty()) << "a window's re-render goes with the join's";
-    // Its rows, the checks' 9 around them, and the largest displacement (30 rows) and 2.
+    // Its rows, the checks' 9 around them, the largest displacement (30 rows), the whole
+    // flow its sources' depths are read across (45 rows) and 2.
     EXPECT_EQ(output.metrics.at("keyframe_rows_read"),
-              std::min(kTall, rows.end + 9 + 32) - std::max(0, rows.first - 9 - 32));
+              std::min(kTall, rows.end + 9 + 77) - std::max(0, rows.first - 9 - 77));
     for (const auto& [name, value] : output.metrics) summed[name] += value;
     const std::string name = "window" + std::to_string(rows.first);
     in.files[name] = in.folder / (name + ".exr");
