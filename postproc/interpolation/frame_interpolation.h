@@ -26,6 +26,12 @@
 // Depth of the splat's depth test: `<c>.depth.Z`, except where `<c>.motion_valid.Y` is 1 and
 // the frame has `depth.Z`: there the component's motion is the primary motion (its first
 // non-specular vertex is the primary hit) and the frame-wide, less noisy `depth.Z` is used.
+// Both the splat's and the combination's tests take it at the in-between instant: a pixel
+// p whose motion leads to q in the other keyframe, whose motion (the same layer's) leads
+// back within a pixel of p, has its depth blended with the other keyframe's at q by the
+// fraction; elsewhere it keeps its own. Under a moving camera a near surface's depth
+// changes between the keyframes by more than the tolerance, and as each keyframe saw it
+// the nearer keyframe would win it alone.
 //
 // Combining the keyframes at a pixel: both splats cover it -> if one's depth is nearer than
 // the other's by more than twice the depth tolerance it alone is kept, else the blend; one

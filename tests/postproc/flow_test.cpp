@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <utility>
 #include <limits>
 #include <random>
 #include <stdexcept>
@@ -74,13 +75,16 @@ double averageEpe(const FlowField& flow, int margin, const std::function<std::pa
   return sum / static_cast<double>(count);
 }
 
-TEST(OpticalFlow, SubPixelTranslationOfAnRgbTexture) {
-  const int w = 80, h = 80;
-  const float mx = 2.3f, my = -1.7f;
+// An 80x80 RGB texture A and B, the texture moved by (mx, my): A(p) = B(p + m).
+std::pair<Planes, Planes> translatedTexture(float mx, float my) {
   const Texture texture(3, 7);
-  // A(p) = B(p + m): B is the texture moved by m.
-  const Planes a = render(w, h, 3, [&](int c, float x, float y) { return texture(c, x, y); });
-  const Planes b = render(w, h, 3, [&](int c, float x, float y) { return texture(c, x - mx, y - my); });
+  return {render(80, 80, 3, [&](int c, float x, float y) { return texture(c, x, y); }),
+          render(80, 80, 3, [&](int c, float x, float y) { return texture(c, x - mx, y - my); })};
+}
+
+TEST(OpticalFlow, SubPixelTranslationOfAnRgbTexture) {
+  const float mx = 2.3f, my = -1.7f;
+  const auto [a, b] = translatedTexture(mx, my);
   const FlowSettings settings;
   const FlowField flow = computeFlow(a, b, settings);
   const double epe = averageEpe(flow, 8, [&](float, float) { return std::pair{mx, my}; });
@@ -98,11 +102,8 @@ TEST(OpticalFlow, SubPixelTranslationOfAnRgbTexture) {
 // The pyramid is what finds motions longer than the texture's detail: cut to one level, the
 // solver settles in a local minimum near its start.
 TEST(OpticalFlow, APyramidCutToOneLevelMissesALargeMotion) {
-  const int w = 80, h = 80;
   const float mx = 4.5f, my = -3.0f;
-  const Texture texture(3, 7);
-  const Planes a = render(w, h, 3, [&](int c, float x, float y) { return texture(c, x, y); });
-  const Planes b = render(w, h, 3, [&](int c, float x, float y) { return texture(c, x - mx, y - my); });
+  const auto [a, b] = translatedTexture(mx, my);
   const auto epe = [&](int maxLevels) {
     FlowSettings settings;
     settings.maxLevels = maxLevels;
