@@ -95,7 +95,9 @@ KeyframeReach keyframeReach(const std::vector<TaskInput>& inputs, const std::arr
                           return isVerticalPartOf(n, "irradiance_backward");
                         }, height));
   }
-  const auto rows = [height](float value) { return static_cast<int>(std::min(std::ceil(value), static_cast<float>(height))); };
+  const auto rows = [height](float value) {
+    return static_cast<int>(std::min(std::ceil(value), static_cast<float>(height)));
+  };
   return {rows(std::max(fraction * forward, (1.0f - fraction) * backward)), rows(std::max(forward, backward))};
 }
 
