@@ -32,14 +32,16 @@ std::optional<Crop> parseCrop(const std::string& text) {
 
 nlohmann::json toJson(const ImageMetrics& m) {
   return {{"relmse", m.relMse}, {"mse", m.mse},         {"psnr", m.psnr},
-          {"smape", m.smape},   {"compared", m.compared}, {"skipped_reference", m.skippedReference},
+          {"smape", m.smape},   {"brightness", m.brightness}, {"compared", m.compared},
+          {"skipped_reference", m.skippedReference},
           {"nonfinite", m.nonFinite}, {"worst_tile_relmse", m.worstTileRelMse},
           {"worst_percent_share", m.worstPercentShare}};
 }
 
 void printTable(const std::string& label, const ImageMetrics& m) {
-  std::printf("%-24s relMSE %.6g  MSE %.6g  PSNR %.2f dB  SMAPE %.6g  worst tile %.6g  worst 1%% %.1f%%\n",
-              label.c_str(), m.relMse, m.mse, m.psnr, m.smape, m.worstTileRelMse, 100 * m.worstPercentShare);
+  std::printf("%-24s relMSE %.6g  MSE %.6g  PSNR %.2f dB  SMAPE %.6g  brightness %.4f  worst tile %.6g  "
+              "worst 1%% %.1f%%\n",
+              label.c_str(), m.relMse, m.mse, m.psnr, m.smape, m.brightness, m.worstTileRelMse, 100 * m.worstPercentShare);
   if (m.skippedReference > 0) std::printf("  skipped %zu non-finite reference values\n", m.skippedReference);
   if (m.nonFinite > 0) std::printf("  %zu non-finite values in the image were left out\n", m.nonFinite);
 }

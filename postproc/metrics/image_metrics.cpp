@@ -11,7 +11,7 @@ namespace pathfarm {
 namespace {
 
 struct Sums {
-  double rel = 0, squared = 0, smape = 0;
+  double rel = 0, squared = 0, smape = 0, imageSum = 0, referenceSum = 0;
   size_t compared = 0, skippedReference = 0, nonFinite = 0;
 
   // Adds one value; returns its relative squared error (0 for a value that was skipped).
@@ -28,6 +28,8 @@ struct Sums {
     rel += term;
     squared += (x - r) * (x - r);
     smape += 2 * std::abs(x - r) / (std::abs(x) + std::abs(r) + 0.01);
+    imageSum += x;
+    referenceSum += r;
     ++compared;
     return term;
   }
@@ -39,6 +41,7 @@ struct Sums {
     m.mse = squared / n;
     m.psnr = m.mse > 0 ? 10 * std::log10(1 / m.mse) : INFINITY;
     m.smape = smape / n;
+    m.brightness = referenceSum != 0 ? imageSum / referenceSum : (imageSum == 0 ? 1 : INFINITY);
     m.compared = compared;
     m.skippedReference = skippedReference;
     m.nonFinite = nonFinite;

@@ -21,6 +21,9 @@ struct ImageMetrics {
   double mse = 0;
   double psnr = 0;   // 10 log10(1 / MSE): a peak of 1, as for display-referred values
   double smape = 0;  // mean of 2|x - r| / (|x| + |r| + 0.01)
+  // The image's values summed over the reference's (1: as bright overall). An offset of
+  // the whole frame, which relMSE mixes with the noise, shows here alone.
+  double brightness = 1;
   // Artifacts (DESIGN.md): the worst 16x16 tile's relMSE (tiles aligned to the frame's
   // origin, partial tiles included) and the share of the squared relative error that lies
   // in the worst 1 % of pixels (at least one pixel). A few wrong pixels show here even

@@ -23,7 +23,9 @@ TEST(ImageMetrics, MatchTheirDefinitionsOnHandComputedValues) {
   EXPECT_NEAR(m.mse, (d0 * d0 + 0.25) / 2, 1e-7);
   EXPECT_NEAR(m.psnr, 10 * std::log10(1 / m.mse), 1e-9);
   EXPECT_NEAR(m.smape, (2 * d0 / (1.1f + 1.0 + 0.01) + 2 * 0.5 / (0.5 + 0.01)) / 2, 1e-6);
+  EXPECT_NEAR(m.brightness, 1.1f / 1.5, 1e-7);
   EXPECT_EQ(m.compared, 6u);
+  EXPECT_EQ(compareImages(ref, ref, {"R", "G", "B"}).brightness, 1.0);
 }
 
 TEST(ImageMetrics, CropLayersAndNonFiniteReferences) {
