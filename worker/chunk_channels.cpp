@@ -41,9 +41,10 @@ const Buffers kInterpolated{{"color", "emission", "irradiance", "reflectance", "
                             {"", "depth", "motion", "motion_back", "silhouette"}};
 // What the composite reads of a stage output, and the evaluation of its re-render mask.
 const Buffers kComposited{{"color"}, {"", "rerender"}};
-// What interpolation's checks read of an in-between frame's render (feature_check.h,
+// What interpolation reads of an in-between frame's render: its reflectance, which
+// modulates the interpolated irradiance, and what its checks compare (feature_check.h,
 // radiance_check.h, the moving caustics and the directly seen light).
-const Buffers kFeatures{{"color", "emission", "depth", "normal", "variance"}, {"", "moving_caustic"}};
+const Buffers kFeatures{{"color", "emission", "depth", "normal", "variance", "reflectance"}, {"", "moving_caustic"}};
 // What the upsampler reads of the half-resolution denoised keyframe.
 const Buffers kHalfResolution{{"irradiance", "coverage"}, {}};
 

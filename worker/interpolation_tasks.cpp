@@ -23,6 +23,18 @@
 namespace pathfarm::farm {
 namespace {
 
+// The samples per pixel a frame was rendered with (attribute pathfarm.spp), or 0 where it
+// does not say.
+int renderedSpp(const FrameImage& frame) {
+  const auto found = frame.attributes().find("pathfarm.spp");
+  if (found == frame.attributes().end()) return 0;
+  try {
+    return std::stoi(found->second);
+  } catch (const std::exception&) {
+    return 0;
+  }
+}
+
 // A component's motion between the keyframes (the frame-wide one for ""): forward from
 // k0's motion vectors, backward from k1's, which reach each other (planner.h).
 ComponentMotion keyframeMotion(const FrameImage& k0, const FrameImage& k1, const std::string& layer) {
@@ -271,6 +283,14 @@ TaskOutput runInterpolateTask(const Lease& lease, std::vector<TaskInput>& inputs
     }
     return KeyframeComponent{{parts[0], parts[1]}, motion};
   };
+  // The frame's own reflectance modulates its interpolated irradiance at texture edges, which
+  // the keyframes' splat blurs and misplaces, when its feature render has at least the
+  // keyframes' samples: with fewer, its noise costs more than the edges gain (docs/
+  // performance.md, "The in-between frame's own reflectance").
+  const TaskInput& featureInput = inputOf(inputs, TASK_ASSEMBLE_FRAME, params.frame());
+  const FrameImage ownReflectance = featureInput.part(
+      {[](const std::string& name) { return name.find(".reflectance.") != std::string::npos; }, read.first, read.end});
+  if (renderedSpp(ownReflectance) >= renderedSpp(frameWide[0])) keys.inBetween = &ownReflectance;
   InterpolationResult result = interpolateFrameDetailed(keys, fraction, settings);
   for (const auto& [key, value] : frameWide[0].attributes()) result.frame.attributes().emplace(key, value);
   result.frame.attributes()["pathfarm.frame"] = std::to_string(params.frame());
@@ -284,7 +304,6 @@ TaskOutput runInterpolateTask(const Lease& lease, std::vector<TaskInput>& inputs
   const Rows inRead{read, width};
   FrameImage interpolated = inRead.crop(std::move(result.frame), checked);
   // The feature render's rows the checks read: the decoded frame itself when they are all of it.
-  const TaskInput& featureInput = inputOf(inputs, TASK_ASSEMBLE_FRAME, params.frame());
   std::optional<FrameImage> featureRows;
   if (checked.first != 0 || checked.end != height) featureRows = featureInput.part({{}, checked.first, checked.end});
   const FrameImage& features = featureRows ? *featureRows : featureInput.image();

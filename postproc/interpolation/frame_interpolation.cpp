@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 
 #include "image/luminance.h"
@@ -22,8 +23,11 @@ struct Layer {
   std::string name;  // component, or "" for the beauty
   std::array<std::string, 3> color, irradiance;
   std::string depth;
-  std::array<std::string, 3> reflectance;  // used with an irradiance motion
+  std::array<std::string, 3> reflectance;  // used with an irradiance motion or an own reflectance
   bool irradianceMotion = false;
+  // The in-between frame's own reflectance of the layer, when the caller gave one
+  // (LayeredKeyframes::inBetween) and both it and the keyframes have it; else null.
+  std::array<const std::vector<float>*, 3> ownReflectance{};
 };
 
 // What a keyframe layer carries.
@@ -259,10 +263,23 @@ struct LayerKeyframes {
   std::array<KeyframeLayer, 2> irradiance;  // the irradiance along its own motion (Layer::irradianceMotion)
 };
 
-// Checks the layer's motions and reads it from both keyframes; sets layer.irradianceMotion.
-// `primary`: the frame-wide motion, or null.
+// The in-between frame's reflectance of `layer` where both it and keyframe `k0` have one.
+std::array<const std::vector<float>*, 3> ownReflectanceOf(const FrameImage* inBetween, const FrameImage& k0,
+                                                          const Layer& layer) {
+  if (inBetween == nullptr || layer.name.empty()) return {};
+  std::array<const std::vector<float>*, 3> own{};
+  for (size_t c = 0; c < 3; ++c) {
+    if (!inBetween->hasChannel(layer.reflectance[c]) || !k0.hasChannel(layer.reflectance[c])) return {};
+    own[c] = &finiteChannel(*inBetween, layer.reflectance[c], "the in-between frame's features");
+  }
+  return own;
+}
+
+// Checks the layer's motions and reads it from both keyframes; sets layer.irradianceMotion
+// and layer.ownReflectance. `primary`: the frame-wide motion, or null.
 LayerKeyframes readKeyframes(const FrameImage& k0, const FrameImage& k1, Layer& layer, const ComponentMotion& motion,
-                             const ComponentMotion* primary, const InterpolationSettings& settings) {
+                             const ComponentMotion* primary, const FrameImage* inBetween,
+                             const InterpolationSettings& settings) {
   const int width = k0.width(), height = k0.height();
   const std::string& name = layer.name;
   const std::string what = name.empty() ? "the frame-wide motion (\"\")" : "component \"" + name + "\"";
@@ -275,7 +292,9 @@ LayerKeyframes readKeyframes(const FrameImage& k0, const FrameImage& k1, Layer& 
     checkField(primary->backward, width, height, "interpolation: backward frame-wide motion");
   }
   layer.irradianceMotion = !name.empty() && motion.hasIrradianceMotion;
-  const Carry carry = layer.irradianceMotion ? Carry::ColorReflectance : Carry::Color;
+  layer.ownReflectance = ownReflectanceOf(inBetween, k0, layer);
+  const bool ownReflectance = layer.ownReflectance[0] != nullptr;
+  const Carry carry = layer.irradianceMotion || ownReflectance ? Carry::ColorReflectance : Carry::Color;
   LayerKeyframes keys;
   keys.primary[0] =
       readLayer(k0, layer, motion.forward, fallback ? &primary->forward : nullptr, "keyframe 0", carry);
@@ -292,6 +311,29 @@ LayerKeyframes readKeyframes(const FrameImage& k0, const FrameImage& k1, Layer& 
   return keys;
 }
 
+// 1 where the splatted reflectance (channels 6..8 of `out`) has an edge within a pixel:
+// its luminance over the 3x3 neighbourhood spans more than settings.textureEdge relative.
+std::vector<uint8_t> textureEdges(const LayerOutcome& out, const InterpolationSettings& settings, int width,
+                                  int height) {
+  const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
+  std::vector<float> level(pixels);
+  for (size_t t = 0; t < pixels; ++t) level[t] = luminance(out.color[6][t], out.color[7][t], out.color[8][t]);
+  std::vector<uint8_t> edge(pixels, 0);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      float low = std::numeric_limits<float>::infinity(), high = 0.0f;
+      for (int v = std::max(0, y - 1); v <= std::min(height - 1, y + 1); ++v)
+        for (int u = std::max(0, x - 1); u <= std::min(width - 1, x + 1); ++u) {
+          const float l = level[static_cast<size_t>(v) * static_cast<size_t>(width) + static_cast<size_t>(u)];
+          low = std::min(low, l);
+          high = std::max(high, l);
+        }
+      edge[static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)] =
+          high > (1.0f + settings.textureEdge) * std::max(low, kReflectanceGuard);
+    }
+  return edge;
+}
+
 // The layer at fraction s: both keyframes splatted towards it and combined.
 LayerOutcome interpolateLayer(const Layer& layer, const LayerKeyframes& keys, float s,
                               const InterpolationSettings& settings, int width, int height) {
@@ -305,12 +347,28 @@ LayerOutcome interpolateLayer(const Layer& layer, const LayerKeyframes& keys, fl
     return combine(from[0], from[1], a, b, s, settings, width, height);
   };
   LayerOutcome out = splattedAndCombined(keys.primary);
-  if (!layer.irradianceMotion) return out;
+  const bool ownReflectance = layer.ownReflectance[0] != nullptr;
+  if (!layer.irradianceMotion && !ownReflectance) return out;
   // The paper's scheme: irradiance along its own motion times reflectance along the primary.
-  const LayerOutcome e = splattedAndCombined(keys.irradiance);
+  // Within a pixel of a texture edge, the in-between frame's own reflectance instead: moved
+  // from the keyframes, an edge is blurred by the splat and put where the motion puts it.
+  // Elsewhere the keyframes' reflectance is as right and far less noisy than a few samples'
+  // (a coated surface's share of the diffuse lobe), and used alone it flickers from frame
+  // to frame. Both must be above the guard, so that the irradiance is an irradiance.
+  const LayerOutcome e = layer.irradianceMotion ? splattedAndCombined(keys.irradiance) : LayerOutcome{};
+  const std::vector<std::vector<float>>& irradiance = layer.irradianceMotion ? e.color : out.color;
   const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
+  const std::vector<uint8_t> edges = ownReflectance ? textureEdges(out, settings, width, height) : std::vector<uint8_t>{};
   for (size_t t = 0; t < pixels; ++t) {
-    for (size_t c = 0; c < 3; ++c) out.color[c][t] = modulateIrradiance(e.color[c][t], out.color[6 + c][t]);
+    for (size_t c = 0; c < 3; ++c) {
+      const float splatted = out.color[6 + c][t];
+      const bool own = ownReflectance && edges[t] && splatted >= kReflectanceGuard && (*layer.ownReflectance[c])[t] >= kReflectanceGuard;
+      if (own) out.color[c][t] = irradiance[3 + c][t] * (*layer.ownReflectance[c])[t];
+      else if (layer.irradianceMotion) out.color[c][t] = modulateIrradiance(irradiance[3 + c][t], splatted);
+    }
+  }
+  if (!layer.irradianceMotion) return out;
+  for (size_t t = 0; t < pixels; ++t) {
     out.hole[t] = out.hole[t] || e.hole[t];
     out.oneSided[t] = out.oneSided[t] || e.oneSided[t];
   }
@@ -448,6 +506,10 @@ InterpolationResult interpolateFrameDetailed(const LayeredKeyframes& keys, float
   const int width = k0.width(), height = k0.height();
   if (width <= 0 || height <= 0) throw std::invalid_argument("interpolation: keyframe 0 is empty");
   checkSameLayout(k0, k1, "keyframe 0", "keyframe 1");
+  if (keys.inBetween != nullptr && (keys.inBetween->width() != width || keys.inBetween->height() != height))
+    throw std::invalid_argument("interpolation: the in-between frame's features are " +
+                                std::to_string(keys.inBetween->width()) + "x" + std::to_string(keys.inBetween->height()) +
+                                ", the keyframes " + std::to_string(width) + "x" + std::to_string(height));
   const size_t pixels = k0.pixelCount();
 
   std::vector<Layer> layers = layersOf(k0, settings);
@@ -468,7 +530,7 @@ InterpolationResult interpolateFrameDetailed(const LayeredKeyframes& keys, float
           throw std::invalid_argument("interpolation: layer \"" + layers[i].name +
                                       "\" of a keyframe is missing or of another size");
       return readKeyframes(*component.frames[0], *component.frames[1], layers[i], *component.motion,
-                           keys.frameWideMotion, settings);
+                           keys.frameWideMotion, keys.inBetween, settings);
     }();
     outcomes[i] = interpolateLayer(layers[i], keyframes, s, settings, width, height);
     outcomes[i].color.resize(3);  // the irradiance and reflectance it carried are combined already
@@ -511,16 +573,14 @@ InterpolationResult interpolateFrameDetailed(const LayeredKeyframes& keys, float
   return result;
 }
 
-InterpolationResult interpolateFrameDetailed(const FrameImage& k0, const FrameImage& k1,
-                                             const ComponentMotions& motions, float s,
-                                             const InterpolationSettings& settings) {
+LayeredKeyframes wholeKeyframes(const FrameImage& k0, const FrameImage& k1, const ComponentMotions& motions) {
   // Every layer reads the whole frames, which the caller holds.
   const auto held = [](const FrameImage& frame) {
     return std::shared_ptr<const FrameImage>(std::shared_ptr<void>(), &frame);
   };
   LayeredKeyframes keys;
   keys.frameWide = {&k0, &k1};
-  keys.component = [&](const std::string& name) {
+  keys.component = [&k0, &k1, &motions, held](const std::string& name) {
     const auto found = motions.components.find(name);
     if (found == motions.components.end())
       throw std::invalid_argument("interpolation: no motion for " +
@@ -530,7 +590,13 @@ InterpolationResult interpolateFrameDetailed(const FrameImage& k0, const FrameIm
   };
   const auto primary = motions.components.find("");
   keys.frameWideMotion = primary != motions.components.end() ? &primary->second : nullptr;
-  return interpolateFrameDetailed(keys, s, settings);
+  return keys;
+}
+
+InterpolationResult interpolateFrameDetailed(const FrameImage& k0, const FrameImage& k1,
+                                             const ComponentMotions& motions, float s,
+                                             const InterpolationSettings& settings) {
+  return interpolateFrameDetailed(wholeKeyframes(k0, k1, motions), s, settings);
 }
 
 FrameImage interpolateFrame(const FrameImage& k0, const FrameImage& k1, const ComponentMotions& motions, float s,

@@ -7,6 +7,12 @@
 // the two are blended with weights (1 - s) and s, and the components are summed into the
 // beauty R, G, B.
 //
+// With the in-between frame's own features (LayeredKeyframes::inBetween), a component's
+// color within a pixel of a texture edge (settings.textureEdge) is its interpolated
+// irradiance times the frame's own reflectance: the edge is then where the frame has it, not
+// where the motion moves the keyframes' to, blurred by the splat. Elsewhere the keyframes'
+// reflectance is kept: it is as right there and far less noisy than the features' few samples.
+//
 // What is splatted: without an irradiance motion (ComponentMotion::hasIrradianceMotion
 // false) the component's color `<c>.color.R/G/B` (its irradiance `<c>.irradiance.R/G/B`, or
 // the color where a frame has none, is splatted alongside for the illumination test below).
@@ -89,6 +95,10 @@ struct InterpolationSettings {
   // Best effort for untracked pixels (still masked): splat them along the frame-wide motion
   // (ComponentMotions key "", when given) instead of leaving them to the static hole blend.
   bool untrackedFollowPrimary = true;
+  // With the in-between frame's own features: a pixel is at a texture edge, and takes the
+  // frame's own reflectance, where the splatted reflectance's luminance spans more than this
+  // (relative) over its 3x3 neighbourhood.
+  float textureEdge = 0.5f;
 };
 
 struct InterpolationResult {
@@ -128,7 +138,16 @@ struct LayeredKeyframes {
   std::function<KeyframeComponent(const std::string& component)> component;
   // The frame-wide motion, which untracked components follow (untrackedFollowPrimary), or null.
   const ComponentMotion* frameWideMotion = nullptr;
+  // The in-between frame's own render of its features (feature_check.h), of the keyframes'
+  // size, or null. Where it has a component's `<c>.reflectance`, the component's
+  // interpolated irradiance at texture edges is modulated by it rather than by the
+  // reflectance splatted from the keyframes (where both are above the guard).
+  const FrameImage* inBetween = nullptr;
 };
+// Whole keyframes as LayeredKeyframes: every component is read from k0 and k1, which (with
+// `motions`) must outlive what this returns.
+LayeredKeyframes wholeKeyframes(const FrameImage& k0, const FrameImage& k1, const ComponentMotions& motions);
+
 // interpolateFrameDetailed of the keyframes `keys` gives a component at a time.
 InterpolationResult interpolateFrameDetailed(const LayeredKeyframes& keys, float s,
                                              const InterpolationSettings& settings = {});

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 
 #include "postproc/metrics/image_metrics.h"
@@ -107,6 +108,69 @@ TEST(Interpolation, ASurfaceTheCameraMovesAwayFromIsOneSurfaceInBothKeyframes) {
       EXPECT_FLOAT_EQ(r.frame.channel("residual.depth.Z")[p], 2.25f) << x << ", " << y;
       EXPECT_EQ(r.mask[p], 0) << x << ", " << y;
     }
+}
+
+// A static floor under constant light whose texture edge the keyframes put one column left
+// of where the in-between frame has it (in a shot: an edge the motion moves imprecisely).
+// Given the frame's own features, a pixel within a pixel of the keyframes' edge is the
+// interpolated irradiance times the frame's own reflectance; elsewhere, where the features'
+// reflectance is a noisy estimate of the same, and where it is below the guard, the
+// keyframes' reflectance is kept, as without features.
+TEST(Interpolation, AtTextureEdgesTheInBetweenFramesOwnReflectanceModulatesItsIrradiance) {
+  const int w = 12, h = 4, edge = 6;
+  const float irradiance = 2.0f;
+  const auto textured = [&](const std::function<float(int x, int y)>& reflectance) {
+    FrameImage f(w, h);
+    f.attributes()["pathfarm.decomposition"] = "residual";
+    for (const char* c : {"R", "G", "B", "residual.color.R", "residual.color.G", "residual.color.B",
+                          "residual.irradiance.R", "residual.irradiance.G", "residual.irradiance.B",
+                          "residual.reflectance.R", "residual.reflectance.G", "residual.reflectance.B"})
+      f.addChannel(c).assign(f.pixelCount(), 0.0f);
+    f.addChannel("residual.depth.Z").assign(f.pixelCount(), 3.0f);
+    f.addChannel("depth.Z").assign(f.pixelCount(), 3.0f);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const size_t p = static_cast<size_t>(y * w + x);
+        const float r = reflectance(x, y);
+        for (const char* c : {"residual.reflectance.R", "residual.reflectance.G", "residual.reflectance.B"})
+          f.channel(c)[p] = r;
+        for (const char* c : {"residual.irradiance.R", "residual.irradiance.G", "residual.irradiance.B"})
+          f.channel(c)[p] = irradiance;
+        for (const char* c : {"R", "G", "B", "residual.color.R", "residual.color.G", "residual.color.B"})
+          f.channel(c)[p] = irradiance * r;
+      }
+    return f;
+  };
+  const auto keyframeTexture = [&](int x, int) { return x < edge ? 0.2f : 0.8f; };
+  const FrameImage k0 = textured(keyframeTexture), k1 = textured(keyframeTexture);
+  // The frame's own texture: the edge a column to the right, with ±10 % of noise, and no
+  // surface of the component at (edge - 1, 0).
+  const FrameImage own = textured([&](int x, int y) {
+    if (x == edge - 1 && y == 0) return 0.0f;
+    return (x < edge + 1 ? 0.2f : 0.8f) * ((x + y) % 2 == 0 ? 1.1f : 0.9f);
+  });
+  const ComponentMotions motions = motionsOf(zeroField(w, h), zeroField(w, h));
+  LayeredKeyframes keys = wholeKeyframes(k0, k1, motions);
+  keys.inBetween = &own;
+  const FrameImage modulated = interpolateFrameDetailed(keys, 0.25f).frame;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t p = static_cast<size_t>(y * w + x);
+      const float ownReflectance = own.channel("residual.reflectance.G")[p];
+      const bool atEdge = (x == edge - 1 || x == edge) && ownReflectance > 0.0f;
+      const float expected = irradiance * (atEdge ? ownReflectance : keyframeTexture(x, y));
+      EXPECT_FLOAT_EQ(modulated.channel("residual.color.G")[p], expected) << x << ", " << y;
+      EXPECT_FLOAT_EQ(modulated.channel("G")[p], expected) << x << ", " << y;
+    }
+  // Features of another size are refused, with both sizes named.
+  const FrameImage small(w / 2, h);
+  keys.inBetween = &small;
+  try {
+    interpolateFrameDetailed(keys, 0.25f);
+    ADD_FAILURE() << "features of another size were accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("6x4"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Interpolation, HolesAreInTheMask) {

@@ -108,11 +108,14 @@ struct InterpolationFiles {
   std::map<std::string, std::filesystem::path> files;
   Lease lease = interpolateLease();
 
-  InterpolationFiles(const std::string& name, float flowDy, int width = kWidth, int height = kHeight) {
+  // The keyframes have 8 spp; the features `featureSpp`: as many, their reflectance
+  // modulates the interpolated irradiance at texture edges.
+  InterpolationFiles(const std::string& name, float flowDy, int width = kWidth, int height = kHeight,
+                     int featureSpp = 8) {
     const MotionSpan span{kAfter - kBefore, kAfter - kBefore};
     k0 = render(kBefore, 8, span, width, height);
     k1 = render(kAfter, 8, span, width, height);
-    features = render(kFrame, 4, {}, width, height);
+    features = render(kFrame, featureSpp, {}, width, height);
     lease.mutable_spec()->set_width(width);
     lease.mutable_spec()->set_height(height);
     folder = test_support::processTemporaryFolder(name);
@@ -157,16 +160,10 @@ struct InterpolationFiles {
   }
 };
 
-// The task reads its keyframes a component at a time, each decoded alone from its file when
-// the worker keeps no decoded frames: its frame is the same bits as interpolating the whole
-// keyframes (their directly seen light taken out) with every component's motion at once.
-TEST(InterpolateTask, KeyframesReadAComponentAtATimeGiveTheWholeFramesInterpolation) {
-  const InterpolationFiles in("pathfarm_interpolate_parts", -0.5f);
-  const TaskOutput outputs[2] = {in.run(in.lease, 0), in.run(in.lease, TaskRunner::kDefaultDecodedInputBytes)};
-  const FrameImage alone = decodeExr(outputBytes(outputs[0]), "alone");
-  const FrameImage fromWhole = decodeExr(outputBytes(outputs[1]), "from whole");
-
-  // The whole keyframes, interpolated at once.
+// The files' keyframes interpolated whole, as the task does (their directly seen light taken
+// out, every component's motion at once), modulated by the features' reflectance when
+// `ownReflectance`.
+InterpolationResult wholeInterpolation(const InterpolationFiles& in, bool ownReflectance) {
   FrameImage w0 = in.k0, w1 = in.k1;
   takeDirectEmission(w0);
   takeDirectEmission(w1);
@@ -183,9 +180,24 @@ TEST(InterpolateTask, KeyframesReadAComponentAtATimeGiveTheWholeFramesInterpolat
   motions.components[in.flowing].hasIrradianceMotion = true;
   InterpolationSettings settings;
   settings.unknownChangeMasks = false;  // as the task
-  const InterpolationResult whole = interpolateFrameDetailed(w0, w1, motions, 1.0f / 3.0f, settings);
-  FrameImage expected = whole.frame;
-  addDirectEmission(expected, directEmissionOf(in.features));
+  LayeredKeyframes keys = wholeKeyframes(w0, w1, motions);
+  if (ownReflectance) keys.inBetween = &in.features;
+  InterpolationResult whole = interpolateFrameDetailed(keys, 1.0f / 3.0f, settings);
+  addDirectEmission(whole.frame, directEmissionOf(in.features));
+  return whole;
+}
+
+// The task reads its keyframes a component at a time, each decoded alone from its file when
+// the worker keeps no decoded frames: its frame is the same bits as interpolating the whole
+// keyframes with every component's motion at once, modulated by the frame's own
+// reflectance (its features have the keyframes' samples).
+TEST(InterpolateTask, KeyframesReadAComponentAtATimeGiveTheWholeFramesInterpolation) {
+  const InterpolationFiles in("pathfarm_interpolate_parts", -0.5f);
+  const TaskOutput outputs[2] = {in.run(in.lease, 0), in.run(in.lease, TaskRunner::kDefaultDecodedInputBytes)};
+  const FrameImage alone = decodeExr(outputBytes(outputs[0]), "alone");
+  const FrameImage fromWhole = decodeExr(outputBytes(outputs[1]), "from whole");
+  const InterpolationResult whole = wholeInterpolation(in, true);
+  const FrameImage& expected = whole.frame;
   // The interpolation's own re-render causes (the task adds its checks' as other causes).
   for (const TaskOutput& output : outputs) {
     EXPECT_EQ(output.metrics.at("rerender_holes"), static_cast<double>(whole.holePixels));
@@ -203,6 +215,19 @@ TEST(InterpolateTask, KeyframesReadAComponentAtATimeGiveTheWholeFramesInterpolat
     }
   for (const std::string& name : {std::string("R"), in.flowing + ".color.G"})
     EXPECT_NE(expected.channel(name), in.features.channel(name)) << "not interpolated: " << name;
+  EXPECT_NE(expected.channel("G"), wholeInterpolation(in, false).frame.channel("G"))
+      << "the features' reflectance changes nothing here";
+}
+
+// Features with fewer samples than the keyframes leave the keyframes' reflectance: their
+// noise would cost more than the texture edges gain.
+TEST(InterpolateTask, FeaturesWithFewerSamplesThanTheKeyframesLeaveTheKeyframesReflectance) {
+  const InterpolationFiles in("pathfarm_interpolate_few_features", -0.5f, kWidth, kHeight, 4);
+  const FrameImage result = decodeExr(outputBytes(in.run(in.lease, 0)), "interpolated");
+  const FrameImage splatted = wholeInterpolation(in, false).frame, own = wholeInterpolation(in, true).frame;
+  EXPECT_NE(splatted.channel("G"), own.channel("G")) << "the features' reflectance changes nothing here";
+  for (const std::string& name : splatted.channelNames())
+    if (name != "rerender.Y") EXPECT_TRUE(result.channel(name) == splatted.channel(name)) << name;
 }
 
 // An in-between frame interpolated window by window (each task reading the keyframe rows
