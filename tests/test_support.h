@@ -108,11 +108,12 @@ inline MeanEstimate renderedMean(const Scene& scene, int spp, int maxDepth, cons
 // standard decomposition, path depth 6 and motion vectors reaching `span` frames, as a
 // worker's render tiles make it.
 inline FrameImage renderDecomposed(const std::string& sceneFile, int width, int height, int spp, int64_t frame,
-                                   MotionSpan span = {}) {
+                                   MotionSpan span = {}, int reflectanceSpp = 0) {
   RenderSettings settings;
   settings.width = width;
   settings.height = height;
   settings.spp = spp;
+  settings.reflectanceSpp = reflectanceSpp;
   settings.maxDepth = 6;
   settings.decomposition = std::make_shared<Decomposition>(Decomposition::standard());
   settings.motionSpan = span;

@@ -93,6 +93,12 @@ bool upsampleReads(const std::string& channel, FilteringStages stages) {
   return read.keeps(channel);
 }
 
+bool readsMotion(ChunkContent content, FilteringStages stages) {
+  const Buffers read = buffersOf(content, stages);
+  return read.perComponent.count("motion") > 0 || read.frameWide.count("motion") > 0 ||
+         read.frameWide.count("silhouette") > 0;
+}
+
 void keepReadChannels(ChunkContent content, FilteringStages stages, FrameImage& frame) {
   const Buffers kept = buffersOf(content, stages);
   frame.removeChannels([&](const std::string& name) { return !kept.keeps(name); });

@@ -32,6 +32,10 @@ std::optional<ChunkContent> renderedContent(TaskRole role);
 // (not the variance and ids only the denoiser reads).
 bool upsampleReads(const std::string& channel, FilteringStages stages);
 
+// Whether the chunk's readers in `stages` read any motion (a component's or the frame's
+// motion, or its silhouettes): a render tile of a chunk without skips measuring it.
+bool readsMotion(ChunkContent content, FilteringStages stages);
+
 // Removes every channel of `frame` the chunk's readers in `stages` do not use.
 void keepReadChannels(ChunkContent content, FilteringStages stages, FrameImage& frame);
 

@@ -23,16 +23,21 @@
 namespace pathfarm::farm {
 namespace {
 
-// The samples per pixel a frame was rendered with (attribute pathfarm.spp), or 0 where it
-// does not say.
-int renderedSpp(const FrameImage& frame) {
-  const auto found = frame.attributes().find("pathfarm.spp");
+// A render's samples per pixel as its attribute `name` says (pathfarm.spp,
+// pathfarm.reflectance_spp), or 0 where it does not say.
+int sppAttribute(const FrameImage& frame, const std::string& name) {
+  const auto found = frame.attributes().find(name);
   if (found == frame.attributes().end()) return 0;
   try {
     return std::stoi(found->second);
   } catch (const std::exception&) {
     return 0;
   }
+}
+
+// The samples per pixel of a render's reflectance: its own samples' where it took more.
+int reflectanceSpp(const FrameImage& frame) {
+  return std::max(sppAttribute(frame, "pathfarm.spp"), sppAttribute(frame, "pathfarm.reflectance_spp"));
 }
 
 // A component's motion between the keyframes (the frame-wide one for ""): forward from
@@ -284,13 +289,13 @@ TaskOutput runInterpolateTask(const Lease& lease, std::vector<TaskInput>& inputs
     return KeyframeComponent{{parts[0], parts[1]}, motion};
   };
   // The frame's own reflectance modulates its interpolated irradiance at texture edges, which
-  // the keyframes' splat blurs and misplaces, when its feature render has at least the
-  // keyframes' samples: with fewer, its noise costs more than the edges gain (docs/
+  // the keyframes' splat blurs and misplaces, when its feature render's reflectance has at
+  // least the keyframes' samples: with fewer, its noise costs more than the edges gain (docs/
   // performance.md, "The in-between frame's own reflectance").
   const TaskInput& featureInput = inputOf(inputs, TASK_ASSEMBLE_FRAME, params.frame());
   const FrameImage ownReflectance = featureInput.part(
       {[](const std::string& name) { return name.find(".reflectance.") != std::string::npos; }, read.first, read.end});
-  if (renderedSpp(ownReflectance) >= renderedSpp(frameWide[0])) keys.inBetween = &ownReflectance;
+  if (reflectanceSpp(ownReflectance) >= sppAttribute(frameWide[0], "pathfarm.spp")) keys.inBetween = &ownReflectance;
   InterpolationResult result = interpolateFrameDetailed(keys, fraction, settings);
   for (const auto& [key, value] : frameWide[0].attributes()) result.frame.attributes().emplace(key, value);
   result.frame.attributes()["pathfarm.frame"] = std::to_string(params.frame());

@@ -157,6 +157,7 @@ TaskOutput TaskRunner::renderTile(const Lease& lease, const ChunkFetcher& fetch,
   RenderSettings settings = shot->renderer->settings();
   if (params.spp() > 0) settings.spp = params.spp();
   if (params.beauty_only()) settings.decomposition = nullptr;
+  settings.reflectanceSpp = params.reflectance_spp();
   if (params.motion_forward() > 0) settings.motionSpan.forward = params.motion_forward();
   if (params.motion_backward() > 0) settings.motionSpan.backward = params.motion_backward();
   // A reference measures the shot's frames: it must not share their samples, or their
@@ -166,14 +167,17 @@ TaskOutput TaskRunner::renderTile(const Lease& lease, const ChunkFetcher& fetch,
   // renders are the one render a longer baseline would be, cut where its samples part.
   if (params.role() == ROLE_BASELINE)
     settings.firstSample += static_cast<uint32_t>(params.baseline_repeat()) * static_cast<uint32_t>(settings.spp);
+  // A chunk whose readers read no motion (features, re-rendered pixels) skips measuring it.
+  const std::optional<ChunkContent> content = renderedContent(params.role());
+  const bool filtering = isFilteringPipeline(lease.spec().pipeline());
+  if (content && filtering) settings.motion = readsMotion(*content, stagesOf(lease.spec().pipeline()));
   const FrameRenderer renderer(*shot->renderer, settings);
   const PixelWindow& w = params.window();
   const std::vector<uint8_t> only(params.pixel_mask().begin(), params.pixel_mask().end());
   RenderStats stats;
   FrameImage tile = renderer.renderWindow(params.frame(), {w.x0(), w.y0(), w.x1(), w.y1()},
                                           abandonable(progress, abandon), &stats, only.empty() ? nullptr : &only);
-  const std::optional<ChunkContent> content = renderedContent(params.role());
-  if (settings.decomposition && content && isFilteringPipeline(lease.spec().pipeline()))
+  if (settings.decomposition && content && filtering)
     keepReadChannels(*content, stagesOf(lease.spec().pipeline()), tile);
   TaskOutput output;
   output.chunk = encodeExr(tile, ExrCompression::Fast);

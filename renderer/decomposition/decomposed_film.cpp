@@ -126,6 +126,16 @@ void DecomposedFilm::Pixel::add(const SampleComponents& sample, const SampleExtr
   }
 }
 
+void DecomposedFilm::Pixel::addReflectance(const SampleComponents& sample) {
+  for (uint32_t bits = sample.touched; bits != 0; bits &= bits - 1) {
+    const auto k = static_cast<size_t>(std::countr_zero(bits));
+    if (!sample.hasFeatures[k] || !sample.features[k].reflectance.isFinite()) continue;
+    Component& c = components_[k];
+    ++c.reflectanceOnly;
+    addTo(c.reflectance, sample.features[k].reflectance);
+  }
+}
+
 void DecomposedFilm::Pixel::setSpecularMotion(int component, std::optional<Vec2f> forward,
                                               std::optional<Vec2f> backward) {
   Component& c = components_[static_cast<size_t>(component)];
@@ -140,11 +150,12 @@ void DecomposedFilm::write(size_t p, const Pixel& sums) const {
     const ComponentChannels& out = components_[k];
     const Pixel::Component& c = sums.components_[k];
     const double features = std::max(1, c.features);
+    const double reflectanceSamples = std::max(1, c.features + c.reflectanceOnly);
     const double moving = std::max(1, c.moving);
     for (int i = 0; i < 3; ++i) {
       const double mean = n > 0 ? c.color[i] / n : 0.0;
       const double variance = n > 1 ? std::max(0.0, c.colorSquared[i] - n * mean * mean) / ((n - 1) * n) : 0.0;
-      const auto reflectance = static_cast<float>(c.reflectance[i] / features);
+      const auto reflectance = static_cast<float>(c.reflectance[i] / reflectanceSamples);
       out.color[i][p] = static_cast<float>(mean);
       out.variance[i][p] = static_cast<float>(variance);
       out.reflectance[i][p] = reflectance;

@@ -38,6 +38,9 @@ class DecomposedFilm {
    public:
     explicit Pixel(int components);
     void add(const SampleComponents& components, const SampleExtras& extras);
+    // A sample traced for features only (RenderSettings::reflectanceSpp): its components'
+    // reflectance joins their mean reflectance; nothing else of it is kept.
+    void addReflectance(const SampleComponents& components);
     // A specular component's motion from the manifold walk (specular_motion.h), which
     // replaces the samples' primary motion; nothing where the walk found none. Valid only
     // with both directions.
@@ -48,6 +51,7 @@ class DecomposedFilm {
     struct Component {
       double color[3] = {}, colorSquared[3] = {};
       int features = 0, moving = 0;
+      int reflectanceOnly = 0;  // addReflectance's samples with features
       double reflectance[3] = {}, normal[3] = {}, uv[2] = {}, depth = 0, direct[3] = {};
       double motion[2] = {}, motionBack[2] = {};
       uint32_t objectId = 0, primitive = 0;

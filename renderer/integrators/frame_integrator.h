@@ -38,9 +38,19 @@ struct RenderSettings {
   std::shared_ptr<const Decomposition> decomposition;
   // How far the components' motion vectors reach (a keyframe's: its neighbouring keyframes).
   MotionSpan motionSpan;
+  // With a decomposition: measure the motion (the components', the frame's, its
+  // silhouettes). A render whose motion nobody reads skips it, for it costs per pixel:
+  // primary motion on 8 samples and the specular components' manifold walks, as much as
+  // several of a 4-spp render's paths. Without it those channels are zero.
+  bool motion = true;
   // Sample indices run from here (sample_stream.h). A render that measures another must
   // share none of its samples: a reference starts at kIndependentFirstSample.
   uint32_t firstSample = 0;
+  // With a decomposition: the components' reflectance takes this many samples a pixel (0 or
+  // at most spp: spp). The first spp are the render's paths; the rest trace the camera ray
+  // only to its first non-specular vertex, which costs a small part of a path and sharpens
+  // the texture edges an in-between frame's interpolation modulates (frame_interpolation.h).
+  int reflectanceSpp = 0;
 
   static RenderSettings defaultsOf(const Scene& scene);
 };

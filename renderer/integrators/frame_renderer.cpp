@@ -122,10 +122,10 @@ struct WindowPixels {
   const std::vector<uint8_t>* only;  // null: every pixel
   const Camera& camera;
   const PathTracer& tracer;
-  const PrimaryMotion& motion;
-  const Decomposition* decomposition;  // null: beauty only; else film and specular are there too
+  const PrimaryMotion* motion;  // null: no motion measured
+  const Decomposition* decomposition;  // null: beauty only; else the film is there too
   const DecomposedFilm* film;
-  const SpecularMotion* specular;
+  const SpecularMotion* specular;  // null: no motion measured
   std::array<float*, 6> channels;  // addBeautyChannels'
 
   void renderTile(int x0, int y0, int tile, SampleCounters& local) const {
@@ -141,6 +141,26 @@ struct WindowPixels {
     }
   }
 
+  struct CameraSample {
+    SampleStream stream;  // past the lens's dimensions
+    float time;
+    Transform cameraNow;  // the camera's placement at `time`, which made `ray`
+    Ray ray;
+  };
+
+  // Sample `s` of frame pixel (x, y): its position in the pixel and its shutter time are
+  // stratified over the pixel's samples; the stream's first dimensions are the lens's.
+  CameraSample cameraSample(int x, int y, const StratifiedPixel& pattern, int s) const {
+    const SampleKey key{scene.seed, frame, x, y, settings.firstSample + static_cast<uint32_t>(s)};
+    SampleStream stream(key);
+    const StratifiedSample stratified = pattern.sample(key.sampleIndex);
+    const Vec2f lens = stream.next2D();
+    const Transform cameraNow = camera.cameraToWorld(scene.timeAt(frame, stratified.time));
+    const Ray ray = camera.generateRay(
+        {static_cast<float>(x) + stratified.film.x, static_cast<float>(y) + stratified.film.y}, lens, cameraNow);
+    return {stream, stratified.time, cameraNow, ray};
+  }
+
   void renderPixel(int ix, int iy, size_t pixel, TileDecomposer& paths, SampleCounters& local) const {
     const int x = window.x0 + ix, y = window.y0 + iy;  // frame pixel coordinates
     SampleMoments moments;
@@ -149,32 +169,29 @@ struct WindowPixels {
     if (film) sums.emplace(decomposition->size());
     const StratifiedPixel pattern(scene.seed, frame, x, y);
     for (int s = 0; s < settings.spp; ++s) {
-      const SampleKey key{scene.seed, frame, x, y, settings.firstSample + static_cast<uint32_t>(s)};
-      SampleStream stream(key);
-      // Pixel position and shutter time are stratified over the pixel's samples; the
-      // stream's first dimensions are the lens's.
-      const StratifiedSample stratified = pattern.sample(key.sampleIndex);
-      const Vec2f jitter = stratified.film;
-      const float time = stratified.time;
-      const Vec2f lens = stream.next2D();
-      const Transform cameraNow = camera.cameraToWorld(scene.timeAt(frame, time));
-      const Ray ray =
-          camera.generateRay({static_cast<float>(x) + jitter.x, static_cast<float>(y) + jitter.y}, lens, cameraNow);
+      CameraSample sample = cameraSample(x, y, pattern, s);
       if (film) {
         paths.decomposer->begin();
         paths.record = {&*paths.decomposer, false, {}};
       }
-      const Rgb L = tracer.radiance(ray, time, stream, local.rays, film ? &paths.record : nullptr);
+      const Rgb L = tracer.radiance(sample.ray, sample.time, sample.stream, local.rays, film ? &paths.record : nullptr);
       ++local.samples;
       if (!L.isFinite()) {
         ++local.nonFinite;
         continue;
       }
       if (film)
-        sums->add(paths.components,
-                  extrasOf(paths.record, ray, time, s < DecomposedFilm::kMotionSamples ? &motion : nullptr, cameraNow));
+        sums->add(paths.components, extrasOf(paths.record, sample.ray, sample.time,
+                                             s < DecomposedFilm::kMotionSamples ? motion : nullptr, sample.cameraNow));
       ++accepted;
       moments.add(L);
+    }
+    // The reflectance's own samples continue the pixel's stratified pattern.
+    for (int s = settings.spp; film && s < settings.reflectanceSpp; ++s) {
+      CameraSample sample = cameraSample(x, y, pattern, s);
+      paths.decomposer->begin();
+      tracer.traceFeatures(sample.ray, sample.time, sample.stream, local.rays, *paths.decomposer);
+      sums->addReflectance(paths.components);
     }
     for (size_t c = 0; c < 3; ++c) {
       channels[c][pixel] = static_cast<float>(moments.mean(c, accepted));
@@ -185,7 +202,7 @@ struct WindowPixels {
 
   // The specular components take their motion from the manifold walk.
   void writeComponents(int x, int y, size_t pixel, DecomposedFilm::Pixel& sums) const {
-    for (int k = 0; k < decomposition->size(); ++k) {
+    for (int k = 0; specular && k < decomposition->size(); ++k) {
       if (!specular->isSpecular(k)) continue;
       const SpecularTrack track = specular->track(x, y, k);
       sums.setSpecularMotion(k, toFloat(track.forward), toFloat(track.backward));
@@ -229,6 +246,8 @@ void writeRenderAttributes(FrameImage& image, const Scene& scene, int64_t frame,
   attributes["pathfarm.max_depth"] = std::to_string(settings.maxDepth);
   attributes["pathfarm.seed"] = std::to_string(scene.seed);
   if (settings.firstSample != 0) attributes["pathfarm.first_sample"] = std::to_string(settings.firstSample);
+  if (settings.decomposition && settings.reflectanceSpp > settings.spp)
+    attributes["pathfarm.reflectance_spp"] = std::to_string(settings.reflectanceSpp);
   attributes["pathfarm.nonfinite_samples"] = std::to_string(stats.nonFiniteSamples);
 }
 
@@ -252,7 +271,8 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
   std::optional<DecomposedFilm> film;
   if (decomposition) film.emplace(image, *decomposition);
   std::optional<SpecularMotion> specular;
-  if (decomposition)
+  const bool measuresMotion = decomposition && settings_.motion;
+  if (measuresMotion)
     specular.emplace(*geometry, shot_->preciseShapes, *decomposition, settings_.width, settings_.height,
                      settings_.motionSpan);
 
@@ -263,7 +283,7 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
                             .only = only,
                             .camera = camera,
                             .tracer = tracer,
-                            .motion = motion,
+                            .motion = measuresMotion ? &motion : nullptr,
                             .decomposition = decomposition,
                             .film = film ? &*film : nullptr,
                             .specular = specular ? &*specular : nullptr,
@@ -274,6 +294,7 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
   const RenderStats total = totalOf(counters, start);
   writeRenderAttributes(image, scene_, frame, settings_, total);
   if (decomposition) image.attributes()["pathfarm.decomposition"] = decomposition->describe();
+  if (decomposition && !measuresMotion) image.attributes()["pathfarm.motion"] = "not measured";
   if (stats) *stats = total;
   return image;
 }

@@ -98,4 +98,27 @@ Rgb PathTracer::radiance(Ray ray, float time, SampleStream& stream, RayCounts& c
   return result;
 }
 
+void PathTracer::traceFeatures(Ray ray, float time, SampleStream& stream, RayCounts& counts,
+                               PathDecomposer& decomposer) const {
+  const Scene& scene = geometry_.shot().scene();
+  float pathLength = 0;
+  for (int depth = 0; depth < settings_.maxDepth; ++depth) {
+    SurfaceHit hit;
+    ++counts.closestHit;
+    if (!geometry_.intersect(ray, time, hit)) return;
+    pathLength += hit.distance;
+    const BounceSamples u(stream);
+    const ShadedVertex shaded(scene, hit, ray.direction);
+    const SceneObject& object = scene.objects[static_cast<size_t>(hit.object)];
+    const LobeList lobes = shaded.bsdf.lobes();
+    const auto scattered = shaded.bsdf.sample(shaded.wo, u.lobe, u.direction);
+    const VertexFeatures vertex{shaded.hit.position, shaded.normal, shaded.hit.uv, pathLength,
+                                hit.object, object.objectId, shaded.hit.primitive, object.moves()};
+    decomposer.scatter(lobes, vertex, scattered ? &*scattered : nullptr);
+    if (!scattered || scattered->weight.isBlack() || scattered->symbol == LobeSymbol::D) return;
+    const Vec3f direction = normalize(shaded.frame.toWorld(scattered->wi));
+    ray = {offsetRayOrigin(shaded.hit, direction), direction};
+  }
+}
+
 }  // namespace pathfarm

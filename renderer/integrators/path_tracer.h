@@ -39,6 +39,10 @@ class PathTracer {
   // With a record, also splits the path into components and reports the first hit; the
   // radiance returned is the same bits either way.
   Rgb radiance(Ray ray, float time, SampleStream& stream, RayCounts& counts, PathRecord* record = nullptr) const;
+  // Follows `ray` only until the decomposer has each component's features: through specular
+  // vertices to the first vertex whose sampled lobe is non-specular (no later vertex is a
+  // component's first D vertex then, path_decomposer.h). No light is gathered.
+  void traceFeatures(Ray ray, float time, SampleStream& stream, RayCounts& counts, PathDecomposer& decomposer) const;
 
  private:
   const FrameGeometry& geometry_;

@@ -188,7 +188,8 @@ TEST(Planner, DuiGraphHasEveryStageWithItsEdges) {
     outputs += task.output;
     EXPECT_EQ(task.output, task.kind == TASK_COMPOSITE);
     if (task.kind == TASK_RENDER_TILE && task.params.role() == ROLE_FEATURES) {
-      EXPECT_EQ(task.params.spp(), 2);  // feature_spp
+      EXPECT_EQ(task.params.spp(), 2);              // feature_spp
+      EXPECT_EQ(task.params.reflectance_spp(), 4);  // the keyframes'
       EXPECT_TRUE(task.params.frame() != 10 && task.params.frame() != 14 && task.params.frame() != 18 &&
                   task.params.frame() != 19);
     } else if (task.kind == TASK_RENDER_TILE) {

@@ -172,5 +172,24 @@ TEST(ChunkChannels, RenderTilesOfFilteredFramesDropTheBuffersNoFilterReads) {
   for (const TaskRole role : {ROLE_REFERENCE, ROLE_BASELINE, ROLE_OUTPUT}) EXPECT_FALSE(renderedContent(role));
 }
 
+// A render tile measures motion only for a chunk that keeps some: keyframes, whose motion
+// the denoiser and the interpolation follow, and never the features or the re-rendered
+// pixels, whose readers read none.
+TEST(ChunkChannels, OnlyChunksThatKeepMotionMeasureIt) {
+  FrameImage full = render(kBefore, 1);
+  for (const Pipeline pipeline : {PIPELINE_D, PIPELINE_DI, PIPELINE_DU, PIPELINE_DUI}) {
+    for (const TaskRole role : {ROLE_KEYFRAME, ROLE_FEATURES, ROLE_RERENDER}) {
+      FrameImage kept = full;
+      keepReadChannels(*renderedContent(role), stagesOf(pipeline), kept);
+      bool keepsMotion = false;
+      for (const std::string& name : kept.channelNames())
+        keepsMotion = keepsMotion || name.find("motion") != std::string::npos || name == "silhouette.Y";
+      EXPECT_EQ(readsMotion(*renderedContent(role), stagesOf(pipeline)), keepsMotion)
+          << pipelineName(pipeline) << " role " << role;
+      EXPECT_EQ(keepsMotion, role == ROLE_KEYFRAME) << pipelineName(pipeline) << " role " << role;
+    }
+  }
+}
+
 }  // namespace chunk_channels_test
 }  // namespace pathfarm::farm

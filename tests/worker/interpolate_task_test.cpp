@@ -108,14 +108,16 @@ struct InterpolationFiles {
   std::map<std::string, std::filesystem::path> files;
   Lease lease = interpolateLease();
 
-  // The keyframes have 8 spp; the features `featureSpp`: as many, their reflectance
-  // modulates the interpolated irradiance at texture edges.
+  // The keyframes have 8 spp; the features `featureSpp`, their reflectance
+  // `reflectanceSpp` (0: featureSpp): with as many as the keyframes', it modulates the
+  // interpolated irradiance at texture edges.
   InterpolationFiles(const std::string& name, float flowDy, int width = kWidth, int height = kHeight,
-                     int featureSpp = 8) {
+                     int featureSpp = 8, int reflectanceSpp = 0) {
     const MotionSpan span{kAfter - kBefore, kAfter - kBefore};
     k0 = render(kBefore, 8, span, width, height);
     k1 = render(kAfter, 8, span, width, height);
-    features = render(kFrame, featureSpp, {}, width, height);
+    features = test_support::renderDecomposed("scenes/walkthrough/scene.json", width, height, featureSpp, kFrame, {},
+                                              reflectanceSpp);
     lease.mutable_spec()->set_width(width);
     lease.mutable_spec()->set_height(height);
     folder = test_support::processTemporaryFolder(name);
@@ -221,13 +223,28 @@ TEST(InterpolateTask, KeyframesReadAComponentAtATimeGiveTheWholeFramesInterpolat
 
 // Features with fewer samples than the keyframes leave the keyframes' reflectance: their
 // noise would cost more than the texture edges gain.
+// The task's frame is `expected`'s, channel by channel (its re-render mask aside).
+void expectSameFrame(const FrameImage& result, const FrameImage& expected) {
+  for (const std::string& name : expected.channelNames())
+    if (name != "rerender.Y") EXPECT_TRUE(result.channel(name) == expected.channel(name)) << name;
+}
+
 TEST(InterpolateTask, FeaturesWithFewerSamplesThanTheKeyframesLeaveTheKeyframesReflectance) {
   const InterpolationFiles in("pathfarm_interpolate_few_features", -0.5f, kWidth, kHeight, 4);
   const FrameImage result = decodeExr(outputBytes(in.run(in.lease, 0)), "interpolated");
   const FrameImage splatted = wholeInterpolation(in, false).frame, own = wholeInterpolation(in, true).frame;
   EXPECT_NE(splatted.channel("G"), own.channel("G")) << "the features' reflectance changes nothing here";
-  for (const std::string& name : splatted.channelNames())
-    if (name != "rerender.Y") EXPECT_TRUE(result.channel(name) == splatted.channel(name)) << name;
+  expectSameFrame(result, splatted);
+}
+
+// 4-spp features whose reflectance took the keyframes' 8 samples (the planner's feature
+// render): their reflectance is used.
+TEST(InterpolateTask, FeaturesWhoseReflectanceHasTheKeyframesSamplesModulateTheInterpolation) {
+  const InterpolationFiles in("pathfarm_interpolate_reflectance_samples", -0.5f, kWidth, kHeight, 4, 8);
+  const FrameImage result = decodeExr(outputBytes(in.run(in.lease, 0)), "interpolated");
+  const FrameImage splatted = wholeInterpolation(in, false).frame, own = wholeInterpolation(in, true).frame;
+  EXPECT_NE(splatted.channel("G"), own.channel("G")) << "the features' reflectance changes nothing here";
+  expectSameFrame(result, own);
 }
 
 // An in-between frame interpolated window by window (each task reading the keyframe rows

@@ -139,6 +139,82 @@ TEST(DecomposedRender, IrradianceTimesReflectanceGivesTheColorBack) {
   EXPECT_GT(guarded, 0) << "no pixel exercised the guard";
 }
 
+// Samples traced for the reflectance alone (RenderSettings::reflectanceSpp) follow the
+// same camera rays and lobe choices as full paths of the same sample indices, so a 4-spp
+// render with 16 reflectance samples has the reflectance of a 16-spp render, computed by
+// the full path tracer, and everything else of the 4-spp render.
+TEST(DecomposedRender, ReflectanceSamplesGiveTheReflectanceOfFullPathsWithTheirIndices) {
+  for (const char* path : {"scenes/dolly/scene.json", "scenes/materials/scene.json"}) {
+    const Scene scene = loadScene(test_support::sourceDir() / path);
+    RenderSettings settings;
+    settings.width = 40;
+    settings.height = 24;
+    settings.maxDepth = 8;
+    settings.decomposition = std::make_shared<Decomposition>(Decomposition::standard());
+    settings.spp = 16;
+    const FrameImage full = FrameRenderer(scene, settings).render(2);
+    settings.spp = 4;
+    const FrameImage few = FrameRenderer(scene, settings).render(2);
+    settings.reflectanceSpp = 16;
+    const FrameImage sharpened = FrameRenderer(scene, settings).render(2);
+    EXPECT_EQ(sharpened.attributes().at("pathfarm.reflectance_spp"), "16");
+    EXPECT_EQ(sharpened.attributes().at("pathfarm.spp"), "4");
+    double changed = 0;
+    for (const std::string& name : few.channelNames()) {
+      const bool reflectance = name.find(".reflectance.") != std::string::npos;
+      const bool irradiance = name.find(".irradiance.") != std::string::npos;  // color / reflectance
+      if (!reflectance) {
+        if (!irradiance) EXPECT_TRUE(sharpened.channel(name) == few.channel(name)) << path << " " << name;
+        continue;
+      }
+      // The residual's paths (E T R T D, ...) may meet their first D vertex after Russian
+      // roulette has ended the full path, which a reflectance sample never does.
+      if (name.rfind("residual.", 0) == 0) continue;
+      const std::vector<float>&expected = full.channel(name), &actual = sharpened.channel(name);
+      for (size_t p = 0; p < expected.size(); ++p) {
+        ASSERT_NEAR(actual[p], expected[p], 1e-5f * expected[p] + 1e-6f) << path << " " << name << " pixel " << p;
+        changed += std::abs(actual[p] - few.channel(name)[p]);
+      }
+    }
+    EXPECT_GT(changed, 0.0) << path << ": the reflectance samples changed nothing";
+  }
+}
+
+bool isMotionChannel(const std::string& name) {
+  for (const char* buffer : {"motion.", "motion_back.", "motion_valid.", "silhouette."})
+    if (name.rfind(buffer, 0) == 0 || name.find(std::string(".") + buffer) != std::string::npos) return true;
+  return false;
+}
+
+// A render that does not measure motion (RenderSettings::motion) has every other channel's
+// bits, and zero motion.
+TEST(DecomposedRender, WithoutMotionEveryOtherChannelKeepsItsBits) {
+  const Scene scene = loadScene(test_support::sourceDir() / "scenes/dolly/scene.json");
+  RenderSettings settings;
+  settings.width = 40;
+  settings.height = 24;
+  settings.spp = 4;
+  settings.decomposition = std::make_shared<Decomposition>(Decomposition::standard());
+  const FrameImage moving = FrameRenderer(scene, settings).render(5);
+  settings.motion = false;
+  const FrameImage still = FrameRenderer(scene, settings).render(5);
+  EXPECT_EQ(still.attributes().at("pathfarm.motion"), "not measured");
+  ASSERT_EQ(still.channelNames(), moving.channelNames());
+  size_t motionChannels = 0;
+  for (const std::string& name : moving.channelNames()) {
+    if (!isMotionChannel(name)) {
+      EXPECT_TRUE(still.channel(name) == moving.channel(name)) << name;
+      continue;
+    }
+    ++motionChannels;
+    for (const float v : still.channel(name)) ASSERT_EQ(v, 0.0f) << name;
+  }
+  EXPECT_EQ(motionChannels, 5u * 5u + 5u);  // 5 per component; the frame's 2 + 2 and its silhouettes
+  // The dolly's camera moves, so the motion that was skipped is not zero.
+  EXPECT_GT(channelSum(moving, "motion.X") * channelSum(moving, "motion.X"), 0.0);
+  EXPECT_GT(channelSum(moving, "reflection.motion_valid.Y"), 0.0) << "no specular motion to skip";
+}
+
 // A camera close in front of a sphere that fills the view, lit by an area light and a
 // dim environment.
 Scene sphereFillingTheView(const char* material) {
