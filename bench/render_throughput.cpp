@@ -21,6 +21,7 @@
 #include "bench/command_line.h"
 #include "bench/embree_rays.h"
 #include "bench/median.h"
+#include "image/plane_memory.h"
 #include "renderer/accel/frame_geometry.h"
 #include "renderer/setup/auto_decomposition.h"
 #include "renderer/integrators/frame_renderer.h"
@@ -72,6 +73,7 @@ int main(int argc, char** argv) {
   app.option("--decompose", decompose, "also measure this decomposition's overhead (e.g. default, auto)");
   app.option("--reflectance-spp", reflectanceSpp, "with --decompose, also measure this many samples of reflectance");
   if (const auto exit = app.parse(argc, argv)) return *exit;
+  keepFreedPlanesForReuse();  // as pathfarm's processes do: a render's planes reuse freed pages
 
   const Scene scene = loadScene(scenePath);
   RenderSettings settings = RenderSettings::defaultsOf(scene);

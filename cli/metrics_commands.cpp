@@ -18,6 +18,8 @@ struct CompareArguments {
   std::string image, reference;
   std::string layer;
   std::string crop;
+  std::string mask;  // compare: EXR[:CHANNEL]
+  bool outsideMask = false;
   bool json = false;
 };
 
@@ -28,6 +30,24 @@ std::optional<Crop> parseCrop(const std::string& text) {
   if (std::sscanf(text.c_str(), "%d,%d,%d,%d%c", &c.x0, &c.y0, &c.x1, &c.y1, &tail) != 4)
     throw std::invalid_argument("--crop \"" + text + "\": expected X0,Y0,X1,Y1");
   return c;
+}
+
+// `--mask EXR[:CHANNEL]`: the pixels where the channel (rerender.Y by default) is above 0.5,
+// or with `outside` the others.
+std::optional<std::vector<uint8_t>> parseMask(const std::string& text, bool outside) {
+  if (text.empty()) {
+    if (outside) throw std::invalid_argument("--outside-mask needs --mask");
+    return std::nullopt;
+  }
+  const size_t colon = text.rfind(':');
+  const bool named = colon != std::string::npos && text.find('/', colon) == std::string::npos;
+  const std::string file = named ? text.substr(0, colon) : text, channel = named ? text.substr(colon + 1) : "rerender.Y";
+  const FrameImage frame = readExr(file);
+  if (!frame.hasChannel(channel)) throw std::invalid_argument("--mask " + file + ": no channel " + channel);
+  const std::vector<float>& values = frame.channel(channel);
+  std::vector<uint8_t> mask(values.size());
+  for (size_t p = 0; p < values.size(); ++p) mask[p] = (values[p] > 0.5f) != outside;
+  return mask;
 }
 
 nlohmann::json toJson(const ImageMetrics& m) {
@@ -62,7 +82,10 @@ std::vector<std::filesystem::path> frameFilesIn(const std::filesystem::path& fol
 int runCompare(const CompareArguments& a) {
   return runReportingBadInput([&] {
     const FrameImage image = readExr(a.image), reference = readExr(a.reference);
-    const ImageMetrics m = compareImages(image, reference, layerChannels(reference, a.layer), parseCrop(a.crop));
+    const std::optional<std::vector<uint8_t>> mask = parseMask(a.mask, a.outsideMask);
+    if (mask && mask->size() != image.pixelCount()) throw std::invalid_argument("--mask: the mask's frame has another size");
+    const ImageMetrics m = compareImages(image, reference, layerChannels(reference, a.layer), parseCrop(a.crop),
+                                         mask ? &*mask : nullptr);
     if (a.json) {
       std::printf("%s\n", toJson(m).dump(2).c_str());
     } else {
@@ -119,6 +142,10 @@ std::vector<Command> addMetricsCommands(CLI::App& app) {
   compare->add_option("image", single->image, "EXR to judge")->required();
   compare->add_option("reference", single->reference, "reference EXR")->required();
   addCommonOptions(compare, *single);
+  compare->add_option("--mask", single->mask,
+                      "EXR[:CHANNEL]: compare only the pixels where CHANNEL (default rerender.Y, a frame's re-rendered "
+                      "pixels) is above 0.5");
+  compare->add_flag("--outside-mask", single->outsideMask, "compare the other pixels instead");
 
   auto sequence = std::make_shared<CompareArguments>();
   CLI::App* seq = app.add_subcommand("compare-seq", "per-frame and temporal error of frame_*.exr sequences");

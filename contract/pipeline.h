@@ -5,6 +5,7 @@
 // each one is: its name, its family, its filtering stages, its keyframes and the shot-file
 // keys that belong to it. Adding a pipeline touches this module, the planner and the
 // worker's stage code.
+#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -75,6 +76,14 @@ inline constexpr int kMinFilterWindowRows = 16;
 // denoise compares and every firefly whose spread reaches the window
 // (worker/composite_task.cpp checks that its filters reach no farther).
 inline constexpr int kCompositeHalo = 32;
+// The samples of reflectance an in-between frame's feature render takes (task parameter
+// reflectance_spp), whose reflectance the interpolate task then uses at texture edges: the
+// keyframes' spp, but no more than kMaxOwnReflectanceSpp. A reflectance sample costs
+// about half a path's on the suite, and past 16 samples a pixel's reflectance at an edge is
+// no longer what limits the interpolation (docs/performance.md, "Reflectance samples for
+// the in-between frames").
+inline constexpr int kMaxOwnReflectanceSpp = 16;
+inline int ownReflectanceSpp(int keyframeSpp) { return std::min(keyframeSpp, kMaxOwnReflectanceSpp); }
 // Rows first .. end - 1 of a frame.
 struct RowWindow {
   int first = 0, end = 0;

@@ -244,12 +244,13 @@ void planFiltering(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
   }
 
   // In-between frames: a few samples of their own features (feature_check.h), and their
-  // reflectance at the keyframes' spp, which modulates their interpolation at texture edges.
+  // reflectance at about the keyframes' spp, which modulates their interpolation at texture
+  // edges.
   const int featureSpp = std::clamp(spec.feature_spp(), 1, spec.spp());
   for (size_t i = 1; i < keyframes.size(); ++i)
     for (int64_t frame = keyframes[i - 1] + 1; frame < keyframes[i]; ++frame)
       rendered[frame] = planFrameRender(spec, frame, ROLE_FEATURES, featureSpp, false, plan, [&](TaskParams& params) {
-        params.set_reflectance_spp(std::max(featureSpp, keyframeSpp));
+        params.set_reflectance_spp(std::max(featureSpp, ownReflectanceSpp(keyframeSpp)));
       });
 
   StageOutputs evaluated;

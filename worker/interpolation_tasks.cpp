@@ -289,13 +289,14 @@ TaskOutput runInterpolateTask(const Lease& lease, std::vector<TaskInput>& inputs
     return KeyframeComponent{{parts[0], parts[1]}, motion};
   };
   // The frame's own reflectance modulates its interpolated irradiance at texture edges, which
-  // the keyframes' splat blurs and misplaces, when its feature render's reflectance has at
-  // least the keyframes' samples: with fewer, its noise costs more than the edges gain (docs/
-  // performance.md, "The in-between frame's own reflectance").
+  // the keyframes' splat blurs and misplaces, when its feature render's reflectance has the
+  // samples the planner gives it (ownReflectanceSpp): with fewer, its noise costs more than
+  // the edges gain (docs/performance.md, "The in-between frame's own reflectance").
   const TaskInput& featureInput = inputOf(inputs, TASK_ASSEMBLE_FRAME, params.frame());
   const FrameImage ownReflectance = featureInput.part(
       {[](const std::string& name) { return name.find(".reflectance.") != std::string::npos; }, read.first, read.end});
-  if (reflectanceSpp(ownReflectance) >= sppAttribute(frameWide[0], "pathfarm.spp")) keys.inBetween = &ownReflectance;
+  if (reflectanceSpp(ownReflectance) >= ownReflectanceSpp(sppAttribute(frameWide[0], "pathfarm.spp")))
+    keys.inBetween = &ownReflectance;
   InterpolationResult result = interpolateFrameDetailed(keys, fraction, settings);
   for (const auto& [key, value] : frameWide[0].attributes()) result.frame.attributes().emplace(key, value);
   result.frame.attributes()["pathfarm.frame"] = std::to_string(params.frame());

@@ -19,7 +19,23 @@ grep -q "temporal relMSE (flicker)" "$work/out" || fail "compare-seq prints no t
 "$pathfarm" compare-seq "$work/spp8" "$work/spp64" --json | python3 -c 'import json,sys; d=json.load(sys.stdin); assert len(d["frames"]) == 2' \
   || fail "compare-seq --json"
 
+# A mask splits the frame: the error of the pixels inside and of those outside, weighed by
+# how many values each compared, is the whole frame's.
+json() { "$pathfarm" compare "$work/spp8/frame_0002.exr" "$work/spp64/frame_0002.exr" --json "$@"; }
+json > "$work/whole.json" && json --mask "$work/spp64/frame_0002.exr:R" > "$work/inside.json" &&
+  json --mask "$work/spp64/frame_0002.exr:R" --outside-mask > "$work/outside.json" || fail "compare --mask"
+python3 - "$work" << 'PY' || fail "the masked errors do not add up to the whole frame's"
+import json, sys
+whole, inside, outside = (json.load(open(f"{sys.argv[1]}/{n}.json")) for n in ("whole", "inside", "outside"))
+assert inside["compared"] > 0 and outside["compared"] > 0, (inside, outside)
+assert inside["compared"] + outside["compared"] == whole["compared"]
+total = inside["relmse"] * inside["compared"] + outside["relmse"] * outside["compared"]
+assert abs(total - whole["relmse"] * whole["compared"]) <= 1e-9 * max(1.0, total), (total, whole)
+PY
+
 for args in "$work/missing.exr $work/spp64/frame_0002.exr" \
+            "$work/spp8/frame_0002.exr $work/spp64/frame_0002.exr --mask $work/spp64/frame_0002.exr:nothing.Y" \
+            "$work/spp8/frame_0002.exr $work/spp64/frame_0002.exr --outside-mask" \
             "$work/spp8/frame_0002.exr $work/spp64/frame_0002.exr --layer reflection.color" \
             "$work/spp8/frame_0002.exr $work/spp64/frame_0002.exr --crop 0,0,99,99"; do
   # shellcheck disable=SC2086

@@ -250,9 +250,15 @@ TEST(Planner, EachPipelinePlansOnlyItsStages) {
   const auto di = countKinds(planShot(filteringSpec("di", 4)));
   EXPECT_EQ(di.count(TASK_UPSAMPLE), 0u);
   EXPECT_EQ(di.at(TASK_INTERPOLATE), 6);
-  for (const PlannedTask& task : planShot(filteringSpec("di", 4)))
+  ShotSpec manySamples = filteringSpec("di", 4);
+  manySamples.set_spp(64);
+  for (const PlannedTask& task : planShot(manySamples))
     if (task.kind == TASK_RENDER_TILE && task.params.role() == ROLE_KEYFRAME) {
-      EXPECT_EQ(task.params.spp(), 16);
+      EXPECT_EQ(task.params.spp(), 64);
+    } else if (task.kind == TASK_RENDER_TILE) {
+      EXPECT_EQ(task.params.spp(), 2);  // feature_spp
+      EXPECT_EQ(task.params.reflectance_spp(), kMaxOwnReflectanceSpp);  // not the keyframes' 64
+      EXPECT_LT(kMaxOwnReflectanceSpp, 64);
     }
   // Upsampling needs an even resolution.
   ShotSpec odd = filteringSpec("du", 4);

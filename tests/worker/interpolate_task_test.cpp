@@ -108,14 +108,14 @@ struct InterpolationFiles {
   std::map<std::string, std::filesystem::path> files;
   Lease lease = interpolateLease();
 
-  // The keyframes have 8 spp; the features `featureSpp`, their reflectance
-  // `reflectanceSpp` (0: featureSpp): with as many as the keyframes', it modulates the
-  // interpolated irradiance at texture edges.
+  // The keyframes have `keyframeSpp`; the features `featureSpp`, their reflectance
+  // `reflectanceSpp` (0: featureSpp): with as many as the planner gives them
+  // (ownReflectanceSpp), it modulates the interpolated irradiance at texture edges.
   InterpolationFiles(const std::string& name, float flowDy, int width = kWidth, int height = kHeight,
-                     int featureSpp = 8, int reflectanceSpp = 0) {
+                     int featureSpp = 8, int reflectanceSpp = 0, int keyframeSpp = 8) {
     const MotionSpan span{kAfter - kBefore, kAfter - kBefore};
-    k0 = render(kBefore, 8, span, width, height);
-    k1 = render(kAfter, 8, span, width, height);
+    k0 = render(kBefore, keyframeSpp, span, width, height);
+    k1 = render(kAfter, keyframeSpp, span, width, height);
     features = test_support::renderDecomposed("scenes/walkthrough/scene.json", width, height, featureSpp, kFrame, {},
                                               reflectanceSpp);
     lease.mutable_spec()->set_width(width);
@@ -245,6 +245,23 @@ TEST(InterpolateTask, FeaturesWhoseReflectanceHasTheKeyframesSamplesModulateTheI
   const FrameImage splatted = wholeInterpolation(in, false).frame, own = wholeInterpolation(in, true).frame;
   EXPECT_NE(splatted.channel("G"), own.channel("G")) << "the features' reflectance changes nothing here";
   expectSameFrame(result, own);
+}
+
+// Keyframes of more samples than kMaxOwnReflectanceSpp, features whose reflectance took
+// that many (the planner's di feature render at 64 spp): their reflectance is used; one
+// sample fewer, it is not.
+TEST(InterpolateTask, FeaturesReflectanceNeedsNoMoreThanTheCappedSamples) {
+  const int keyframeSpp = kMaxOwnReflectanceSpp * 2;
+  const InterpolationFiles capped("pathfarm_interpolate_capped_reflectance", -0.5f, 48, 27, 4, kMaxOwnReflectanceSpp,
+                                  keyframeSpp);
+  expectSameFrame(decodeExr(outputBytes(capped.run(capped.lease, 0)), "interpolated"),
+                  wholeInterpolation(capped, true).frame);
+  const InterpolationFiles fewer("pathfarm_interpolate_fewer_reflectance", -0.5f, 48, 27, 4,
+                                 kMaxOwnReflectanceSpp - 1, keyframeSpp);
+  const FrameImage splatted = wholeInterpolation(fewer, false).frame;
+  EXPECT_NE(splatted.channel("G"), wholeInterpolation(fewer, true).frame.channel("G"))
+      << "the features' reflectance changes nothing here";
+  expectSameFrame(decodeExr(outputBytes(fewer.run(fewer.lease, 0)), "interpolated"), splatted);
 }
 
 // An in-between frame interpolated window by window (each task reading the keyframe rows
