@@ -14,6 +14,7 @@
 #                            [--frames 0:23] [--res 320x180] [--figures docs/figures] [--repeat 1]
 #                            [--setting small|production] [--reference-cache DIR]
 #                            [--evaluation-frames "3,4,11,12,19,20"] [--baseline-repeats 1]
+#                            [--keyframe-interval K]
 # --setting production is 640x360 at 256 spp against a 4096-spp reference (production renders
 # take hundreds of samples, where a frame's fixed costs weigh less); small, the default, is
 # 320x180 at 64 spp against 1024. Options after it change its values. References are kept
@@ -25,10 +26,12 @@
 # --baseline-repeats N renders plain pt N times per evaluation frame from disjoint samples
 # (ShotSpec.baseline_repeats): pt's error at the shot's spp averaged over N renders, which
 # narrows the cost at equal error where pt's fireflies dominate its interval.
+# --keyframe-interval K gives di and dui shots every K-th frame as a keyframe instead of
+# the probe's choice (the shot key keyframe_interval; other pipelines ignore it).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=build scenes="dolly courtyard walkthrough cornell showroom creature" pipelines=dui spp=64 reference=1024
-frames=0:23 res=320x180 figures=docs/figures repeat=1 evaluation="" baseline_repeats=1
+frames=0:23 res=320x180 figures=docs/figures repeat=1 evaluation="" baseline_repeats=1 interval=""
 cache="${XDG_CACHE_HOME:-$HOME/.cache}/pathfarm/references"
 while (($#)); do
   case "$1" in
@@ -44,6 +47,7 @@ while (($#)); do
     --reference-cache) cache=$2 ;;
     --evaluation-frames) evaluation=$2 ;;
     --baseline-repeats) baseline_repeats=$2 ;;
+    --keyframe-interval) interval=$2 ;;
     --setting)
       case "$2" in
         small) res=320x180 spp=64 reference=1024 ;;
@@ -67,6 +71,7 @@ for scene in $scenes; do
     out="$work/$scene-$pipeline"
     extra=""
     [ -n "$evaluation" ] && extra=", \"evaluation_frames\": [$evaluation]"
+    [ -n "$interval" ] && extra="$extra, \"keyframe_interval\": $interval"
     cat > "$work/shot.json" <<JSON
 {"name": "$scene-$pipeline", "scene": "$PWD/scenes/$scene/scene.json",
  "frames": {"start": ${frames%:*}, "end": ${frames#*:}}, "resolution": [${res%x*}, ${res#*x}],
