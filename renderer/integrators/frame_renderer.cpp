@@ -14,6 +14,7 @@
 #include "renderer/decomposition/primary_motion.h"
 #include "renderer/decomposition/specular_motion.h"
 #include "renderer/integrators/sample_moments.h"
+#include "renderer/integrators/shutter_buckets.h"
 
 namespace pathfarm {
 
@@ -121,6 +122,7 @@ struct WindowPixels {
   const PixelWindow& window;
   const std::vector<uint8_t>* only;  // null: every pixel
   const Camera& camera;
+  const ShutterBuckets& shutter;
   const PathTracer& tracer;
   const PrimaryMotion* motion;  // null: no motion measured
   const Decomposition* decomposition;  // null: beauty only; else the film is there too
@@ -144,21 +146,22 @@ struct WindowPixels {
   struct CameraSample {
     SampleStream stream;  // past the lens's dimensions
     float time;
-    Transform cameraNow;  // the camera's placement at `time`, which made `ray`
+    const Transform& cameraNow;  // the camera's placement at `time`, which made `ray`
     Ray ray;
   };
 
   // Sample `s` of frame pixel (x, y): its position in the pixel and its shutter time are
-  // stratified over the pixel's samples; the stream's first dimensions are the lens's.
+  // stratified over the pixel's samples, the time then taken to its shutter bucket's
+  // centre; the stream's first dimensions are the lens's.
   CameraSample cameraSample(int x, int y, const StratifiedPixel& pattern, int s) const {
     const SampleKey key{scene.seed, frame, x, y, settings.firstSample + static_cast<uint32_t>(s)};
     SampleStream stream(key);
     const StratifiedSample stratified = pattern.sample(key.sampleIndex);
     const Vec2f lens = stream.next2D();
-    const Transform cameraNow = camera.cameraToWorld(scene.timeAt(frame, stratified.time));
+    const Transform& cameraNow = shutter.cameraToWorld(stratified.time);
     const Ray ray = camera.generateRay(
         {static_cast<float>(x) + stratified.film.x, static_cast<float>(y) + stratified.film.y}, lens, cameraNow);
-    return {stream, stratified.time, cameraNow, ray};
+    return {stream, ShutterBuckets::time(stratified.time), cameraNow, ray};
   }
 
   void renderPixel(int ix, int iy, size_t pixel, TileDecomposer& paths, SampleCounters& local) const {
@@ -261,6 +264,7 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
   const std::shared_ptr<const FrameGeometry> geometry = geometryFor(frame);
   const PathTracer tracer(*geometry, shot_->lights, {settings_.maxDepth});
   const Camera camera(scene_.camera, settings_.width, settings_.height);
+  const ShutterBuckets shutter(scene_, camera, frame);
   const Decomposition* decomposition = settings_.decomposition.get();
   const PrimaryMotion motion(*geometry, camera, frame, settings_.motionSpan);
   checkWindow(window, settings_, only);
@@ -282,6 +286,7 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
                             .window = window,
                             .only = only,
                             .camera = camera,
+                            .shutter = shutter,
                             .tracer = tracer,
                             .motion = measuresMotion ? &motion : nullptr,
                             .decomposition = decomposition,

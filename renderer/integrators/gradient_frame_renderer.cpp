@@ -15,6 +15,7 @@
 #include "renderer/integrators/gradient_estimates.h"
 #include "renderer/integrators/gradient_path_tracer.h"
 #include "renderer/integrators/sample_moments.h"
+#include "renderer/integrators/shutter_buckets.h"
 
 namespace pathfarm {
 
@@ -68,6 +69,8 @@ struct PixelSampler {
   const Scene& scene;
   int64_t frame;
   const Camera& camera;
+  const ShutterBuckets& shutter;       // frame's
+  const ShutterBuckets* laterShutter;  // frame + 1's, with a temporal offset
   int width, height;
   const GradientPathTracer& tracer;
   const GradientPathTracer* nextTracer;  // null: no temporal offset
@@ -78,16 +81,15 @@ struct PixelSampler {
                      SampleCounters& local) const {
     const SampleKey key{scene.seed, frame, x, y, sampleIndex};
     SampleStream stream(key);
-    // As in FrameRenderer: pixel position and time stratified, the lens from the stream.
+    // As in FrameRenderer: pixel position and time stratified, the time taken to its shutter
+    // bucket's centre, the lens from the stream.
     const StratifiedSample stratified = pattern.sample(key.sampleIndex);
-    const float time = stratified.time;
+    const float time = ShutterBuckets::time(stratified.time);
     const PrimaryRays rays{camera, width, height, stratified.film, stream.next2D()};
-    const double seconds = scene.timeAt(frame, time);
     // The temporal offset replays the path's random numbers from here on.
     SampleStream replay = stream;
-    // The base ray and its offsets share their time, so the camera's motion is evaluated
-    // once for the five.
-    const Transform cameraNow = camera.cameraToWorld(seconds);
+    // The base ray and its offsets share their time, and so their camera placement.
+    const Transform& cameraNow = shutter.cameraToWorld(stratified.time);
     TemporalPair pair{
         tracer.trace(rays.through(x, y, cameraNow), rays.offsets(x, y, cameraNow), time, stream, local.rays),
         std::nullopt};
@@ -97,7 +99,7 @@ struct PixelSampler {
       // The temporal offset: the same random numbers one frame later, through the
       // corresponding pixel, with its own spatial offsets for the mixed differences.
       const int tx = correspondence[p] % width, ty = correspondence[p] / width;
-      const Transform cameraLater = camera.cameraToWorld(scene.timeAt(frame + 1, time));
+      const Transform& cameraLater = laterShutter->cameraToWorld(stratified.time);
       const auto laterOffsets = withMixed ? rays.offsets(tx, ty, cameraLater) : std::array<std::optional<Ray>, 4>{};
       pair.later = nextTracer->trace(rays.through(tx, ty, cameraLater), laterOffsets, time, replay, local.rays);
     }
@@ -248,6 +250,9 @@ FrameImage GradientFrameRenderer::estimate(int64_t frame, const PixelWindow& win
   tbb::task_arena arena(settings_.threads > 0 ? settings_.threads : tbb::task_arena::automatic);
   const std::shared_ptr<const FrameSetup> setup = setupFor(frame, arena);
   const Camera camera(scene_.camera, width, height);
+  const ShutterBuckets shutter(scene_, camera, frame);
+  std::optional<ShutterBuckets> laterShutter;
+  if (gradient_.temporal) laterShutter.emplace(scene_, camera, frame + 1);
   const PathTracerSettings tracerSettings{settings_.maxDepth};
   const GradientPathTracer tracer(*setup->geometry, shot_->lights, tracerSettings);
   std::optional<GradientPathTracer> nextTracer;
@@ -262,8 +267,17 @@ FrameImage GradientFrameRenderer::estimate(int64_t frame, const PixelWindow& win
   }
 
   std::vector<GradientPixelSums> sums(pixels);
-  const PixelSampler sampler{scene_, frame, camera, width, height, tracer, nextTracer ? &*nextTracer : nullptr,
-                             setup->correspondence, static_cast<uint32_t>(gradient_.mixedEvery)};
+  const PixelSampler sampler{scene_,
+                             frame,
+                             camera,
+                             shutter,
+                             laterShutter ? &*laterShutter : nullptr,
+                             width,
+                             height,
+                             tracer,
+                             nextTracer ? &*nextTracer : nullptr,
+                             setup->correspondence,
+                             static_cast<uint32_t>(gradient_.mixedEvery)};
   const TileGrid grid{window, settings_.tileSize};
   const int batches = gradient_.batches;
   TileProgress tileProgress(progress, grid.count() * static_cast<size_t>(batches));

@@ -6,6 +6,7 @@ namespace pathfarm {
 
 // 2: rough metals compensated for multiple scattering (materials/multiple_scattering.h).
 // 3: rough glass and glTF's thin-walled transmission compensated too.
-inline constexpr int kRendererVersion = 3;
+// 4: camera samples at the centres of 1024 shutter buckets (integrators/shutter_buckets.h).
+inline constexpr int kRendererVersion = 4;
 
 }  // namespace pathfarm
