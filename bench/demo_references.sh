@@ -4,7 +4,7 @@
 # pixels depend on (client/reference_cache.h), for committing: a fresh clone's demo then
 # renders no reference. Run it after changing a demo scene or shot, or kRendererVersion;
 # the unit test ReferenceCache.TheDemosShippedReferencesAreTheOnesItsShotsAskFor fails
-# until then. Takes about 45 minutes on 2 cores.
+# until then. Takes about 50 minutes on 2 cores (Cornell 26, showroom 24).
 #
 #   bench/demo_references.sh [--build DIR]
 set -euo pipefail
