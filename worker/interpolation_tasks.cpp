@@ -6,9 +6,6 @@
 #include <mutex>
 #include <optional>
 #include <stdexcept>
-#include <string>
-#include <utility>
-#include <vector>
 
 #include "contract/pipeline.h"
 #include "image/exr_io.h"
@@ -49,32 +46,6 @@ ComponentMotion keyframeMotion(const FrameImage& k0, const FrameImage& k1, const
   const std::string prefix = layer.empty() ? "" : layer + ".";
   return ComponentMotion(motionTowards(k0, NeighbourFrame::Next, prefix, "keyframe 0"),
                          motionTowards(k1, NeighbourFrame::Previous, prefix, "keyframe 1"));
-}
-
-// The checks' flags on an in-between frame, one byte per pixel each. Some show the
-// interpolation wrong: a hole (nothing to interpolate from), an edge of directly seen light
-// (the features' few samples are what the frame has there), light the frame's own render
-// disagrees with (a change no keyframe saw). The others only suspect it, by name (the
-// report's causes): silhouettes, untracked motion, changed illumination, the features'
-// mismatch and moving caustics.
-struct RerenderFlags {
-  std::vector<uint8_t> holes, lightEdges, lightMismatch;
-  std::vector<std::pair<std::string, std::vector<uint8_t>>> suspicions;
-};
-
-// The pixels to re-render: those shown wrong, and those at least `suspicionsNeeded` checks
-// suspect. Between keyframes with the shot's samples, a pixel only one check suspects was
-// interpolated as well as its re-render, denoised among the other re-rendered pixels, or
-// better on four suite scenes (docs/performance.md, "Which flagged pixels a re-render
-// improves"); between quarter-spp keyframes it was not, and one check suffices.
-std::vector<uint8_t> reRendered(const RerenderFlags& flags, int suspicionsNeeded) {
-  std::vector<uint8_t> mask(flags.holes.size());
-  for (size_t p = 0; p < mask.size(); ++p) {
-    int suspected = 0;
-    for (const auto& [cause, flagged] : flags.suspicions) suspected += flagged[p];
-    mask[p] = flags.holes[p] || flags.lightEdges[p] || flags.lightMismatch[p] || suspected >= suspicionsNeeded;
-  }
-  return mask;
 }
 
 // Rows `rows` of a frame `width` pixels wide held as an image or a byte per pixel, and
@@ -324,11 +295,8 @@ TaskOutput runInterpolateTask(const Lease& lease, std::vector<TaskInput>& inputs
   const TaskInput& featureInput = inputOf(inputs, TASK_ASSEMBLE_FRAME, params.frame());
   const FrameImage ownReflectance = featureInput.part(
       {[](const std::string& name) { return name.find(".reflectance.") != std::string::npos; }, read.first, read.end});
-  const int keyframeSpp = sppAttribute(frameWide[0], "pathfarm.spp");
-  if (reflectanceSpp(ownReflectance) >= ownReflectanceSpp(keyframeSpp)) keys.inBetween = &ownReflectance;
-  // Keyframes with the shot's samples (di's, not dui's quarter-spp ones) interpolate a
-  // pixel a single check suspects about as well as its re-render (reRendered).
-  const bool keyframesHaveShotSpp = keyframeSpp >= lease.spec().spp();
+  if (reflectanceSpp(ownReflectance) >= ownReflectanceSpp(sppAttribute(frameWide[0], "pathfarm.spp")))
+    keys.inBetween = &ownReflectance;
   InterpolationResult result = interpolateFrameDetailed(keys, fraction, settings);
   for (const auto& [key, value] : frameWide[0].attributes()) result.frame.attributes().emplace(key, value);
   result.frame.attributes()["pathfarm.frame"] = std::to_string(params.frame());
@@ -349,39 +317,36 @@ TaskOutput runInterpolateTask(const Lease& lease, std::vector<TaskInput>& inputs
   addDirectEmission(interpolated, directLight);
   // Where the frame's own features or their light disagree, the interpolation is wrong;
   // where its directly seen light has an edge, the feature render's few samples are; a
-  // moving caustic no keyframe can carry: re-render there too (which of these a pixel
-  // needs before it is re-rendered: reRendered).
+  // moving caustic no keyframe can carry: re-render there too.
   const Rows inChecked{checked, width};
-  RerenderFlags flags;
-  flags.holes = inRead.crop(result.holes, wanted);
-  flags.lightEdges = inChecked.crop(directLightEdges(directLight, features), wanted);
-  flags.lightMismatch = inChecked.crop(radianceMismatch(interpolated, features, radianceCheck), wanted);
-  flags.suspicions = {{"silhouettes", inRead.crop(result.silhouettes, wanted)},
-                      {"untracked", inRead.crop(result.untracked, wanted)},
-                      {"illumination", inRead.crop(result.illumination, wanted)},
-                      {"mismatch", inChecked.crop(featureMismatch(interpolated, features), wanted)},
-                      {"moving_caustics", inChecked.crop(movingCausticPixels(features, causticCheck), wanted)}};
+  const std::vector<uint8_t> mismatch = inChecked.crop(featureMismatch(interpolated, features), wanted);
+  const std::vector<uint8_t> edges = inChecked.crop(directLightEdges(directLight, features), wanted);
+  const std::vector<uint8_t> lightMismatch =
+      inChecked.crop(radianceMismatch(interpolated, features, radianceCheck), wanted);
+  const std::vector<uint8_t> caustics = inChecked.crop(movingCausticPixels(features, causticCheck), wanted);
   interpolated = inChecked.crop(std::move(interpolated), wanted);
-  const std::vector<uint8_t> mask = reRendered(flags, keyframesHaveShotSpp ? 2 : 1);
+  std::vector<uint8_t> mask = inRead.crop(result.mask, wanted);
   std::vector<float>& flagged = interpolated.channel("rerender.Y");
-  for (size_t p = 0; p < mask.size(); ++p) flagged[p] = mask[p];
+  for (size_t p = 0; p < mask.size(); ++p) {
+    if (!mismatch[p] && !edges[p] && !lightMismatch[p] && !caustics[p]) continue;
+    mask[p] = 1;
+    flagged[p] = 1.0f;
+  }
   TaskOutput output;
   // A window's flags go to the re-render with the frame's, from the join.
   if (!params.has_window()) requestRerender(lease.spec(), params.frame(), mask, output);
-  // Why pixels are re-rendered (a pixel may have several causes), and how many flagged
-  // pixels stay interpolated.
-  const auto rerenderedOf = [&](const std::vector<uint8_t>& cause) {
-    size_t count = 0;
-    for (size_t p = 0; p < mask.size(); ++p) count += cause[p] && mask[p];
-    return static_cast<double>(count);
+  // Why pixels were flagged (a pixel may have several causes).
+  const auto count = [](const std::vector<uint8_t>& flags) {
+    return static_cast<double>(std::count(flags.begin(), flags.end(), 1));
   };
-  output.metrics["rerender_holes"] = rerenderedOf(flags.holes);
-  output.metrics["rerender_light_edges"] = rerenderedOf(flags.lightEdges);
-  output.metrics["rerender_light_mismatch"] = rerenderedOf(flags.lightMismatch);
-  for (const auto& [cause, suspected] : flags.suspicions) output.metrics["rerender_" + cause] = rerenderedOf(suspected);
-  const std::vector<uint8_t> any = reRendered(flags, 1);
-  output.metrics["interpolated_on_one_suspicion"] =
-      static_cast<double>(std::count(any.begin(), any.end(), 1) - std::count(mask.begin(), mask.end(), 1));
+  output.metrics["rerender_holes"] = count(inRead.crop(result.holes, wanted));
+  output.metrics["rerender_silhouettes"] = count(inRead.crop(result.silhouettes, wanted));
+  output.metrics["rerender_untracked"] = count(inRead.crop(result.untracked, wanted));
+  output.metrics["rerender_illumination"] = count(inRead.crop(result.illumination, wanted));
+  output.metrics["rerender_mismatch"] = count(mismatch);
+  output.metrics["rerender_light_edges"] = count(edges);
+  output.metrics["rerender_light_mismatch"] = count(lightMismatch);
+  output.metrics["rerender_moving_caustics"] = count(caustics);
   // How much of the keyframes a window read, and why: all of them when the motion is large.
   if (params.has_window()) {
     output.metrics["keyframe_rows_read"] = static_cast<double>(read.end - read.first);

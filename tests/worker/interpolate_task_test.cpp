@@ -264,40 +264,6 @@ TEST(InterpolateTask, FeaturesReflectanceNeedsNoMoreThanTheCappedSamples) {
   expectSameFrame(decodeExr(outputBytes(fewer.run(fewer.lease, 0)), "interpolated"), splatted);
 }
 
-// The share of a 12x12 spot, on the floor at the right where the task re-renders nothing
-// otherwise, that it re-renders when the frame's features see a moving caustic over it (all
-// of its light) and the keyframes have `keyframeSpp` (the shot 16).
-double causticSpotReRendered(int keyframeSpp) {
-  InterpolationFiles in("pathfarm_interpolate_caustic_" + std::to_string(keyframeSpp), -0.5f, kWidth, kHeight, 32, 0,
-                        keyframeSpp);
-  constexpr int kSpot = 12, x0 = 76, y0 = 38;
-  std::vector<float>& caustic = in.features.hasChannel("moving_caustic.Y") ? in.features.channel("moving_caustic.Y")
-                                                                            : in.features.addChannel("moving_caustic.Y");
-  for (int y = y0; y < y0 + kSpot; ++y)
-    for (int x = x0; x < x0 + kSpot; ++x) {
-      const size_t p = static_cast<size_t>(y * kWidth + x);
-      caustic[p] = 0.2126f * in.features.channel("R")[p] + 0.7152f * in.features.channel("G")[p] +
-                   0.0722f * in.features.channel("B")[p];
-    }
-  writeExr(in.files.at("features"), in.features);
-  const TaskOutput output = in.run(in.lease, 0);
-  const std::vector<float>& flagged = decodeExr(outputBytes(output), "interpolated").channel("rerender.Y");
-  size_t count = 0;
-  for (int y = y0; y < y0 + kSpot; ++y)
-    for (int x = x0; x < x0 + kSpot; ++x) count += flagged[static_cast<size_t>(y * kWidth + x)] > 0.5f;
-  return static_cast<double>(count) / (kSpot * kSpot);
-}
-
-// A moving caustic only suspects the interpolation: between keyframes with the shot's
-// samples the spot stays interpolated (where no second check suspects it too), between
-// keyframes with a quarter of them it is re-rendered.
-TEST(InterpolateTask, AMovingCausticAloneIsReRenderedOnlyBetweenKeyframesWithFewerSamplesThanTheShot) {
-  const double full = causticSpotReRendered(16), quarter = causticSpotReRendered(4);
-  std::printf("re-rendered share of the caustic spot: keyframes of 16 spp %.3f, of 4 spp %.3f\n", full, quarter);
-  EXPECT_EQ(quarter, 1.0);
-  EXPECT_LT(full, 0.5);
-}
-
 // An in-between frame interpolated window by window (each task reading the keyframe rows
 // whose content its motion can bring into its rows, and the feature rows its checks reach)
 // and joined is the same bytes, the same re-render and the same counts as the frame
