@@ -3,8 +3,12 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
+#include <optional>
+#include <utility>
 #include <nlohmann/json.hpp>
 
 #include "cli/command.h"
@@ -18,7 +22,7 @@ struct CompareArguments {
   std::string image, reference;
   std::string layer;
   std::string crop;
-  std::string mask;  // compare: EXR[:CHANNEL]
+  std::string mask;  // compare: EXR[:CHANNEL[&BITS|=VALUE]]
   bool outsideMask = false;
   bool json = false;
 };
@@ -32,8 +36,10 @@ std::optional<Crop> parseCrop(const std::string& text) {
   return c;
 }
 
-// `--mask EXR[:CHANNEL]`: the pixels where the channel (rerender.Y by default) is above 0.5,
-// or with `outside` the others.
+// `--mask EXR[:CHANNEL[&BITS|=VALUE]]`: the pixels where the channel (rerender.Y by
+// default) is above 0.5, or, read as a whole number, has any of BITS set or equals VALUE
+// (the interpolate task's `rerender_causes.Y`: `&16` every pixel the feature mismatch
+// flagged, `=16` those it flagged alone); with `outside` the others.
 std::optional<std::vector<uint8_t>> parseMask(const std::string& text, bool outside) {
   if (text.empty()) {
     if (outside) throw std::invalid_argument("--outside-mask needs --mask");
@@ -41,12 +47,31 @@ std::optional<std::vector<uint8_t>> parseMask(const std::string& text, bool outs
   }
   const size_t colon = text.rfind(':');
   const bool named = colon != std::string::npos && text.find('/', colon) == std::string::npos;
-  const std::string file = named ? text.substr(0, colon) : text, channel = named ? text.substr(colon + 1) : "rerender.Y";
+  const std::string file = named ? text.substr(0, colon) : text;
+  std::string channel = named ? text.substr(colon + 1) : "rerender.Y";
+  const size_t test = channel.find_first_of("&=");
+  std::optional<std::pair<char, long>> number;
+  if (test != std::string::npos) {
+    const std::string operand = channel.substr(test + 1);
+    char* end = nullptr;
+    const long value = std::strtol(operand.c_str(), &end, 10);
+    if (operand.empty() || *end != '\0' || value < 0)
+      throw std::invalid_argument("--mask " + text + ": expected CHANNEL&BITS or CHANNEL=VALUE with a whole number");
+    number = std::make_pair(channel[test], value);
+    channel.resize(test);
+  }
   const FrameImage frame = readExr(file);
   if (!frame.hasChannel(channel)) throw std::invalid_argument("--mask " + file + ": no channel " + channel);
   const std::vector<float>& values = frame.channel(channel);
   std::vector<uint8_t> mask(values.size());
-  for (size_t p = 0; p < values.size(); ++p) mask[p] = (values[p] > 0.5f) != outside;
+  for (size_t p = 0; p < values.size(); ++p) {
+    bool inside = values[p] > 0.5f;
+    if (number) {
+      const long whole = std::isfinite(values[p]) ? std::lround(values[p]) : -1;
+      inside = number->first == '&' ? whole >= 0 && (whole & number->second) != 0 : whole == number->second;
+    }
+    mask[p] = inside != outside;
+  }
   return mask;
 }
 
@@ -143,8 +168,9 @@ std::vector<Command> addMetricsCommands(CLI::App& app) {
   compare->add_option("reference", single->reference, "reference EXR")->required();
   addCommonOptions(compare, *single);
   compare->add_option("--mask", single->mask,
-                      "EXR[:CHANNEL]: compare only the pixels where CHANNEL (default rerender.Y, a frame's re-rendered "
-                      "pixels) is above 0.5");
+                      "EXR[:CHANNEL[&BITS|=VALUE]]: compare only the pixels where CHANNEL (default rerender.Y, a "
+                      "frame's re-rendered pixels) is above 0.5, or as a whole number has any of BITS set or equals "
+                      "VALUE (an interpolate task's rerender_causes.Y)");
   compare->add_flag("--outside-mask", single->outsideMask, "compare the other pixels instead");
 
   auto sequence = std::make_shared<CompareArguments>();

@@ -48,6 +48,11 @@ ComponentMotion keyframeMotion(const FrameImage& k0, const FrameImage& k1, const
                          motionTowards(k1, NeighbourFrame::Previous, prefix, "keyframe 1"));
 }
 
+// The causes an in-between frame's pixels are re-rendered for, as the report names them;
+// bit c of the output's `rerender_causes.Y` is kRerenderCauses[c].
+constexpr std::array<const char*, 8> kRerenderCauses = {"holes",    "silhouettes", "untracked",      "illumination",
+                                                        "mismatch", "light_edges", "light_mismatch", "moving_caustics"};
+
 // Rows `rows` of a frame `width` pixels wide held as an image or a byte per pixel, and
 // some of those rows cut out of it (the image moved on when they are all of it).
 struct Rows {
@@ -332,6 +337,16 @@ TaskOutput runInterpolateTask(const Lease& lease, std::vector<TaskInput>& inputs
     mask[p] = 1;
     flagged[p] = 1.0f;
   }
+  // Why each pixel was flagged, a bit per cause in the order of kRerenderCauses (`pathfarm
+  // compare --mask OUTPUT.exr:rerender_causes.Y=16` measures the pixels the feature
+  // mismatch alone flagged).
+  const std::array<std::vector<uint8_t>, kRerenderCauses.size()> causes = {
+      inRead.crop(result.holes, wanted), inRead.crop(result.silhouettes, wanted),
+      inRead.crop(result.untracked, wanted), inRead.crop(result.illumination, wanted), mismatch, edges, lightMismatch,
+      caustics};
+  std::vector<float>& causeBits = interpolated.addChannel("rerender_causes.Y");
+  for (size_t p = 0; p < mask.size(); ++p)
+    for (size_t c = 0; c < causes.size(); ++c) causeBits[p] += causes[c][p] ? static_cast<float>(1u << c) : 0.0f;
   TaskOutput output;
   // A window's flags go to the re-render with the frame's, from the join.
   if (!params.has_window()) requestRerender(lease.spec(), params.frame(), mask, output);
@@ -339,14 +354,8 @@ TaskOutput runInterpolateTask(const Lease& lease, std::vector<TaskInput>& inputs
   const auto count = [](const std::vector<uint8_t>& flags) {
     return static_cast<double>(std::count(flags.begin(), flags.end(), 1));
   };
-  output.metrics["rerender_holes"] = count(inRead.crop(result.holes, wanted));
-  output.metrics["rerender_silhouettes"] = count(inRead.crop(result.silhouettes, wanted));
-  output.metrics["rerender_untracked"] = count(inRead.crop(result.untracked, wanted));
-  output.metrics["rerender_illumination"] = count(inRead.crop(result.illumination, wanted));
-  output.metrics["rerender_mismatch"] = count(mismatch);
-  output.metrics["rerender_light_edges"] = count(edges);
-  output.metrics["rerender_light_mismatch"] = count(lightMismatch);
-  output.metrics["rerender_moving_caustics"] = count(caustics);
+  for (size_t c = 0; c < causes.size(); ++c)
+    output.metrics["rerender_" + std::string(kRerenderCauses[c])] = count(causes[c]);
   // How much of the keyframes a window read, and why: all of them when the motion is large.
   if (params.has_window()) {
     output.metrics["keyframe_rows_read"] = static_cast<double>(read.end - read.first);

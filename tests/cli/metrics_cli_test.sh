@@ -33,7 +33,21 @@ total = inside["relmse"] * inside["compared"] + outside["relmse"] * outside["com
 assert abs(total - whole["relmse"] * whole["compared"]) <= 1e-9 * max(1.0, total), (total, whole)
 PY
 
+# A channel of whole numbers read as bits (a decomposed render's object ids here): the
+# pixels with bit 0 set are those of the odd ids, and no bit set is the id 0 alone.
+"$pathfarm" render "$scene" --frames 2 --res 32x32 --spp 4 --decompose default --out "$work/ids" > /dev/null 2>&1 ||
+  fail "render with object ids"
+ids="$work/ids/frame_0002.exr"
+compared() { "$pathfarm" compare "$ids" "$work/spp64/frame_0002.exr" --json --mask "$ids:diffuse_direct.objectid.Y$1" |
+  python3 -c 'import json,sys; print(json.load(sys.stdin)["compared"])'; }
+odd=$(compared "&1") || fail "compare --mask CHANNEL&BITS"
+sum=0
+for id in 1 3 5 7 9 11 13 15; do sum=$((sum + $(compared "=$id"))) || fail "compare --mask CHANNEL=VALUE"; done
+[ "$odd" -gt 0 ] && [ "$odd" -eq "$sum" ] || fail "&1 compared $odd values, the odd ids $sum"
+[ $(($(compared "=0") + $(compared "&65535"))) -eq $((3 * 32 * 32)) ] || fail "=0 and &65535 do not split the frame"
+
 for args in "$work/missing.exr $work/spp64/frame_0002.exr" \
+            "$ids $work/spp64/frame_0002.exr --mask $ids:diffuse_direct.objectid.Y&x" \
             "$work/spp8/frame_0002.exr $work/spp64/frame_0002.exr --mask $work/spp64/frame_0002.exr:nothing.Y" \
             "$work/spp8/frame_0002.exr $work/spp64/frame_0002.exr --outside-mask" \
             "$work/spp8/frame_0002.exr $work/spp64/frame_0002.exr --layer reflection.color" \

@@ -208,6 +208,17 @@ TEST(InterpolateTask, KeyframesReadAComponentAtATimeGiveTheWholeFramesInterpolat
     EXPECT_EQ(output.metrics.at("rerender_illumination"), static_cast<double>(whole.illuminationPixels));
   }
   EXPECT_GT(whole.untrackedPixels, 0u);
+  // rerender_causes.Y holds each cause's pixels as a bit, in the report's order of causes.
+  const std::vector<float>& causeBits = alone.channel("rerender_causes.Y");
+  const char* causes[] = {"holes",    "silhouettes", "untracked",      "illumination",
+                          "mismatch", "light_edges", "light_mismatch", "moving_caustics"};
+  for (int c = 0; c < 8; ++c) {
+    double withBit = 0;
+    for (const float bits : causeBits) withBit += (static_cast<int>(bits) >> c) & 1;
+    EXPECT_EQ(withBit, outputs[0].metrics.at(std::string("rerender_") + causes[c])) << causes[c];
+  }
+  const std::vector<float>& flagged = alone.channel("rerender.Y");
+  for (size_t p = 0; p < flagged.size(); ++p) ASSERT_EQ(flagged[p] > 0.5f, causeBits[p] > 0.0f) << "pixel " << p;
 
   for (const FrameImage* result : {&alone, &fromWhole})
     for (const std::string& name : expected.channelNames()) {
