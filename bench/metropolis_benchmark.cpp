@@ -4,9 +4,9 @@
 // wall-clock budget per frame: its cost is measured by two short renders (fixed cost plus
 // cost per sample or mutation per pixel), its budget solved from that line, and corrected
 // once by the time the render then took. Prints a
-// table of mean relMSE, temporal error (relMSE of frame-to-frame differences) and
-// brightness variation (RMS frame-to-frame change of the frame's mean luminance over the
-// reference's), and writes per-frame relMSE and brightness to an SVG plot.
+// table of mean relMSE, temporal error (relMSE of frame-to-frame differences), brightness
+// (the frames' mean luminance over the reference's, averaged over the frames) and
+// brightness variation (RMS frame-to-frame change of that ratio), and writes per-frame relMSE and brightness to an SVG plot.
 
 #include <algorithm>
 #include <cmath>
@@ -226,12 +226,14 @@ int run(const std::string& scenePath, const std::string& frameRange, int width, 
 
   std::printf("\nthe reference's own expected relMSE (its noise): %.4f\n", outcomes.empty() ? 0.0 : outcomes[0].truth.referenceNoise);
   std::printf("\n| method | per pixel (spp or mutations) | s per frame | relMSE | against the truth (95 %%) | temporal error | "
-              "brightness variation |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+              "brightness | brightness variation |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
   for (size_t i = 0; i < methods.size(); ++i) {
     const Outcome& o = outcomes[i];
-    std::printf("| %s | %.1f | %.2f | %.4f | %s | %.4f | %.4f |\n", methods[i].name.c_str(), o.budget,
+    double brightness = 0;
+    for (double b : o.brightness) brightness += b / static_cast<double>(o.brightness.size());
+    std::printf("| %s | %.1f | %.2f | %.4f | %s | %.4f | %.3f | %.4f |\n", methods[i].name.c_str(), o.budget,
                 o.seconds / frames.count(), o.metrics.meanRelMse, o.truth.text().c_str(), o.metrics.temporalRelMse,
-                o.brightnessVariation);
+                brightness, o.brightnessVariation);
   }
   if (!svgFile.empty())
     writeSvg(svgFile, methods, outcomes, frames,

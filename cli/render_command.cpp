@@ -25,6 +25,7 @@ struct RenderOptions {
   std::string frames;
   std::string resolution;
   std::optional<int> spp, maxDepth;
+  std::optional<uint64_t> seed;  // instead of the scene's
   std::string out;
   int threads = 0;
   int tileSize = 32;
@@ -112,6 +113,7 @@ struct RenderJob {
 RenderJob renderJobOf(const RenderOptions& options) {
   RenderJob job;
   job.scene = loadScene(options.scene);
+  if (options.seed) job.scene.seed = *options.seed;
   job.settings = RenderSettings::defaultsOf(job.scene);
   job.frames = options.frames.empty()
                    ? std::pair<int64_t, int64_t>{job.scene.defaults.frameStart, job.scene.defaults.frameEnd}
@@ -235,6 +237,8 @@ std::vector<Command> addRenderCommand(CLI::App& app) {
   render->add_option("--frames", options->frames, "inclusive frame range A:B, or A (default: the scene's)");
   render->add_option("--spp", options->spp, "samples per pixel (default: the scene's)")->check(CLI::Range(1, 1 << 20));
   render->add_option("--res", options->resolution, "resolution WxH (default: the scene's)");
+  render->add_option("--seed", options->seed,
+                     "mixed into every sample stream instead of the scene's seed: an independent render of the scene");
   render->add_option("--max-depth", options->maxDepth, "maximum scattering events per path")
       ->check(CLI::Range(0, 1024));
   render->add_option("--out", options->out, "output folder for frame_NNNN.exr")->required();
@@ -273,7 +277,8 @@ std::vector<Command> addRenderCommand(CLI::App& app) {
                      "pssmlt/mlt/tmlt: chains per block, the farm's unit of work (default 16)")
       ->check(CLI::Range(1, 1 << 24));
   render->add_option("--bootstrap", options->bootstrap,
-                     "pssmlt/mlt/tmlt: bootstrap samples for the normalization and the chain seeds (default 10000)")
+                     "pssmlt/mlt/tmlt: bootstrap samples per window for the normalization and the chain seeds (default: one per 256 "
+                     "mutations of the window, at least 10000)")
       ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 30));
   render->add_option("--delta", options->delta,
                      "pssmlt/mlt/tmlt: reach D of the temporal mutation, in frames (default 1)")

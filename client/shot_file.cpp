@@ -69,8 +69,11 @@ void readMetropolisKeys(const JsonNode& root, const Scene& scene, ShotSpec& spec
   spec.set_chain_tasks(root.has("chain_tasks") ? root["chain_tasks"].integer(1, 1 << 20) : 8);
   spec.set_temporal_delta(root.has("temporal_delta") ? root["temporal_delta"].number(1e-6, 1e6) : defaults.temporalDelta);
   spec.set_tune_delta(root.has("tune_delta") && root["tune_delta"].boolean());
-  spec.set_bootstrap_samples(root.has("bootstrap_samples") ? root["bootstrap_samples"].integer(1, 1 << 30)
-                                                           : static_cast<int>(defaults.bootstrapSamples));
+  // 0 (the default, or "auto"): sized to the window by the renderer.
+  const bool countGiven = root.has("bootstrap_samples") && !root["bootstrap_samples"].isString();
+  if (root.has("bootstrap_samples") && !countGiven && root["bootstrap_samples"].string() != "auto")
+    root["bootstrap_samples"].fail("must be a count or \"auto\"");
+  spec.set_bootstrap_samples(countGiven ? root["bootstrap_samples"].integer(1, 1 << 30) : 0);
 }
 
 void readEvaluationKeys(const JsonNode& root, ShotSpec& spec) {

@@ -386,7 +386,7 @@ void planMetropolis(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
   if (!(spec.mutations_per_pixel() > 0)) throw PlanError("mutations_per_pixel: must be positive");
   if (spec.mlt_chains() < 1 || spec.chains_per_block() < 1 || spec.chain_tasks() < 1)
     throw PlanError("mlt_chains, chains_per_block, chain_tasks: must be at least 1");
-  if (spec.bootstrap_samples() < 1) throw PlanError("bootstrap_samples: must be at least 1");
+  if (spec.bootstrap_samples() < 0) throw PlanError("bootstrap_samples: must be at least 1, or 0 for a count sized to the window");
   if (spec.pipeline() == PIPELINE_TMLT && !(spec.temporal_delta() > 0)) throw PlanError("temporal_delta: must be positive");
   const int blocks = (spec.mlt_chains() + spec.chains_per_block() - 1) / spec.chains_per_block();
   const int64_t length = spec.pipeline() == PIPELINE_MLT ? 1 : spec.mlt_window();

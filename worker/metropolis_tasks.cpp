@@ -57,7 +57,7 @@ MetropolisSettings metropolisSettingsOf(const ShotSpec& spec, int threads) {
   settings.height = spec.height();
   settings.maxDepth = spec.max_depth();
   settings.mutationsPerPixel = spec.mutations_per_pixel();
-  settings.bootstrapSamples = static_cast<uint64_t>(spec.bootstrap_samples());
+  if (spec.bootstrap_samples() > 0) settings.bootstrapSamples = static_cast<uint64_t>(spec.bootstrap_samples());
   settings.chains = spec.mlt_chains();
   settings.chainsPerBlock = spec.chains_per_block();
   settings.temporalDelta = spec.temporal_delta() > 0 ? spec.temporal_delta() : settings.temporalDelta;

@@ -16,6 +16,9 @@ PathMeasurement measure(const BdptScene& bdpt, const CompletePath& path) {
   m.raster = bdpt.camera.raster(x[0].position(), first, seconds);
   Rgb f(bdpt.camera.importance(x[0].position(), first, seconds) * dot(first, x[0].hit.geometricNormal));
   for (int i = 0; i < k; ++i) f *= edgeFactor(x[static_cast<size_t>(i)], x[static_cast<size_t>(i + 1)]);
+  // A zero-length edge (two vertices at one point, as a Metropolis mutation can propose)
+  // has no direction: stop before a BSDF sees its NaN.
+  if (f.isBlack()) return m;
   for (int i = 1; i < k; ++i) {
     const PathVertex& v = x[static_cast<size_t>(i)];
     f *= scattering(scene, v, directionBetween(v, x[static_cast<size_t>(i - 1)]),

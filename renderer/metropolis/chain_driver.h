@@ -38,12 +38,13 @@ class ChainDriver {
 
   const ChainSettings& settings() const { return settings_; }
 
-  // The bootstrap: settings.bootstrapSamples independent samples of every strategy.
+  // The bootstrap: settings.bootstrapSamplesOf(window) independent samples of every strategy.
   SeedPool seedPool() const {
     const int strategies = target_.strategies();
-    std::vector<double> scalars(settings_.bootstrapSamples * static_cast<uint64_t>(strategies));
+    const uint64_t samples = settings_.bootstrapSamplesOf(time_.window());
+    std::vector<double> scalars(samples * static_cast<uint64_t>(strategies));
     inArena([&] {
-      tbb::parallel_for(uint64_t{0}, settings_.bootstrapSamples, [&](uint64_t i) {
+      tbb::parallel_for(uint64_t{0}, samples, [&](uint64_t i) {
         for (int s = 0; s < strategies; ++s) {
           SampleStream random = bootstrapStream(settings_.sceneSeed, time_.window(), i, s, strategies);
           scalars[i * static_cast<uint64_t>(strategies) + static_cast<uint64_t>(s)] =
@@ -52,7 +53,7 @@ class ChainDriver {
       });
     });
     SeedPool pool = chooseSeeds(time_.window(), settings_.sceneSeed, strategies, scalars, settings_.chains);
-    pool.bootstrapSamples = settings_.bootstrapSamples;
+    pool.bootstrapSamples = samples;
     return pool;
   }
 

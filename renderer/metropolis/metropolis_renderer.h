@@ -39,7 +39,7 @@ struct MetropolisSettings {
   MetropolisMethod method = MetropolisMethod::Pssmlt;
   int width = 64, height = 64, maxDepth = 8;
   double mutationsPerPixel = 64;  // per frame
-  uint64_t bootstrapSamples = 10000;
+  std::optional<uint64_t> bootstrapSamples;  // none: sized to the window (ChainSettings)
   int chains = 64;
   int chainsPerBlock = 16;
   double largeStepProbability = 0.3;

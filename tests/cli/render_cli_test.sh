@@ -24,6 +24,14 @@ done
 grep -q 'no layer or channel "variance.Q"' "$work/log" || fail "missing channel message: $(cat "$work/log")"
 ls "$work/out" | grep -q partial && fail "left a partial file behind"
 
+# --seed: the scene's own seed (0) gives the same bits as none; another gives other bits.
+for seed in 0 7; do
+  "$pathfarm" render "$source_dir/scenes/cornell/scene.json" --frames 3:3 --spp 2 --res 24x16 --seed $seed \
+    --out "$work/seed$seed" 2> "$work/log" || fail "render --seed $seed: $(cat "$work/log")"
+done
+cmp -s "$work/seed0/frame_0003.exr" "$work/out/frame_0003.exr" || fail "--seed 0 differs from the scene's seed"
+cmp -s "$work/seed7/frame_0003.exr" "$work/out/frame_0003.exr" && fail "--seed 7 rendered the scene's samples"
+
 # A bad scene: exit 2, the key path in the message, no output folder.
 cat > "$work/bad.json" <<'JSON'
 {"camera": {"position": [0, 0, 1], "look_at": [0, 0, 0]},

@@ -275,6 +275,7 @@ TEST(ShotFile, ReadsTheMetropolisKeysAndRefusesAClosedShutter) {
   EXPECT_EQ(spec.temporal_delta(), 0.5);
   EXPECT_TRUE(spec.tune_delta());
   EXPECT_EQ(spec.decompose(), "none");
+  EXPECT_EQ(spec.bootstrap_samples(), 0);  // sized to the window by the renderer
 
   nlohmann::json scene = nlohmann::json::parse(readText(test_support::sourceDir() / "scenes/cornell/scene.json"));
   scene["camera"].erase("shutter");  // no shutter: open for no time
@@ -284,6 +285,15 @@ TEST(ShotFile, ReadsTheMetropolisKeysAndRefusesAClosedShutter) {
             std::string::npos);
   EXPECT_NE(errorOf(R"({"scene": "cornell/scene.json", "pipeline": "mlt", "mlt_chains": 0})").find("mlt_chains"),
             std::string::npos);
+  EXPECT_NE(errorOf(R"({"scene": "cornell/scene.json", "pipeline": "tmlt", "bootstrap_samples": "many"})")
+                .find("bootstrap_samples: must be a count or \"auto\""),
+            std::string::npos);
+  for (const auto& [value, expected] : {std::pair{"\"auto\"", 0}, std::pair{"5000", 5000}}) {
+    const auto counted = writeShot("bootstrap", std::string(R"({"scene": "cornell/scene.json", "pipeline": "tmlt", )") +
+                                                    R"("bootstrap_samples": )" + value + "}");
+    EXPECT_EQ(loadShotFile(counted).bootstrap_samples(), expected) << value;
+    std::filesystem::remove(counted);
+  }
 }
 
 TEST(ShotFile, BadFilteringShotsAreRefused) {

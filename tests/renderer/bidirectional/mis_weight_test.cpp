@@ -57,5 +57,33 @@ TEST(BdptMisWeights, StrategiesOfEveryPathSumToOneAndMatchTheSubpathDensities) {
   EXPECT_GT(checkedContributions, 500);
 }
 
+// A path whose vertex is repeated has an edge of zero length: it carries nothing, and
+// its measurement stays finite (a NaN direction reached the BSDFs before).
+TEST(BdptMeasurement, AnEdgeOfZeroLengthCarriesNothing) {
+  const test_support::BdptFixture fixture(loadScene(test_support::sourceDir() / "scenes/cornell/scene.json"), 24, 24,
+                                          3);
+  const BdptScene bdpt = fixture.bdpt(5);
+  Subpath camera, light;
+  int degenerate = 0;
+  for (uint32_t i = 0; i < 100 && degenerate < 20; ++i) {
+    SampleStream stream({11, 5, 0, 0, i});
+    StreamSource u(stream);
+    const float time = u.next1D();
+    generateCameraSubpath(bdpt, time, {12, 12}, u.next2D(), u, maxCameraVertices(bdpt), camera);
+    generateLightSubpath(bdpt, time, u, maxLightVertices(bdpt), light);
+    forEachStrategy(bdpt, camera, light, [&](int s, int t) {
+      CompletePath path;
+      path.time = time;
+      if (!connectStrategy(bdpt, time, camera, light, s, t, u, &path.vertices) || path.length() < 2) return;
+      if (measure(bdpt, path).f.isBlack()) return;
+      path.vertices.insert(path.vertices.begin() + 1, path.vertices[1]);
+      const PathMeasurement m = measure(bdpt, path);
+      EXPECT_TRUE(m.f.isBlack() && m.f.isFinite()) << "s=" << s << " t=" << t;
+      ++degenerate;
+    });
+  }
+  EXPECT_GE(degenerate, 20);
+}
+
 }  // namespace
 }  // namespace pathfarm

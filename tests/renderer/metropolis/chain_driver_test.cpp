@@ -119,27 +119,66 @@ ToyErrors errorsOf(const std::vector<FrameImage>& frames, double meanShutterFrac
   return errors;
 }
 
-TEST(ChainDriver, NormalizationMatchesTheIntegralWithinItsStandardError) {
-  const WindowTime time({0, 2}, 0.0f, 0.5f);
-  const ToyTarget target(time);
-  const ChainSettings settings = toySettings(10);
-  const SeedPool pool = ChainDriver(target, time, settings).seedPool();
-  // E[f] and E[f^2] over x, y uniform and tau uniform over the open time (fine midpoint sums).
+// The toy normalization's mean and its standard deviation per bootstrap sample, from fine
+// midpoint sums over x, y and the open time.
+struct ToyMoments {
+  double mean = 0, deviation = 0;
+};
+
+ToyMoments toyMoments(const WindowTime& time) {
   double mean = 0, meanSquare = 0;
   const int n = 200;
   for (int a = 0; a < n; ++a)
     for (int b = 0; b < n; ++b)
       for (int c = 0; c < 20; ++c) {
-        const double tau = time.fromPrimary((c + 0.5) / 20);
-        const double f = toyDensity((a + 0.5) / n, (b + 0.5) / n, tau);
+        const double f = toyDensity((a + 0.5) / n, (b + 0.5) / n, time.fromPrimary((c + 0.5) / 20));
         mean += f;
         meanSquare += f * f;
       }
   mean /= n * n * 20.0;
   meanSquare /= n * n * 20.0;
-  const double standardError = std::sqrt((meanSquare - mean * mean) / static_cast<double>(settings.bootstrapSamples));
-  EXPECT_NEAR(pool.normalization, mean, 5 * standardError);
+  return {mean, std::sqrt(meanSquare - mean * mean)};
+}
+
+TEST(ChainDriver, NormalizationMatchesTheIntegralWithinItsStandardError) {
+  const WindowTime time({0, 2}, 0.0f, 0.5f);
+  const ToyTarget target(time);
+  const ChainSettings settings = toySettings(10);
+  const SeedPool pool = ChainDriver(target, time, settings).seedPool();
+  const ToyMoments truth = toyMoments(time);
+  EXPECT_NEAR(pool.normalization, truth.mean, 5 * truth.deviation / std::sqrt(static_cast<double>(*settings.bootstrapSamples)));
   EXPECT_EQ(pool.seeds.size(), static_cast<size_t>(settings.chains));
+}
+
+TEST(ChainDriver, ABootstrapSizedToTheWindowGrowsWithItsMutationsAndNarrowsTheNormalization) {
+  const WindowTime time({0, 2}, 0.0f, 0.5f);
+  ChainSettings small = toySettings(64), large = toySettings(320000);
+  small.bootstrapSamples = large.bootstrapSamples = std::nullopt;
+  // 8 x 8 pixels and 2 frames: 8,192 and 40,960,000 mutations.
+  EXPECT_EQ(small.bootstrapSamplesOf(time.window()), kMinimumBootstrapSamples);
+  EXPECT_EQ(large.bootstrapSamplesOf(time.window()), 40960000 / kMutationsPerBootstrapSample);
+  ChainSettings given = large;
+  given.bootstrapSamples = 123;
+  EXPECT_EQ(given.bootstrapSamplesOf(time.window()), 123u);
+
+  // Over independent seeds, the normalization's spread is the one a mean of that many
+  // samples has (the bounds hold a 24-seed estimate with probability above 0.999), so
+  // the larger window's is a quarter of the smaller one's: 160,000 samples against 10,000.
+  const ToyTarget target(time);
+  const ToyMoments truth = toyMoments(time);
+  for (ChainSettings settings : {small, large}) {
+    double sumSquares = 0;
+    const int seeds = 24;
+    for (int seed = 0; seed < seeds; ++seed) {
+      settings.sceneSeed = 1000 + static_cast<uint64_t>(seed);
+      const double error = ChainDriver(target, time, settings).seedPool().normalization - truth.mean;
+      sumSquares += error * error;
+    }
+    const double spread = std::sqrt(sumSquares / seeds);
+    const double expected = truth.deviation / std::sqrt(static_cast<double>(settings.bootstrapSamplesOf(time.window())));
+    EXPECT_GT(spread, 0.55 * expected);
+    EXPECT_LT(spread, 1.5 * expected);
+  }
 }
 
 TEST(ChainDriver, SplattedImageConvergesToTheAnalyticDensity) {
