@@ -19,13 +19,16 @@ bool hasDeltaVertex(const CompletePath& path) {
   return false;
 }
 
-TEST(BdptMisWeights, StrategiesOfEveryPathSumToOneAndMatchTheSubpathDensities) {
+// Every strategy's complete path from `samples` pairs of camera and light subpaths on the
+// Cornell box at 24x24, sample i through pixel (i % 24, i / 24 % 24):
+// visit(fixture, bdpt, path, sample, s, t).
+template <class Visit>
+void forEachStrategyPath(uint32_t samples, const Visit& visit) {
   const test_support::BdptFixture fixture(loadScene(test_support::sourceDir() / "scenes/cornell/scene.json"), 24, 24,
                                           3);
   const BdptScene bdpt = fixture.bdpt(5);
   Subpath camera, light;
-  int checkedContributions = 0;
-  for (uint32_t i = 0; i < 300; ++i) {
+  for (uint32_t i = 0; i < samples; ++i) {
     SampleStream stream({7, 3, static_cast<int32_t>(i % 24), static_cast<int32_t>(i / 24 % 24), i});
     StreamSource u(stream);
     const Vec2f jitter = u.next2D();
@@ -36,52 +39,45 @@ TEST(BdptMisWeights, StrategiesOfEveryPathSumToOneAndMatchTheSubpathDensities) {
     forEachStrategy(bdpt, camera, light, [&](int s, int t) {
       CompletePath path;
       path.time = time;
-      PathDensities recorded;
-      const auto sample = connectStrategy(bdpt, time, camera, light, s, t, u, &path.vertices, &recorded);
-      if (!sample) return;
-      const PathDensities d = densitiesOf(bdpt, path);
-      double sum = 0;
-      for (int other = 1; other <= path.length() + 1; ++other) sum += misWeight(d, other);
-      EXPECT_NEAR(sum, 1.0, 1e-5) << "s=" << s << " t=" << t;
-      EXPECT_NEAR(sample->misWeight, misWeight(d, t), 1e-5) << "s=" << s << " t=" << t;
-      if (hasDeltaVertex(path)) return;
-      // f / p of the strategy against f and p evaluated from the vertices alone. Subpaths
-      // follow their sampled directions, which differ from those between the stored
-      // (offset-free) positions by rounding, amplified at grazing angles: 1 %.
-      const double f = measure(bdpt, path).f[1];
-      const double p = strategyDensity(d, t) * fixture.camera.lensDensity();
-      EXPECT_NEAR(sample->unweighted[1], f / p, 1e-2 * f / p) << "s=" << s << " t=" << t;
-      ++checkedContributions;
+      const auto sample = connectStrategy(bdpt, time, camera, light, s, t, u, &path.vertices);
+      if (sample) visit(fixture, bdpt, path, *sample, s, t);
     });
   }
+}
+
+TEST(BdptMisWeights, StrategiesOfEveryPathSumToOneAndMatchTheSubpathDensities) {
+  int checkedContributions = 0;
+  forEachStrategyPath(300, [&](const test_support::BdptFixture& fixture, const BdptScene& bdpt, CompletePath& path,
+                               const auto& sample, int s, int t) {
+    const PathDensities d = densitiesOf(bdpt, path);
+    double sum = 0;
+    for (int other = 1; other <= path.length() + 1; ++other) sum += misWeight(d, other);
+    EXPECT_NEAR(sum, 1.0, 1e-5) << "s=" << s << " t=" << t;
+    EXPECT_NEAR(sample.misWeight, misWeight(d, t), 1e-5) << "s=" << s << " t=" << t;
+    if (hasDeltaVertex(path)) return;
+    // f / p of the strategy against f and p evaluated from the vertices alone. Subpaths
+    // follow their sampled directions, which differ from those between the stored
+    // (offset-free) positions by rounding, amplified at grazing angles: 1 %.
+    const double f = measure(bdpt, path).f[1];
+    const double p = strategyDensity(d, t) * fixture.camera.lensDensity();
+    EXPECT_NEAR(sample.unweighted[1], f / p, 1e-2 * f / p) << "s=" << s << " t=" << t;
+    ++checkedContributions;
+  });
   EXPECT_GT(checkedContributions, 500);
 }
 
 // A path whose vertex is repeated has an edge of zero length: it carries nothing, and
 // its measurement stays finite (a NaN direction reached the BSDFs before).
 TEST(BdptMeasurement, AnEdgeOfZeroLengthCarriesNothing) {
-  const test_support::BdptFixture fixture(loadScene(test_support::sourceDir() / "scenes/cornell/scene.json"), 24, 24,
-                                          3);
-  const BdptScene bdpt = fixture.bdpt(5);
-  Subpath camera, light;
   int degenerate = 0;
-  for (uint32_t i = 0; i < 100 && degenerate < 20; ++i) {
-    SampleStream stream({11, 5, 0, 0, i});
-    StreamSource u(stream);
-    const float time = u.next1D();
-    generateCameraSubpath(bdpt, time, {12, 12}, u.next2D(), u, maxCameraVertices(bdpt), camera);
-    generateLightSubpath(bdpt, time, u, maxLightVertices(bdpt), light);
-    forEachStrategy(bdpt, camera, light, [&](int s, int t) {
-      CompletePath path;
-      path.time = time;
-      if (!connectStrategy(bdpt, time, camera, light, s, t, u, &path.vertices) || path.length() < 2) return;
-      if (measure(bdpt, path).f.isBlack()) return;
-      path.vertices.insert(path.vertices.begin() + 1, path.vertices[1]);
-      const PathMeasurement m = measure(bdpt, path);
-      EXPECT_TRUE(m.f.isBlack() && m.f.isFinite()) << "s=" << s << " t=" << t;
-      ++degenerate;
-    });
-  }
+  forEachStrategyPath(50, [&](const test_support::BdptFixture&, const BdptScene& bdpt, CompletePath& path,
+                              const auto&, int s, int t) {
+    if (path.length() < 2 || measure(bdpt, path).f.isBlack()) return;
+    path.vertices.insert(path.vertices.begin() + 1, path.vertices[1]);
+    const PathMeasurement m = measure(bdpt, path);
+    EXPECT_TRUE(m.f.isBlack() && m.f.isFinite()) << "s=" << s << " t=" << t;
+    ++degenerate;
+  });
   EXPECT_GE(degenerate, 20);
 }
 
