@@ -34,7 +34,7 @@ struct ChainSettings {
   // The bootstrap's samples for `window`: the count set, or one sample per
   // kMutationsPerBootstrapSample of the window's mutations and at least
   // kMinimumBootstrapSamples. The normalization's relative error then falls with the
-  // window's budget as the chains' noise does (docs/metropolis.md, "The bootstrap").
+  // window's budget as the chains' noise does (docs/metropolis.md, "How many samples").
   uint64_t bootstrapSamplesOf(FrameWindow window) const;
   // The splat films' scale that turns sums of value / scalar into radiance
   // (Kelemen et al. 2002): b times the pixels and frames over the number of mutations.
