@@ -12,8 +12,10 @@
 // component) paths needing no walk (nothing on the chain moves), the mean inner (manifold
 // steps, one re-trace each, counting the check that the unmoved path still lands) and
 // outer (time steps) iterations per walk, one walk being one direction of one path, and
-// the median wall seconds per frame over the repeats with the processor seconds they
-// took (all threads; steadier than wall time on a shared machine).
+// the share of the paths that were not tracked and their share of the inner iterations
+// (a failing walk runs to its bounds), and the median wall seconds per frame over the
+// repeats with the processor seconds they took (all threads; steadier than wall time on
+// a shared machine).
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
@@ -36,6 +38,7 @@ using bench::median;
 
 struct Tally {
   int64_t specularPixels = 0, trackedPixels = 0, paths = 0, unwalked = 0, walks = 0, inner = 0, outer = 0;
+  int64_t untrackedPaths = 0, untrackedInner = 0;  // paths where a walk failed
 
   Tally& operator+=(const Tally& o) {
     specularPixels += o.specularPixels;
@@ -45,6 +48,8 @@ struct Tally {
     walks += o.walks;
     inner += o.inner;
     outer += o.outer;
+    untrackedPaths += o.untrackedPaths;
+    untrackedInner += o.untrackedInner;
     return *this;
   }
 };
@@ -66,6 +71,10 @@ Tally trackFrame(const SpecularMotion& motion, int components, int width, int he
         t.walks += track.walked ? 2 : 0;
         t.inner += track.counts.inner;
         t.outer += track.counts.outer;
+        if (!track.tracked()) {
+          ++t.untrackedPaths;
+          t.untrackedInner += track.counts.inner;
+        }
       }
       t.specularPixels += specular;
       t.trackedPixels += specular && tracked;
@@ -119,6 +128,8 @@ int main(int argc, char** argv) {
                 share(tally.unwalked, tally.paths), static_cast<long long>(tally.walks));
     std::printf("  iterations per walk: inner %.2f, outer %.2f\n", mean(tally.inner, tally.walks),
                 mean(tally.outer, tally.walks));
+    std::printf("  paths not tracked: %.1f %%, their share of the inner iterations: %.1f %%\n",
+                share(tally.untrackedPaths, tally.paths), share(tally.untrackedInner, tally.inner));
     std::printf("  seconds per frame: %.2f wall, %.2f processor (medians)\n", median(times), median(processorTimes));
   }
   return 0;

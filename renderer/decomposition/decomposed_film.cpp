@@ -80,7 +80,7 @@ void DecomposedFilm::Pixel::add(const SampleComponents& sample, const SampleExtr
       c.colorSquared[i] += static_cast<double>(color[i]) * color[i];
     }
     addTo(c.direct, sample.direct[k]);
-    if (!sample.hasFeatures[k]) continue;
+    if (!sample.hasFeatures(k)) continue;
     const SampleComponents::Features& f = sample.features[k];
     if (c.features++ == 0) {
       c.objectId = f.objectId;  // ids cannot be averaged: the first sample's
@@ -129,7 +129,7 @@ void DecomposedFilm::Pixel::add(const SampleComponents& sample, const SampleExtr
 void DecomposedFilm::Pixel::addReflectance(const SampleComponents& sample) {
   for (uint32_t bits = sample.touched; bits != 0; bits &= bits - 1) {
     const auto k = static_cast<size_t>(std::countr_zero(bits));
-    if (!sample.hasFeatures[k] || !sample.features[k].reflectance.isFinite()) continue;
+    if (!sample.hasFeatures(k) || !sample.features[k].reflectance.isFinite()) continue;
     Component& c = components_[k];
     ++c.reflectanceOnly;
     addTo(c.reflectance, sample.features[k].reflectance);

@@ -38,6 +38,8 @@ class LpeAutomaton {
   bool alive(int state, int k) const {
     return (alive_[static_cast<size_t>(state)] >> k) & 1u;
   }
+  // The same for every expression at once: bit k is alive(state, k).
+  uint64_t aliveSet(int state) const { return alive_[static_cast<size_t>(state)]; }
   int expressionCount() const { return expressionCount_; }
   int stateCount() const { return static_cast<int>(accepting_.size()); }
 

@@ -30,16 +30,15 @@ void SampleComponents::reset(int components) {
     color.assign(n, Rgb());
     direct.assign(n, Rgb());
     features.resize(n);
-    hasFeatures.assign(n, 0);
     touched = 0;
   }
   for (uint32_t bits = touched; bits != 0; bits &= bits - 1) {
     const auto k = static_cast<size_t>(std::countr_zero(bits));
     color[k] = Rgb();
     direct[k] = Rgb();
-    hasFeatures[k] = 0;
   }
   touched = 0;
+  featured = 0;
   movingCaustic = Rgb();
 }
 
@@ -103,14 +102,14 @@ void PathDecomposer::recordFeatures(const LobeList& lobes, const VertexFeatures&
     for (int l = 0; l < lobes.count; ++l)
       if (lobes.lobes[l].symbol == LobeSymbol::D) reflectance += sample->lobeWeight[l];
   }
-  for (int k = 0; k < decomposition_.size(); ++k) {
-    const bool alive = k == decomposition_.residual() || automaton_.alive(afterD, k);
-    if (!alive || out_.hasFeatures[static_cast<size_t>(k)]) continue;
-    SampleComponents::Features& features = out_.features[static_cast<size_t>(k)];
+  const auto alive = static_cast<uint32_t>(automaton_.aliveSet(afterD)) | (1u << decomposition_.residual());
+  for (uint32_t bits = alive & ~out_.featured; bits != 0; bits &= bits - 1) {
+    const auto k = static_cast<size_t>(std::countr_zero(bits));
+    SampleComponents::Features& features = out_.features[k];
     static_cast<VertexFeatures&>(features) = vertex;
     features.reflectance = reflectance;
-    out_.hasFeatures[static_cast<size_t>(k)] = 1;
-    out_.touch(static_cast<size_t>(k));
+    out_.featured |= 1u << k;
+    out_.touch(k);
   }
 }
 

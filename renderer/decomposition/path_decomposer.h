@@ -43,10 +43,12 @@ struct SampleComponents {
   std::vector<Rgb> direct;  // the part of `color` whose path has no D vertex
   Rgb movingCaustic;        // the part of the sum of `color` carried by moving caustics
   std::vector<Features> features;
-  std::vector<uint8_t> hasFeatures;
   // Bit k: component k got light or features in this sample. A path reaches one to three
   // components of five, so the film adds, and the next sample clears, only these.
   uint32_t touched = 0;
+  uint32_t featured = 0;  // bit k: features[k] holds this sample's features
+
+  bool hasFeatures(size_t component) const { return (featured >> component) & 1u; }
 
   static constexpr int kMaxComponents = 32;  // the bits of `touched`
   void reset(int components);

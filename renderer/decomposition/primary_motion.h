@@ -24,6 +24,15 @@ struct MotionSpan {
   int backward = 1;
 };
 
+// The camera's placements at one point of the shutter in this frame and in the frames
+// the motion reaches. A renderer keeps them per shutter bucket: evaluating the camera's
+// animation is most of the cost of projecting a point.
+struct CameraPlacements {
+  const Transform& now;  // the placement that made the sample's camera ray
+  const Transform& forward;
+  const Transform& backward;
+};
+
 class PrimaryMotion {
  public:
   PrimaryMotion(const FrameGeometry& geometry, const Camera& camera, int64_t frame, MotionSpan span = {})
@@ -33,10 +42,11 @@ class PrimaryMotion {
   MotionPair ofSurface(const SurfaceHit& hit, float time) const;
   // The environment seen along `direction`.
   MotionPair ofBackground(Vec3f direction, float time) const;
-  // The same, with the camera's placement at `time` given: a renderer has it from the
-  // camera ray, and evaluating the camera's animation is most of the cost.
-  MotionPair ofSurface(const SurfaceHit& hit, float time, const Transform& cameraNow) const;
-  MotionPair ofBackground(Vec3f direction, float time, const Transform& cameraNow) const;
+  // The same, with the camera's placements at `time` given.
+  MotionPair ofSurface(const SurfaceHit& hit, float time, const CameraPlacements& camera) const;
+  MotionPair ofBackground(Vec3f direction, const CameraPlacements& camera) const;
+  // The camera's placement at `time` of the frame `offset` frames from this one.
+  Transform cameraAt(float time, int offset) const;
 
  private:
   const FrameGeometry& geometry_;

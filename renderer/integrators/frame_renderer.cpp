@@ -63,8 +63,23 @@ std::shared_ptr<const FrameGeometry> FrameRenderer::geometryFor(int64_t frame) c
 
 namespace {
 
-// `cameraNow`: the camera's placement at the sample's time, which made `ray`.
-SampleExtras extrasOf(const PathRecord& record, const Ray& ray, float time, const PrimaryMotion* motion,
+// Primary motion, with the camera's placements per shutter bucket in the frames the
+// motion reaches, made once per window like the frame's own.
+struct MotionSampler {
+  MotionSampler(const PrimaryMotion& primary, const Scene& scene, const Camera& camera, int64_t frame, MotionSpan span)
+      : primary(primary), forward(scene, camera, frame + span.forward), backward(scene, camera, frame - span.backward) {}
+
+  // `time`: a bucket's centre; `cameraNow`: the frame's placement there, which made `ray`.
+  MotionPair of(const PathRecord& record, const Ray& ray, float time, const Transform& cameraNow) const {
+    const CameraPlacements camera{cameraNow, forward.cameraToWorld(time), backward.cameraToWorld(time)};
+    return record.hit ? primary.ofSurface(record.primary, time, camera) : primary.ofBackground(ray.direction, camera);
+  }
+
+  const PrimaryMotion& primary;
+  ShutterBuckets forward, backward;
+};
+
+SampleExtras extrasOf(const PathRecord& record, const Ray& ray, float time, const MotionSampler* motion,
                       const Transform& cameraNow) {
   SampleExtras extras;
   extras.hit = record.hit;
@@ -75,8 +90,7 @@ SampleExtras extrasOf(const PathRecord& record, const Ray& ray, float time, cons
     extras.depth = hit.distance;
   }
   if (!motion) return extras;
-  const MotionPair moved = record.hit ? motion->ofSurface(record.primary, time, cameraNow)
-                                      : motion->ofBackground(ray.direction, time, cameraNow);
+  const MotionPair moved = motion->of(record, ray, time, cameraNow);
   extras.motionSampled = true;
   extras.motion = moved.forward;
   extras.motionBack = moved.backward;
@@ -124,7 +138,7 @@ struct WindowPixels {
   const Camera& camera;
   const ShutterBuckets& shutter;
   const PathTracer& tracer;
-  const PrimaryMotion* motion;  // null: no motion measured
+  const MotionSampler* motion;  // null: no motion measured
   const Decomposition* decomposition;  // null: beauty only; else the film is there too
   const DecomposedFilm* film;
   const SpecularMotion* specular;  // null: no motion measured
@@ -275,10 +289,13 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
   std::optional<DecomposedFilm> film;
   if (decomposition) film.emplace(image, *decomposition);
   std::optional<SpecularMotion> specular;
+  std::optional<MotionSampler> motionSampler;
   const bool measuresMotion = decomposition && settings_.motion;
-  if (measuresMotion)
+  if (measuresMotion) {
+    motionSampler.emplace(motion, scene_, camera, frame, settings_.motionSpan);
     specular.emplace(*geometry, shot_->preciseShapes, *decomposition, settings_.width, settings_.height,
                      settings_.motionSpan);
+  }
 
   const WindowPixels pixels{.scene = scene_,
                             .settings = settings_,
@@ -288,7 +305,7 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
                             .camera = camera,
                             .shutter = shutter,
                             .tracer = tracer,
-                            .motion = measuresMotion ? &motion : nullptr,
+                            .motion = motionSampler ? &*motionSampler : nullptr,
                             .decomposition = decomposition,
                             .film = film ? &*film : nullptr,
                             .specular = specular ? &*specular : nullptr,

@@ -28,7 +28,7 @@ TEST(PathDecomposer, ASampleStartsWithNothingOfTheSampleBefore) {
   vertex.depth = 3;
   decomposer.scatter(oneDiffuseLobe(), vertex, nullptr);  // the path ends here
   ASSERT_EQ(out.color[diffuseDirect].r, 1.0f);
-  ASSERT_TRUE(out.hasFeatures[diffuseDirect]);
+  ASSERT_TRUE(out.hasFeatures(diffuseDirect));
   ASSERT_NE(out.touched, 0u);
 
   // Sample 2: the eye sees an emitter directly; nothing of sample 1 may remain.
@@ -37,7 +37,7 @@ TEST(PathDecomposer, ASampleStartsWithNothingOfTheSampleBefore) {
   for (int k = 0; k < decomposition.size(); ++k) {
     EXPECT_TRUE(out.color[static_cast<size_t>(k)].isBlack()) << decomposition.name(k);
     EXPECT_TRUE(out.direct[static_cast<size_t>(k)].isBlack()) << decomposition.name(k);
-    EXPECT_FALSE(out.hasFeatures[static_cast<size_t>(k)]) << decomposition.name(k);
+    EXPECT_FALSE(out.hasFeatures(static_cast<size_t>(k))) << decomposition.name(k);
   }
   decomposer.addEmission(Rgb(4.0f));
   Rgb total;
