@@ -34,7 +34,8 @@ MotionPair PrimaryMotion::ofSurface(const SurfaceHit& hit, float time, const Cam
   if (!moves && !camera_.isAnimated()) return kStill;  // nothing moves: no need to project
   const Scene& scene = geometry_.shot().scene();
   const auto imageAt = [&](int offset, const Transform& placement) {
-    const Vec3f point = offset != 0 && moves ? geometry_.shot().surfacePointAt(hit, scene.timeAt(frame_ + offset, time)) : hit.position;
+    const double seconds = scene.timeAt(frame_ + offset, time);
+    const Vec3f point = offset != 0 && moves ? geometry_.shot().surfacePointAt(hit, seconds) : hit.position;
     return camera_.project(point, placement);
   };
   const auto now = camera_.project(hit.position, camera.now);

@@ -45,10 +45,11 @@ class PrimaryMotion {
   // The same, with the camera's placements at `time` given.
   MotionPair ofSurface(const SurfaceHit& hit, float time, const CameraPlacements& camera) const;
   MotionPair ofBackground(Vec3f direction, const CameraPlacements& camera) const;
+
+ private:
   // The camera's placement at `time` of the frame `offset` frames from this one.
   Transform cameraAt(float time, int offset) const;
 
- private:
   const FrameGeometry& geometry_;
   const Camera& camera_;
   int64_t frame_;
