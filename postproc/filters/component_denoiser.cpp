@@ -73,8 +73,7 @@ struct LayerFrame {
   std::vector<Planes> features;
 };
 
-LayerFrame loadLayer(const FrameImage& frame, const LayerSpec& layer, const std::vector<Buffer>& features,
-                     const DenoiseSettings& s) {
+LayerFrame loadLayer(const FrameImage& frame, const LayerSpec& layer, const std::vector<Buffer>& features) {
   const std::vector<Buffer> buffers = colorBuffers(layer);
   LayerFrame out;
   out.color = planesOf(frame, buffers[0]);
@@ -101,17 +100,7 @@ LayerFrame loadLayer(const FrameImage& frame, const LayerSpec& layer, const std:
       }
     }
   }
-  for (const Buffer& buffer : features) {
-    Planes planes = planesOf(frame, buffer);
-    if (buffer.kind == FeatureKind::Continuous && s.prefilterFeatures) {
-      NlMeansInput input;
-      NlMeansFrame& f = input.frames.emplace_back();
-      f.variance = Planes(planes.width, planes.height, static_cast<int>(planes.channels.size()));
-      f.color = std::move(planes);
-      planes = jointNlMeans(input, s.prefilter);
-    }
-    out.features.push_back(std::move(planes));
-  }
+  for (const Buffer& buffer : features) out.features.push_back(planesOf(frame, buffer));
   return out;
 }
 
@@ -169,7 +158,7 @@ LayerResult filterLayer(const FrameImage& current, const std::vector<Neighbour>&
   NlMeansInput input;
   for (const Buffer& buffer : features) input.featureKinds.push_back(buffer.kind);
 
-  LayerFrame first = loadLayer(current, layer, features, s);
+  LayerFrame first = loadLayer(current, layer, features);
   bool zero = allZero(first.color) && allZero(first.variance);
   std::vector<LayerFrame> loaded;
   std::vector<MotionField> motions;
@@ -179,7 +168,7 @@ LayerResult filterLayer(const FrameImage& current, const std::vector<Neighbour>&
     MotionField motion = motionOf(current, n.which, layer, s);
     std::vector<float> valid = warpValidity(motion);
     if (!takesPart(n, layer, valid, s)) continue;
-    LayerFrame frame = loadLayer(*n.frame, layer, features, s);
+    LayerFrame frame = loadLayer(*n.frame, layer, features);
     zero = zero && allZero(frame.color) && allZero(frame.variance);
     loaded.push_back(std::move(frame));
     motions.push_back(std::move(motion));
@@ -264,16 +253,6 @@ std::vector<LayerSpec> layersOf(const FrameImage& current, const DenoiseSettings
   return layers;
 }
 
-// The rows of the current frame whose warped neighbours a wanted row depends on, on either
-// side: the search radius and patch, and the fireflies' reach in the warped frames.
-int warpedReach(const DenoiseSettings& s) {
-  return std::max(s.spatialRadius, s.temporalRadius) + s.patch + (s.spreadFireflies ? fireflyReach(s.fireflies) : 0);
-}
-
-int prefilterReach(const DenoiseSettings& s) {
-  return s.prefilterFeatures ? s.prefilter.radius + s.prefilter.patch : 0;
-}
-
 // Rows [first, end) of a motion field, placed in its frame.
 MotionField fieldRows(const MotionField& motion, int first, int end) {
   MotionField rows;
@@ -296,7 +275,7 @@ std::string describe(const DenoiseSettings& s, int framesGiven) {
   std::ostringstream text;
   text << "mode=" << denoiseModeName(s.mode) << " frames=" << framesGiven << " r=" << s.spatialRadius << "/"
        << s.temporalRadius << " f=" << s.patch << " kc=" << s.kc << " kf=" << s.kf << " tau=" << s.tau
-       << " alpha=" << s.alpha << " depth=" << (s.useDepth ? 1 : 0) << " prefilter=" << (s.prefilterFeatures ? 1 : 0)
+       << " alpha=" << s.alpha << " depth=" << (s.useDepth ? 1 : 0)
        << " fireflies=" << (s.spreadFireflies ? 1 : 0);
   return text.str();
 }
@@ -406,22 +385,24 @@ FrameImage denoiseFrame(const FrameImage& current, const FrameImage* previous, c
   return out.crop(0, first, current.width(), end - first);
 }
 
-int denoiseReach(const DenoiseSettings& settings) { return warpedReach(settings) + prefilterReach(settings); }
+int denoiseReach(const DenoiseSettings& s) {
+  return std::max(s.spatialRadius, s.temporalRadius) + s.patch + (s.spreadFireflies ? fireflyReach(s.fireflies) : 0);
+}
 
 std::pair<int, int> denoiseNeighbourRows(const FrameImage& current, NeighbourFrame neighbour,
                                          const DenoiseSettings& settings) {
   const DenoiseSettings& s = settings;
   if (!s.window) throw std::logic_error(s.label + ": neighbour rows are a window's question");
   const int top = s.window->currentTop;
-  const int first = std::max(0, s.window->first - warpedReach(s) - top);
-  const int end = std::min(current.height(), s.window->end + warpedReach(s) - top);
+  const int first = std::max(0, s.window->first - denoiseReach(s) - top);
+  const int end = std::min(current.height(), s.window->end + denoiseReach(s) - top);
   if (first >= end) return {0, 0};
   int low = s.window->frameHeight, high = 0;
   for (const LayerSpec& layer : layersOf(current, s)) {
     const auto [from, to] = warpSourceRows(fieldRows(motionOf(current, neighbour, layer, s), first, end));
     if (from >= to) continue;
-    low = std::min(low, from - prefilterReach(s));
-    high = std::max(high, to + prefilterReach(s));
+    low = std::min(low, from);
+    high = std::max(high, to);
   }
   if (low >= high) return {0, 0};
   return {std::max(0, low), std::min(s.window->frameHeight, high)};

@@ -112,7 +112,6 @@ class BandFilter {
     const size_t w = static_cast<size_t>(in_.width);
     const size_t rows = static_cast<size_t>(y1 - y0 + 2 * s.patch);
     distance_.resize(rows * w);
-    pixelDistance_.resize(w);
     mask_.resize(rows * w);
     columnDistance_.resize(w);
     columnMask_.resize(w);
@@ -122,6 +121,7 @@ class BandFilter {
     largest_.resize(w);
     sum_.resize(w);
     equal_.resize(w);
+    pixelDistance_.resize(w);
     weight_.resize(w);
     if (keep_) featureDistance_.assign(in_.kinds.size(), std::vector<float>(w));
   }
@@ -148,12 +148,11 @@ class BandFilter {
     std::fill(columnDistance_.begin(), columnDistance_.end(), 0.0);
     std::fill(columnMask_.begin(), columnMask_.end(), 0.0f);
     for (int y = std::max(reach.ry0, reach.oy0 - f); y < std::min(reach.ry1, reach.oy0 + f + 1); ++y)
-      addRow(reach, y, 1.0);
+      slideRows(reach, y, -1);
 
     for (int y = reach.oy0; y < reach.oy1; ++y) {
       if (y > reach.oy0) {
-        if (y + f < reach.ry1) addRow(reach, y + f, 1.0);
-        if (y - f - 1 >= reach.ry0) addRow(reach, y - f - 1, -1.0);
+        slideRows(reach, y + f < reach.ry1 ? y + f : -1, y - f - 1 >= reach.ry0 ? y - f - 1 : -1);
       }
       // The columns of this row whose weights are wanted.
       int wx0 = reach.xa, wx1 = reach.xb;
@@ -206,7 +205,7 @@ class BandFilter {
   }
 
   // Per-pixel distances d(x, x + offset) towards frame `pt` on the rows the band's patches
-  // reach, and where both pixels are valid.
+  // reach, and where both pixels are valid. Only the columns [xa, xb) are read later.
   void computePixelDistances(const Prepared::Frame& pt, int dx, int dy, const Reach& reach) {
     const int w = in_.width, h = in_.height;
     const size_t W = static_cast<size_t>(w);
@@ -216,11 +215,13 @@ class BandFilter {
     for (int y = reach.ry0; y < reach.ry1; ++y) {
       double* snapped = distance_.data() + static_cast<size_t>(y - reach.ry0) * W;
       float* m = mask_.data() + static_cast<size_t>(y - reach.ry0) * W;
+      if (y + dy < 0 || y + dy >= h) {
+        std::fill(snapped + reach.xa, snapped + reach.xb, 0.0);
+        std::fill(m + reach.xa, m + reach.xb, 0.0f);
+        continue;
+      }
       float* d = pixelDistance_.data();
-      std::fill(snapped, snapped + W, 0.0);
-      std::fill(d, d + W, 0.0f);
-      std::fill(m, m + W, 0.0f);
-      if (y + dy < 0 || y + dy >= h) continue;
+      std::fill(d + reach.xa, d + reach.xb, 0.0f);
       const size_t rowP = static_cast<size_t>(y) * W;
       const ptrdiff_t rowQ = static_cast<ptrdiff_t>(y + dy) * w + dx;
       for (int c = 0; c < in_.channels; ++c) {
@@ -246,23 +247,40 @@ class BandFilter {
     }
   }
 
-  // Adds (sign 1) or takes off (sign -1) row y's distances and masses to the column sums.
-  void addRow(const Reach& reach, int y, double sign) {
+  // Adds row `in`'s distances and masses to the column sums and takes off row `out`'s
+  // (-1: none). The sums are exact (Prepared::distanceSnap), so one pass may do both.
+  [[gnu::always_inline]] void slideRows(const Reach& reach, int in, int out) {
     const size_t W = static_cast<size_t>(in_.width);
-    const double* d = distance_.data() + static_cast<size_t>(y - reach.ry0) * W;
-    const float* m = mask_.data() + static_cast<size_t>(y - reach.ry0) * W;
+    const auto row = [&](int y) { return static_cast<size_t>(y - reach.ry0) * W; };
     double* cd = columnDistance_.data();
     float* cm = columnMask_.data();
-    const float signF = static_cast<float>(sign);
-    for (int x = reach.xa; x < reach.xb; ++x) {
-      cd[x] += sign * d[x];
-      cm[x] += signF * m[x];
+    if (in >= 0 && out >= 0) {
+      const double *dIn = distance_.data() + row(in), *dOut = distance_.data() + row(out);
+      const float *mIn = mask_.data() + row(in), *mOut = mask_.data() + row(out);
+      for (int x = reach.xa; x < reach.xb; ++x) {
+        cd[x] += dIn[x] - dOut[x];
+        cm[x] += mIn[x] - mOut[x];
+      }
+    } else if (in >= 0) {
+      const double* d = distance_.data() + row(in);
+      const float* m = mask_.data() + row(in);
+      for (int x = reach.xa; x < reach.xb; ++x) {
+        cd[x] += d[x];
+        cm[x] += m[x];
+      }
+    } else if (out >= 0) {
+      const double* d = distance_.data() + row(out);
+      const float* m = mask_.data() + row(out);
+      for (int x = reach.xa; x < reach.xb; ++x) {
+        cd[x] -= d[x];
+        cm[x] -= m[x];
+      }
     }
   }
 
   // The patch distances of the current row into patch_: the row box filter of the column
   // sums, through prefix sums over [xa, xb) (everything outside is zero).
-  void computePatchDistances(const Reach& reach) {
+  [[gnu::always_inline]] void computePatchDistances(const Reach& reach) {
     const int f = s_.patch, n = reach.xb - reach.xa;
     const double* pd = prefixDistance_.data();
     const double* pm = prefixMask_.data();
@@ -358,8 +376,8 @@ class BandFilter {
   bool keep_;
   const RowSpans* spans_;
   std::vector<double> distance_;    // per-pixel distances on the band's rows, on the grid
-  std::vector<float> pixelDistance_;  // one row's, summed over the channels
   std::vector<float> mask_;
+  std::vector<float> pixelDistance_;  // one row's, summed over the channels
   std::vector<double> columnDistance_;
   std::vector<float> columnMask_;
   std::vector<double> prefixDistance_, prefixMask_;
@@ -369,50 +387,72 @@ class BandFilter {
 
 int bandCount(int height) { return (height + kBandRows - 1) / kBandRows; }
 
+// The filtered colors of one band of rows into `out`, and its pixels without a partner
+// of any weight into `unfilled`. Both instruction sets below compile this same code.
+[[gnu::always_inline]] inline void filterBand(const Prepared& prepared, const NlMeansSettings& settings,
+                                              const RowSpans* spans, int band, Planes& out,
+                                              std::vector<uint8_t>& unfilled) {
+  const int w = prepared.width, h = prepared.height, r = settings.radius;
+  const size_t W = static_cast<size_t>(w);
+  const size_t channels = static_cast<size_t>(prepared.channels);
+  const int y0 = band * kBandRows, y1 = std::min(h, y0 + kBandRows);
+  const size_t cells = static_cast<size_t>(y1 - y0) * W;
+  std::vector<float> weightSum(cells, 0.0f), colorSum(channels * cells, 0.0f);
+  BandFilter filter(prepared, settings, y0, y1, false, spans);
+  for (size_t t = 0; t < prepared.frames.size(); ++t) {
+    const Prepared::Frame& frame = prepared.frames[t];
+    if (!frame.active) continue;
+    for (int dy = -r; dy <= r; ++dy) {
+      for (int dx = -r; dx <= r; ++dx) {
+        filter.run(static_cast<int>(t), dx, dy, [&](int y, int x0, int x1) {
+          const float* weight = filter.weight();
+          const size_t row = static_cast<size_t>(y - y0) * W;
+          float* ws = weightSum.data() + row;
+          for (int x = x0; x < x1; ++x) ws[x] += weight[x];
+          const ptrdiff_t rowQ = static_cast<ptrdiff_t>(y + dy) * w + dx;
+          for (size_t c = 0; c < channels; ++c) {
+            float* cs = colorSum.data() + c * cells + row;
+            const float* uq = frame.color[c] + rowQ;
+            for (int x = x0; x < x1; ++x) cs[x] += weight[x] * uq[x];
+          }
+        });
+      }
+    }
+  }
+  for (size_t i = 0; i < cells; ++i) {
+    const size_t p = static_cast<size_t>(y0) * W + i;
+    const float ws = weightSum[i];
+    if (!(ws > 0.0f)) unfilled[p] = 1;
+    for (size_t c = 0; c < channels; ++c) out.channels[c][p] = ws > 0.0f ? colorSum[c * cells + i] / ws : 0.0f;
+  }
+}
+
+// The band's filter with 256-bit vectors where the CPU has them: about 1.5x faster. AVX2
+// without FMA does each float operation as the baseline build does (a fused multiply-add
+// would round once where the baseline rounds twice), so a worker's bits do not depend on
+// which of the two it ran. `flatten` compiles the whole filter, inlined, for AVX2.
+[[gnu::target("avx2"), gnu::flatten]] void filterBandAvx2(const Prepared& prepared, const NlMeansSettings& settings,
+                                                            const RowSpans* spans, int band, Planes& out,
+                                                            std::vector<uint8_t>& unfilled) {
+  filterBand(prepared, settings, spans, band, out, unfilled);
+}
+
+[[gnu::flatten]] void filterBandBaseline(const Prepared& prepared, const NlMeansSettings& settings,
+                                         const RowSpans* spans, int band, Planes& out, std::vector<uint8_t>& unfilled) {
+  filterBand(prepared, settings, spans, band, out, unfilled);
+}
+
 }  // namespace
 
 Planes jointNlMeans(const NlMeansInput& input, const NlMeansSettings& settings, NlMeansStats* stats) {
   const Prepared prepared(input, settings);
-  const int w = prepared.width, h = prepared.height, r = settings.radius;
-  const size_t W = static_cast<size_t>(w);
-  const size_t channels = static_cast<size_t>(prepared.channels);
-  Planes out(w, h, prepared.channels);
+  Planes out(prepared.width, prepared.height, prepared.channels);
   std::vector<uint8_t> unfilled(out.pixelCount(), 0);
   const RowSpans spans = settings.validCentersOnly ? validSpans(prepared) : RowSpans{};
-
-  tbb::parallel_for(tbb::blocked_range<int>(0, bandCount(h), 1), [&](const tbb::blocked_range<int>& bands) {
-    for (int band = bands.begin(); band != bands.end(); ++band) {
-      const int y0 = band * kBandRows, y1 = std::min(h, y0 + kBandRows);
-      const size_t cells = static_cast<size_t>(y1 - y0) * W;
-      std::vector<float> weightSum(cells, 0.0f), colorSum(channels * cells, 0.0f);
-      BandFilter filter(prepared, settings, y0, y1, false, settings.validCentersOnly ? &spans : nullptr);
-      for (size_t t = 0; t < prepared.frames.size(); ++t) {
-        const Prepared::Frame& frame = prepared.frames[t];
-        if (!frame.active) continue;
-        for (int dy = -r; dy <= r; ++dy) {
-          for (int dx = -r; dx <= r; ++dx) {
-            filter.run(static_cast<int>(t), dx, dy, [&](int y, int x0, int x1) {
-              const float* weight = filter.weight();
-              const size_t row = static_cast<size_t>(y - y0) * W;
-              float* ws = weightSum.data() + row;
-              for (int x = x0; x < x1; ++x) ws[x] += weight[x];
-              const ptrdiff_t rowQ = static_cast<ptrdiff_t>(y + dy) * w + dx;
-              for (size_t c = 0; c < channels; ++c) {
-                float* cs = colorSum.data() + c * cells + row;
-                const float* uq = frame.color[c] + rowQ;
-                for (int x = x0; x < x1; ++x) cs[x] += weight[x] * uq[x];
-              }
-            });
-          }
-        }
-      }
-      for (size_t i = 0; i < cells; ++i) {
-        const size_t p = static_cast<size_t>(y0) * W + i;
-        const float ws = weightSum[i];
-        if (!(ws > 0.0f)) unfilled[p] = 1;
-        for (size_t c = 0; c < channels; ++c) out.channels[c][p] = ws > 0.0f ? colorSum[c * cells + i] / ws : 0.0f;
-      }
-    }
+  const RowSpans* wanted = settings.validCentersOnly ? &spans : nullptr;
+  const auto filter = settings.wideVectors && __builtin_cpu_supports("avx2") ? filterBandAvx2 : filterBandBaseline;
+  tbb::parallel_for(tbb::blocked_range<int>(0, bandCount(prepared.height), 1), [&](const tbb::blocked_range<int>& bands) {
+    for (int band = bands.begin(); band != bands.end(); ++band) filter(prepared, settings, wanted, band, out, unfilled);
   });
 
   if (stats != nullptr) {

@@ -85,6 +85,9 @@ struct NlMeansSettings {
   // none, and invalid pixels come out 0 instead of filled from their neighbours. A sparse
   // frame (re-rendered pixels) then filters at the cost of what it holds.
   bool validCentersOnly = false;
+  // AVX2 where the CPU has it: the same bits as without (nlmeans.cpp), faster. Off only
+  // to compare the two.
+  bool wideVectors = true;
 };
 
 // One frame to filter and its (warped) neighbours. Index 0 is the frame being filtered.

@@ -273,6 +273,39 @@ TEST(NlMeans, SameBitsForAnyThreadCount) {
   EXPECT_EQ(parallel.channels, serial.channels);
 }
 
+// A worker with AVX2 and one without must filter to the same bits (nlmeans.cpp): every
+// term (colors, both kinds of feature, invalid pixels, several frames) through both.
+TEST(NlMeans, SameBitsWithAndWithoutWideVectors) {
+  if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "this CPU has no AVX2: only one code path runs here";
+  std::mt19937 rng(23);
+  const int w = 53, h = 70;  // several bands, and rows that are no multiple of a vector
+  NlMeansInput input;
+  input.featureKinds = {FeatureKind::Continuous, FeatureKind::ExactMatch};
+  std::uniform_int_distribution<int> id(0, 2);
+  for (int t = 0; t < 3; ++t) {
+    NlMeansFrame& frame = input.frames.emplace_back(randomFrame(w, h, rng));
+    frame.features.push_back(randomFrame(w, h, rng).color);
+    Planes ids(w, h, 1);
+    for (float& v : ids.channels[0]) v = static_cast<float>(id(rng));
+    frame.features.push_back(std::move(ids));
+  }
+  input.frames[0].color.channels[2][static_cast<size_t>(3 * w + 9)] = std::numeric_limits<float>::infinity();
+  input.frames[1].valid.assign(static_cast<size_t>(w * h), 1.0f);
+  for (size_t p = 0; p < input.frames[1].valid.size(); p += 7) input.frames[1].valid[p] = 0.0f;
+  for (const bool sparse : {false, true}) {
+    NlMeansSettings wide;
+    wide.radius = 3;
+    wide.validCentersOnly = sparse;
+    NlMeansSettings narrow = wide;
+    narrow.wideVectors = false;
+    NlMeansStats wideStats, narrowStats;
+    const Planes a = jointNlMeans(input, wide, &wideStats);
+    const Planes b = jointNlMeans(input, narrow, &narrowStats);
+    EXPECT_EQ(a.channels, b.channels) << (sparse ? "valid centers only" : "every pixel");
+    EXPECT_EQ(wideStats.unfilledCenters, narrowStats.unfilledCenters);
+  }
+}
+
 // Piecewise-smooth ground truth with a sharp edge at x = w/2, present in a feature.
 struct Synthetic {
   int w = 96, h = 64;
