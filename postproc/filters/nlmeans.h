@@ -50,7 +50,8 @@
 // pixel's output depends only on the pixels within radius + patch of it and on where the
 // image ends, not on where the image or a band of rows starts. So the output is the same
 // bits for any thread count, and a window of rows cut out with that margin filters to the
-// whole image's bits.
+// whole image's bits. The AVX2 build of the filter (NlMeansSettings::wideVectors) does the
+// same float operations in the same order, without FMA: the same bits on any x86-64 CPU.
 #include <cstddef>
 #include <cstdint>
 #include <string>
