@@ -18,6 +18,10 @@ constexpr int kMinProbeEdge = 32;
 // kStandInSppFactor times the spp.
 constexpr double kProbeCostInPtFrames = 9 + kStandInSppFactor;
 constexpr double kProbeBudget = 0.05;  // of a plain pt shot
+// Crops per axis of a probe spread over the picture; their floor of kMinProbeEdge rows may
+// take their pixels this far past one crop's.
+constexpr int kProbeGrid = 3;
+constexpr double kGridOverBudget = 1.5;
 // An estimate within this many standard errors of zero is within the probe's noise: it
 // counts as that bound, so that noise cannot pick a winner. Below kNegligibleError no
 // error counts apart.
@@ -29,6 +33,8 @@ std::string printed(const char* pattern, double value) {
   std::snprintf(text, sizeof text, pattern, value);
   return text;
 }
+
+int evenUp(int edge) { return edge + edge % 2; }
 
 int probeEdge(int shotEdge, int scale) {
   const int edge = shotEdge / scale;
@@ -53,21 +59,44 @@ ProbeGeometry probeGeometry(const ShotSpec& shot, int longestInterval) {
                                  (kProbeBudget * static_cast<double>(shotFrames)));
   const int largestScale = std::max(1, std::min(shot.width(), shot.height()) / kMinProbeEdge);
   geometry.scale = std::clamp(static_cast<int>(std::ceil(scale)), 1, std::min(kMaxProbeScale, largestScale));
-  geometry.width = probeEdge(shot.width(), geometry.scale);
-  geometry.height = probeEdge(shot.height(), geometry.scale);
+  // A grid of crops, together about the pixels of one crop of 1/scale per axis, where
+  // crops of at least kMinProbeEdge rows keep it within kGridOverBudget of that.
+  const int gridHeight = evenUp(std::max(kMinProbeEdge, shot.height() / (kProbeGrid * geometry.scale)));
+  const int gridWidth = evenUp(static_cast<int>(std::lround(gridHeight * static_cast<double>(shot.width()) /
+                                                            shot.height())));
+  const double onePixels = static_cast<double>(shot.width()) * shot.height() / (geometry.scale * geometry.scale);
+  const bool grid = geometry.scale > 1 && kProbeGrid * gridWidth <= shot.width() &&
+                    kProbeGrid * gridHeight <= shot.height() &&
+                    kProbeGrid * kProbeGrid * static_cast<double>(gridWidth) * gridHeight <= kGridOverBudget * onePixels;
+  geometry.width = grid ? gridWidth : probeEdge(shot.width(), geometry.scale);
+  geometry.height = grid ? gridHeight : probeEdge(shot.height(), geometry.scale);
   geometry.zoom = static_cast<double>(shot.height()) / geometry.height;
+  if (grid) {
+    geometry.windows.clear();
+    for (int row = 0; row < kProbeGrid; ++row)
+      for (int column = 0; column < kProbeGrid; ++column)
+        geometry.windows.push_back({(column + 0.5) / kProbeGrid - 0.5, (row + 0.5) / kProbeGrid - 0.5});
+  }
   return geometry;
 }
 
-ShotSpec probeSpecOf(const ShotSpec& candidate, const ProbeGeometry& geometry, const std::filesystem::path& folder) {
+std::filesystem::path probeOutput(const std::filesystem::path& folder, Pipeline pipeline,
+                                  const ProbeGeometry& geometry, size_t window) {
+  const std::filesystem::path own = folder / std::string(pipelineName(pipeline));
+  return geometry.windows.size() > 1 ? own / ("window_" + std::to_string(window)) : own;
+}
+
+ShotSpec probeSpecOf(const ShotSpec& candidate, const ProbeGeometry& geometry, size_t window,
+                     const std::filesystem::path& folder) {
   ShotSpec probe = candidate;
   const std::string name(pipelineName(candidate.pipeline()));
-  probe.set_name(candidate.name() + ".probe." + name);
+  const std::string windowName = geometry.windows.size() > 1 ? ".window_" + std::to_string(window) : "";
+  probe.set_name(candidate.name() + ".probe." + name + windowName);
   probe.set_frame_start(geometry.frameStart);
   probe.set_frame_end(geometry.frameEnd);
   probe.set_width(geometry.width);
   probe.set_height(geometry.height);
-  probe.set_output((folder / name).string());
+  probe.set_output(probeOutput(folder, candidate.pipeline(), geometry, window).string());
   probe.set_reference_spp(0);
   probe.clear_evaluation_frames();
   probe.clear_baseline_core_seconds();
@@ -76,6 +105,8 @@ ShotSpec probeSpecOf(const ShotSpec& candidate, const ProbeGeometry& geometry, c
     probe.set_poisson_overlap(std::min(candidate.poisson_overlap(), probe.poisson_window() - 1));
   }
   if (geometry.zoom > 1) probe.set_camera_zoom(geometry.zoom);
+  probe.set_camera_shift_x(geometry.windows.at(window).shiftX);
+  probe.set_camera_shift_y(geometry.windows.at(window).shiftY);
   if (candidate.pipeline() == PIPELINE_PT) {
     probe.set_first_sample(kIndependentFirstSample);
     probe.set_spp(candidate.spp() * kStandInSppFactor);
@@ -90,8 +121,7 @@ PipelineChoice decidePipeline(const std::vector<CandidateMeasure>& measures, con
     throw std::invalid_argument("the probe needs plain pt's render to measure the others against" +
                                 (pt == measures.end() || pt->failure.empty() ? std::string() : ": " + pt->failure));
   PipelineChoice choice;
-  const double pixelRatio = static_cast<double>(shot.width()) * shot.height() /
-                            (static_cast<double>(geometry.width) * geometry.height);
+  const double pixelRatio = static_cast<double>(shot.width()) * shot.height() / geometry.pixels();
   const double ptError = std::max(pt->relMse, kNegligibleError);
   double best = 0;
   std::string table;
@@ -113,10 +143,14 @@ PipelineChoice decidePipeline(const std::vector<CandidateMeasure>& measures, con
     choice.predictedRelMse = error;
     choice.predictedCoreSecondsPerFrame = m.coreSeconds / static_cast<double>(geometry.frames()) * pixelRatio;
   }
+  const std::string crops = geometry.windows.size() > 1
+                                ? std::to_string(geometry.windows.size()) + " crops of " + std::to_string(geometry.width) +
+                                      "x" + std::to_string(geometry.height) + " pixels spread over the picture"
+                                : "the centre " + std::to_string(geometry.width) + "x" + std::to_string(geometry.height) +
+                                      " pixels";
   const std::string probe = "probe: frames " + std::to_string(geometry.frameStart) + ".." +
-                            std::to_string(geometry.frameEnd) + ", the centre " + std::to_string(geometry.width) +
-                            "x" + std::to_string(geometry.height) + " pixels, " + std::to_string(shot.spp()) + " spp, " +
-                            printed("%.1f", choice.probeCoreSeconds) + " core-seconds";
+                            std::to_string(geometry.frameEnd) + ", " + crops + ", " + std::to_string(shot.spp()) +
+                            " spp, " + printed("%.1f", choice.probeCoreSeconds) + " core-seconds";
   choice.reason = "auto chose " + std::string(pipelineName(choice.pipeline)) + ", the lowest predicted cost at equal error against plain pt: " +
                   table + " (" + probe + ")";
   return choice;

@@ -31,11 +31,12 @@ std::vector<ShotSpec> candidateSpecs(const ShotFile& file, const ShotSpec& autoS
   return specs;
 }
 
-// The frames a finished probe shot wrote, by file name.
-std::map<std::string, FrameImage> fetchFrames(FarmClient& client, int64_t id, const std::filesystem::path& folder) {
-  std::map<std::string, FrameImage> frames;
-  for (const auto& file : client.fetch(id, folder)) frames.emplace(file.filename().string(), readExr(file));
-  return frames;
+// The frames a finished probe shot of crop `window` wrote, added to `frames` under
+// "<window>/<file name>".
+void fetchFrames(FarmClient& client, int64_t id, size_t window, const std::filesystem::path& folder,
+                 std::map<std::string, FrameImage>& frames) {
+  for (const auto& file : client.fetch(id, folder))
+    frames.emplace(std::to_string(window) + "/" + file.filename().string(), readExr(file));
 }
 
 // The candidate's relMSE against the truth over the probe's frames, estimated against
@@ -55,48 +56,61 @@ MeanEstimate estimatedRelMse(const std::map<std::string, FrameImage>& frames,
   return estimate;
 }
 
-// Submits every candidate's probe shot; returns their ids, in the candidates' order.
-std::vector<int64_t> submitProbes(FarmClient& client, const std::vector<ShotSpec>& candidates,
-                                  const ProbeGeometry& geometry, const std::filesystem::path& probeFolder,
-                                  const std::string& submitKey) {
-  std::vector<int64_t> ids;
+// Submits every candidate's probe shots, one per crop; returns their ids, in the
+// candidates' order and then the crops'.
+std::vector<std::vector<int64_t>> submitProbes(FarmClient& client, const std::vector<ShotSpec>& candidates,
+                                               const ProbeGeometry& geometry,
+                                               const std::filesystem::path& probeFolder, const std::string& submitKey) {
+  std::vector<std::vector<int64_t>> ids;
   std::string names;
   for (const ShotSpec& candidate : candidates) {
     const std::string name(pipelineName(candidate.pipeline()));
-    const std::string key = submitKey.empty() ? "" : submitKey + ".probe." + name;
-    ids.push_back(client.submit(probeSpecOf(candidate, geometry, probeFolder), key));
+    ids.emplace_back();
+    for (size_t window = 0; window < geometry.windows.size(); ++window) {
+      const ShotSpec probe = probeSpecOf(candidate, geometry, window, probeFolder);
+      // The probe's name extends the shot's, so it keys the resubmission alike.
+      const std::string key = submitKey.empty() ? "" : submitKey + probe.name().substr(candidate.name().size());
+      ids.back().push_back(client.submit(probe, key));
+    }
     names += (names.empty() ? "" : ", ") + name;
   }
-  spdlog::info("pipeline auto: probing {} on frames {}..{}, the centre {}x{} pixels, {} spp (shots {}..{})", names,
-               geometry.frameStart, geometry.frameEnd, geometry.width, geometry.height, candidates.front().spp(),
-               ids.front(), ids.back());
+  spdlog::info("pipeline auto: probing {} on frames {}..{}, {} crop{} of {}x{} pixels, {} spp (shots {}..{})", names,
+               geometry.frameStart, geometry.frameEnd, geometry.windows.size(),
+               geometry.windows.size() > 1 ? "s" : "", geometry.width, geometry.height, candidates.front().spp(),
+               ids.front().front(), ids.back().back());
   return ids;
 }
 
-// What probe shot `id` of `pipeline` cost and erred, once it ends. pt's probe comes first:
-// its frames become `truthStandIn`, which the others are measured against.
-CandidateMeasure measureProbe(FarmClient& client, int64_t id, Pipeline pipeline,
-                              const std::filesystem::path& probeFolder,
+// What the probe shots `ids` of `pipeline` (one per crop) cost and erred, once they end.
+// pt's probe comes first: its frames become `truthStandIn`, which the others are measured
+// against.
+CandidateMeasure measureProbe(FarmClient& client, const std::vector<int64_t>& ids, Pipeline pipeline,
+                              const ProbeGeometry& geometry, const std::filesystem::path& probeFolder,
                               const std::function<void(const ShotSummary&)>& progress,
                               std::map<std::string, FrameImage>& truthStandIn) {
   const std::string name(pipelineName(pipeline));
-  const ShotSummary summary = client.watch(id, progress);
   CandidateMeasure measure;
   measure.pipeline = pipeline;
-  if (summary.state() != SHOT_DONE) {
-    measure.failure = "shot " + std::to_string(id) + " " + ShotState_Name(summary.state()) +
-                      (summary.failure().empty() ? "" : ": " + summary.failure());
-    if (pipeline == PIPELINE_PT) throw std::runtime_error("pipeline auto: plain pt's probe, which the others are "
-                                                          "measured against, did not finish: " + measure.failure);
-    spdlog::warn("pipeline auto: the {} probe did not finish ({}); it is left out", name, measure.failure);
-    return measure;
+  std::map<std::string, FrameImage> frames;
+  for (size_t window = 0; window < ids.size(); ++window) {
+    const int64_t id = ids[window];
+    const ShotSummary summary = client.watch(id, progress);
+    if (summary.state() != SHOT_DONE) {
+      measure.failure = "shot " + std::to_string(id) + " " + ShotState_Name(summary.state()) +
+                        (summary.failure().empty() ? "" : ": " + summary.failure());
+      if (pipeline == PIPELINE_PT)
+        throw std::runtime_error("pipeline auto: plain pt's probe, which the others are measured against, did not "
+                                 "finish: " + measure.failure);
+      spdlog::warn("pipeline auto: the {} probe did not finish ({}); it is left out", name, measure.failure);
+      return measure;
+    }
+    fetchFrames(client, id, window, probeOutput(probeFolder, pipeline, geometry, window), frames);
+    measure.probeCoreSeconds += client.report(id).core_seconds();
   }
-  const auto frames = fetchFrames(client, id, probeFolder / name);
   if (pipeline == PIPELINE_PT) truthStandIn = frames;
   // Plain pt's probe renders kStandInSppFactor times the spp: at the shot's, it would
   // cost that much less and err that much more.
   const double sppScale = pipeline == PIPELINE_PT ? kStandInSppFactor : 1;
-  measure.probeCoreSeconds = client.report(id).core_seconds();
   measure.coreSeconds = measure.probeCoreSeconds / sppScale;
   const MeanEstimate error = estimatedRelMse(frames, truthStandIn, pipeline == PIPELINE_PT);
   measure.relMse = error.mean() * sppScale;
@@ -115,11 +129,11 @@ ShotSpec choosePipeline(FarmClient& client, const ShotFile& file, const ShotSpec
   int longestInterval = 1;
   for (const ShotSpec& c : candidates) longestInterval = std::max(longestInterval, c.keyframe_interval());
   const ProbeGeometry geometry = probeGeometry(autoSpec, longestInterval);
-  const std::vector<int64_t> ids = submitProbes(client, candidates, geometry, probeFolder, submitKey);
+  const std::vector<std::vector<int64_t>> ids = submitProbes(client, candidates, geometry, probeFolder, submitKey);
   std::vector<CandidateMeasure> measures;
   std::map<std::string, FrameImage> truthStandIn;
   for (size_t i = 0; i < candidates.size(); ++i)
-    measures.push_back(measureProbe(client, ids[i], candidates[i].pipeline(), probeFolder, progress, truthStandIn));
+    measures.push_back(measureProbe(client, ids[i], candidates[i].pipeline(), geometry, probeFolder, progress, truthStandIn));
 
   PipelineChoice choice;
   try {

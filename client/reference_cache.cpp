@@ -27,7 +27,14 @@ std::string referenceKey(const ShotSpec& described, int64_t frame, int rendererV
   std::string text = "pathfarm reference\nrenderer " + std::to_string(rendererVersion) + "\nscene " +
                      described.scene() + "\n";
   for (const std::string& input : inputs) text += "input " + input + "\n";
-  return sha256Hex(text + settings);
+  std::string window;  // only for a window off the picture's centre, so that older keys stay valid
+  if (described.camera_shift_x() != 0 || described.camera_shift_y() != 0) {
+    char shift[96];
+    std::snprintf(shift, sizeof shift, "camera_shift %.17g %.17g\n", described.camera_shift_x(),
+                  described.camera_shift_y());
+    window = shift;
+  }
+  return sha256Hex(text + settings + window);
 }
 
 std::map<int64_t, std::filesystem::path> ReferenceCache::filesOf(const ShotSpec& spec) const {

@@ -43,6 +43,10 @@ void checkRenderSpec(const ShotSpec& spec) {
   if (baselineRepeatsOf(spec) > 1 && spec.first_sample() + baselineSamples > kIndependentFirstSample)
     throw PlanError("baseline_repeats: " + std::to_string(baselineRepeatsOf(spec)) + " renders of " +
                     std::to_string(spec.spp()) + " spp would reach the reference's samples");
+  if (!(spec.camera_zoom() >= 0 && spec.camera_zoom() <= 1024))
+    throw PlanError("camera_zoom: must be 0 to 1024 (up to 1: no zoom)");
+  if (!(std::abs(spec.camera_shift_x()) <= 0.5 && std::abs(spec.camera_shift_y()) <= 0.5))
+    throw PlanError("camera_shift_x, camera_shift_y: the window's centre must lie in the picture (-0.5 to 0.5)");
   for (const int64_t frame : spec.evaluation_frames())
     if (frame < spec.frame_start() || frame > spec.frame_end())
       throw PlanError("evaluation_frames: frame " + std::to_string(frame) + " is not in the shot");

@@ -77,7 +77,9 @@ std::shared_ptr<TaskRunner::ShotRenderer> TaskRunner::rendererFor(const Lease& l
   }
   auto shot = std::make_shared<ShotRenderer>();
   shot->scene = loadScene(localSceneFile(lease.spec(), scenesRoot_, fetch));
-  if (lease.spec().camera_zoom() > 1) shot->scene.camera = zoomedIn(shot->scene.camera, lease.spec().camera_zoom());
+  if (lease.spec().camera_zoom() > 1)
+    shot->scene.camera = zoomedIn(shot->scene.camera, lease.spec().camera_zoom(), 0.5 + lease.spec().camera_shift_x(),
+                                  0.5 + lease.spec().camera_shift_y());
   shot->renderer = std::make_unique<FrameRenderer>(shot->scene, settingsOf(shot->scene, lease.spec(), threads_));
   if (isMetropolisPipeline(lease.spec().pipeline()))
     shot->metropolis = std::make_unique<MetropolisRenderer>(shot->scene, metropolisSettingsOf(lease.spec(), threads_));

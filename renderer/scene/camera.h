@@ -20,11 +20,17 @@ struct CameraDesc {
   // The shutter, as fractions of a frame after the frame's start.
   float shutterOpen = 0;
   float shutterClose = 0;
+  // Where the picture's centre lies on the image plane, in units of its half width (x,
+  // right) and half height (y, up): (0, 0) on the axis; elsewhere for a window of a
+  // larger picture (zoomedIn).
+  float centreX = 0, centreY = 0;
 };
 
-// The same camera seeing only the centre 1/factor of its picture (per axis): its field of
-// view narrowed so that a frame 1/factor the size, in pixels, has pixels of the same size.
-CameraDesc zoomedIn(CameraDesc desc, double factor);
+// The same camera seeing only 1/factor of its picture (per axis): its field of view
+// narrowed so that a frame 1/factor the size, in pixels, has pixels of the same size. The
+// window is centred on the picture's point (centreX, centreY), given as fractions of its
+// width and height from the top left corner; by default the picture's centre.
+CameraDesc zoomedIn(CameraDesc desc, double factor, double centreX = 0.5, double centreY = 0.5);
 
 class Camera {
  public:
@@ -52,6 +58,7 @@ class Camera {
   Transform staticCameraToWorld_;
   std::optional<Vec2f> toFilm(Vec3f cameraSpace) const;
   float tanHalfFov_, aspect_;
+  float shiftX_, shiftY_;  // the picture's centre on the plane at distance 1
   int width_, height_;
 };
 

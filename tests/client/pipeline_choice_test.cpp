@@ -1,5 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <set>
+#include <string>
+
 #include "renderer/integrators/frame_renderer.h"
 #include "client/pipeline_choice.h"
 #include "scheduler/planner.h"
@@ -77,13 +81,62 @@ TEST(PipelineChoice, TheProbeIsSmallerTheShorterTheShotAndAlwaysEven) {
   EXPECT_EQ(tiny.width, 40);
   EXPECT_EQ(tiny.height, 12);
   EXPECT_DOUBLE_EQ(tiny.zoom, 1.0);
+  // These are one crop each, at the centre: four of half the edge would be under 32 pixels.
+  for (const ProbeGeometry& g : {short_, small, tiny}) {
+    ASSERT_EQ(g.windows.size(), 1u);
+    EXPECT_EQ(g.windows[0].shiftX, 0.0);
+    EXPECT_EQ(g.windows[0].shiftY, 0.0);
+  }
+}
+
+TEST(PipelineChoice, ALargerShotIsProbedInAGridOfCropsOverTheWholePicture) {
+  // 640x360 for 24 frames: one crop would be a quarter per axis (160x90). Nine of a twelfth
+  // would be 30 rows; at the floor of 32 rows (58x32, the shot's aspect) they hold 1.16
+  // times its pixels, and see the whole picture, not only its centre.
+  const ProbeGeometry g = probeGeometry(probedShot(24, 640, 360), 4);
+  EXPECT_EQ(g.scale, 4);
+  EXPECT_EQ(g.width, 58);
+  EXPECT_EQ(g.height, 32);
+  EXPECT_DOUBLE_EQ(g.zoom, 360.0 / 32.0);
+  EXPECT_DOUBLE_EQ(g.pixels(), 9.0 * 58 * 32);
+  ASSERT_EQ(g.windows.size(), 9u);
+  std::set<std::pair<double, double>> centres;
+  for (const ProbeWindow& w : g.windows) {
+    // Centred on the ninths of the picture: 0 or a third from its centre, each way.
+    for (const double shift : {w.shiftX, w.shiftY})
+      EXPECT_TRUE(std::abs(shift) < 1e-12 || std::abs(std::abs(shift) - 1.0 / 3) < 1e-12) << shift;
+    // Inside the picture: a third out, with half of a crop's width beyond, is within half of it.
+    EXPECT_LE(std::abs(w.shiftX) * 640 + 58 / 2.0, 320.0);
+    EXPECT_LE(std::abs(w.shiftY) * 360 + 32 / 2.0, 180.0);
+    centres.insert({w.shiftX, w.shiftY});
+  }
+  EXPECT_EQ(centres.size(), 9u) << "no crop twice";
+  // A 1080p shot's grid needs no floor: 160x90 crops, nine of them the pixels of one 480x270.
+  const ProbeGeometry hd = probeGeometry(probedShot(24, 1920, 1080), 4);
+  EXPECT_EQ(hd.width, 160);
+  EXPECT_EQ(hd.height, 90);
+  EXPECT_EQ(hd.windows.size(), 9u);
+  // Every candidate probes every crop, into a folder of its own, under a name of its own.
+  std::set<std::string> names, outputs;
+  for (size_t window = 0; window < g.windows.size(); ++window) {
+    const ShotSpec probe = probeSpecOf(candidateSpec("d", 1), g, window, "/tmp/probes");
+    EXPECT_EQ(probe.camera_shift_x(), g.windows[window].shiftX);
+    EXPECT_EQ(probe.camera_shift_y(), g.windows[window].shiftY);
+    EXPECT_EQ(probe.output(), probeOutput("/tmp/probes", PIPELINE_D, g, window).string());
+    EXPECT_EQ(probe.output(), "/tmp/probes/d/window_" + std::to_string(window));
+    EXPECT_NO_THROW(planShot(probe));
+    names.insert(probe.name());
+    outputs.insert(probe.output());
+  }
+  EXPECT_EQ(names.size(), 9u);
+  EXPECT_EQ(outputs.size(), 9u);
 }
 
 TEST(PipelineChoice, EveryProbePlansAndOnlyPlainPtSamplesApart) {
   const ProbeGeometry g = probeGeometry(probedShot(24, 320, 180), 4);
   for (const auto& [pipeline, k] : std::vector<std::pair<std::string, int>>{{"pt", 1}, {"d", 1}, {"di", 4},
                                                                             {"dui", 4}, {"tgpt", 1}}) {
-    const ShotSpec probe = probeSpecOf(candidateSpec(pipeline, k), g, "/tmp/probes");
+    const ShotSpec probe = probeSpecOf(candidateSpec(pipeline, k), g, 0, "/tmp/probes");
     EXPECT_EQ(pipelineName(probe.pipeline()), pipeline);
     EXPECT_EQ(probe.output(), "/tmp/probes/" + pipeline);
     EXPECT_EQ(probe.width(), g.width);

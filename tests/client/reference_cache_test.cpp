@@ -47,6 +47,8 @@ TEST(ReferenceKey, ChangesWithWhatTheReferenceDependsOnAndNothingElse) {
       {"the reference's spp", [](ShotSpec& s) { s.set_reference_spp(4097); }},
       {"the depth", [](ShotSpec& s) { s.set_max_depth(9); }},
       {"the zoom", [](ShotSpec& s) { s.set_camera_zoom(2); }},
+      {"the window's place across", [](ShotSpec& s) { s.set_camera_shift_x(0.25); }},
+      {"the window's place down", [](ShotSpec& s) { s.set_camera_shift_y(-0.25); }},
   };
   for (const auto& [what, change] : changes) {
     ShotSpec changed = describedSpec();

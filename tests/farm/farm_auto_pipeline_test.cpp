@@ -49,9 +49,10 @@ TEST_F(FarmTest, AutoSubmittedAgainWithItsKeyReusesItsProbes) {
   const std::string scheduler = startScheduler();
   startWorker("one");
   startWorker("two");
+  // 384x384: large enough for the probe's grid of nine crops of 32x32.
   const fs::path shot = dir() / "keyed.shot.json";
   writeFile(shot, R"({"name": "keyed", "scene": ")" + cornellScene().string() + R"(",
-    "frames": {"start": 0, "end": 4}, "resolution": [32, 32], "spp": 2, "max_depth": 4, "tile": 32,
+    "frames": {"start": 0, "end": 4}, "resolution": [384, 384], "spp": 1, "max_depth": 3, "tile": 32,
     "output": ")" + (dir() / "keyed").string() + R"("})");
   const auto submit = [&] {
     const CommandResult result = runPathfarm({"submit", shot.string(), "--scheduler", scheduler, "--submit-key", "k1"},
@@ -61,7 +62,19 @@ TEST_F(FarmTest, AutoSubmittedAgainWithItsKeyReusesItsProbes) {
   };
   const int64_t first = submit();
   const size_t shots = client().shots().size();
-  EXPECT_GE(shots, 3u) << "plain pt's probe, at least one other, and the shot";
+  EXPECT_GE(shots, 9u * 2 + 1) << "plain pt's probe, at least one other, nine crops each, and the shot";
+  // Each crop is kept in a folder of its own. Their pixels have the same coordinates and
+  // so the same samples: only the workers' cameras, each aimed at its ninth of the
+  // picture, make them differ.
+  std::vector<std::vector<float>> crops;
+  for (int window = 0; window < 9; ++window) {
+    const FrameImage crop = readExr(dir() / "keyed" / "probe" / "pt" / ("window_" + std::to_string(window)) /
+                                    farm::frameFileName(2));
+    EXPECT_EQ(crop.width(), 32);
+    crops.push_back(crop.channel("R"));
+  }
+  for (size_t a = 0; a < crops.size(); ++a)
+    for (size_t b = a + 1; b < crops.size(); ++b) EXPECT_NE(crops[a], crops[b]) << "crops " << a << " and " << b;
   EXPECT_EQ(submit(), first);
   EXPECT_EQ(client().shots().size(), shots) << "the second submit probed again";
 }

@@ -1,8 +1,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <set>
+#include <tuple>
 
 #include "renderer/integrators/frame_integrator.h"
 #include "scheduler/planner.h"
@@ -132,6 +134,19 @@ TEST(Planner, RefusesWhatItCannotRun) {
   spec = renderSpec();
   spec.set_frame_end(2);
   EXPECT_THROW(planShot(spec), PlanError);
+  for (const auto& [zoom, x, y] : std::vector<std::tuple<double, double, double>>{
+           {std::nan(""), 0, 0}, {-1, 0, 0}, {4, 0.6, 0}, {4, 0, -0.75}, {4, std::nan(""), 0}}) {
+    spec = renderSpec();
+    spec.set_camera_zoom(zoom);
+    spec.set_camera_shift_x(x);
+    spec.set_camera_shift_y(y);
+    EXPECT_THROW(planShot(spec), PlanError) << "a camera window outside the picture: " << zoom << " " << x << " " << y;
+  }
+  spec = renderSpec();
+  spec.set_camera_zoom(4);
+  spec.set_camera_shift_x(0.25);
+  spec.set_camera_shift_y(-0.25);
+  EXPECT_NO_THROW(planShot(spec)) << "a window in the top right quarter";
   spec = renderSpec();
   spec.set_tile(0);
   EXPECT_THROW(planShot(spec), PlanError);
