@@ -13,10 +13,10 @@ namespace {
 constexpr int64_t kMinProbeFrames = 5;
 constexpr int kMaxProbeScale = 4;
 constexpr int kMinProbeEdge = 32;
-// The probe's cost, in plain pt frames of its size per probe frame: pt (the stand-in) 1,
-// d 1.1, di 0.6, dui 0.4 and tgpt about 6 (docs/performance.md), plain pt's at
-// kStandInSppFactor times the spp.
-constexpr double kProbeCostInPtFrames = 9 + kStandInSppFactor;
+// The probe's cost, in plain pt frames of its size per probe frame: d 1.1, di 0.6, dui 0.4,
+// tgpt about 6 at a kGradientProbeSppDivisor-th of the spp (docs/performance.md), and plain
+// pt's at kStandInSppFactor times the spp.
+constexpr double kProbeCostInPtFrames = 1.1 + 0.6 + 0.4 + 6.0 / kGradientProbeSppDivisor + kStandInSppFactor;
 constexpr double kProbeBudget = 0.05;  // of a plain pt shot
 // Crops per axis of a probe spread over the picture; their floor of kMinProbeEdge rows may
 // take their pixels this far past one crop's.
@@ -80,6 +80,13 @@ ProbeGeometry probeGeometry(const ShotSpec& shot, int longestInterval) {
   return geometry;
 }
 
+double probeSppRatio(const ShotSpec& candidate) {
+  if (candidate.pipeline() == PIPELINE_PT) return kStandInSppFactor;
+  if (candidate.pipeline() == PIPELINE_TGPT && candidate.spp() / kGradientProbeSppDivisor >= kGradientProbeMinSpp)
+    return static_cast<double>(candidate.spp() / kGradientProbeSppDivisor) / candidate.spp();
+  return 1;
+}
+
 std::filesystem::path probeOutput(const std::filesystem::path& folder, Pipeline pipeline,
                                   const ProbeGeometry& geometry, size_t window) {
   const std::filesystem::path own = folder / std::string(pipelineName(pipeline));
@@ -107,10 +114,8 @@ ShotSpec probeSpecOf(const ShotSpec& candidate, const ProbeGeometry& geometry, s
   if (geometry.zoom > 1) probe.set_camera_zoom(geometry.zoom);
   probe.set_camera_shift_x(geometry.windows.at(window).shiftX);
   probe.set_camera_shift_y(geometry.windows.at(window).shiftY);
-  if (candidate.pipeline() == PIPELINE_PT) {
-    probe.set_first_sample(kIndependentFirstSample);
-    probe.set_spp(candidate.spp() * kStandInSppFactor);
-  }
+  if (candidate.pipeline() == PIPELINE_PT) probe.set_first_sample(kIndependentFirstSample);
+  probe.set_spp(static_cast<int>(std::lround(candidate.spp() * probeSppRatio(candidate))));
   return probe;
 }
 

@@ -57,6 +57,20 @@ ProbeGeometry probeGeometry(const ShotSpec& shot, int longestInterval);
 // makes fireflies, at the shot's spp it could not tell d or tgpt from zero, and auto chose
 // pt, the worst of the three). Its cost and error at the shot's spp follow from 1/spp.
 inline constexpr int kStandInSppFactor = 4;
+// tgpt's probe renders a kGradientProbeSppDivisor-th of the shot's spp where that leaves
+// at least kGradientProbeMinSpp: it is the costliest candidate by far (about 6 times plain
+// pt's per sample). Its error and its render's cost at the shot's spp are taken to follow
+// 1/spp as pt's do (the screened Poisson reconstruction is nearly linear in its noisy
+// inputs; the reconstruction's own cost does not change). On the dolly's centre at
+// 640x360 (frame 11, against 16384 spp) tgpt at 64 spp erred 3.2 times what it did at
+// 256, so the quarter predicts its error about 20 % low there. Below the floor a render
+// task's fixed costs would weigh too much in its cost to scale it.
+inline constexpr int kGradientProbeSppDivisor = 4;
+inline constexpr int kGradientProbeMinSpp = 16;
+
+// The probe's spp over the shot's for a candidate: what its probe's render cost is divided
+// by and its error multiplied by to give them at the shot's spp.
+double probeSppRatio(const ShotSpec& candidate);
 
 // A candidate's probe of one crop (an index into geometry.windows): its spec over the
 // probe's frames and that crop, without measurements, writing into folder/<pipeline>

@@ -81,11 +81,12 @@ std::vector<std::vector<int64_t>> submitProbes(FarmClient& client, const std::ve
   return ids;
 }
 
-// What the probe shots `ids` of `pipeline` (one per crop) cost and erred, once they end.
+// What the probe shots `ids` of `pipeline` (one per crop) cost and erred at the shot's spp,
+// once they end; they rendered `sppScale` times its spp.
 // pt's probe comes first: its frames become `truthStandIn`, which the others are measured
 // against.
 CandidateMeasure measureProbe(FarmClient& client, const std::vector<int64_t>& ids, Pipeline pipeline,
-                              const ProbeGeometry& geometry, const std::filesystem::path& probeFolder,
+                              double sppScale, const ProbeGeometry& geometry, const std::filesystem::path& probeFolder,
                               const std::function<void(const ShotSummary&)>& progress,
                               std::map<std::string, FrameImage>& truthStandIn) {
   const std::string name(pipelineName(pipeline));
@@ -105,13 +106,15 @@ CandidateMeasure measureProbe(FarmClient& client, const std::vector<int64_t>& id
       return measure;
     }
     fetchFrames(client, id, window, probeOutput(probeFolder, pipeline, geometry, window), frames);
-    measure.probeCoreSeconds += client.report(id).core_seconds();
+    const ShotReport report = client.report(id);
+    measure.probeCoreSeconds += report.core_seconds();
+    // Plain pt's probe renders more samples than the shot, tgpt's fewer: at the shot's
+    // spp their renders would cost that much less (more), and they would err that much
+    // more (less). Their other stages cost the same at any spp.
+    for (const StageCost& stage : report.stages())
+      measure.coreSeconds += stage.stage() == "render" ? stage.core_seconds() / sppScale : stage.core_seconds();
   }
   if (pipeline == PIPELINE_PT) truthStandIn = frames;
-  // Plain pt's probe renders kStandInSppFactor times the spp: at the shot's, it would
-  // cost that much less and err that much more.
-  const double sppScale = pipeline == PIPELINE_PT ? kStandInSppFactor : 1;
-  measure.coreSeconds = measure.probeCoreSeconds / sppScale;
   const MeanEstimate error = estimatedRelMse(frames, truthStandIn, pipeline == PIPELINE_PT);
   measure.relMse = error.mean() * sppScale;
   measure.relMseStandardError = error.standardError() * sppScale;
@@ -133,7 +136,8 @@ ShotSpec choosePipeline(FarmClient& client, const ShotFile& file, const ShotSpec
   std::vector<CandidateMeasure> measures;
   std::map<std::string, FrameImage> truthStandIn;
   for (size_t i = 0; i < candidates.size(); ++i)
-    measures.push_back(measureProbe(client, ids[i], candidates[i].pipeline(), geometry, probeFolder, progress, truthStandIn));
+    measures.push_back(measureProbe(client, ids[i], candidates[i].pipeline(), probeSppRatio(candidates[i]), geometry,
+                                    probeFolder, progress, truthStandIn));
 
   PipelineChoice choice;
   try {

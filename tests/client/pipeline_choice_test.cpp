@@ -144,12 +144,24 @@ TEST(PipelineChoice, EveryProbePlansAndOnlyPlainPtSamplesApart) {
     EXPECT_EQ(probe.reference_spp(), 0) << "a probe measures nothing itself";
     EXPECT_TRUE(probe.evaluation_frames().empty());
     EXPECT_EQ(probe.first_sample(), pipeline == "pt" ? kIndependentFirstSample : 0u) << pipeline;
-    EXPECT_EQ(probe.spp(), pipeline == "pt" ? 64 * kStandInSppFactor : 64) << pipeline;
+    // The stand-in renders more samples than the shot, tgpt (the costliest) fewer.
+    const int spp = pipeline == "pt" ? 64 * kStandInSppFactor : pipeline == "tgpt" ? 64 / kGradientProbeSppDivisor : 64;
+    EXPECT_EQ(probe.spp(), spp) << pipeline;
+    EXPECT_DOUBLE_EQ(probeSppRatio(candidateSpec(pipeline, k)), spp / 64.0) << pipeline;
     EXPECT_DOUBLE_EQ(probe.camera_zoom(), 180.0 / g.height);
     EXPECT_NO_THROW(planShot(probe)) << pipeline;
     if (pipeline == "tgpt") {
       EXPECT_LE(probe.poisson_window(), g.frames());
     }
+  }
+}
+
+TEST(PipelineChoice, TgptsProbeRendersFewerSamplesOnlyWhereSamplesOutweighATasksFixedCosts) {
+  ShotSpec tgpt = candidateSpec("tgpt", 1);
+  for (const auto& [shotSpp, probeSpp] : std::vector<std::pair<int, int>>{{256, 64}, {64, 16}, {63, 63}, {4, 4}}) {
+    tgpt.set_spp(shotSpp);
+    EXPECT_EQ(probeSpecOf(tgpt, probeGeometry(probedShot(24, 320, 180), 4), 0, "/tmp/probes").spp(), probeSpp);
+    EXPECT_DOUBLE_EQ(probeSppRatio(tgpt), static_cast<double>(probeSpp) / shotSpp);
   }
 }
 
