@@ -52,6 +52,14 @@ CandidateMeasure measured(const std::string& pipeline, double coreSeconds, doubl
   return m;
 }
 
+// Each crop's size, and the camera's zoom exactly the ratio of the heights.
+void expectCrops(const ProbeGeometry& g, int scale, int width, int height, int shotHeight) {
+  EXPECT_EQ(g.scale, scale);
+  EXPECT_EQ(g.width, width);
+  EXPECT_EQ(g.height, height);
+  EXPECT_DOUBLE_EQ(g.zoom, static_cast<double>(shotHeight) / height);
+}
+
 TEST(PipelineChoice, TheProbeCoversTheLongestIntervalInTheMiddleOfTheShot) {
   const ProbeGeometry g = probeGeometry(probedShot(24, 320, 180), 8);
   EXPECT_EQ(g.frames(), 9);
@@ -64,10 +72,7 @@ TEST(PipelineChoice, TheProbeIsSmallerTheShorterTheShotAndAlwaysEven) {
   // A short shot: the probe is its centre quarter per axis, rounded up to even, and the
   // camera zooms in by exactly the ratio of the heights.
   const ProbeGeometry short_ = probeGeometry(probedShot(24, 321, 181), 4);
-  EXPECT_EQ(short_.scale, 4);
-  EXPECT_EQ(short_.width, 80);
-  EXPECT_EQ(short_.height, 46);
-  EXPECT_DOUBLE_EQ(short_.zoom, 181.0 / 46.0);
+  expectCrops(short_, 4, 80, 46, 181);
   // A long one: the same frames are a small share of it, so the probe renders them larger.
   const ProbeGeometry long_ = probeGeometry(probedShot(2400, 1920, 1080), 4);
   EXPECT_LT(long_.scale, short_.scale);
@@ -81,7 +86,8 @@ TEST(PipelineChoice, TheProbeIsSmallerTheShorterTheShotAndAlwaysEven) {
   EXPECT_EQ(tiny.width, 40);
   EXPECT_EQ(tiny.height, 12);
   EXPECT_DOUBLE_EQ(tiny.zoom, 1.0);
-  // These are one crop each, at the centre: four of half the edge would be under 32 pixels.
+  // These are one crop each, at the centre: a grid's crops of 32 rows would hold far
+  // more pixels than one.
   for (const ProbeGeometry& g : {short_, small, tiny}) {
     ASSERT_EQ(g.windows.size(), 1u);
     EXPECT_EQ(g.windows[0].shiftX, 0.0);
@@ -94,10 +100,7 @@ TEST(PipelineChoice, ALargerShotIsProbedInAGridOfCropsOverTheWholePicture) {
   // would be 30 rows; at the floor of 32 rows (58x32, the shot's aspect) they hold 1.16
   // times its pixels, and see the whole picture, not only its centre.
   const ProbeGeometry g = probeGeometry(probedShot(24, 640, 360), 4);
-  EXPECT_EQ(g.scale, 4);
-  EXPECT_EQ(g.width, 58);
-  EXPECT_EQ(g.height, 32);
-  EXPECT_DOUBLE_EQ(g.zoom, 360.0 / 32.0);
+  expectCrops(g, 4, 58, 32, 360);
   EXPECT_DOUBLE_EQ(g.pixels(), 9.0 * 58 * 32);
   ASSERT_EQ(g.windows.size(), 9u);
   std::set<std::pair<double, double>> centres;

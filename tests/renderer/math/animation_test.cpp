@@ -105,43 +105,34 @@ TEST(Animation, CameraFollowsItsKeys) {
   expectNear(ray.direction, {-h, 0, -h});
 }
 
-TEST(Animation, AZoomedCameraSeesTheCentreOfThePictureAtTheSamePixelSize) {
-  // Zoomed in 4x, a 16x12 frame is the middle of the 64x48 one: its pixel (x, y) is the
-  // full frame's (x + 24, y + 18), with the same ray, at any time of the camera's motion.
+TEST(Animation, AZoomedCameraSeesItsWindowOfThePictureAtTheSamePixelSize) {
+  // Zoomed in 4x, a 16x12 frame is a window of the 64x48 one: about the picture's centre,
+  // its pixel (x, y) is the full frame's (x + 24, y + 18); about the point a quarter across
+  // and three quarters down, (x + 8, y + 30). The same ray at any time of the camera's
+  // motion, and points (and directions) project back to the same window pixel.
   const Scene scene = test_support::sceneFromJson(kMovingScene);
-  const CameraDesc zoomed = zoomedIn(scene.camera, 4.0);
-  const Camera full(scene.camera, 64, 48), centre(zoomed, 16, 12);
-  for (const double seconds : {0.0, 0.3, 0.5})
-    for (const Vec2f film : {Vec2f{0.5f, 0.5f}, Vec2f{15.25f, 3.75f}, Vec2f{8.0f, 11.9f}}) {
-      const Ray a = centre.generateRay(film, {0.5f, 0.5f}, seconds);
-      const Ray b = full.generateRay({film.x + 24, film.y + 18}, {0.5f, 0.5f}, seconds);
-      expectNear(a.origin, b.origin);
-      expectNear(a.direction, b.direction, 1e-5f);
-    }
-}
-
-TEST(Animation, AZoomedWindowOffCentreSeesItsPartOfThePictureAndProjectsBackIntoIt) {
-  // Zoomed in 4x about the point a quarter across and three quarters down, a 16x12 frame
-  // is the 64x48 frame's window from (8, 30): its pixel (x, y) is the full frame's
-  // (x + 8, y + 30), with the same ray; points project to the same pixels, shifted alike.
-  const Scene scene = test_support::sceneFromJson(kMovingScene);
-  const CameraDesc window = zoomedIn(scene.camera, 4.0, 0.25, 0.75);
-  const Camera full(scene.camera, 64, 48), part(window, 16, 12);
-  for (const double seconds : {0.0, 0.3, 0.5})
-    for (const Vec2f film : {Vec2f{0.5f, 0.5f}, Vec2f{15.25f, 3.75f}, Vec2f{8.0f, 11.9f}}) {
-      const Ray a = part.generateRay(film, {0.5f, 0.5f}, seconds);
-      const Ray b = full.generateRay({film.x + 8, film.y + 30}, {0.5f, 0.5f}, seconds);
-      expectNear(a.origin, b.origin);
-      expectNear(a.direction, b.direction, 1e-5f);
-      const std::optional<Vec2f> back = part.project(a.origin + a.direction * 3.0f, seconds);
-      ASSERT_TRUE(back.has_value());
-      EXPECT_NEAR(back->x, film.x, 1e-3f);
-      EXPECT_NEAR(back->y, film.y, 1e-3f);
-      const std::optional<Vec2f> sky = part.projectDirection(a.direction, seconds);
-      ASSERT_TRUE(sky.has_value());
-      EXPECT_NEAR(sky->x, film.x, 1e-3f);
-      EXPECT_NEAR(sky->y, film.y, 1e-3f);
-    }
+  const Camera full(scene.camera, 64, 48);
+  struct Window {
+    CameraDesc desc;
+    Vec2f corner;
+  };
+  for (const Window& window : {Window{zoomedIn(scene.camera, 4.0), {24, 18}},
+                               Window{zoomedIn(scene.camera, 4.0, 0.25, 0.75), {8, 30}}}) {
+    const Camera part(window.desc, 16, 12);
+    for (const double seconds : {0.0, 0.3, 0.5})
+      for (const Vec2f film : {Vec2f{0.5f, 0.5f}, Vec2f{15.25f, 3.75f}, Vec2f{8.0f, 11.9f}}) {
+        const Ray a = part.generateRay(film, {0.5f, 0.5f}, seconds);
+        const Ray b = full.generateRay({film.x + window.corner.x, film.y + window.corner.y}, {0.5f, 0.5f}, seconds);
+        expectNear(a.origin, b.origin);
+        expectNear(a.direction, b.direction, 1e-5f);
+        for (const std::optional<Vec2f> back : {part.project(a.origin + a.direction * 3.0f, seconds),
+                                                part.projectDirection(a.direction, seconds)}) {
+          ASSERT_TRUE(back.has_value());
+          EXPECT_NEAR(back->x, film.x, 1e-3f);
+          EXPECT_NEAR(back->y, film.y, 1e-3f);
+        }
+      }
+  }
 }
 
 }  // namespace
