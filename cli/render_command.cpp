@@ -262,7 +262,8 @@ std::vector<Command> addRenderCommand(CLI::App& app) {
       ->capture_default_str();
   render->add_flag("--no-motion", options->noMotion, "tgpt: temporal offsets keep their pixel instead of following the motion");
   render->add_option("--mixed-every", options->mixedEvery,
-                     "tgpt: the temporal offset traces its spatial offsets (the mixed differences) on one sample in N")
+                     "tgpt: the temporal offset traces its spatial offsets (the mixed differences) on one sample in N, "
+                     "lowered to leave every pixel at least " + std::to_string(kMinMixedSamples))
       ->check(CLI::Range(1, 1 << 20))
       ->capture_default_str();
   render->add_option("--window", options->window,

@@ -14,9 +14,9 @@ constexpr int64_t kMinProbeFrames = 5;
 constexpr int kMaxProbeScale = 4;
 constexpr int kMinProbeEdge = 32;
 // The probe's cost, in plain pt frames of its size per probe frame: d 1.1, di 0.6, dui 0.4,
-// tgpt about 6 at a kGradientProbeSppDivisor-th of the spp (docs/performance.md), and plain
+// tgpt about 5.5 at a kGradientProbeSppDivisor-th of the spp (docs/performance.md), and plain
 // pt's at kStandInSppFactor times the spp.
-constexpr double kProbeCostInPtFrames = 1.1 + 0.6 + 0.4 + 6.0 / kGradientProbeSppDivisor + kStandInSppFactor;
+constexpr double kProbeCostInPtFrames = 1.1 + 0.6 + 0.4 + 5.5 / kGradientProbeSppDivisor + kStandInSppFactor;
 constexpr double kProbeBudget = 0.05;  // of a plain pt shot
 // Crops per axis of a probe spread over the picture; their floor of kMinProbeEdge rows may
 // take their pixels this far past one crop's.

@@ -58,7 +58,7 @@ ProbeGeometry probeGeometry(const ShotSpec& shot, int longestInterval);
 // pt, the worst of the three). Its cost and error at the shot's spp follow from 1/spp.
 inline constexpr int kStandInSppFactor = 4;
 // tgpt's probe renders a kGradientProbeSppDivisor-th of the shot's spp where that leaves
-// at least kGradientProbeMinSpp: it is the costliest candidate by far (about 6 times plain
+// at least kGradientProbeMinSpp: it is the costliest candidate by far (5 to 6 times plain
 // pt's per sample). Its error and its render's cost at the shot's spp are taken to follow
 // 1/spp as pt's do (the screened Poisson reconstruction is nearly linear in its noisy
 // inputs; the reconstruction's own cost does not change). On the dolly's centre at

@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <chrono>
@@ -199,6 +200,11 @@ GradientFrameRenderer::GradientFrameRenderer(const Scene& scene, RenderSettings 
 
 GradientFrameRenderer::~GradientFrameRenderer() = default;
 
+int GradientFrameRenderer::effectiveMixedEvery() const {
+  const int firstBatch = settings_.spp / gradient_.batches;
+  return std::clamp(firstBatch / kMinMixedSamples, 1, gradient_.mixedEvery);
+}
+
 // What every window of a frame shares: its placed geometry, the next frame's and the
 // temporal correspondence (over the whole frame: a contested target goes to the nearest
 // point, wherever the contenders are).
@@ -277,7 +283,7 @@ FrameImage GradientFrameRenderer::estimate(int64_t frame, const PixelWindow& win
                              tracer,
                              nextTracer ? &*nextTracer : nullptr,
                              setup->correspondence,
-                             static_cast<uint32_t>(gradient_.mixedEvery)};
+                             static_cast<uint32_t>(effectiveMixedEvery())};
   const TileGrid grid{window, settings_.tileSize};
   const int batches = gradient_.batches;
   TileProgress tileProgress(progress, grid.count() * static_cast<size_t>(batches));

@@ -18,6 +18,9 @@
 
 namespace pathfarm {
 
+// The fewest samples with mixed offsets GradientSettings::mixedEvery leaves a pixel.
+inline constexpr int kMinMixedSamples = 8;
+
 struct GradientSettings {
   bool temporal = false;      // also the temporal offset frame towards the next frame
   bool motionVectors = true;  // temporal offsets follow the primary motion
@@ -25,8 +28,11 @@ struct GradientSettings {
   // The temporal offset traces its own spatial offsets (for the mixed differences) on one
   // sample of every `mixedEvery` of a pixel (sample indices 0, N, 2N, ...); the others
   // replay the base path alone. The mixed differences then rest on fewer samples, and
-  // each skipped sample saves about half of the temporal offset's rays.
-  int mixedEvery = 1;
+  // each skipped sample saves about half of the temporal offset's rays. N is lowered to
+  // leave a pixel of the first batch kMinMixedSamples of them: a variance from one or two
+  // samples would give a noisy row full weight. 4 costs about 0.9 of N = 1 at equal error
+  // (docs/gradient-domain.md).
+  int mixedEvery = 4;
 };
 
 class GradientFrameRenderer : public FrameIntegrator {
@@ -47,6 +53,8 @@ class GradientFrameRenderer : public FrameIntegrator {
   struct Shot;
   struct FrameSetup;
   std::shared_ptr<const FrameSetup> setupFor(int64_t frame, tbb::task_arena& arena) const;
+  // mixedEvery, lowered to leave kMinMixedSamples per pixel of the first batch.
+  int effectiveMixedEvery() const;
   FrameImage estimate(int64_t frame, const PixelWindow& window, const ProgressCallback& progress,
                       RenderStats* stats) const;
 

@@ -1,7 +1,8 @@
 #pragma once
-// Which renderer made a frame's pixels. Bump it with any change that alters a pixel an
-// integrator produces for the same scene and settings (bench/same_frames.sh tells): cached
-// references (client/reference_cache.h) are keyed by it, so a bump renders them anew.
+// Which renderer made a frame's pixels. Bump it with any change that alters a pixel of
+// FrameRenderer's plain path tracing (every reference is one) for the same scene and
+// settings (bench/same_frames.sh tells): cached references (client/reference_cache.h) are
+// keyed by it, so a bump renders them anew. Other integrators' changes leave it alone.
 namespace pathfarm {
 
 // 2: rough metals compensated for multiple scattering (materials/multiple_scattering.h).

@@ -396,8 +396,9 @@ TEST(GradientRender, MixedOffsetsOnFewerSamplesLeaveEveryOtherLayerAlone) {
   const Scene scene = loadScene(test_support::sourceDir() / "scenes/cornell/scene.json");
   GradientSettings every, fewer;
   every.temporal = fewer.temporal = true;
+  every.mixedEvery = 1;
   fewer.mixedEvery = 3;
-  const RenderSettings settings = small(12, 10, 6, 4);
+  const RenderSettings settings = small(12, 10, 3 * kMinMixedSamples, 4);
   const FrameImage a = GradientFrameRenderer(scene, settings, every).render(7);
   const FrameImage b = GradientFrameRenderer(scene, settings, fewer).render(7);
   size_t mixedDiffer = 0;
@@ -412,6 +413,19 @@ TEST(GradientRender, MixedOffsetsOnFewerSamplesLeaveEveryOtherLayerAlone) {
   EXPECT_GT(mixedDiffer, 0u);
   EXPECT_THROW(GradientFrameRenderer(scene, settings, GradientSettings{.temporal = true, .mixedEvery = 0}),
                std::invalid_argument);
+}
+
+TEST(GradientRender, MixedOffsetsOnFewerSamplesStopShortOfLeavingAPixelTooFew) {
+  // At 12 spp, one sample in 4 would leave 3 with mixed offsets: N falls to 1, and every
+  // sample traces them.
+  const Scene scene = loadScene(test_support::sourceDir() / "scenes/cornell/scene.json");
+  const GradientSettings defaults{.temporal = true};
+  ASSERT_GT(defaults.mixedEvery, 1);
+  for (const int spp : {12, 2 * defaults.mixedEvery * kMinMixedSamples}) {
+    const FrameImage estimates = GradientFrameRenderer(scene, small(6, 4, spp, 4), defaults).renderWindow(7, {0, 0, 6, 4});
+    const float expected = spp < defaults.mixedEvery * kMinMixedSamples ? spp : spp / defaults.mixedEvery;
+    for (float n : estimates.channel("mixed_samples.Y")) EXPECT_EQ(n, expected) << spp << " spp";
+  }
 }
 
 }  // namespace
