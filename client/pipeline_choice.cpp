@@ -14,9 +14,9 @@ constexpr int64_t kMinProbeFrames = 5;
 constexpr int kMaxProbeScale = 4;
 constexpr int kMinProbeEdge = 32;
 // The probe's cost, in plain pt frames of its size per probe frame: d 1.1, di 0.6, dui 0.4,
-// tgpt about 5.5 at a kGradientProbeSppDivisor-th of the spp (docs/performance.md), and plain
-// pt's at kStandInSppFactor times the spp.
-constexpr double kProbeCostInPtFrames = 1.1 + 0.6 + 0.4 + 5.5 / kGradientProbeSppDivisor + kStandInSppFactor;
+// tgpt about 5.5 at a kGradientProbeSppDivisor-th of the spp (docs/performance.md); plain
+// pt's, at standInSpp, on the measured frames only, comes on top.
+constexpr double kCandidatesCostInPtFrames = 1.1 + 0.6 + 0.4 + 5.5 / kGradientProbeSppDivisor;
 constexpr double kProbeBudget = 0.05;  // of a plain pt shot
 // Crops per axis of a probe spread over the picture; their floor of kMinProbeEdge rows may
 // take their pixels this far past one crop's.
@@ -54,9 +54,15 @@ ProbeGeometry probeGeometry(const ShotSpec& shot, int longestInterval) {
   ProbeGeometry geometry;
   geometry.frameStart = shot.frame_start() + (shotFrames - frames) / 2;
   geometry.frameEnd = geometry.frameStart + frames - 1;
-  // The probe costs kProbeCostInPtFrames x frames / scale^2 plain pt frames of the shot's size.
-  const double scale = std::sqrt(kProbeCostInPtFrames * static_cast<double>(frames) /
-                                 (kProbeBudget * static_cast<double>(shotFrames)));
+  const bool innerFramesOnly = frames >= kMinProbeFrames && geometry.frameStart > shot.frame_start() &&
+                               geometry.frameEnd < shot.frame_end();
+  geometry.measuredStart = geometry.frameStart + (innerFramesOnly ? 1 : 0);
+  geometry.measuredEnd = geometry.frameEnd - (innerFramesOnly ? 1 : 0);
+  // The probe costs this many plain pt frames of the shot's size, over scale^2.
+  const double standInFactor = static_cast<double>(standInSpp(shot.spp())) / shot.spp();
+  const double cost = kCandidatesCostInPtFrames * static_cast<double>(frames) +
+                      standInFactor * static_cast<double>(geometry.measuredFrames());
+  const double scale = std::sqrt(cost / (kProbeBudget * static_cast<double>(shotFrames)));
   const int largestScale = std::max(1, std::min(shot.width(), shot.height()) / kMinProbeEdge);
   geometry.scale = std::clamp(static_cast<int>(std::ceil(scale)), 1, std::min(kMaxProbeScale, largestScale));
   // A grid of crops, together about the pixels of one crop of 1/scale per axis, where
@@ -80,8 +86,12 @@ ProbeGeometry probeGeometry(const ShotSpec& shot, int longestInterval) {
   return geometry;
 }
 
+int standInSpp(int shotSpp) {
+  return std::max(kStandInSppFactor * shotSpp, std::min(kStandInMaxSppFactor * shotSpp, kStandInFloorSpp));
+}
+
 double probeSppRatio(const ShotSpec& candidate) {
-  if (candidate.pipeline() == PIPELINE_PT) return kStandInSppFactor;
+  if (candidate.pipeline() == PIPELINE_PT) return static_cast<double>(standInSpp(candidate.spp())) / candidate.spp();
   if (candidate.pipeline() == PIPELINE_TGPT && candidate.spp() / kGradientProbeSppDivisor >= kGradientProbeMinSpp)
     return static_cast<double>(candidate.spp() / kGradientProbeSppDivisor) / candidate.spp();
   return 1;
@@ -114,7 +124,11 @@ ShotSpec probeSpecOf(const ShotSpec& candidate, const ProbeGeometry& geometry, s
   if (geometry.zoom > 1) probe.set_camera_zoom(geometry.zoom);
   probe.set_camera_shift_x(geometry.windows.at(window).shiftX);
   probe.set_camera_shift_y(geometry.windows.at(window).shiftY);
-  if (candidate.pipeline() == PIPELINE_PT) probe.set_first_sample(kIndependentFirstSample);
+  if (candidate.pipeline() == PIPELINE_PT) {
+    probe.set_first_sample(kIndependentFirstSample);
+    probe.set_frame_start(geometry.measuredStart);
+    probe.set_frame_end(geometry.measuredEnd);
+  }
   probe.set_spp(static_cast<int>(std::lround(candidate.spp() * probeSppRatio(candidate))));
   return probe;
 }
@@ -122,7 +136,7 @@ ShotSpec probeSpecOf(const ShotSpec& candidate, const ProbeGeometry& geometry, s
 PipelineChoice decidePipeline(const std::vector<CandidateMeasure>& measures, const ProbeGeometry& geometry,
                               const ShotSpec& shot) {
   const auto pt = std::find_if(measures.begin(), measures.end(), [](const auto& m) { return m.pipeline == PIPELINE_PT; });
-  if (pt == measures.end() || !pt->failure.empty() || !(pt->coreSeconds > 0))
+  if (pt == measures.end() || !pt->failure.empty() || !(pt->coreSecondsPerFrame > 0))
     throw std::invalid_argument("the probe needs plain pt's render to measure the others against" +
                                 (pt == measures.end() || pt->failure.empty() ? std::string() : ": " + pt->failure));
   PipelineChoice choice;
@@ -140,13 +154,13 @@ PipelineChoice decidePipeline(const std::vector<CandidateMeasure>& measures, con
     }
     const double floor = std::max(kResolvableStandardErrors * m.relMseStandardError, kNegligibleError);
     const double error = std::max(m.relMse, floor);
-    const double cost = m.coreSeconds / pt->coreSeconds * error / ptError;
+    const double cost = m.coreSecondsPerFrame / pt->coreSecondsPerFrame * error / ptError;
     table += name + " " + printed("%.2f", cost) + (m.relMse < floor ? " (its error within the probe's noise)" : "");
     if (choice.pipeline != PIPELINE_UNSPECIFIED && cost >= best) continue;
     best = cost;
     choice.pipeline = m.pipeline;
     choice.predictedRelMse = error;
-    choice.predictedCoreSecondsPerFrame = m.coreSeconds / static_cast<double>(geometry.frames()) * pixelRatio;
+    choice.predictedCoreSecondsPerFrame = m.coreSecondsPerFrame * pixelRatio;
   }
   const std::string crops = geometry.windows.size() > 1
                                 ? std::to_string(geometry.windows.size()) + " crops of " + std::to_string(geometry.width) +

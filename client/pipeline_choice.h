@@ -32,11 +32,17 @@ struct ProbeWindow {
 // The frames and the crops every probe renders.
 struct ProbeGeometry {
   int64_t frameStart = 0, frameEnd = 0;  // inclusive
+  // The frames errors are measured on (inclusive), which plain pt's stand-in alone renders:
+  // the probe's inner frames where the shot goes on past both of its ends. A shot's frames
+  // have neighbours on both sides, and a probe's first and last frames do not: d denoises
+  // them from one neighbour and tgpt's Poisson window ends there.
+  int64_t measuredStart = 0, measuredEnd = 0;
   int width = 0, height = 0;             // of each crop; even, so upsampling pipelines can run
   int scale = 1;                         // about the shot's size over a crop's, per axis
   double zoom = 1;                       // exactly the shot's height over a crop's
   std::vector<ProbeWindow> windows{ProbeWindow{}};  // one crop each
   int64_t frames() const { return frameEnd - frameStart + 1; }
+  int64_t measuredFrames() const { return measuredEnd - measuredStart + 1; }
   // Every crop's pixels together.
   double pixels() const { return static_cast<double>(width) * height * static_cast<double>(windows.size()); }
 };
@@ -52,11 +58,18 @@ struct ProbeGeometry {
 // unless the shot's is.
 ProbeGeometry probeGeometry(const ShotSpec& shot, int longestInterval);
 
-// Plain pt's probe renders this many times the shot's spp: it stands in for the truth, and
-// its noise sets how small an error the probe can resolve (on the courtyard, where the sun
-// makes fireflies, at the shot's spp it could not tell d or tgpt from zero, and auto chose
-// pt, the worst of the three). Its cost and error at the shot's spp follow from 1/spp.
-inline constexpr int kStandInSppFactor = 4;
+// Plain pt's probe stands in for the truth, and its noise sets how small an error the probe
+// can resolve: it renders twice the shot's spp, and at low spp up to 4 times as far as
+// kStandInFloorSpp. On the courtyard, where the sun makes fireflies, at the shot's 64 spp it
+// could not tell d or tgpt from zero, and auto chose pt, the worst of the three; at twice
+// the spp d's estimate still erred ±0.08 against pt's 0.30, at 4 times ±0.03. At 256 spp
+// on the dolly and the courtyard (640x360), 2 times read every candidate's error within a
+// standard error of 4 times' and chose alike, for 0.72 to 0.75 of the probe's cost
+// (docs/performance.md). Its cost and error at the shot's spp follow from 1/spp.
+inline constexpr int kStandInSppFactor = 2;
+inline constexpr int kStandInMaxSppFactor = 4;
+inline constexpr int kStandInFloorSpp = 256;
+int standInSpp(int shotSpp);
 // tgpt's probe renders a kGradientProbeSppDivisor-th of the shot's spp where that leaves
 // at least kGradientProbeMinSpp: it is the costliest candidate by far (5 to 6 times plain
 // pt's per sample). Its error and its render's cost at the shot's spp are taken to follow
@@ -86,7 +99,7 @@ std::filesystem::path probeOutput(const std::filesystem::path& folder, Pipeline 
 // What the probe measured of one candidate.
 struct CandidateMeasure {
   Pipeline pipeline = PIPELINE_UNSPECIFIED;
-  double coreSeconds = 0;       // the probe shot's at the shot's spp
+  double coreSecondsPerFrame = 0;  // the probe shot's at the shot's spp, per frame it rendered
   double probeCoreSeconds = 0;  // what the probe shot cost (plain pt's renders more samples)
   double relMse = 0;       // against the truth, estimated; pt's: the stand-in's own noise
   double relMseStandardError = 0;  // of that estimate

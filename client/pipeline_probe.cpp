@@ -39,8 +39,9 @@ void fetchFrames(FarmClient& client, int64_t id, size_t window, const std::files
     frames.emplace(std::to_string(window) + "/" + file.filename().string(), readExr(file));
 }
 
-// The candidate's relMSE against the truth over the probe's frames, estimated against
-// plain pt's independent frames; for pt itself, their own noise.
+// The candidate's relMSE against the truth over the frames plain pt's independent render
+// stands in for (ProbeGeometry's measured frames), estimated against them; for pt itself,
+// their own noise.
 MeanEstimate estimatedRelMse(const std::map<std::string, FrameImage>& frames,
                              const std::map<std::string, FrameImage>& truthStandIn, bool isStandIn) {
   MeanEstimate estimate;
@@ -112,14 +113,15 @@ CandidateMeasure measureProbe(FarmClient& client, const std::vector<int64_t>& id
     // spp their renders would cost that much less (more), and they would err that much
     // more (less). Their other stages cost the same at any spp.
     for (const StageCost& stage : report.stages())
-      measure.coreSeconds += stage.stage() == "render" ? stage.core_seconds() / sppScale : stage.core_seconds();
+      measure.coreSecondsPerFrame += stage.stage() == "render" ? stage.core_seconds() / sppScale : stage.core_seconds();
   }
+  measure.coreSecondsPerFrame /= static_cast<double>(pipeline == PIPELINE_PT ? geometry.measuredFrames() : geometry.frames());
   if (pipeline == PIPELINE_PT) truthStandIn = frames;
   const MeanEstimate error = estimatedRelMse(frames, truthStandIn, pipeline == PIPELINE_PT);
   measure.relMse = error.mean() * sppScale;
   measure.relMseStandardError = error.standardError() * sppScale;
-  spdlog::info("pipeline auto: {} probe: {:.2f} core-seconds, estimated relMSE {:.5f} ± {:.5f}", name,
-               measure.coreSeconds, measure.relMse, measure.relMseStandardError);
+  spdlog::info("pipeline auto: {} probe: {:.2f} core-seconds a frame, estimated relMSE {:.5f} ± {:.5f}", name,
+               measure.coreSecondsPerFrame, measure.relMse, measure.relMseStandardError);
   return measure;
 }
 

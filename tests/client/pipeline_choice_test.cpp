@@ -41,12 +41,12 @@ ShotSpec candidateSpec(const std::string& pipeline, int keyframeInterval = 1) {
   return spec;
 }
 
-CandidateMeasure measured(const std::string& pipeline, double coreSeconds, double relMse,
+CandidateMeasure measured(const std::string& pipeline, double coreSecondsPerFrame, double relMse,
                           double standardError = 0) {
   CandidateMeasure m;
   m.pipeline = *pipelineNamed(pipeline);
-  m.coreSeconds = coreSeconds;
-  m.probeCoreSeconds = coreSeconds;
+  m.coreSecondsPerFrame = coreSecondsPerFrame;
+  m.probeCoreSeconds = coreSecondsPerFrame;
   m.relMse = relMse;
   m.relMseStandardError = standardError;
   return m;
@@ -66,6 +66,20 @@ TEST(PipelineChoice, TheProbeCoversTheLongestIntervalInTheMiddleOfTheShot) {
   EXPECT_EQ(g.frameStart, 100 + (24 - 9) / 2);
   EXPECT_EQ(probeGeometry(probedShot(24, 320, 180), 2).frames(), 5);  // never fewer than 5
   EXPECT_EQ(probeGeometry(probedShot(3, 320, 180), 8).frames(), 3);   // nor more than the shot
+}
+
+TEST(PipelineChoice, ErrorsAreMeasuredOnFramesWithNeighboursOnBothSidesAsTheShotsFramesHave) {
+  const ProbeGeometry middle = probeGeometry(probedShot(24, 320, 180), 4);  // frames 109..113
+  EXPECT_EQ(middle.measuredStart, middle.frameStart + 1);
+  EXPECT_EQ(middle.measuredEnd, middle.frameEnd - 1);
+  EXPECT_EQ(middle.measuredFrames(), 3);
+  // A probe that reaches an end of the shot measures every frame: the shot's own first or
+  // last frame lacks the neighbour too.
+  for (const int64_t frames : {3, 5, 6}) {
+    const ProbeGeometry whole = probeGeometry(probedShot(frames, 320, 180), 1);
+    EXPECT_EQ(whole.measuredStart, whole.frameStart) << frames;
+    EXPECT_EQ(whole.measuredEnd, whole.frameEnd) << frames;
+  }
 }
 
 TEST(PipelineChoice, TheProbeIsSmallerTheShorterTheShotAndAlwaysEven) {
@@ -143,12 +157,14 @@ TEST(PipelineChoice, EveryProbePlansAndOnlyPlainPtSamplesApart) {
     EXPECT_EQ(pipelineName(probe.pipeline()), pipeline);
     EXPECT_EQ(probe.output(), "/tmp/probes/" + pipeline);
     EXPECT_EQ(probe.width(), g.width);
-    EXPECT_EQ(probe.frame_start(), g.frameStart);
+    // The stand-in renders only the frames errors are measured on.
+    EXPECT_EQ(probe.frame_start(), pipeline == "pt" ? g.measuredStart : g.frameStart) << pipeline;
+    EXPECT_EQ(probe.frame_end(), pipeline == "pt" ? g.measuredEnd : g.frameEnd) << pipeline;
     EXPECT_EQ(probe.reference_spp(), 0) << "a probe measures nothing itself";
     EXPECT_TRUE(probe.evaluation_frames().empty());
     EXPECT_EQ(probe.first_sample(), pipeline == "pt" ? kIndependentFirstSample : 0u) << pipeline;
     // The stand-in renders more samples than the shot, tgpt (the costliest) fewer.
-    const int spp = pipeline == "pt" ? 64 * kStandInSppFactor : pipeline == "tgpt" ? 64 / kGradientProbeSppDivisor : 64;
+    const int spp = pipeline == "pt" ? standInSpp(64) : pipeline == "tgpt" ? 64 / kGradientProbeSppDivisor : 64;
     EXPECT_EQ(probe.spp(), spp) << pipeline;
     EXPECT_DOUBLE_EQ(probeSppRatio(candidateSpec(pipeline, k)), spp / 64.0) << pipeline;
     EXPECT_DOUBLE_EQ(probe.camera_zoom(), 180.0 / g.height);
@@ -157,6 +173,16 @@ TEST(PipelineChoice, EveryProbePlansAndOnlyPlainPtSamplesApart) {
       EXPECT_LE(probe.poisson_window(), g.frames());
     }
   }
+}
+
+TEST(PipelineChoice, TheStandInRendersTwiceTheSppAndAtLowSppUpToFourTimesTowards256) {
+  for (const auto& [shotSpp, standIn] : std::vector<std::pair<int, int>>{
+           {16, 64}, {64, 256}, {100, 256}, {128, 256}, {256, 512}, {1000, 2000}})
+    EXPECT_EQ(standInSpp(shotSpp), standIn) << shotSpp;
+  ShotSpec pt = candidateSpec("pt");
+  pt.set_spp(100);
+  EXPECT_EQ(probeSpecOf(pt, probeGeometry(probedShot(24, 320, 180), 1), 0, "/tmp/probes").spp(), 256);
+  EXPECT_DOUBLE_EQ(probeSppRatio(pt), 2.56);
 }
 
 TEST(PipelineChoice, TgptsProbeRendersFewerSamplesOnlyWhereSamplesOutweighATasksFixedCosts) {
@@ -178,7 +204,7 @@ TEST(PipelineChoice, TheLowestCostAtEqualErrorWins) {
   EXPECT_EQ(pipelineName(choice.pipeline), "dui");
   EXPECT_DOUBLE_EQ(choice.predictedRelMse, 0.004);
   const double pixelRatio = 320.0 * 180 / (g.width * g.height);
-  EXPECT_NEAR(choice.predictedCoreSecondsPerFrame, 4.0 / static_cast<double>(g.frames()) * pixelRatio, 1e-9);
+  EXPECT_NEAR(choice.predictedCoreSecondsPerFrame, 4.0 * pixelRatio, 1e-9);
   EXPECT_DOUBLE_EQ(choice.probeCoreSeconds, 85);
   EXPECT_NE(choice.reason.find("dui 0.16"), std::string::npos) << choice.reason;
   EXPECT_NE(choice.reason.find("tgpt 0.60"), std::string::npos) << choice.reason;
