@@ -10,7 +10,7 @@
 namespace pathfarm::farm {
 namespace {
 
-constexpr int64_t kMinProbeFrames = 5;
+constexpr int64_t kMinProbeFrames = 4;
 constexpr int kMaxProbeScale = 4;
 constexpr int kMinProbeEdge = 32;
 // The probe's cost, in plain pt frames of its size per probe frame: d 1.1, di 0.6, dui 0.4,
