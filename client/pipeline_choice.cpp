@@ -10,7 +10,13 @@
 namespace pathfarm::farm {
 namespace {
 
-constexpr int64_t kMinProbeFrames = 4;
+// Probe frames, 2 fewer of them measured. Below kFewerFramesFromSpp a frame's estimates
+// are noisier: with 2 measured frames at 64 spp the courtyard's d read within the probe's
+// noise, and auto chose tgpt at 5 times d's cost at equal error; with 3 it chose d. At 256
+// spp 2 frames read every estimate within a standard error of 3 (docs/performance.md).
+constexpr int64_t kMinProbeFrames = 5;
+constexpr int64_t kMinProbeFramesAtHighSpp = 4;
+constexpr int kFewerFramesFromSpp = 256;
 constexpr int kMaxProbeScale = 4;
 constexpr int kMinProbeEdge = 32;
 // The probe's cost, in plain pt frames of its size per probe frame: d 1.1, di 0.6, dui 0.4,
@@ -50,11 +56,12 @@ const std::vector<Pipeline>& autoCandidates() {
 
 ProbeGeometry probeGeometry(const ShotSpec& shot, int longestInterval) {
   const int64_t shotFrames = shot.frame_end() - shot.frame_start() + 1;
-  const int64_t frames = std::min(shotFrames, std::max<int64_t>(kMinProbeFrames, longestInterval + 1));
+  const int64_t fewest = shot.spp() >= kFewerFramesFromSpp ? kMinProbeFramesAtHighSpp : kMinProbeFrames;
+  const int64_t frames = std::min(shotFrames, std::max<int64_t>(fewest, longestInterval + 1));
   ProbeGeometry geometry;
   geometry.frameStart = shot.frame_start() + (shotFrames - frames) / 2;
   geometry.frameEnd = geometry.frameStart + frames - 1;
-  const bool innerFramesOnly = frames >= kMinProbeFrames && geometry.frameStart > shot.frame_start() &&
+  const bool innerFramesOnly = frames >= kMinProbeFramesAtHighSpp && geometry.frameStart > shot.frame_start() &&
                                geometry.frameEnd < shot.frame_end();
   geometry.measuredStart = geometry.frameStart + (innerFramesOnly ? 1 : 0);
   geometry.measuredEnd = geometry.frameEnd - (innerFramesOnly ? 1 : 0);

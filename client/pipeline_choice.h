@@ -48,9 +48,9 @@ struct ProbeGeometry {
 };
 
 // Frames: enough for every candidate's keyframe interval (longestInterval + 1) and at
-// least 4 (2 measured), from the middle of the shot. Crops: about 1/scale² of the shot's
-// pixels, scale the least (1 to 4) that keeps the probe's estimated cost near 5 % of a
-// plain pt shot.
+// least 5 (3 measured; from 256 spp, 4 and 2), from the middle of the shot. Crops: about
+// 1/scale² of the shot's pixels, scale the least (1 to 4) that keeps the probe's estimated
+// cost near 5 % of a plain pt shot.
 // Where the shot is large enough, a grid of 3 x 3 crops of 1/(3 scale) per axis, centred
 // on the ninths of the picture, at least 32 rows each (as long as that keeps them within
 // 1.5 times one crop's pixels): a shot's centre is often its hardest part, and on the

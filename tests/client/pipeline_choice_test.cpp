@@ -64,7 +64,10 @@ TEST(PipelineChoice, TheProbeCoversTheLongestIntervalInTheMiddleOfTheShot) {
   const ProbeGeometry g = probeGeometry(probedShot(24, 320, 180), 8);
   EXPECT_EQ(g.frames(), 9);
   EXPECT_EQ(g.frameStart, 100 + (24 - 9) / 2);
-  EXPECT_EQ(probeGeometry(probedShot(24, 320, 180), 2).frames(), 4);  // never fewer than 4
+  EXPECT_EQ(probeGeometry(probedShot(24, 320, 180), 2).frames(), 5);  // never fewer than 5
+  ShotSpec manySamples = probedShot(24, 320, 180);
+  manySamples.set_spp(256);
+  EXPECT_EQ(probeGeometry(manySamples, 2).frames(), 4);  // or 4 from 256 spp
   EXPECT_EQ(probeGeometry(probedShot(3, 320, 180), 8).frames(), 3);   // nor more than the shot
 }
 
@@ -75,7 +78,7 @@ TEST(PipelineChoice, ErrorsAreMeasuredOnFramesWithNeighboursOnBothSidesAsTheShot
   EXPECT_EQ(middle.measuredFrames(), 3);
   // A probe that reaches an end of the shot measures every frame: the shot's own first or
   // last frame lacks the neighbour too.
-  for (const int64_t frames : {3, 4, 5}) {
+  for (const int64_t frames : {3, 5, 6}) {
     const ProbeGeometry whole = probeGeometry(probedShot(frames, 320, 180), 1);
     EXPECT_EQ(whole.measuredStart, whole.frameStart) << frames;
     EXPECT_EQ(whole.measuredEnd, whole.frameEnd) << frames;
