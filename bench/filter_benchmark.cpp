@@ -27,7 +27,7 @@
 #include "bench/bench_support.h"
 #include "renderer/integrators/frame_renderer.h"
 #include "renderer/scene/scene_loader.h"
-#include "worker/direct_emission.h"
+#include "postproc/filters/direct_emission.h"
 
 namespace {
 
@@ -100,9 +100,9 @@ int main(int argc, char** argv) {
   // Part 3: a keyframe's two filters over the same samples and neighbours.
   // As the farm's keyframe tasks do, directly seen light stays out of both filters.
   FrameImage keyframe = input, keyBefore = before, keyAfter = after;
-  const FrameImage directLight = farm::takeDirectEmission(keyframe);
-  farm::takeDirectEmission(keyBefore);
-  farm::takeDirectEmission(keyAfter);
+  const FrameImage directLight = takeDirectEmission(keyframe);
+  takeDirectEmission(keyBefore);
+  takeDirectEmission(keyAfter);
   const auto halfResolution = [&] {
     const FrameImage low = boxDownsample(keyframe, 2), lowBefore = boxDownsample(keyBefore, 2),
                      lowAfter = boxDownsample(keyAfter, 2);
@@ -111,14 +111,14 @@ int main(int argc, char** argv) {
     deriveIrradiance(denoised);
     FrameImage out = keyframe;
     out.paste(upsampleFrame(denoised, keyframe, UpsampleSettings{}), 0, 0);
-    farm::addDirectEmission(out, directLight);
+    addDirectEmission(out, directLight);
     return out;
   };
   const auto fullResolution = [&] {
     FrameImage out = keyframe;
     out.paste(denoiseFrame(keyframe, &keyBefore, &keyAfter, DenoiseSettings{}), 0, 0);
     deriveIrradiance(out);
-    farm::addDirectEmission(out, directLight);
+    addDirectEmission(out, directLight);
     return out;
   };
   std::printf("\nkeyframe filter (3 frames)             relMSE    worst tile  seconds\n");

@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <memory>
 
+#include "postproc/filters/direct_emission.h"
 #include "postproc/interpolation/frame_interpolation.h"
+#include "postproc/interpolation/in_between_checks.h"
 #include "renderer/decomposition/decomposition.h"
 #include "renderer/integrators/frame_renderer.h"
 
@@ -20,6 +22,34 @@ std::string percent(double rate) {
   char text[32];
   std::snprintf(text, sizeof text, "%.1f%%", 100.0 * rate);
   return text;
+}
+
+// The share of the frame `fraction` of the way from span's first frame to its last (span's
+// frame at that point) that an interpolate task would flag, by the task's rules
+// (worker/interpolation_tasks.cpp): the directly seen light is not interpolated but taken
+// from the frame's own render, which the interpolation is then checked against.
+double predictedRerenderRate(std::vector<FrameImage> span, size_t inBetween) {
+  const float fraction = static_cast<float>(inBetween) / static_cast<float>(span.size() - 1);
+  const ComponentMotions motions = concatenatePrimaryMotion(span);
+  FrameImage& before = span.front();
+  FrameImage& after = span.back();
+  takeDirectEmission(before);
+  takeDirectEmission(after);
+  const FrameImage& features = span[inBetween];
+  LayeredKeyframes keys = wholeKeyframes(before, after, motions);
+  keys.inBetween = &features;
+  // Light with no change known nearby is left to the radiance check, as in the task.
+  InterpolationSettings interpolation;
+  interpolation.unknownChangeMasks = false;
+  InterpolationResult result = interpolateFrameDetailed(keys, fraction, interpolation);
+  const FrameImage directLight = directEmissionOf(features);
+  addDirectEmission(result.frame, directLight);
+  const InBetweenChecks checks = checkInBetween(result.frame, features, directLight);
+  size_t flagged = 0;
+  for (size_t p = 0; p < result.mask.size(); ++p)
+    flagged += (result.mask[p] | checks.mismatch[p] | checks.lightEdges[p] | checks.lightMismatch[p] |
+                checks.caustics[p]) != 0;
+  return static_cast<double>(flagged) / static_cast<double>(result.mask.size());
 }
 
 }  // namespace
@@ -44,15 +74,8 @@ KeyframeChoice chooseKeyframeInterval(const Scene& scene, const ShotSpec& spec, 
   std::string predictions;
   int chosen = 1;
   for (int k = longest; k >= 2; --k) {
-    const std::vector<FrameImage> span(rendered.begin(), rendered.begin() + k + 1);
-    const float fraction = static_cast<float>(k / 2) / static_cast<float>(k);
-    // The interpolate task's rule (worker/interpolation_tasks.cpp): light with no change
-    // known nearby is left to its radiance check, which the probe does not run.
-    InterpolationSettings interpolation;
-    interpolation.unknownChangeMasks = false;
     const double rate =
-        interpolateFrameDetailed(span.front(), span.back(), concatenatePrimaryMotion(span), fraction, interpolation)
-            .rerenderRate;
+        predictedRerenderRate({rendered.begin(), rendered.begin() + k + 1}, static_cast<size_t>(k / 2));
     predictions += (predictions.empty() ? "" : ", ") + std::string("k = ") + std::to_string(k) + ": " + percent(rate);
     if (rate <= rerenderBound) {
       chosen = k;

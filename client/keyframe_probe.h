@@ -2,10 +2,12 @@
 // Choosing the keyframe interval k of an interpolating shot (di, dui) from a probe: the
 // first frames are rendered small and with few samples, and for each candidate k the
 // frame halfway between two keyframes k apart is interpolated exactly as the farm would
-// (primary motion, per component); its re-render rate predicts the shot's. The largest k
+// (primary motion, per component, the directly seen light taken from the frame itself) and
+// checked by the farm's rules against the probe's own render of it (in_between_checks.h);
+// the share it flags predicts the shot's re-render of its in-between frames. The largest k
 // whose prediction stays under the bound wins. A quarter-resolution probe sees edges four
-// times thicker relative to the image, so its silhouette share, and the prediction, err
-// on the high side.
+// times thicker relative to the image, so its silhouette and edge shares, and the
+// prediction, err on the high side.
 #include <string>
 
 #include "pathfarm/shot.pb.h"

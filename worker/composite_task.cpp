@@ -15,7 +15,7 @@
 #include "image/exr_io.h"
 #include "postproc/filters/component_denoiser.h"
 #include "postproc/filters/decomposed_frame.h"
-#include "worker/direct_emission.h"
+#include "postproc/filters/direct_emission.h"
 #include "worker/failure_class.h"
 #include "worker/filter_inputs.h"
 #include "worker/final_frame.h"
@@ -84,7 +84,7 @@ FrameImage denoisedRegion(const std::vector<const TaskInput*>& tiles, const std:
   for (int y = region.y0(); y < region.y1(); ++y)
     for (int x = region.x0(); x < region.x1(); ++x)
       rendered[localIndex(region, x, y)] = mask[static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)];
-  // Directly seen light skips the denoiser, as in the keyframes (worker/direct_emission.h).
+  // Directly seen light skips the denoiser, as in the keyframes (postproc/filters/direct_emission.h).
   const bool decomposed = !decompositionComponents(sparse).empty();
   const FrameImage directLight = decomposed ? takeDirectEmission(sparse) : FrameImage();
   invalidateUnrendered(sparse, rendered);

@@ -13,7 +13,7 @@
 #include "postproc/filters/component_upsampler.h"
 #include "postproc/filters/decomposed_frame.h"
 #include "worker/chunk_channels.h"
-#include "worker/direct_emission.h"
+#include "postproc/filters/direct_emission.h"
 #include "worker/failure_class.h"
 #include "worker/filter_inputs.h"
 #include "worker/final_frame.h"

@@ -6,7 +6,7 @@
 #include <utility>
 
 #include "postproc/filters/component_upsampler.h"
-#include "worker/direct_emission.h"
+#include "postproc/filters/direct_emission.h"
 #include "worker/failure_class.h"
 
 namespace pathfarm::farm {

@@ -10,13 +10,11 @@
 #include "contract/pipeline.h"
 #include "image/exr_io.h"
 #include "postproc/filters/decomposed_frame.h"
-#include "postproc/interpolation/caustic_check.h"
-#include "postproc/interpolation/feature_check.h"
+#include "postproc/filters/direct_emission.h"
 #include "postproc/interpolation/frame_interpolation.h"
+#include "postproc/interpolation/in_between_checks.h"
 #include "postproc/interpolation/interpolation_input.h"
 #include "postproc/interpolation/irradiance_flow.h"
-#include "postproc/interpolation/radiance_check.h"
-#include "worker/direct_emission.h"
 #include "worker/failure_class.h"
 #include "worker/filter_inputs.h"
 
@@ -225,14 +223,11 @@ TaskOutput runInterpolateTask(const Lease& lease, std::vector<TaskInput>& inputs
   // left to the radiance check below: it compares the frame's own render there.
   InterpolationSettings settings;
   settings.unknownChangeMasks = false;
-  const RadianceCheckSettings radianceCheck;
-  const CausticCheckSettings causticCheck;
   const float fraction = static_cast<float>(params.frame() - before) / static_cast<float>(after - before);
   // The rows computed (a window's, or all), the rows the checks read around them, and the
   // rows of the keyframes whose content can move into those (all of them without a window).
   const RowWindow wanted = rowsOf(lease, "the interpolation");
-  const int reach = std::max(
-      {radianceCheckReach(radianceCheck), causticCheckReach(causticCheck), kLightEdgeReach, settings.illuminationRadius});
+  const int reach = std::max(inBetweenChecksReach(), settings.illuminationRadius);
   const RowWindow checked{std::max(0, wanted.first - reach), std::min(height, wanted.end + reach)};
   RowWindow read{0, height};
   int displacement = 0;
@@ -324,11 +319,11 @@ TaskOutput runInterpolateTask(const Lease& lease, std::vector<TaskInput>& inputs
   // where its directly seen light has an edge, the feature render's few samples are; a
   // moving caustic no keyframe can carry: re-render there too.
   const Rows inChecked{checked, width};
-  const std::vector<uint8_t> mismatch = inChecked.crop(featureMismatch(interpolated, features), wanted);
-  const std::vector<uint8_t> edges = inChecked.crop(directLightEdges(directLight, features), wanted);
-  const std::vector<uint8_t> lightMismatch =
-      inChecked.crop(radianceMismatch(interpolated, features, radianceCheck), wanted);
-  const std::vector<uint8_t> caustics = inChecked.crop(movingCausticPixels(features, causticCheck), wanted);
+  const InBetweenChecks checks = checkInBetween(interpolated, features, directLight);
+  const std::vector<uint8_t> mismatch = inChecked.crop(checks.mismatch, wanted);
+  const std::vector<uint8_t> edges = inChecked.crop(checks.lightEdges, wanted);
+  const std::vector<uint8_t> lightMismatch = inChecked.crop(checks.lightMismatch, wanted);
+  const std::vector<uint8_t> caustics = inChecked.crop(checks.caustics, wanted);
   interpolated = inChecked.crop(std::move(interpolated), wanted);
   std::vector<uint8_t> mask = inRead.crop(result.mask, wanted);
   std::vector<float>& flagged = interpolated.channel("rerender.Y");

@@ -10,7 +10,7 @@
 #include "postproc/filters/guided_upsample.h"
 #include "postproc/interpolation/caustic_check.h"
 #include "worker/chunk_channels.h"
-#include "worker/direct_emission.h"
+#include "postproc/filters/direct_emission.h"
 #include "worker/failure_class.h"
 #include "worker/filter_inputs.h"
 #include "worker/final_frame.h"

@@ -7,7 +7,7 @@
 // the features of its first non-specular (D) vertex along the sampled path, and its
 // directly seen light: what reaches the camera along a path with no D vertex (an emitter
 // or the environment seen directly or through specular chains, Zimmer's E S* L paths),
-// which the filters must leave alone (worker/direct_emission.h). Beside the components it
+// which the filters must leave alone (postproc/filters/direct_emission.h). Beside the components it
 // keeps the sample's *moving caustic*: light that reached the path's last D vertex through a
 // specular chain (Heckbert's L S+ D, e.g. a glass ball focusing a lamp onto the floor) with
 // a vertex of that chain on an animated object. Such light moves with the object that

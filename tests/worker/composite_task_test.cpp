@@ -15,7 +15,7 @@
 #include "postproc/filters/decomposed_frame.h"
 #include "task_output_bytes.h"
 #include "test_support.h"
-#include "worker/direct_emission.h"
+#include "postproc/filters/direct_emission.h"
 #include "worker/task_runner.h"
 
 namespace pathfarm::farm {

@@ -14,7 +14,7 @@
 #include "renderer/scene/scene_loader.h"
 #include "test_support.h"
 #include "task_output_bytes.h"
-#include "worker/direct_emission.h"
+#include "postproc/filters/direct_emission.h"
 #include "contract/pipeline.h"
 #include "worker/task_runner.h"
 

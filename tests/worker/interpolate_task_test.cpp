@@ -16,7 +16,7 @@
 #include "postproc/interpolation/frame_interpolation.h"
 #include "task_output_bytes.h"
 #include "test_support.h"
-#include "worker/direct_emission.h"
+#include "postproc/filters/direct_emission.h"
 #include "worker/filter_inputs.h"
 #include "worker/filter_tasks.h"
 #include "worker/task_runner.h"

@@ -7,7 +7,7 @@
 #include "image/exr_io.h"
 #include "postproc/filters/component_upsampler.h"
 #include "test_support.h"
-#include "worker/direct_emission.h"
+#include "postproc/filters/direct_emission.h"
 #include "worker/filter_inputs.h"
 #include "worker/filter_tasks.h"
 

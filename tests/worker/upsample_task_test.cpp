@@ -17,7 +17,7 @@
 #include "postproc/filters/component_upsampler.h"
 #include "test_support.h"
 #include "task_output_bytes.h"
-#include "worker/direct_emission.h"
+#include "postproc/filters/direct_emission.h"
 #include "worker/failure_class.h"
 #include "worker/filter_tasks.h"
 #include "worker/task_runner.h"

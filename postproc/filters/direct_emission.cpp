@@ -1,4 +1,4 @@
-#include "worker/direct_emission.h"
+#include "postproc/filters/direct_emission.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,12 +7,12 @@
 #include "postproc/filters/decomposed_frame.h"
 #include "renderer/decomposition/effective_irradiance.h"
 
-namespace pathfarm::farm {
+namespace pathfarm {
 namespace {
 
 constexpr const char* kRgb[3] = {"R", "G", "B"};
 
-std::vector<std::string> componentsOf(const FrameImage& frame) {
+std::vector<std::string> decomposedComponentsOf(const FrameImage& frame) {
   std::vector<std::string> components = decompositionComponents(frame);
   if (components.empty()) throw std::invalid_argument("the frame has no pathfarm.decomposition attribute");
   return components;
@@ -50,7 +50,7 @@ void applyTo(Target target, FrameImage& frame, const FrameImage& emission, const
 // Adds `sign` times the light to the beauty and the components' colors (the channels are
 // apart, so the order of the two changes no bit).
 void apply(FrameImage& frame, const FrameImage& emission, float sign, const std::vector<uint8_t>* only) {
-  for (const std::string& component : componentsOf(frame)) {
+  for (const std::string& component : decomposedComponentsOf(frame)) {
     applyTo(Target::Beauty, frame, emission, component, sign, only);
     applyTo(Target::Component, frame, emission, component, sign, only);
   }
@@ -83,7 +83,7 @@ FrameImage directEmissionOf(const FrameImage& frame, const std::string& componen
 
 FrameImage directEmissionOf(const FrameImage& frame) {
   FrameImage emission(frame.width(), frame.height());
-  for (const std::string& component : componentsOf(frame)) emission.paste(directEmissionOf(frame, component), 0, 0);
+  for (const std::string& component : decomposedComponentsOf(frame)) emission.paste(directEmissionOf(frame, component), 0, 0);
   return emission;
 }
 
@@ -107,7 +107,7 @@ void addDirectEmission(FrameImage& frame, const FrameImage& emission, const std:
 
 std::vector<uint8_t> directLightEdges(const FrameImage& emission, const FrameImage& beauty, float significance) {
   std::vector<float> light(emission.pixelCount(), 0.0f);
-  for (const std::string& component : componentsOf(beauty)) {
+  for (const std::string& component : decomposedComponentsOf(beauty)) {
     const std::vector<float> part = luminance(emission, component + ".direct.");
     for (size_t p = 0; p < light.size(); ++p) light[p] += part[p];
   }
@@ -133,4 +133,4 @@ std::vector<uint8_t> directLightEdges(const FrameImage& emission, const FrameIma
   return edges;
 }
 
-}  // namespace pathfarm::farm
+}  // namespace pathfarm

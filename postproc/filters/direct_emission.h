@@ -18,7 +18,7 @@
 
 #include "image/frame_image.h"
 
-namespace pathfarm::farm {
+namespace pathfarm {
 
 // Removes every component's directly seen light from the frame's beauty and that
 // component's color (and irradiance, when the frame has it) and returns it as
@@ -48,4 +48,4 @@ std::vector<uint8_t> directLightEdges(const FrameImage& emission, const FrameIma
 // How many rows away directLightEdges reads (its 8-neighbours).
 inline constexpr int kLightEdgeReach = 1;
 
-}  // namespace pathfarm::farm
+}  // namespace pathfarm

@@ -1,8 +1,8 @@
-#include "worker/direct_emission.h"
+#include "postproc/filters/direct_emission.h"
 
 #include <gtest/gtest.h>
 
-namespace pathfarm::farm {
+namespace pathfarm {
 namespace {
 
 // Three components. Pixel 0 sees a light of 4 fully, pixel 1 half covers it (2) and has 1
@@ -119,4 +119,4 @@ TEST(DirectEmission, RefusesAFrameWithoutDecomposition) {
 }
 
 }  // namespace
-}  // namespace pathfarm::farm
+}  // namespace pathfarm
