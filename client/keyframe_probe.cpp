@@ -24,8 +24,8 @@ std::string percent(double rate) {
   return text;
 }
 
-// The share of the frame `fraction` of the way from span's first frame to its last (span's
-// frame at that point) that an interpolate task would flag, by the task's rules
+// The share of span[inBetween] that an interpolate task would flag, interpolating it from
+// span's first and last frames as keyframes, by the task's rules
 // (worker/interpolation_tasks.cpp): the directly seen light is not interpolated but taken
 // from the frame's own render, which the interpolation is then checked against.
 double predictedRerenderRate(std::vector<FrameImage> span, size_t inBetween) {
@@ -38,7 +38,8 @@ double predictedRerenderRate(std::vector<FrameImage> span, size_t inBetween) {
   const FrameImage& features = span[inBetween];
   LayeredKeyframes keys = wholeKeyframes(before, after, motions);
   keys.inBetween = &features;
-  // Light with no change known nearby is left to the radiance check, as in the task.
+  // Light with no change known nearby is not flagged, as in the task, which leaves it to
+  // its light check (which the probe leaves out, below).
   InterpolationSettings interpolation;
   interpolation.unknownChangeMasks = false;
   InterpolationResult result = interpolateFrameDetailed(keys, fraction, interpolation);
