@@ -44,6 +44,16 @@ std::vector<std::string> decompositionComponents(const FrameImage& frame) {
   return names;
 }
 
+bool isSpecularComponent(const FrameImage& frame, const std::string& component) {
+  const auto found = frame.attributes().find("pathfarm.specular_components");
+  if (found == frame.attributes().end()) return false;
+  std::istringstream names(found->second);
+  std::string name;
+  while (std::getline(names, name, ','))
+    if (name == component) return true;
+  return false;
+}
+
 const std::vector<float>* filterCoverage(const FrameImage& frame, const std::string& component) {
   const std::string name = component + ".coverage.Y";
   if (!frame.hasChannel(name)) return nullptr;

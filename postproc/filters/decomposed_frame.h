@@ -13,6 +13,12 @@ namespace pathfarm {
 // empty for a frame without the attribute.
 std::vector<std::string> decompositionComponents(const FrameImage& frame);
 
+// Whether the frame's `pathfarm.specular_components` attribute ("reflection,transmission",
+// Decomposition::isSpecular) names `component`: its features and depth are those of the
+// surface beyond a mirror or glass, not of what the camera hits first, and its motion is
+// the manifold walk's. False for a frame without the attribute.
+bool isSpecularComponent(const FrameImage& frame, const std::string& component);
+
 // Component c's "<c>.coverage.Y" where the filters should divide it out (perCoveredArea),
 // else null: when the frame has no such channel, and for a component whose expression
 // passes a transmission (T) before its first D vertex. Whether a path gets through glass

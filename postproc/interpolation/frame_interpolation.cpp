@@ -25,6 +25,7 @@ struct Layer {
   std::string depth;
   std::array<std::string, 3> reflectance;  // used with an irradiance motion or an own reflectance
   bool irradianceMotion = false;
+  bool specular = false;  // isSpecularComponent
   // The in-between frame's own reflectance of the layer, when the caller gave one
   // (LayeredKeyframes::inBetween) and both it and the keyframes have it; else null.
   std::array<const std::vector<float>*, 3> ownReflectance{};
@@ -62,12 +63,14 @@ KeyframeLayer readLayer(const FrameImage& frame, const Layer& layer, const Motio
   }
   out.depth = finiteChannel(frame, layer.depth, label);
   const size_t pixels = frame.pixelCount();
-  // Where the component's own motion is valid its motion is the primary motion (its first
-  // non-specular vertex is the primary hit), so its surface is the primary surface: the
-  // frame-wide depth.Z, averaged over every sample of the pixel, is a far less noisy
-  // estimate of it than `<c>.depth.Z`, averaged over the few samples of that component.
+  // Where a non-specular component's own motion is valid its motion is the primary motion
+  // (its first non-specular vertex is the primary hit), so its surface is the primary
+  // surface: the frame-wide depth.Z, averaged over every sample of the pixel, is a far less
+  // noisy estimate of it than `<c>.depth.Z`, averaged over the few samples of that
+  // component. A specular component's surface lies beyond the mirror or glass the camera
+  // hits: its valid motion is the manifold walk's, and depth.Z is the glass's.
   const std::string validName = layer.name + ".motion_valid.Y";
-  if (!layer.name.empty() && frame.hasChannel(validName) && frame.hasChannel("depth.Z")) {
+  if (!layer.name.empty() && !layer.specular && frame.hasChannel(validName) && frame.hasChannel("depth.Z")) {
     const std::vector<float>& valid = finiteChannel(frame, validName, label);
     const std::vector<float>& primaryDepth = finiteChannel(frame, "depth.Z", label);
     for (size_t p = 0; p < pixels; ++p)
@@ -247,7 +250,8 @@ std::vector<Layer> layersOf(const FrameImage& k0, const InterpolationSettings& s
                            {c + ".irradiance.R", c + ".irradiance.G", c + ".irradiance.B"},
                            c + ".depth.Z",
                            {c + ".reflectance.R", c + ".reflectance.G", c + ".reflectance.B"},
-                           false});
+                           false,
+                           isSpecularComponent(k0, c)});
   return layers;
 }
 

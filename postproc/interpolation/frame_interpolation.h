@@ -29,9 +29,12 @@
 // illumination test uses the change of the irradiance splatted along the irradiance motion.
 // The depth of both splats is the component's (below).
 //
-// Depth of the splat's depth test: `<c>.depth.Z`, except where `<c>.motion_valid.Y` is 1 and
+// Depth of the splat's depth test: `<c>.depth.Z`, except for a component the keyframe does
+// not list as specular (`pathfarm.specular_components`) where `<c>.motion_valid.Y` is 1 and
 // the frame has `depth.Z`: there the component's motion is the primary motion (its first
 // non-specular vertex is the primary hit) and the frame-wide, less noisy `depth.Z` is used.
+// The interpolated frame carries the same depth, which the feature check compares with
+// the in-between frame's own `<c>.depth.Z`.
 // Both the splat's and the combination's tests take it at the in-between instant: a pixel
 // p whose motion leads to q in the other keyframe, whose motion (the same layer's) leads
 // back within a pixel of p, has its depth blended with the other keyframe's at q by the

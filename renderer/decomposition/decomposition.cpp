@@ -62,6 +62,19 @@ const std::string& Decomposition::name(int component) const {
   return component == residual() ? kResidual : components_[static_cast<size_t>(component)].name;
 }
 
+bool Decomposition::isSpecular(int component) const {
+  if (component == residual()) return false;
+  const int eye = automaton_.next(automaton_.initial(), PathSymbol::E);
+  return automaton_.alive(eye, component) && !automaton_.alive(automaton_.next(eye, PathSymbol::D), component);
+}
+
+std::string Decomposition::describeSpecular() const {
+  std::string text;
+  for (int k = 0; k < residual(); ++k)
+    if (isSpecular(k)) text += (text.empty() ? "" : ",") + name(k);
+  return text;
+}
+
 std::string Decomposition::describe() const {
   std::string text;
   for (const Component& c : components_) text += c.name + "=" + c.expression + ",";

@@ -30,6 +30,13 @@ class Decomposition {
   const std::string& name(int component) const;
   const std::vector<Component>& components() const { return components_; }
   const LpeAutomaton& automaton() const { return automaton_; }
+  // A named component is specular when its expression cannot take the camera's first
+  // vertex as its non-specular one (reflection ERD.*, transmission ETTD.*): what it
+  // shows lies beyond a mirror or glass, and its motion is the manifold walk's.
+  bool isSpecular(int component) const;
+  // The specular components' names, comma-separated ("reflection,transmission"): what the
+  // EXR header records as `pathfarm.specular_components`.
+  std::string describeSpecular() const;
   // "diffuse_direct=ED,...,residual": what the EXR header records.
   std::string describe() const;
 

@@ -19,11 +19,7 @@ SpecularMotion::SpecularMotion(const FrameGeometry& geometry, const std::vector<
       sceneMoves_(camera_.isAnimated() || std::any_of(shapes.begin(), shapes.end(), [](const PreciseShape& s) {
                     return s.isAnimated() || s.deforms();
                   })) {
-  const int eye = automaton_.next(automaton_.initial(), PathSymbol::E);
-  for (int k = 0; k < decomposition.size(); ++k) {
-    const bool named = k != decomposition.residual();
-    specular_.push_back(named && automaton_.alive(eye, k) && !automaton_.alive(automaton_.next(eye, PathSymbol::D), k));
-  }
+  for (int k = 0; k < decomposition.size(); ++k) specular_.push_back(decomposition.isSpecular(k));
 }
 
 SpecularTrack SpecularMotion::track(int x, int y, int component) const {

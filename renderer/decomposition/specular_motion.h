@@ -37,8 +37,7 @@ class SpecularMotion {
   SpecularMotion(const SpecularMotion&) = delete;  // cameraNow_ refers to camera_
   SpecularMotion& operator=(const SpecularMotion&) = delete;
 
-  // A component is specular when its expression cannot take the camera's first vertex
-  // as its non-specular one (reflection ERD.*, transmission ETTD.*, ETTTTD.*, ...).
+  // Decomposition::isSpecular, kept per component.
   bool isSpecular(int component) const { return specular_[static_cast<size_t>(component)] != 0; }
   // Frame pixel (x, y).
   SpecularTrack track(int x, int y, int component) const;

@@ -316,6 +316,7 @@ FrameImage FrameRenderer::renderWindow(int64_t frame, const PixelWindow& window,
   const RenderStats total = totalOf(counters, start);
   writeRenderAttributes(image, scene_, frame, settings_, total);
   if (decomposition) image.attributes()["pathfarm.decomposition"] = decomposition->describe();
+  if (decomposition) image.attributes()["pathfarm.specular_components"] = decomposition->describeSpecular();
   if (decomposition && !measuresMotion) image.attributes()["pathfarm.motion"] = "not measured";
   if (stats) *stats = total;
   return image;

@@ -2,6 +2,7 @@
 // masked, a rendered in-between frame is closer to the reference per component than with
 // the beauty alone, and bad input is refused with the frame and layer named.
 #include "postproc/interpolation/frame_interpolation.h"
+#include "postproc/interpolation/feature_check.h"
 #include "postproc/interpolation/irradiance_flow.h"
 
 #include <gtest/gtest.h>
@@ -308,6 +309,41 @@ TEST(Interpolation, ConcatenatesMotionAlongTheChain) {
   EXPECT_FLOAT_EQ(r.backward.x[5], -2.0f);
   EXPECT_EQ(r.backward.valid[1], 0.0f);  // 1 -> 0 -> -1
   EXPECT_TRUE(m.components.at("").forward.valid[5] == 1.0f);  // the frame-wide motion has no validity plane
+}
+
+// A still mirror (component "mirror") at depth 2 showing a surface at path length 5, its
+// motion tracked by the walk. The interpolated mirror keeps the depth of what it shows,
+// which the frame's own features then agree with; taken from the frame-wide depth.Z (the
+// mirror's own surface), the feature check flagged every mirror and glass pixel under a
+// moving camera.
+TEST(Interpolation, ASpecularComponentKeepsTheDepthOfWhatItShows) {
+  const int w = 8, h = 4;
+  const auto mirrorFrame = [&](bool listsSpecular) {
+    FrameImage f = flatFrame(w, h, 0.0f, 2.0f);
+    f.attributes()["pathfarm.decomposition"] = "mirror=ERD.*,residual";
+    if (listsSpecular) f.attributes()["pathfarm.specular_components"] = "mirror";
+    for (const char* c : {"R", "G", "B", "mirror.color.R", "mirror.color.G", "mirror.color.B"})
+      f.addChannel(c).assign(f.pixelCount(), 1.0f);
+    f.addChannel("mirror.depth.Z").assign(f.pixelCount(), 5.0f);
+    f.addChannel("mirror.motion_valid.Y").assign(f.pixelCount(), 1.0f);
+    f.addChannel("mirror.normal.X");
+    f.addChannel("mirror.normal.Y").assign(f.pixelCount(), 1.0f);
+    f.addChannel("mirror.normal.Z");
+    for (const char* c : {"residual.normal.X", "residual.normal.Y", "residual.normal.Z"}) f.addChannel(c);
+    return f;
+  };
+  ComponentMotions motions = motionsOf(zeroField(w, h), zeroField(w, h));
+  motions.components["mirror"] = motions.components.at("residual");
+  for (const bool listsSpecular : {true, false}) {
+    const FrameImage key = mirrorFrame(listsSpecular);
+    const InterpolationResult r = interpolateFrameDetailed(key, key, motions, 0.5f);
+    const std::vector<uint8_t> mismatch = featureMismatch(r.frame, mirrorFrame(true));
+    const float expectedDepth = listsSpecular ? 5.0f : 2.0f;  // without the attribute: as before
+    for (size_t p = 0; p < r.frame.pixelCount(); ++p) {
+      ASSERT_FLOAT_EQ(r.frame.channel("mirror.depth.Z")[p], expectedDepth) << p;
+      ASSERT_EQ(mismatch[p], listsSpecular ? 0 : 1) << p;
+    }
+  }
 }
 
 // A soft shadow moving 4 px to the right over a static floor (zero primary motion): with the

@@ -367,6 +367,16 @@ TEST(DecomposedRender, NoGlassMeansAnEmptyTransmission) {
   EXPECT_EQ(channelSum(image, "transmission.color.G"), 0.0) << "frosted glass sphere is rough: T counts as D there";
   EXPECT_EQ(image.attributes().at("pathfarm.decomposition"),
             "diffuse_direct=ED,diffuse_indirect=ED.+,reflection=ERD.*,transmission=ETTD.*,residual");
+  EXPECT_EQ(image.attributes().at("pathfarm.specular_components"), "reflection,transmission");
+}
+
+// Specular: the camera's first vertex cannot be the component's non-specular one. E.D
+// and E.*D may end at the first hit, so they are not; the residual never is.
+TEST(DecomposedRender, SpecularComponentsAreThoseThatCannotEndAtTheFirstHit) {
+  const Decomposition d = Decomposition::parse("direct=ED,any=E.D,glossy=E(R|T)D,deep=ETTTTD.*,late=E.*D");
+  const std::vector<bool> expected = {false, false, true, true, false, false};
+  for (int k = 0; k < d.size(); ++k) EXPECT_EQ(d.isSpecular(k), expected[static_cast<size_t>(k)]) << d.name(k);
+  EXPECT_EQ(d.describeSpecular(), "glossy,deep");
 }
 
 }  // namespace
