@@ -34,7 +34,7 @@ const Buffers kDenoised{{"color", "emission", "irradiance", "variance", "reflect
 // Its motion along which the neighbours are warped.
 const Buffers kDenoiseMotion{{"motion", "motion_back", "motion_valid"}, {}};
 // What the upsampler reads of the full-resolution keyframe besides, and passes on.
-const Buffers kUpsampled{{"color", "emission", "reflectance", "normal", "coverage"}, {"", "moving_caustic"}};
+const Buffers kUpsampled{{"color", "emission", "reflectance", "normal", "coverage"}, {"", "moving_caustic", "variance"}};
 // What flow and interpolation read of a filtered keyframe (worker/interpolation_tasks.cpp).
 const Buffers kInterpolated{{"color", "emission", "irradiance", "reflectance", "depth", "motion", "motion_back",
                              "motion_valid"},
@@ -44,7 +44,8 @@ const Buffers kComposited{{"color"}, {"", "rerender"}};
 // What interpolation reads of an in-between frame's render: its reflectance, which
 // modulates the interpolated irradiance, and what its checks compare (feature_check.h,
 // radiance_check.h, the moving caustics and the directly seen light).
-const Buffers kFeatures{{"color", "emission", "depth", "normal", "variance", "reflectance"}, {"", "moving_caustic"}};
+const Buffers kFeatures{{"color", "emission", "depth", "normal", "variance", "reflectance"},
+                        {"", "moving_caustic", "variance"}};
 // What the upsampler reads of the half-resolution denoised keyframe.
 const Buffers kHalfResolution{{"irradiance", "coverage"}, {}};
 

@@ -5,9 +5,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "image/luminance.h"
 #include "postproc/filters/decomposed_frame.h"
 #include "postproc/interpolation/flag_regions.h"
+#include "postproc/interpolation/luminance_planes.h"
 #include "postproc/interpolation/solid_regions.h"
 #include "postproc/interpolation/window_sums.h"
 
@@ -16,21 +16,6 @@ namespace {
 
 constexpr const char* kInterpolated = "radiance check: the interpolated frame";
 constexpr const char* kFeatures = "radiance check: the features' frame";
-
-// The luminance of `<prefix>R/G/B`, or with `deviation` the bound sum_k w_k sigma_k of its
-// standard deviation from per-channel variances; `whose` names the frame (channelOf).
-std::vector<double> luminancePlane(const FrameImage& frame, const std::string& prefix, const std::string& whose,
-                                   bool deviation = false) {
-  std::vector<double> out(frame.pixelCount(), 0.0);
-  for (int c = 0; c < 3; ++c) {
-    const std::vector<float>& values = channelOf(frame, prefix + kRgbChannels[c], whose);
-    for (size_t p = 0; p < out.size(); ++p)
-      out[p] += kLuminanceWeights<float>[c] * (deviation ? std::sqrt(std::max(0.0f, values[p])) : values[p]);
-  }
-  if (deviation)
-    for (double& v : out) v *= v;
-  return out;
-}
 
 }  // namespace
 
@@ -47,7 +32,7 @@ std::vector<uint8_t> radianceMismatch(const FrameImage& interpolated, const Fram
     for (size_t p = 0; p < difference.size(); ++p) difference[p] -= rendered[p];
     const std::vector<double> differences = boxSums(difference, width, height, settings.radius);
     const std::vector<double> variances =
-        boxSums(luminancePlane(features, c + ".variance.", kFeatures, true), width, height, settings.radius);
+        boxSums(luminanceVarianceBound(features, c + ".variance.", kFeatures), width, height, settings.radius);
     for (size_t p = 0; p < mismatch.size(); ++p) {
       const double d = std::abs(differences[p]);
       const double deviation = std::sqrt(variances[p]);

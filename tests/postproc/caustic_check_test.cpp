@@ -72,6 +72,43 @@ TEST(CausticCheck, ASparseLowSampleCausticIsFoundWhole) {
       }
 }
 
+// A 4-spp render's pixels: a pixel whose caustic came from `hits` of its 4 samples, each
+// carrying `sample`, has the mean hits * sample / 4 and, from its samples' spread, the
+// variance of that mean (sample variance over 4; the evenly lit rest has none).
+FrameImage sampled(const std::function<int(int, int)>& hits, float sample) {
+  FrameImage f = frame([&](int x, int y) { return static_cast<float>(hits(x, y)) * sample / 4.0f; });
+  std::vector<float> variance(f.pixelCount(), 0.0f);
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const float k = static_cast<float>(hits(x, y)), mean = k * sample / 4.0f;
+      const float squares = k * (sample - mean) * (sample - mean) + (4.0f - k) * mean * mean;
+      variance[static_cast<size_t>(y * kSize + x)] = squares / 3.0f / 4.0f;
+    }
+  for (const char* c : {"variance.R", "variance.G", "variance.B"}) f.addChannel(c) = variance;
+  return f;
+}
+
+TEST(CausticCheck, AWideGlowInRareHeavySamplesIsNotASpotAndAFocusedOneIs) {
+  // A moving glass ball's reflection of a lamp, over the whole floor: 5 % of its light on
+  // average, arriving as one heavy sample in one pixel of ten. By chance some windows hold
+  // enough of them to pass the share; their noise explains it.
+  std::srand(11);
+  std::vector<int> glow(static_cast<size_t>(kSize * kSize));
+  for (int& h : glow) h = std::rand() % 10 == 0 ? 1 : 0;
+  const auto glowHits = [&](int x, int y) { return glow[static_cast<size_t>(y * kSize + x)]; };
+  CausticCheckSettings noiseless;
+  noiseless.z = 0.0f;
+  ASSERT_GT(count(movingCausticPixels(sampled(glowHits, 2.0f), noiseless)), 0u) << "the case must pass the share";
+  EXPECT_EQ(count(movingCausticPixels(sampled(glowHits, 2.0f))), 0u);
+  // A focused spot under the ball, a disc of radius 6 whose pixels see it in half their
+  // samples at twice the light around: found whole.
+  const auto inDisc = [](int x, int y) { return (x - 20) * (x - 20) + (y - 20) * (y - 20) <= 36; };
+  const std::vector<uint8_t> flags = movingCausticPixels(sampled([&](int x, int y) { return inDisc(x, y) ? 2 : 0; }, 4.0f));
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x)
+      if (inDisc(x, y)) EXPECT_EQ(flags[static_cast<size_t>(y * kSize + x)], 1) << x << "," << y;
+}
+
 TEST(CausticCheck, AFrameWithoutTheBufferHasNoneAndOneWithoutABeautyIsRefused) {
   FrameImage plain(8, 8);
   for (const char* c : {"R", "G", "B"}) plain.addChannel(c);
