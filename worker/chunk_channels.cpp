@@ -34,7 +34,7 @@ const Buffers kDenoised{{"color", "emission", "irradiance", "variance", "reflect
 // Its motion along which the neighbours are warped.
 const Buffers kDenoiseMotion{{"motion", "motion_back", "motion_valid"}, {}};
 // What the upsampler reads of the full-resolution keyframe besides, and passes on.
-const Buffers kUpsampled{{"color", "emission", "reflectance", "normal", "coverage"}, {"", "moving_caustic", "variance"}};
+const Buffers kUpsampled{{"color", "emission", "reflectance", "normal", "coverage"}, {"", "moving_caustic"}};
 // What flow and interpolation read of a filtered keyframe (worker/interpolation_tasks.cpp).
 const Buffers kInterpolated{{"color", "emission", "irradiance", "reflectance", "depth", "motion", "motion_back",
                              "motion_valid"},

@@ -43,7 +43,12 @@ TaskOutput runUpsampleTask(const Lease& lease, std::vector<TaskInput>& inputs) {
                         .part({[&](const std::string& name) { return upsampleReads(name, stages); }, reads.first,
                                reads.end});
   // A moving caustic spread by the half-resolution filtering is rendered again at full spp.
-  const std::vector<uint8_t> caustics = movingCausticPixels(high);
+  // Without the check's noise bound, which is for the few samples of an in-between frame's
+  // feature render: a keyframe's errors reach every frame interpolated from it, and with
+  // the bound the dolly's error rose by a fifth (docs/performance.md).
+  CausticCheckSettings causticCheck;
+  causticCheck.z = 0.0f;
+  const std::vector<uint8_t> caustics = movingCausticPixels(high, causticCheck);
   // The directly seen light is added back unfiltered from the keyframe's own render, which
   // has a quarter of the shot's samples: where it has an edge, that render's noise shows (a
   // pixel a lamp covers in part; a glossy highlight, whose light a rough mirror scatters at

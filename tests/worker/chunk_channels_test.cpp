@@ -163,16 +163,15 @@ TEST(ChunkChannels, RenderTilesOfFilteredFramesDropTheBuffersNoFilterReads) {
   ASSERT_TRUE(keyframe.hasChannel("diffuse_direct.uv.X"));
   const size_t before = keyframe.channelNames().size();
   keepReadChannels(*renderedContent(ROLE_KEYFRAME), stagesOf(PIPELINE_DUI), keyframe);
-  for (const char* dropped : {"diffuse_direct.uv.X", "diffuse_direct.uv.Y", "diffuse_direct.primid.Y"})
+  for (const char* dropped : {"diffuse_direct.uv.X", "diffuse_direct.uv.Y", "diffuse_direct.primid.Y", "variance.R"})
     EXPECT_FALSE(keyframe.hasChannel(dropped)) << dropped;
-  // The frame-wide variance: the upsample's caustic check reads it, and only that.
-  for (const char* kept : {"R", "diffuse_direct.color.R", "diffuse_direct.motion.X", "motion.X", "silhouette.Y",
-                           "variance.R"})
+  for (const char* kept : {"R", "diffuse_direct.color.R", "diffuse_direct.motion.X", "motion.X", "silhouette.Y"})
     EXPECT_TRUE(keyframe.hasChannel(kept)) << kept;
   EXPECT_LT(keyframe.channelNames().size(), before);
-  FrameImage notUpsampled = render(kBefore, 4);
-  keepReadChannels(*renderedContent(ROLE_KEYFRAME), stagesOf(PIPELINE_DI), notUpsampled);
-  EXPECT_FALSE(notUpsampled.hasChannel("variance.R"));
+  // The frame-wide variance: only an in-between frame's caustic check reads it.
+  FrameImage features = render(kBefore, 4);
+  keepReadChannels(*renderedContent(ROLE_FEATURES), stagesOf(PIPELINE_DUI), features);
+  EXPECT_TRUE(features.hasChannel("variance.R"));
   // References, baselines and pt's own frames keep every channel.
   for (const TaskRole role : {ROLE_REFERENCE, ROLE_BASELINE, ROLE_OUTPUT}) EXPECT_FALSE(renderedContent(role));
 }
