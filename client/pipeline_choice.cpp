@@ -10,19 +10,23 @@
 namespace pathfarm::farm {
 namespace {
 
-// Probe frames, 2 fewer of them measured. Below kFewerFramesFromSpp a frame's estimates
-// are noisier: with 2 measured frames at 64 spp the courtyard's d read within the probe's
-// noise, and auto chose tgpt at 5 times d's cost at equal error; with 3 it chose d. At 256
-// spp 2 frames read every estimate within a standard error of 3 (docs/performance.md).
+// Probe frames, and the middle ones measured. Below kFewerFramesFromSpp a frame's
+// estimates are noisier: with 2 measured frames at 64 spp the courtyard's d read within the
+// probe's noise, and auto chose tgpt at 5 times d's cost at equal error; with 3 it chose d.
+// At 256 spp 2 frames read every estimate within a standard error of 3
+// (docs/performance.md). A longer interval lengthens the probe, not what is measured.
 constexpr int64_t kMinProbeFrames = 5;
 constexpr int64_t kMinProbeFramesAtHighSpp = 4;
+constexpr int64_t kMeasuredFrames = 3;
+constexpr int64_t kMeasuredFramesAtHighSpp = 2;
 constexpr int kFewerFramesFromSpp = 256;
 constexpr int kMaxProbeScale = 4;
 constexpr int kMinProbeEdge = 32;
 // The probe's cost, in plain pt frames of its size per probe frame: d 1.1, di 0.6, dui 0.4,
 // tgpt about 5.5 at a kGradientProbeSppDivisor-th of the spp (docs/performance.md); plain
 // pt's, at standInSpp, on the measured frames only, comes on top.
-constexpr double kCandidatesCostInPtFrames = 1.1 + 0.6 + 0.4 + 5.5 / kGradientProbeSppDivisor;
+constexpr double kInterpolatingCostInPtFrames = 0.6 + 0.4;
+constexpr double kOthersCostInPtFrames = 1.1 + 5.5 / kGradientProbeSppDivisor;
 constexpr double kProbeBudget = 0.05;  // of a plain pt shot
 // Crops per axis of a probe spread over the picture; their floor of kMinProbeEdge rows may
 // take their pixels this far past one crop's.
@@ -63,11 +67,14 @@ ProbeGeometry probeGeometry(const ShotSpec& shot, int longestInterval) {
   geometry.frameEnd = geometry.frameStart + frames - 1;
   const bool innerFramesOnly = frames >= kMinProbeFramesAtHighSpp && geometry.frameStart > shot.frame_start() &&
                                geometry.frameEnd < shot.frame_end();
-  geometry.measuredStart = geometry.frameStart + (innerFramesOnly ? 1 : 0);
-  geometry.measuredEnd = geometry.frameEnd - (innerFramesOnly ? 1 : 0);
+  const int64_t measured = shot.spp() >= kFewerFramesFromSpp ? kMeasuredFramesAtHighSpp : kMeasuredFrames;
+  geometry.measuredStart = innerFramesOnly ? geometry.frameStart + (frames - measured) / 2 : geometry.frameStart;
+  geometry.measuredEnd = innerFramesOnly ? geometry.measuredStart + measured - 1 : geometry.frameEnd;
   // The probe costs this many plain pt frames of the shot's size, over scale^2.
   const double standInFactor = static_cast<double>(standInSpp(shot.spp())) / shot.spp();
-  const double cost = kCandidatesCostInPtFrames * static_cast<double>(frames) +
+  const double neighbouredFrames = static_cast<double>(std::min(frames, geometry.measuredFrames() + 2));
+  const double cost = kInterpolatingCostInPtFrames * static_cast<double>(frames) +
+                      kOthersCostInPtFrames * neighbouredFrames +
                       standInFactor * static_cast<double>(geometry.measuredFrames());
   const double scale = std::sqrt(cost / (kProbeBudget * static_cast<double>(shotFrames)));
   const int largestScale = std::max(1, std::min(shot.width(), shot.height()) / kMinProbeEdge);
@@ -97,6 +104,12 @@ int standInSpp(int shotSpp) {
   return std::max(kStandInSppFactor * shotSpp, std::min(kStandInMaxSppFactor * shotSpp, kStandInFloorSpp));
 }
 
+std::pair<int64_t, int64_t> ProbeGeometry::framesOf(const ShotSpec& candidate) const {
+  if (candidate.pipeline() == PIPELINE_PT) return {measuredStart, measuredEnd};
+  if (candidate.keyframe_interval() > 1) return {frameStart, frameEnd};
+  return {std::max(frameStart, measuredStart - 1), std::min(frameEnd, measuredEnd + 1)};
+}
+
 double probeSppRatio(const ShotSpec& candidate) {
   if (candidate.pipeline() == PIPELINE_PT) return static_cast<double>(standInSpp(candidate.spp())) / candidate.spp();
   if (candidate.pipeline() == PIPELINE_TGPT && candidate.spp() / kGradientProbeSppDivisor >= kGradientProbeMinSpp)
@@ -116,8 +129,9 @@ ShotSpec probeSpecOf(const ShotSpec& candidate, const ProbeGeometry& geometry, s
   const std::string name(pipelineName(candidate.pipeline()));
   const std::string windowName = geometry.windows.size() > 1 ? ".window_" + std::to_string(window) : "";
   probe.set_name(candidate.name() + ".probe." + name + windowName);
-  probe.set_frame_start(geometry.frameStart);
-  probe.set_frame_end(geometry.frameEnd);
+  const auto [first, last] = geometry.framesOf(candidate);
+  probe.set_frame_start(first);
+  probe.set_frame_end(last);
   probe.set_width(geometry.width);
   probe.set_height(geometry.height);
   probe.set_output(probeOutput(folder, candidate.pipeline(), geometry, window).string());
@@ -125,7 +139,7 @@ ShotSpec probeSpecOf(const ShotSpec& candidate, const ProbeGeometry& geometry, s
   probe.clear_evaluation_frames();
   probe.clear_baseline_core_seconds();
   if (candidate.pipeline() == PIPELINE_TGPT) {
-    probe.set_poisson_window(static_cast<int>(std::min<int64_t>(candidate.poisson_window(), geometry.frames())));
+    probe.set_poisson_window(static_cast<int>(std::min<int64_t>(candidate.poisson_window(), last - first + 1)));
     probe.set_poisson_overlap(std::min(candidate.poisson_overlap(), probe.poisson_window() - 1));
   }
   if (geometry.zoom > 1) probe.set_camera_zoom(geometry.zoom);
@@ -133,8 +147,6 @@ ShotSpec probeSpecOf(const ShotSpec& candidate, const ProbeGeometry& geometry, s
   probe.set_camera_shift_y(geometry.windows.at(window).shiftY);
   if (candidate.pipeline() == PIPELINE_PT) {
     probe.set_first_sample(kIndependentFirstSample);
-    probe.set_frame_start(geometry.measuredStart);
-    probe.set_frame_end(geometry.measuredEnd);
   }
   probe.set_spp(static_cast<int>(std::lround(candidate.spp() * probeSppRatio(candidate))));
   return probe;

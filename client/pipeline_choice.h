@@ -11,6 +11,7 @@
 // core-seconds over pt's, times its error over pt's (pt's error falls as 1/spp). This file
 // holds the arithmetic; pipeline_probe.h runs the probe on a farm.
 #include <filesystem>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -43,12 +44,21 @@ struct ProbeGeometry {
   std::vector<ProbeWindow> windows{ProbeWindow{}};  // one crop each
   int64_t frames() const { return frameEnd - frameStart + 1; }
   int64_t measuredFrames() const { return measuredEnd - measuredStart + 1; }
+  // The frames `candidate` renders (inclusive): an interpolating one (keyframe_interval >
+  // 1) all of them; plain pt's stand-in the measured ones; the others those and a
+  // neighbour on each side, which is all a measured frame of theirs reads.
+  std::pair<int64_t, int64_t> framesOf(const ShotSpec& candidate) const;
+  int64_t frameCountOf(const ShotSpec& candidate) const {
+    const auto [first, last] = framesOf(candidate);
+    return last - first + 1;
+  }
   // Every crop's pixels together.
   double pixels() const { return static_cast<double>(width) * height * static_cast<double>(windows.size()); }
 };
 
 // Frames: enough for every candidate's keyframe interval (longestInterval + 1) and at
-// least 5 (3 measured; from 256 spp, 4 and 2), from the middle of the shot. Crops: about
+// least 5 (from 256 spp, 4), from the middle of the shot; errors are measured on the middle
+// 3 (from 256 spp, 2) where the probe has frames on both sides of them. Crops: about
 // 1/scale² of the shot's pixels, scale the least (1 to 4) that keeps the probe's estimated
 // cost near 5 % of a plain pt shot.
 // Where the shot is large enough, a grid of 3 x 3 crops of 1/(3 scale) per axis, centred

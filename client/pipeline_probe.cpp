@@ -82,14 +82,16 @@ std::vector<std::vector<int64_t>> submitProbes(FarmClient& client, const std::ve
   return ids;
 }
 
-// What the probe shots `ids` of `pipeline` (one per crop) cost and erred at the shot's spp,
-// once they end; they rendered `sppScale` times its spp.
+// What the probe shots `ids` of `candidate` (one per crop) cost and erred at the shot's
+// spp, once they end; they rendered probeSppRatio(candidate) times its spp.
 // pt's probe comes first: its frames become `truthStandIn`, which the others are measured
 // against.
-CandidateMeasure measureProbe(FarmClient& client, const std::vector<int64_t>& ids, Pipeline pipeline,
-                              double sppScale, const ProbeGeometry& geometry, const std::filesystem::path& probeFolder,
+CandidateMeasure measureProbe(FarmClient& client, const std::vector<int64_t>& ids, const ShotSpec& candidate,
+                              const ProbeGeometry& geometry, const std::filesystem::path& probeFolder,
                               const std::function<void(const ShotSummary&)>& progress,
                               std::map<std::string, FrameImage>& truthStandIn) {
+  const Pipeline pipeline = candidate.pipeline();
+  const double sppScale = probeSppRatio(candidate);
   const std::string name(pipelineName(pipeline));
   CandidateMeasure measure;
   measure.pipeline = pipeline;
@@ -115,7 +117,7 @@ CandidateMeasure measureProbe(FarmClient& client, const std::vector<int64_t>& id
     for (const StageCost& stage : report.stages())
       measure.coreSecondsPerFrame += stage.stage() == "render" ? stage.core_seconds() / sppScale : stage.core_seconds();
   }
-  measure.coreSecondsPerFrame /= static_cast<double>(pipeline == PIPELINE_PT ? geometry.measuredFrames() : geometry.frames());
+  measure.coreSecondsPerFrame /= static_cast<double>(geometry.frameCountOf(candidate));
   if (pipeline == PIPELINE_PT) truthStandIn = frames;
   const MeanEstimate error = estimatedRelMse(frames, truthStandIn, pipeline == PIPELINE_PT);
   measure.relMse = error.mean() * sppScale;
@@ -138,8 +140,7 @@ ShotSpec choosePipeline(FarmClient& client, const ShotFile& file, const ShotSpec
   std::vector<CandidateMeasure> measures;
   std::map<std::string, FrameImage> truthStandIn;
   for (size_t i = 0; i < candidates.size(); ++i)
-    measures.push_back(measureProbe(client, ids[i], candidates[i].pipeline(), probeSppRatio(candidates[i]), geometry,
-                                    probeFolder, progress, truthStandIn));
+    measures.push_back(measureProbe(client, ids[i], candidates[i], geometry, probeFolder, progress, truthStandIn));
 
   PipelineChoice choice;
   try {

@@ -15,7 +15,9 @@
 // moving glass ball reflects a lamp onto every surface around it, a few per cent of their
 // light. In a 4-spp render that glow arrives in rare, heavy samples, and without the term
 // a window holding two or three of them passed the share (on the dolly at 640x360, 4 % of
-// the picture in scattered blocks on the floor, flagged for this cause alone).
+// the picture in scattered blocks on the floor, flagged for this cause alone). It is for
+// such renders: the farm's keyframe task, whose keyframe carries its caustic into every
+// frame interpolated from it, checks without it (z = 0).
 #include <cstdint>
 #include <vector>
 

@@ -76,6 +76,16 @@ TEST(PipelineChoice, ErrorsAreMeasuredOnFramesWithNeighboursOnBothSidesAsTheShot
   EXPECT_EQ(middle.measuredStart, middle.frameStart + 1);
   EXPECT_EQ(middle.measuredEnd, middle.frameEnd - 1);
   EXPECT_EQ(middle.measuredFrames(), 3);
+  // A longer interval lengthens the probe around the same number of measured frames, in
+  // its middle: 3, and from 256 spp 2.
+  const ProbeGeometry longer = probeGeometry(probedShot(24, 320, 180), 8);  // frames 107..115
+  EXPECT_EQ(longer.measuredStart, 110);
+  EXPECT_EQ(longer.measuredEnd, 112);
+  ShotSpec manySamples = probedShot(24, 320, 180);
+  manySamples.set_spp(256);
+  const ProbeGeometry longerAtHighSpp = probeGeometry(manySamples, 5);  // frames 109..114
+  EXPECT_EQ(longerAtHighSpp.measuredStart, 111);
+  EXPECT_EQ(longerAtHighSpp.measuredEnd, 112);
   // A probe that reaches an end of the shot measures every frame: the shot's own first or
   // last frame lacks the neighbour too.
   for (const int64_t frames : {3, 5, 6}) {
@@ -153,16 +163,21 @@ TEST(PipelineChoice, ALargerShotIsProbedInAGridOfCropsOverTheWholePicture) {
 }
 
 TEST(PipelineChoice, EveryProbePlansAndOnlyPlainPtSamplesApart) {
-  const ProbeGeometry g = probeGeometry(probedShot(24, 320, 180), 4);
-  for (const auto& [pipeline, k] : std::vector<std::pair<std::string, int>>{{"pt", 1}, {"d", 1}, {"di", 4},
-                                                                            {"dui", 4}, {"tgpt", 1}}) {
+  const ProbeGeometry g = probeGeometry(probedShot(24, 320, 180), 6);  // frames 108..114, measured 110..112
+  for (const auto& [pipeline, k] : std::vector<std::pair<std::string, int>>{{"pt", 1}, {"d", 1}, {"di", 6},
+                                                                            {"dui", 6}, {"tgpt", 1}}) {
     const ShotSpec probe = probeSpecOf(candidateSpec(pipeline, k), g, 0, "/tmp/probes");
     EXPECT_EQ(pipelineName(probe.pipeline()), pipeline);
     EXPECT_EQ(probe.output(), "/tmp/probes/" + pipeline);
     EXPECT_EQ(probe.width(), g.width);
-    // The stand-in renders only the frames errors are measured on.
-    EXPECT_EQ(probe.frame_start(), pipeline == "pt" ? g.measuredStart : g.frameStart) << pipeline;
-    EXPECT_EQ(probe.frame_end(), pipeline == "pt" ? g.measuredEnd : g.frameEnd) << pipeline;
+    // The stand-in renders only the frames errors are measured on, the interpolating
+    // candidates the whole probe, the others the measured frames and their neighbours.
+    const bool interpolates = k > 1;
+    EXPECT_EQ(probe.frame_start(), pipeline == "pt" ? g.measuredStart : interpolates ? g.frameStart : g.measuredStart - 1)
+        << pipeline;
+    EXPECT_EQ(probe.frame_end(), pipeline == "pt" ? g.measuredEnd : interpolates ? g.frameEnd : g.measuredEnd + 1)
+        << pipeline;
+    EXPECT_EQ(g.frameCountOf(candidateSpec(pipeline, k)), probe.frame_end() - probe.frame_start() + 1) << pipeline;
     EXPECT_EQ(probe.reference_spp(), 0) << "a probe measures nothing itself";
     EXPECT_TRUE(probe.evaluation_frames().empty());
     EXPECT_EQ(probe.first_sample(), pipeline == "pt" ? kIndependentFirstSample : 0u) << pipeline;
@@ -173,7 +188,7 @@ TEST(PipelineChoice, EveryProbePlansAndOnlyPlainPtSamplesApart) {
     EXPECT_DOUBLE_EQ(probe.camera_zoom(), 180.0 / g.height);
     EXPECT_NO_THROW(planShot(probe)) << pipeline;
     if (pipeline == "tgpt") {
-      EXPECT_LE(probe.poisson_window(), g.frames());
+      EXPECT_LE(probe.poisson_window(), probe.frame_end() - probe.frame_start() + 1);
     }
   }
 }
