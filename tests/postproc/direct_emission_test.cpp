@@ -9,24 +9,23 @@ namespace {
 // of other residual light, pixel 2 sees no light; the mirror component sees the sky (0.5)
 // in pixel 2 only; the diffuse component (ED) has no directly seen light at all.
 FrameImage frame() {
+  using Plane = std::vector<float>;
   FrameImage f(3, 1);
   f.attributes()["pathfarm.decomposition"] = "diffuse=ED,mirror=ER,residual";
-  for (const char* c : {"R", "G", "B"}) {
-    const std::string n = c;
-    f.addChannel(n) = {4.5f, 3.5f, 1.0f};
-    f.addChannel("diffuse.color." + n) = {0.5f, 0.5f, 0.5f};
-    f.addChannel("diffuse.emission." + n) = {0.0f, 0.0f, 0.0f};
-    f.addChannel("diffuse.reflectance." + n) = {0.5f, 0.5f, 0.5f};
-    f.addChannel("diffuse.irradiance." + n) = {1.0f, 1.0f, 1.0f};
-    f.addChannel("mirror.color." + n) = {0.0f, 0.0f, 0.5f};
-    f.addChannel("mirror.emission." + n) = {0.0f, 0.0f, 0.5f};
-    f.addChannel("mirror.reflectance." + n) = {0.0f, 0.0f, 0.0f};
-    f.addChannel("mirror.irradiance." + n) = {0.0f, 0.0f, 0.5f};
-    f.addChannel("residual.color." + n) = {4.0f, 3.0f, 0.0f};
-    f.addChannel("residual.emission." + n) = {4.0f, 2.0f, 0.0f};
-    f.addChannel("residual.reflectance." + n) = {0.8f, 0.5f, 0.0f};
-    f.addChannel("residual.irradiance." + n) = {5.0f, 6.0f, 0.0f};
-  }
+  // Each buffer the same in R, G and B.
+  const auto add = [&](const std::string& component, const Plane& color, const Plane& emission,
+                       const Plane& reflectance, const Plane& irradiance) {
+    for (const char* c : {"R", "G", "B"}) {
+      f.addChannel(component + ".color." + c) = color;
+      f.addChannel(component + ".emission." + c) = emission;
+      f.addChannel(component + ".reflectance." + c) = reflectance;
+      f.addChannel(component + ".irradiance." + c) = irradiance;
+    }
+  };
+  for (const char* c : {"R", "G", "B"}) f.addChannel(c) = {4.5f, 3.5f, 1.0f};
+  add("diffuse", {0.5f, 0.5f, 0.5f}, {0.0f, 0.0f, 0.0f}, {0.5f, 0.5f, 0.5f}, {1.0f, 1.0f, 1.0f});
+  add("mirror", {0.0f, 0.0f, 0.5f}, {0.0f, 0.0f, 0.5f}, {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.5f});
+  add("residual", {4.0f, 3.0f, 0.0f}, {4.0f, 2.0f, 0.0f}, {0.8f, 0.5f, 0.0f}, {5.0f, 6.0f, 0.0f});
   return f;
 }
 
