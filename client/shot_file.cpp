@@ -33,6 +33,7 @@ std::vector<int64_t> defaultEvaluationFrames(const ShotSpec& spec) {
 // (shot_preparation.h) within the file's rerender_bound.
 void readFilteringKeys(const JsonNode& root, ShotSpec& spec) {
   spec.set_feature_spp(root.has("feature_spp") ? root["feature_spp"].integer(1, 1 << 20) : 4);
+  if (root.has("rerender_spp")) spec.set_rerender_spp(root["rerender_spp"].integer(1, 1 << 20));
   if (root.has("filter_window_rows"))
     spec.set_filter_window_rows(root["filter_window_rows"].integer(kMinFilterWindowRows, 16384));
   if (!stagesOf(spec.pipeline()).interpolate) {

@@ -10,7 +10,7 @@ namespace pathfarm::farm {
 const std::vector<PipelineTraits>& allPipelines() {
   using F = PipelineFamily;
   static const std::vector<std::string_view> filteringKeys = {"keyframe_interval", "rerender_bound", "feature_spp",
-                                                              "filter_window_rows"};
+                                                              "filter_window_rows", "rerender_spp"};
   static const std::vector<std::string_view> gradientKeys = {"poisson_window", "poisson_overlap", "poisson_norm"};
   static const std::vector<std::string_view> metropolisKeys = {"mlt_window",       "mutations_per_pixel", "mlt_chains",
                                                                "chains_per_block", "chain_tasks",         "temporal_delta",
@@ -79,6 +79,15 @@ FilteringStages stagesOf(Pipeline pipeline) {
   if (!isFilteringPipeline(pipeline))
     throw std::invalid_argument(pipelineLabel(pipeline) + " is not a filtering pipeline");
   return traitsOf(pipeline).stages;
+}
+
+int keyframeSppOf(const ShotSpec& spec) {
+  return stagesOf(spec.pipeline()).upsample ? std::max(1, spec.spp() / 4) : spec.spp();
+}
+
+int rerenderSppOf(const ShotSpec& spec) {
+  if (spec.rerender_spp() > 0) return std::min(spec.rerender_spp(), spec.spp());
+  return stagesOf(spec.pipeline()).upsample ? std::max(1, spec.spp() / 2) : spec.spp();
 }
 
 std::vector<int64_t> keyframesOf(const ShotSpec& spec) {

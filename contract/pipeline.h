@@ -84,6 +84,16 @@ inline constexpr int kCompositeHalo = 32;
 // the in-between frames").
 inline constexpr int kMaxOwnReflectanceSpp = 16;
 inline int ownReflectanceSpp(int keyframeSpp) { return std::min(keyframeSpp, kMaxOwnReflectanceSpp); }
+// The samples per pixel of a filtering shot's keyframe renders: a quarter of spp with `u`
+// (they are denoised at half resolution and upsampled), else spp.
+int keyframeSppOf(const ShotSpec& spec);
+// The samples per pixel of a filtering shot's sparse re-render: ShotSpec.rerender_spp when
+// given (at most spp), else half of spp with `u` and spp without. The composite denoises the
+// re-rendered pixels among themselves, and with `u` the keyframes beside them had a quarter
+// of spp: at half of spp a re-rendered pixel still has twice their samples, and the shot
+// costs less at equal error than with a full-spp re-render (docs/performance.md, "The
+// sparse re-render at half the samples").
+int rerenderSppOf(const ShotSpec& spec);
 // Rows first .. end - 1 of a frame.
 struct RowWindow {
   int first = 0, end = 0;

@@ -223,6 +223,7 @@ void planFiltering(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
   if (stages.upsample && (spec.width() % 2 != 0 || spec.height() % 2 != 0))
     throw PlanError("resolution: upsampling pipelines need an even width and height");
   if (spec.keyframe_interval() < 1) throw PlanError("keyframe_interval: must be at least 1");
+  if (spec.rerender_spp() < 0) throw PlanError("rerender_spp: must be at least 1 (or 0 for the default)");
   if (spec.filter_window_rows() != 0 && spec.filter_window_rows() < kMinFilterWindowRows)
     throw PlanError("filter_window_rows: must be at least " + std::to_string(kMinFilterWindowRows));
   std::vector<std::string> components;
@@ -233,7 +234,7 @@ void planFiltering(const ShotSpec& spec, std::vector<PlannedTask>& plan) {
   }
 
   const std::vector<int64_t> keyframes = keyframesOf(spec);
-  const int keyframeSpp = stages.upsample ? std::max(1, spec.spp() / 4) : spec.spp();
+  const int keyframeSpp = keyframeSppOf(spec);
   std::map<int64_t, size_t> rendered;  // frame -> its assembled render (keyframe or features)
   const std::vector<size_t> keyframeOrder = previewOrder(keyframes.size(), spec.preview_every());
   for (const size_t i : keyframeOrder) {

@@ -237,6 +237,8 @@ ShotReport buildReport(const ShotSummary& summary, const ShotSpec& spec, const s
   report.set_keyframes(filtering ? static_cast<int64_t>(keyframesOf(spec).size()) : report.frames());
   report.set_keyframe_interval(filtering ? spec.keyframe_interval() : 1);
   report.set_keyframe_reason(filtering ? spec.keyframe_reason() : "every frame is rendered");
+  if (filtering && (stagesOf(spec.pipeline()).upsample || stagesOf(spec.pipeline()).interpolate))
+    report.set_rerender_spp(rerenderSppOf(spec));
   report.set_tasks_total(static_cast<int64_t>(tasks.size()));
   report.set_reference_spp(spec.reference_spp());
   report.set_cached_references(spec.known_references_size());
@@ -338,6 +340,7 @@ std::string reportMarkdown(const ShotReport& r) {
     md += "| **cost at equal error** (relative cost x error / pt's, against the truth; pt's taken to fall as 1/spp; "
           "95 % interval) | " + intervalText(r.cost_at_equal_error_interval(), "%.3f") + " |\n";
   md += "| re-render rate, all frames | " + format("%.2f%%", 100 * r.rerender_rate()) + " |\n";
+  if (r.rerender_spp() > 0) md += "| re-render samples per pixel | " + std::to_string(r.rerender_spp()) + " |\n";
   md += "| re-render rate, interpolated frames | " + format("%.2f%%", 100 * r.interpolation_rerender_rate()) + " |\n";
   md += causeRows(r.interpolation_rerender_causes());
   md += "| re-render rate, upsampled keyframes | " + format("%.2f%%", 100 * r.upsample_rerender_rate()) + " |\n";

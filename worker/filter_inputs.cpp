@@ -222,7 +222,7 @@ MotionField readMotionField(const FrameImage& image, const std::string& name) {
 }
 
 void requestRerender(const ShotSpec& spec, int64_t frame, const std::vector<uint8_t>& mask, TaskOutput& output) {
-  const int width = spec.width(), height = spec.height(), tile = spec.tile();
+  const int width = spec.width(), height = spec.height(), tile = spec.tile(), spp = rerenderSppOf(spec);
   if (mask.size() != static_cast<size_t>(width) * static_cast<size_t>(height))
     throw BadInput("the re-render mask does not have the shot's resolution");
   size_t flagged = 0;
@@ -243,7 +243,7 @@ void requestRerender(const ShotSpec& spec, int64_t frame, const std::vector<uint
       TaskParams& params = output.followUps.emplace_back();
       params.set_frame(frame);
       params.set_role(ROLE_RERENDER);
-      params.set_spp(spec.spp());
+      params.set_spp(spp);
       params.set_pixel_mask(pixels);
       PixelWindow* window = params.mutable_window();
       window->set_x0(x0);

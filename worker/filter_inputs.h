@@ -93,7 +93,7 @@ void writeMotionField(FrameImage& image, const std::string& name, const MotionFi
 MotionField readMotionField(const FrameImage& image, const std::string& name);
 
 // Groups the flagged pixels of a frame (`mask`, one byte per pixel) into the shot's tiles:
-// one render task per tile with a flagged pixel, at the shot's spp, rendering just those
+// one render task per tile with a flagged pixel, at rerenderSppOf(spec), rendering just those
 // pixels. Adds "rerender_pixels" and "pixels" to `output.metrics`.
 void requestRerender(const ShotSpec& spec, int64_t frame, const std::vector<uint8_t>& mask, TaskOutput& output);
 

@@ -85,6 +85,7 @@ TEST(ShotReport, CostsRatesAndErrorsFollowFromTheTasks) {
 
   const std::string md = reportMarkdown(report);
   EXPECT_NE(md.find("| **relative cost**"), std::string::npos);
+  EXPECT_NE(md.find("| re-render samples per pixel | 4 |"), std::string::npos) << md;  // half of dui's 8
   EXPECT_NE(md.find("| **final frames** | 0.01000 | 0.00800 (0.00700 to 0.00900) | 0.5000 | - | 25% | all |"),
             std::string::npos)
       << md;
@@ -285,6 +286,8 @@ TEST(ShotReport, APtShotIsItsOwnBaselineAndAGivenCostIsUsed) {
   tasks[0].metrics["samples"] = 3200;
   const ShotReport own = buildReport({}, pt, tasks);
   EXPECT_DOUBLE_EQ(own.relative_cost(), 1.0);
+  EXPECT_EQ(own.rerender_spp(), 0);  // pt re-renders nothing
+  EXPECT_EQ(reportMarkdown(own).find("re-render samples"), std::string::npos);
   EXPECT_DOUBLE_EQ(own.resolution_gain(), 1.0);
 
   ShotSpec given = spec();
