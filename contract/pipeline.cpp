@@ -86,8 +86,7 @@ int keyframeSppOf(const ShotSpec& spec) {
 }
 
 int rerenderSppOf(const ShotSpec& spec) {
-  if (spec.rerender_spp() > 0) return std::min(spec.rerender_spp(), spec.spp());
-  return stagesOf(spec.pipeline()).upsample ? std::max(1, spec.spp() / 2) : spec.spp();
+  return spec.rerender_spp() > 0 ? std::min(spec.rerender_spp(), spec.spp()) : spec.spp();
 }
 
 std::vector<int64_t> keyframesOf(const ShotSpec& spec) {

@@ -88,11 +88,10 @@ inline int ownReflectanceSpp(int keyframeSpp) { return std::min(keyframeSpp, kMa
 // (they are denoised at half resolution and upsampled), else spp.
 int keyframeSppOf(const ShotSpec& spec);
 // The samples per pixel of a filtering shot's sparse re-render: ShotSpec.rerender_spp when
-// given (at most spp), else half of spp with `u` and spp without. The composite denoises the
-// re-rendered pixels among themselves, and with `u` the keyframes beside them had a quarter
-// of spp: at half of spp a re-rendered pixel still has twice their samples, and the shot
-// costs less at equal error than with a full-spp re-render (docs/performance.md, "The
-// sparse re-render at half the samples").
+// given, at most spp; spp by default. Half of spp beside a dui shot's quarter-spp keyframes
+// cost less at equal error on the dolly and the courtyard at 256 spp, but more on the
+// showroom (its caustic under the glass ball is re-rendered) and on the dolly at 64 spp
+// (docs/performance.md, "The sparse re-render at half the samples").
 int rerenderSppOf(const ShotSpec& spec);
 // Rows first .. end - 1 of a frame.
 struct RowWindow {

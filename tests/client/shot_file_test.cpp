@@ -174,25 +174,25 @@ TEST(ShotFile, FilterWindowRowsAreReadForTheFilteringPipelines) {
   EXPECT_EQ(windows.back().end, 200);
 }
 
-// The sparse re-render takes half of spp next to keyframes denoised from a quarter of it
-// (du, dui), all of it next to full-spp keyframes (d, di), and what the file asks, up to spp.
-TEST(ShotFile, TheRerenderSamplesAreTheFilesOrHalfOfSppWithUpsampling) {
+// The sparse re-render takes spp, or what the file asks up to spp; keyframes beside an
+// upsampling pipeline's re-render take a quarter of spp.
+TEST(ShotFile, TheRerenderSamplesAreSppOrTheFilesAtMostSpp) {
   const auto read = [](const std::string& keys) {
     const auto file = writeShot("rerender", R"({"scene": "cornell/scene.json", "spp": 256, )" + keys + "}");
     const ShotSpec spec = loadShotFile(file);
     std::filesystem::remove(file);
     return spec;
   };
-  EXPECT_EQ(rerenderSppOf(read(R"("pipeline": "dui", "keyframe_interval": 2)")), 128);
-  EXPECT_EQ(rerenderSppOf(read(R"("pipeline": "du")")), 128);
-  EXPECT_EQ(rerenderSppOf(read(R"("pipeline": "di", "keyframe_interval": 2)")), 256);
+  EXPECT_EQ(rerenderSppOf(read(R"("pipeline": "dui", "keyframe_interval": 2)")), 256);
+  EXPECT_EQ(rerenderSppOf(read(R"("pipeline": "du", "rerender_spp": 128)")), 128);
+  EXPECT_EQ(keyframeSppOf(read(R"("pipeline": "di", "keyframe_interval": 2)")), 256);
   EXPECT_EQ(keyframeSppOf(read(R"("pipeline": "dui", "keyframe_interval": 2)")), 64);
   EXPECT_EQ(rerenderSppOf(read(R"("pipeline": "dui", "keyframe_interval": 2, "rerender_spp": 40)")), 40);
   EXPECT_EQ(rerenderSppOf(read(R"("pipeline": "di", "keyframe_interval": 2, "rerender_spp": 1000)")), 256);
-  ShotSpec one;  // a shot of 1 spp still re-renders with a sample
+  ShotSpec one;  // a quarter of 1 spp is still a sample
   one.set_pipeline(PIPELINE_DUI);
   one.set_spp(1);
-  EXPECT_EQ(rerenderSppOf(one), 1);
+  EXPECT_EQ(keyframeSppOf(one), 1);
 }
 
 // Every height and window size: the windows cover the frame's rows once each, top to

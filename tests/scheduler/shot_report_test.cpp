@@ -85,7 +85,7 @@ TEST(ShotReport, CostsRatesAndErrorsFollowFromTheTasks) {
 
   const std::string md = reportMarkdown(report);
   EXPECT_NE(md.find("| **relative cost**"), std::string::npos);
-  EXPECT_NE(md.find("| re-render samples per pixel | 4 |"), std::string::npos) << md;  // half of dui's 8
+  EXPECT_NE(md.find("| re-render samples per pixel | 8 |"), std::string::npos) << md;  // the shot's spp
   EXPECT_NE(md.find("| **final frames** | 0.01000 | 0.00800 (0.00700 to 0.00900) | 0.5000 | - | 25% | all |"),
             std::string::npos)
       << md;

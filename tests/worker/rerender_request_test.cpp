@@ -28,7 +28,7 @@ TEST(RerenderRequest, EachTileWithAFlaggedPixelRendersThoseAtTheShotsRerenderSpp
   mask[3 * kMaskWidth + 5] = 1;                             // tile (0, 0)
   mask[20 * kMaskWidth + 35] = mask[23 * kMaskWidth + 39] = 1;  // tile (32, 16), the corner's
   TaskOutput output;
-  requestRerender(rerenderShot(PIPELINE_DUI, 0), 7, mask, output);
+  requestRerender(rerenderShot(PIPELINE_DUI, 128), 7, mask, output);
   ASSERT_EQ(output.followUps.size(), 2u);
   EXPECT_EQ(output.metrics.at("rerender_pixels"), 3.0);
   EXPECT_EQ(output.metrics.at("pixels"), static_cast<double>(kMaskWidth * kMaskHeight));
@@ -36,7 +36,7 @@ TEST(RerenderRequest, EachTileWithAFlaggedPixelRendersThoseAtTheShotsRerenderSpp
   const TaskParams& corner = output.followUps[1];
   EXPECT_EQ(first.role(), ROLE_RERENDER);
   EXPECT_EQ(first.frame(), 7);
-  EXPECT_EQ(first.spp(), 128);  // half of 256 beside keyframes of 64 spp
+  EXPECT_EQ(first.spp(), 128);  // the shot's rerender_spp
   EXPECT_EQ(corner.spp(), 128);
   EXPECT_EQ(corner.window().x0(), 32);
   EXPECT_EQ(corner.window().y0(), 16);
@@ -49,10 +49,10 @@ TEST(RerenderRequest, EachTileWithAFlaggedPixelRendersThoseAtTheShotsRerenderSpp
   EXPECT_EQ(corner.pixel_mask()[7 * 8 + 7], 1);
 
   TaskOutput given, full;
-  requestRerender(rerenderShot(PIPELINE_DUI, 32), 7, mask, given);
-  requestRerender(rerenderShot(PIPELINE_DI, 0), 7, mask, full);
-  EXPECT_EQ(given.followUps[0].spp(), 32);
-  EXPECT_EQ(full.followUps[0].spp(), 256);  // beside full-spp keyframes
+  requestRerender(rerenderShot(PIPELINE_DUI, 1000), 7, mask, given);
+  requestRerender(rerenderShot(PIPELINE_DUI, 0), 7, mask, full);
+  EXPECT_EQ(given.followUps[0].spp(), 256);  // at most the shot's spp
+  EXPECT_EQ(full.followUps[0].spp(), 256);   // by default the shot's spp
 }
 
 TEST(RerenderRequest, NothingFlaggedAsksForNothingAndAMaskOfAnotherSizeIsRefused) {
