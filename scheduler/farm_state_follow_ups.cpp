@@ -17,7 +17,9 @@ int64_t tilesPerFrame(const ShotSpec& spec) {
 std::string refusalOfFollowUp(const TaskParams& params, int64_t frame, const ShotSpec& spec) {
   if (params.role() != ROLE_RERENDER) return "a follow-up tile is not a re-render";
   if (params.frame() != frame) return "a follow-up tile is not of the task's frame";
-  if (params.spp() < 0 || params.spp() > spec.spp()) return "a follow-up tile asks for more samples than the shot's";
+  if (params.spp() != rerenderSppOf(spec))
+    return "a follow-up tile asks for " + std::to_string(params.spp()) + " samples, not the shot's re-render's " +
+           std::to_string(rerenderSppOf(spec));
   const PixelWindow& w = params.window();
   if (w.x0() < 0 || w.y0() < 0 || w.x1() > spec.width() || w.y1() > spec.height() || w.x0() >= w.x1() ||
       w.y0() >= w.y1())

@@ -173,7 +173,10 @@ TEST_F(FarmStateTest, FollowUpsThatAreNoTilesOfTheFrameAreRefused) {
   EXPECT_NE(refusal(otherFrame).find("not of the task's frame"), std::string::npos);
   TaskParams moreSamples = rerenderTile(0, 0);
   moreSamples.set_spp(1000);
-  EXPECT_NE(refusal(moreSamples).find("more samples"), std::string::npos);
+  EXPECT_NE(refusal(moreSamples).find("asks for 1000 samples, not the shot's re-render's 4"), std::string::npos);
+  TaskParams fewerSamples = rerenderTile(0, 0);  // a worker may not cheapen the re-render either
+  fewerSamples.set_spp(1);
+  EXPECT_NE(refusal(fewerSamples).find("asks for 1 samples"), std::string::npos);
 
   // The frame holds two tiles: a third is more than any filter can ask for.
   const FollowUps three = batch({rerenderTile(0, 0), rerenderTile(8, 0), rerenderTile(0, 0)});
