@@ -167,10 +167,10 @@ struct WindowPixels {
   // Sample `s` of frame pixel (x, y): its position in the pixel and its shutter time are
   // stratified over the pixel's samples, the time then taken to its shutter bucket's
   // centre; the stream's first dimensions are the lens's.
-  CameraSample cameraSample(int x, int y, const StratifiedPixel& pattern, int s) const {
-    const SampleKey key{scene.seed, frame, x, y, settings.firstSample + static_cast<uint32_t>(s)};
-    SampleStream stream(key);
-    const StratifiedSample stratified = pattern.sample(key.sampleIndex);
+  CameraSample cameraSample(int x, int y, const StratifiedPixel& pattern, const PixelStreams& streams, int s) const {
+    const uint32_t sampleIndex = settings.firstSample + static_cast<uint32_t>(s);
+    SampleStream stream = streams.stream(sampleIndex);
+    const StratifiedSample stratified = pattern.sample(sampleIndex);
     const Vec2f lens = stream.next2D();
     const Transform& cameraNow = shutter.cameraToWorld(stratified.time);
     const Ray ray = camera.generateRay(
@@ -185,8 +185,9 @@ struct WindowPixels {
     std::optional<DecomposedFilm::Pixel> sums;
     if (film) sums.emplace(decomposition->size());
     const StratifiedPixel pattern(scene.seed, frame, x, y);
+    const PixelStreams streams(scene.seed, frame, x, y);
     for (int s = 0; s < settings.spp; ++s) {
-      CameraSample sample = cameraSample(x, y, pattern, s);
+      CameraSample sample = cameraSample(x, y, pattern, streams, s);
       if (film) {
         paths.decomposer->begin();
         paths.record = {&*paths.decomposer, false, {}};
@@ -205,7 +206,7 @@ struct WindowPixels {
     }
     // The reflectance's own samples continue the pixel's stratified pattern.
     for (int s = settings.spp; film && s < settings.reflectanceSpp; ++s) {
-      CameraSample sample = cameraSample(x, y, pattern, s);
+      CameraSample sample = cameraSample(x, y, pattern, streams, s);
       paths.decomposer->begin();
       tracer.traceFeatures(sample.ray, sample.time, sample.stream, local.rays, *paths.decomposer);
       sums->addReflectance(paths.components);

@@ -78,13 +78,12 @@ struct PixelSampler {
   const std::vector<int32_t>& correspondence;
   uint32_t mixedEvery;
 
-  TemporalPair trace(int x, int y, uint32_t sampleIndex, const StratifiedPixel& pattern, bool withMixed,
-                     SampleCounters& local) const {
-    const SampleKey key{scene.seed, frame, x, y, sampleIndex};
-    SampleStream stream(key);
+  TemporalPair trace(int x, int y, uint32_t sampleIndex, const StratifiedPixel& pattern, const PixelStreams& streams,
+                     bool withMixed, SampleCounters& local) const {
+    SampleStream stream = streams.stream(sampleIndex);
     // As in FrameRenderer: pixel position and time stratified, the time taken to its shutter
     // bucket's centre, the lens from the stream.
-    const StratifiedSample stratified = pattern.sample(key.sampleIndex);
+    const StratifiedSample stratified = pattern.sample(sampleIndex);
     const float time = ShutterBuckets::time(stratified.time);
     const PrimaryRays rays{camera, width, height, stratified.film, stream.next2D()};
     // The temporal offset replays the path's random numbers from here on.
@@ -110,9 +109,10 @@ struct PixelSampler {
   // Adds `count` more samples to pixel (x, y)'s sums.
   void render(int x, int y, uint32_t count, GradientPixelSums& s, SampleCounters& local) const {
     const StratifiedPixel pattern(scene.seed, frame, x, y);
+    const PixelStreams streams(scene.seed, frame, x, y);
     for (uint32_t i = 0; i < count; ++i) {
       const bool withMixed = (s.drawn + i) % mixedEvery == 0;
-      const TemporalPair pair = trace(x, y, s.drawn + i, pattern, withMixed, local);
+      const TemporalPair pair = trace(x, y, s.drawn + i, pattern, streams, withMixed, local);
       if (!isFinite(pair.base) || (pair.later && !isFinite(*pair.later))) {
         ++local.nonFinite;
         continue;

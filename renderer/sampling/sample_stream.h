@@ -40,8 +40,22 @@ class SampleStream {
   }
 
  private:
+  friend class PixelStreams;
+  SampleStream(uint64_t pixelHash, uint32_t sampleIndex);
+
   uint64_t state_ = 0;
   uint64_t increment_ = 1;
+};
+
+// The streams of one pixel's samples, SampleStream({sceneSeed, frame, x, y, i}) for each
+// sample index i, with the pixel's part of the key hashed once rather than per sample.
+class PixelStreams {
+ public:
+  PixelStreams(uint64_t sceneSeed, int64_t frame, int32_t x, int32_t y);
+  SampleStream stream(uint32_t sampleIndex) const { return {pixelHash_, sampleIndex}; }
+
+ private:
+  uint64_t pixelHash_ = 0;
 };
 
 // The first three dimensions of a camera sample, stratified over the pixel's samples:
@@ -67,7 +81,7 @@ class StratifiedPixel {
   StratifiedSample sample(uint32_t sampleIndex) const;
 
  private:
-  uint64_t pixelHash_ = 0;
+  uint64_t pixelHash_ = 0, timeScramble_ = 0;  // the first block's
 };
 
 }  // namespace pathfarm

@@ -15,6 +15,16 @@ TEST(SampleStream, SameKeySameNumbers) {
   for (int i = 0; i < 100; ++i) EXPECT_EQ(a.nextUint(), b.nextUint());
 }
 
+TEST(SampleStream, APixelsStreamsAreItsKeysStreams) {
+  // The renderers draw a pixel's streams through PixelStreams, the replays and tests by
+  // key: both must give one sample the same numbers.
+  for (const SampleKey& key : {SampleKey{1, 5, 10, 20, 0}, SampleKey{7, -3, 0, 179, 255},
+                               SampleKey{~0ull, 1'000'000, 1919, 1079, (1u << 31) + 17}}) {
+    SampleStream byKey(key), byPixel = PixelStreams(key.sceneSeed, key.frame, key.x, key.y).stream(key.sampleIndex);
+    for (int i = 0; i < 20; ++i) EXPECT_EQ(byKey.nextUint(), byPixel.nextUint());
+  }
+}
+
 TEST(SampleStream, EveryKeyComponentChangesTheStream) {
   const SampleKey base{1, 5, 10, 20, 3};
   std::set<uint32_t> firsts;
@@ -118,6 +128,37 @@ TEST(StratifiedPixel, ABlockOfSampleIndicesFarAwayDrawsPositionsOfItsOwn) {
   }
   // Within a block, the pattern is one sequence: the block's later samples continue it.
   expectEveryBoxHolds(cameraSamples(pixel, (1u << 31) + 64, 64), {3, 3, -1}, 1);
+}
+
+// The 24 bits of a coordinate in [0, 1) as StratifiedPixel makes it.
+uint32_t coordinateBits(float v) { return static_cast<uint32_t>(v * 0x1p24f); }
+
+TEST(StratifiedPixel, ThePositionsAreSobolsFirstTwoDimensionsUpToTheScramble) {
+  // Within a block, a pixel's scramble is one XOR per dimension, so two samples' film
+  // coordinates differ by the XOR of their Sobol points. Sobol's first dimension is the
+  // index's bits reversed (van der Corput); the second's generator matrix is Pascal's
+  // triangle mod 2: bit r (from the top) of direction number j is C(j, r) mod 2, which by
+  // Lucas's theorem is set when r's bits are a subset of j's. Checked for indices over the
+  // whole block of 2^24, whose bits the sampler reads a byte at a time.
+  const StratifiedPixel pattern(3, 7, 120, 45);
+  const StratifiedSample origin = pattern.sample(0);
+  const auto sobolSecond = [](uint32_t index) {
+    uint32_t bits = 0;
+    for (uint32_t j = 0; j < 24; ++j) {
+      if (((index >> j) & 1u) == 0) continue;
+      for (uint32_t r = 0; r <= j; ++r)
+        if ((r & ~j) == 0) bits ^= 1u << (23 - r);
+    }
+    return bits;
+  };
+  uint32_t index = 1;
+  for (int n = 0; n < 2000; ++n, index = (index * 2654435761u + 12345u) & 0xffffffu) {
+    uint32_t reversed = 0;
+    for (int j = 0; j < 24; ++j) reversed |= ((index >> j) & 1u) << (23 - j);
+    const StratifiedSample s = pattern.sample(index);
+    ASSERT_EQ(coordinateBits(s.film.x) ^ coordinateBits(origin.film.x), reversed) << "index " << index;
+    ASSERT_EQ(coordinateBits(s.film.y) ^ coordinateBits(origin.film.y), sobolSecond(index)) << "index " << index;
+  }
 }
 
 TEST(StratifiedPixel, NeighbouringPixelsAndFramesHaveUnrelatedPatterns) {
