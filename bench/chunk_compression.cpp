@@ -6,7 +6,9 @@
 //                               [--spp 16] [--frame 0] [--repeat 5]
 //
 // Prints one row per codec: the chunk's bytes, and the medians over the repeats of the
-// seconds to write and to read it. "rle" is what encodeExr's ExrCompression::Fast writes,
+// seconds to write it, to read it with OpenEXR's Imf::InputFile into planes it has, and
+// to decode it with decodeExr, new planes and all (image/exr_core_rows.h: OpenEXRCore,
+// where the file is floats). "rle" is what encodeExr's ExrCompression::Fast writes,
 // "zip, level 6" its Small; the row says when encodeExr's bytes are not the codec's own.
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
@@ -54,7 +56,7 @@ struct Codec {
 
 struct Measured {
   size_t bytes = 0;
-  double writeSeconds = 0, readSeconds = 0;
+  double writeSeconds = 0, readSeconds = 0, decodeSeconds = 0;
   std::string encoded;
 };
 
@@ -83,6 +85,9 @@ Measured measureOnce(FrameImage& frame, const Codec& codec) {
   file.setFrameBuffer(slicesOf(readBack));
   file.readPixels(0, frame.height() - 1);
   measured.readSeconds = secondsSince(start);
+  start = Clock::now();
+  const FrameImage decoded = decodeExr(measured.encoded, "chunk");
+  measured.decodeSeconds = secondsSince(start);
   return measured;
 }
 
@@ -117,18 +122,21 @@ int main(int argc, char** argv) {
       {"zip, level 6", Imf::ZIP_COMPRESSION, 6, ExrCompression::Small},
       {"piz", Imf::PIZ_COMPRESSION, {}, {}},
   };
-  std::printf("| codec | MB | write s | read s | write + read s |\n| --- | ---: | ---: | ---: | ---: |\n");
+  std::printf("| codec | MB | write s | read s | write + read s | decodeExr s |\n"
+              "| --- | ---: | ---: | ---: | ---: | ---: |\n");
   for (const Codec& codec : codecs) {
-    std::vector<double> writes, reads;
+    std::vector<double> writes, reads, decodes;
     Measured last;
     for (int i = 0; i < repeat; ++i) {
       last = measureOnce(image, codec);
       writes.push_back(last.writeSeconds);
       reads.push_back(last.readSeconds);
+      decodes.push_back(last.decodeSeconds);
     }
     const bool differs = codec.pathfarm && encodeExr(image, *codec.pathfarm) != last.encoded;
-    std::printf("| %s%s | %.1f | %.3f | %.3f | %.3f |\n", codec.name, differs ? " (encodeExr's bytes differ)" : "",
-                1e-6 * static_cast<double>(last.bytes), median(writes), median(reads), median(writes) + median(reads));
+    std::printf("| %s%s | %.1f | %.3f | %.3f | %.3f | %.3f |\n", codec.name,
+                differs ? " (encodeExr's bytes differ)" : "", 1e-6 * static_cast<double>(last.bytes), median(writes),
+                median(reads), median(writes) + median(reads), median(decodes));
   }
   return 0;
 }

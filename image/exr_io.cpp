@@ -1,6 +1,7 @@
 #include "image/exr_io.h"
 
 #include "image/atomic_file.h"
+#include "image/exr_core_rows.h"
 
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
@@ -300,18 +301,18 @@ std::map<std::string, std::string> stringAttributes(const Imf::Header& header) {
   return attributes;
 }
 
-// Runs `read` on an OpenEXR reader of `stream` once its headers, the first bytes of the
-// `total` it holds, passed readHeaders' checks.
+// Runs `read` on an OpenEXR reader of `stream`, and where its bytes are, once its
+// headers, the first bytes of the `total` it holds, passed readHeaders' checks.
 template <class Read>
-auto readChecked(std::string_view headers, size_t total, Imf::IStream& stream, Read read) {
+auto readChecked(std::string_view headers, size_t total, Imf::IStream& stream, const ExrBytes& source, Read read) {
   refuseImplausibleSize(readHeaders(headers), total);
   Imf::InputFile in(stream);
-  return read(in);
+  return read(in, source);
 }
 
 // Hands `strip` the rows of `names` a strip at a time, until it returns false.
-std::pair<int, int> readStrips(Imf::InputFile& in, const std::vector<std::string>& names, int rowsPerStrip,
-                               const std::function<bool(const ExrStrip&)>& strip) {
+std::pair<int, int> readStrips(Imf::InputFile& in, const ExrBytes& source, const std::vector<std::string>& names,
+                               int rowsPerStrip, const std::function<bool(const ExrStrip&)>& strip) {
   const Imath::Box2i window = in.header().dataWindow();
   const int width = window.max.x - window.min.x + 1, height = window.max.y - window.min.y + 1;
   for (const std::string& name : names)
@@ -321,10 +322,15 @@ std::pair<int, int> readStrips(Imf::InputFile& in, const std::vector<std::string
   std::vector<float*> pointers;
   for (std::vector<float>& plane : planes) pointers.push_back(plane.data());
   ExrStrip part{width, height, 0, 0, names, {pointers.begin(), pointers.end()}};
+  ExrCoreRows core(source, names);
   for (int y0 = window.min.y; y0 <= window.max.y; y0 += rows) {
     const int y1 = std::min(window.max.y, y0 + rows - 1);
-    in.setFrameBuffer(frameBufferOf(window, names, pointers, y0));
-    in.readPixels(y0, y1);
+    if (core.usable()) {
+      core.read(pointers, y0 - window.min.y, y1 + 1 - window.min.y);
+    } else {
+      in.setFrameBuffer(frameBufferOf(window, names, pointers, y0));
+      in.readPixels(y0, y1);
+    }
     part.firstRow = y0 - window.min.y;
     part.rows = y1 - y0 + 1;
     if (!strip(part)) break;
@@ -337,7 +343,7 @@ template <class Read>
 auto readBytes(const std::string& bytes, const std::string& label, Read read) {
   try {
     StringIStream stream(bytes);
-    return readChecked(bytes, bytes.size(), stream, read);
+    return readChecked(bytes, bytes.size(), stream, ExrBytes{bytes}, read);
   } catch (const std::exception& e) {
     throw ExrError(label + ": cannot read EXR: " + e.what());
   }
@@ -356,7 +362,7 @@ auto readFile(const std::filesystem::path& file, const std::string& label, Read 
     in.read(headers.data(), static_cast<std::streamsize>(headers.size()));
     in.seekg(0);
     Imf::StdIFStream stream(in, file.c_str());
-    return readChecked(headers, total, stream, read);
+    return readChecked(headers, total, stream, ExrBytes{{}, &file}, read);
   } catch (const std::exception& e) {
     throw ExrError(label + ": cannot read EXR: " + e.what());
   }
@@ -368,7 +374,8 @@ namespace {
 
 // Rows from .. to - 1 (every row when `to` is negative) of the channels `keep` accepts
 // (every one without it), with every attribute of the reader's frame.
-FrameImage framePart(Imf::InputFile& in, const ChannelFilter& keep, int from = 0, int to = -1) {
+FrameImage framePart(Imf::InputFile& in, const ExrBytes& source, const ChannelFilter& keep, int from = 0,
+                     int to = -1) {
   const Imath::Box2i window = in.header().dataWindow();
   const int height = window.max.y - window.min.y + 1;
   if (to < 0) to = height;
@@ -382,6 +389,10 @@ FrameImage framePart(Imf::InputFile& in, const ChannelFilter& keep, int from = 0
   for (const std::string& name : names) planes.push_back(frame.addChannel(name).data());
   frame.attributes() = stringAttributes(in.header());
   if (names.empty()) return frame;  // the header alone: OpenEXR reads pixels into a buffer
+  if (ExrCoreRows core(source, names); core.usable()) {
+    core.read(planes, from, to);
+    return frame;
+  }
   in.setFrameBuffer(frameBufferOf(window, names, planes, window.min.y + from));
   in.readPixels(window.min.y + from, window.min.y + to - 1);
   return frame;
@@ -390,23 +401,23 @@ FrameImage framePart(Imf::InputFile& in, const ChannelFilter& keep, int from = 0
 }  // namespace
 
 FrameImage decodeExr(const std::string& bytes, const std::string& label) {
-  return readBytes(bytes, label, [](Imf::InputFile& in) { return framePart(in, {}); });
+  return readBytes(bytes, label, [](Imf::InputFile& in, const ExrBytes& source) { return framePart(in, source, {}); });
 }
 
 FrameImage decodeExrFile(const std::filesystem::path& file, const std::string& label, const ChannelFilter& keep) {
-  return readFile(file, label, [&](Imf::InputFile& in) { return framePart(in, keep); });
+  return readFile(file, label, [&](Imf::InputFile& in, const ExrBytes& source) { return framePart(in, source, keep); });
 }
 
 std::pair<int, int> readExrStrips(const std::filesystem::path& file, const std::string& label,
                                   const std::vector<std::string>& channels, int rowsPerStrip,
                                   const std::function<bool(const ExrStrip&)>& strip) {
-  return readFile(file, label, [&](Imf::InputFile& exr) {
-    return readStrips(exr, channels.empty() ? channelNames(exr.header()) : channels, rowsPerStrip, strip);
+  return readFile(file, label, [&](Imf::InputFile& exr, const ExrBytes& source) {
+    return readStrips(exr, source, channels.empty() ? channelNames(exr.header()) : channels, rowsPerStrip, strip);
   });
 }
 
 ExrHeader readExrHeader(const std::filesystem::path& file, const std::string& label) {
-  return readFile(file, label, [](Imf::InputFile& in) {
+  return readFile(file, label, [](Imf::InputFile& in, const ExrBytes&) {
     const Imath::Box2i window = in.header().dataWindow();
     return ExrHeader{window.max.x - window.min.x + 1, window.max.y - window.min.y + 1, channelNames(in.header()),
                      stringAttributes(in.header())};
@@ -415,7 +426,9 @@ ExrHeader readExrHeader(const std::filesystem::path& file, const std::string& la
 
 FrameImage readExrRows(const std::filesystem::path& file, const std::string& label, int from, int to,
                        const ChannelFilter& keep) {
-  return readFile(file, label, [&](Imf::InputFile& in) { return framePart(in, keep, from, to); });
+  return readFile(file, label, [&](Imf::InputFile& in, const ExrBytes& source) {
+    return framePart(in, source, keep, from, to);
+  });
 }
 
 ExrScan scanExrFile(const std::filesystem::path& file, const std::string& label, int rowsPerStrip) {

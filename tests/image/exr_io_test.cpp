@@ -1,12 +1,20 @@
 // Multi-layer EXR frames survive a write and a read unchanged; broken files are errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <limits>
 #include <random>
 #include <stdexcept>
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <half.h>
 
 #include "image/beauty_copy.h"
 #include "image/exr_io.h"
@@ -381,6 +389,87 @@ TEST(ExrIo, MissingChannelIsAClearError) {
     FAIL();
   } catch (const std::out_of_range& e) {
     EXPECT_NE(std::string(e.what()).find("emission.color.R"), std::string::npos);
+  }
+}
+
+// Every float's bits as it was encoded, whatever they are (NaNs with payloads, negative
+// zero, subnormals), for both compressions, whole and by rows that cut ZIP's 16-row
+// chunks; and every reader of the file: in memory, in place, in strips.
+TEST(ExrIo, EveryBitPatternSurvivesEachCompressionAndEachReader) {
+  FrameImage frame(29, 41);
+  std::mt19937 random(11);
+  for (const char* name : {"R", "G", "B", "residual.normal.X", "variance.B"})
+    for (float& v : frame.addChannel(name)) {
+      const uint32_t bits = random();
+      std::memcpy(&v, &bits, sizeof v);
+    }
+  const auto sameBits = [](const std::vector<float>& a, const std::vector<float>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+  };
+  for (const ExrCompression compression : {ExrCompression::Fast, ExrCompression::Small}) {
+    const std::string bytes = encodeExr(frame, compression);
+    const std::filesystem::path file = temporaryFile("bits.exr");
+    std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
+    const FrameImage inMemory = decodeExr(bytes, "bits"), inPlace = decodeExrFile(file, "bits");
+    for (const std::string& name : frame.channelNames()) {
+      EXPECT_TRUE(sameBits(inMemory.channel(name), frame.channel(name))) << name;
+      EXPECT_TRUE(sameBits(inPlace.channel(name), frame.channel(name))) << name;
+    }
+    for (const auto& [from, to] : {std::pair{3, 17}, {16, 32}, {31, 41}, {40, 41}}) {
+      const FrameImage rows = readExrRows(file, "bits", from, to);
+      const FrameImage expected = frame.crop(0, from, frame.width(), to - from);
+      for (const std::string& name : frame.channelNames())
+        EXPECT_TRUE(sameBits(rows.channel(name), expected.channel(name))) << name << " rows " << from << " to " << to;
+    }
+    int stripRows = 0;
+    readExrStrips(file, "bits", {"variance.B", "G"}, 7, [&](const ExrStrip& strip) {
+      for (size_t c = 0; c < strip.names.size(); ++c) {
+        const std::vector<float>& whole = frame.channel(strip.names[c]);
+        EXPECT_EQ(std::memcmp(strip.planes[c], whole.data() + static_cast<size_t>(strip.firstRow) * 29,
+                              static_cast<size_t>(strip.rows) * 29 * sizeof(float)),
+                  0)
+            << strip.names[c] << " from row " << strip.firstRow;
+      }
+      stripRows += strip.rows;
+      return true;
+    });
+    EXPECT_EQ(stripRows, 41);
+    EXPECT_THROW(readExrStrips(file, "bits", {"A"}, 7, [](const ExrStrip&) { return true; }), ExrError);
+  }
+}
+
+// Another tool's files, which image/exr_core_rows.h leaves to Imf::InputFile: half floats
+// (ZIP), and floats packed by PIZ. Each value is read as the float it was.
+TEST(ExrIo, HalfFloatsAndPizFilesAreReadAsWritten) {
+  const int width = 5, height = 37;
+  const auto valueAt = [](int index) { return 0.25f * static_cast<float>(index) - 3.0f; };  // exact in half
+  for (const auto& [type, compression] : {std::pair{Imf::HALF, Imf::ZIP_COMPRESSION}, {Imf::FLOAT, Imf::PIZ_COMPRESSION}}) {
+    const std::filesystem::path file = temporaryFile("other_tool.exr");
+    std::vector<half> halves(width * height);
+    std::vector<float> floats(width * height);
+    for (int i = 0; i < width * height; ++i) {
+      halves[static_cast<size_t>(i)] = half(valueAt(i));
+      floats[static_cast<size_t>(i)] = valueAt(i);
+    }
+    {
+      Imf::Header header(width, height);
+      header.compression() = compression;
+      header.channels().insert("Y", Imf::Channel(type));
+      char* base = type == Imf::HALF ? reinterpret_cast<char*>(halves.data()) : reinterpret_cast<char*>(floats.data());
+      const size_t size = type == Imf::HALF ? sizeof(half) : sizeof(float);
+      Imf::FrameBuffer buffer;
+      buffer.insert("Y", Imf::Slice(type, base, size, size * width));
+      Imf::OutputFile out(file.c_str(), header);
+      out.setFrameBuffer(buffer);
+      out.writePixels(height);
+    }
+    for (const auto& [from, to] : {std::pair{0, height}, {2, 35}}) {
+      const FrameImage read = readExrRows(file, "other tool", from, to);
+      for (int y = from; y < to; ++y)
+        for (int x = 0; x < width; ++x)
+          ASSERT_EQ(read.channel("Y")[static_cast<size_t>((y - from) * width + x)], valueAt(y * width + x))
+              << (type == Imf::HALF ? "half" : "piz") << " at (" << x << ", " << y << ")";
+    }
   }
 }
 
