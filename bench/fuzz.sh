@@ -73,7 +73,7 @@ gltf=(renderer/scene/gltf/gltf_document.cpp renderer/scene/gltf/gltf_animation.c
       renderer/scene/alpha_coverage.cpp renderer/scene/scene_inputs.cpp "${math[@]}" "${tinygltf[@]}")
 meshes=(renderer/scene/mesh_io.cpp renderer/scene/obj_reader.cpp renderer/scene/ply_reader.cpp
         renderer/scene/scene_inputs.cpp fuzz/tinyobj_implementation.cpp)
-exr=(image/exr_io.cpp image/frame_image.cpp image/atomic_file.cpp)
+exr=(image/exr_io.cpp image/exr_core_rows.cpp image/frame_image.cpp image/atomic_file.cpp)
 scene=("${gltf[@]}" "${meshes[@]}" "${exr[@]}"
        renderer/scene/scene_loader.cpp renderer/scene/environment_parser.cpp renderer/scene/light_parser.cpp
        renderer/scene/material_parser.cpp renderer/scene/transform_parser.cpp renderer/scene/mesh.cpp
