@@ -79,13 +79,15 @@ TEST_F(FarmTest, KilledWorkersLeaseExpiresAndAnotherWorkerRedoesItsTile) {
 // the next worker takes it at once, long before the lease would have run out; one with
 // the default grace finishes and delivers its tile. Nobody is charged a failure.
 TEST_F(FarmTest, AStoppedWorkerHandsBackATaskThatOutlastsItsGraceAndDeliversOneThatDoesNot) {
-  RenderSpec spec;  // three tiles of about 1 s each on one thread
+  // Three tiles of about 1.3 s each on one thread here (768 spp took 0.48 s by 2026-12-04,
+  // and a tile could end before the stop 300 ms into it reached its worker).
+  RenderSpec spec;
   spec.name = "stopped-workers";
   spec.frameStart = spec.frameEnd = 7;
   spec.width = 192;
   spec.height = 64;
   spec.tile = 64;
-  spec.spp = 768;
+  spec.spp = 2048;
   spec.maxDepth = 4;
 
   SchedulerConfig config;
