@@ -317,6 +317,10 @@ std::pair<int, int> readStrips(Imf::InputFile& in, const ExrBytes& source, const
   const int width = window.max.x - window.min.x + 1, height = window.max.y - window.min.y + 1;
   for (const std::string& name : names)
     if (in.header().channels().findChannel(name) == nullptr) throw std::runtime_error("no channel \"" + name + "\"");
+  // A frame buffer holds one plane a channel: a name asked twice would leave a plane unread.
+  for (size_t i = 0; i < names.size(); ++i)
+    if (std::find(names.begin(), names.begin() + static_cast<ptrdiff_t>(i), names[i]) != names.begin() + static_cast<ptrdiff_t>(i))
+      throw std::runtime_error("channel \"" + names[i] + "\" asked for twice");
   const int rows = std::clamp(rowsPerStrip, 1, height);
   std::vector<std::vector<float>> planes(names.size(), std::vector<float>(static_cast<size_t>(width) * rows));
   std::vector<float*> pointers;

@@ -59,8 +59,8 @@ struct ExrStrip {
 };
 // Reads a file in place a strip of `rowsPerStrip` rows at a time, with scanExrFile's
 // checks, handing each strip of `channels` (every channel when empty) to `strip` until it
-// returns false. Returns the data window's width and height. A channel the file lacks is
-// an ExrError naming `label`, as is everything scanExrFile refuses.
+// returns false. Returns the data window's width and height. A channel the file lacks, or
+// one named twice, is an ExrError naming `label`, as is everything scanExrFile refuses.
 std::pair<int, int> readExrStrips(const std::filesystem::path& file, const std::string& label,
                                   const std::vector<std::string>& channels, int rowsPerStrip,
                                   const std::function<bool(const ExrStrip&)>& strip);

@@ -434,6 +434,8 @@ TEST(ExrIo, EveryBitPatternSurvivesEachCompressionAndEachReader) {
       return true;
     });
     EXPECT_EQ(stripRows, 41);
+    // One plane a channel: a channel asked for twice is refused, not half read.
+    EXPECT_THROW(readExrStrips(file, "bits", {"G", "B", "G"}, 7, [](const ExrStrip&) { return true; }), ExrError);
     EXPECT_THROW(readExrStrips(file, "bits", {"A"}, 7, [](const ExrStrip&) { return true; }), ExrError);
   }
 }
