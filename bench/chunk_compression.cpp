@@ -7,9 +7,11 @@
 //
 // Prints one row per codec: the chunk's bytes, and the medians over the repeats of the
 // seconds to write it, to read it with OpenEXR's Imf::InputFile into planes it has, and
-// to decode it with decodeExr, new planes and all (image/exr_core_rows.h: OpenEXRCore,
-// where the file is floats). "rle" is what encodeExr's ExrCompression::Fast writes,
-// "zip, level 6" its Small; the row says when encodeExr's bytes are not the codec's own.
+// to decode it with decodeExr, new planes and all (image/exr_core_rows.h: OpenEXRCore).
+// "rle" is what encodeExr's ExrCompression::Fast writes, "zip, level 6" its Small; the row
+// says when encodeExr's bytes are not the codec's own. Then the frame as a d keyframe's
+// chunk holds it (the channels its readers use, worker/chunk_channels.h), written by
+// encodeExr all in 32-bit floats and with the farm's half floats (halfPrecisionChannels).
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
@@ -25,10 +27,12 @@
 
 #include "bench/command_line.h"
 #include "bench/median.h"
+#include "contract/pipeline.h"
 #include "image/exr_io.h"
 #include "renderer/integrators/frame_renderer.h"
 #include "renderer/scene/scene_loader.h"
 #include "renderer/setup/auto_decomposition.h"
+#include "worker/chunk_channels.h"
 
 namespace {
 
@@ -138,5 +142,27 @@ int main(int argc, char** argv) {
                 differs ? " (encodeExr's bytes differ)" : "", 1e-6 * static_cast<double>(last.bytes), median(writes),
                 median(reads), median(writes) + median(reads), median(decodes));
   }
+
+  FrameImage keyframe = image;
+  farm::keepReadChannels(farm::ChunkContent::KeyframeRender, farm::stagesOf(farm::PIPELINE_D), keyframe);
+  std::printf("\nA d keyframe's chunk (%zu channels), by encodeExr and decodeExr:\n\n"
+              "| codec | precision | MB | write s | decodeExr s |\n| --- | --- | ---: | ---: | ---: |\n",
+              keyframe.channelNames().size());
+  for (const auto& [name, compression] : {std::pair{"rle", ExrCompression::Fast}, {"zip, level 6", ExrCompression::Small}})
+    for (const bool halves : {false, true}) {
+      const ChannelFilter half = halves ? farm::halfPrecisionChannels(keyframe) : ChannelFilter{};
+      std::vector<double> writes, decodes;
+      std::string bytes;
+      for (int i = 0; i < repeat; ++i) {
+        Clock::time_point start = Clock::now();
+        bytes = encodeExr(keyframe, compression, half);
+        writes.push_back(secondsSince(start));
+        start = Clock::now();
+        const FrameImage decoded = decodeExr(bytes, "chunk");
+        decodes.push_back(secondsSince(start));
+      }
+      std::printf("| %s | %s | %.1f | %.3f | %.3f |\n", name, halves ? "the farm's halves" : "floats",
+                  1e-6 * static_cast<double>(bytes.size()), median(writes), median(decodes));
+    }
   return 0;
 }

@@ -118,7 +118,9 @@ ExrCoreRows::ExrCoreRows(const ExrBytes& source, const std::vector<std::string>&
       r.nameOf.push_back(std::string::npos);
       continue;
     }
-    if (channel.pixel_type != EXR_PIXEL_FLOAT || channel.x_sampling != 1 || channel.y_sampling != 1) return;
+    // Half channels are unpacked into floats (the farm's intermediate chunks, exr_io.h).
+    const bool floats = channel.pixel_type == EXR_PIXEL_FLOAT || channel.pixel_type == EXR_PIXEL_HALF;
+    if (!floats || channel.x_sampling != 1 || channel.y_sampling != 1) return;
     r.nameOf.push_back(name->second);
     wanted.erase(name);
   }

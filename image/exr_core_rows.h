@@ -1,5 +1,5 @@
 #pragma once
-// Rows of float channels decoded with OpenEXRCore, OpenEXR's C library. OpenEXR 3.1's
+// Rows of float (and half) channels decoded with OpenEXRCore, OpenEXR's C library. OpenEXR 3.1's
 // Imf::InputFile converts every value of a chunk through a reader of one byte at a time;
 // the C library unpacks the farm's RLE and ZIP chunks faster, to the same bits
 // (docs/performance.md, "Chunks decoded by OpenEXRCore"). exr_io.cpp reads every frame's
@@ -23,7 +23,7 @@ class ExrCoreRows {
  public:
   // Opens the EXR; usable() is false when it is not what this reader handles: one part of
   // scan lines, uncompressed or packed by RLE or ZIP, whose named channels are all FLOAT
-  // and sampled at every pixel. Throws
+  // or HALF (unpacked into floats) and sampled at every pixel. Throws
   // std::runtime_error with OpenEXRCore's message when its bytes are damaged, or when it
   // lacks a named channel. Its header was checked and parsed by Imf::InputFile before
   // (exr_io.cpp).

@@ -10,6 +10,7 @@
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStdIO.h>
 #include <OpenEXR/ImfStringAttribute.h>
+#include <Imath/half.h>
 
 #include <algorithm>
 #include <cmath>
@@ -29,12 +30,59 @@ namespace pathfarm {
 namespace {
 
 Imf::Header headerOf(int width, int height, const std::vector<std::string>& channels,
-                     const std::map<std::string, std::string>& attributes, ExrCompression compression) {
+                     const std::map<std::string, std::string>& attributes, ExrCompression compression,
+                     const ChannelFilter& half) {
   Imf::Header header(width, height);
   header.compression() = compression == ExrCompression::Small ? Imf::ZIP_COMPRESSION : Imf::RLE_COMPRESSION;
   for (const auto& [name, value] : attributes) header.insert(name, Imf::StringAttribute(value));
-  for (const std::string& name : channels) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+  for (const std::string& name : channels)
+    header.channels().insert(name, Imf::Channel(half && half(name) ? Imf::HALF : Imf::FLOAT));
   return header;
+}
+
+// What OpenEXR writes rows firstRow .. firstRow + rows - 1 of a frame `width` wide from:
+// a float channel's plane (holding those rows from its start) itself, a half channel's
+// rows converted into a buffer of their own, kept here until the rows are written.
+class RowsToWrite {
+ public:
+  RowsToWrite(int width, const std::vector<std::string>& names, const std::vector<const float*>& planes,
+              int firstRow, int rows, const ChannelFilter& half) {
+    const auto count = static_cast<size_t>(width) * static_cast<size_t>(rows);
+    for (size_t c = 0; c < names.size(); ++c) {
+      const bool isHalf = half && half(names[c]);
+      // OpenEXR addresses slices by absolute pixel coordinates: the base is shifted back to
+      // row 0. Its Slice takes a non-const pointer but only reads when writing.
+      const size_t pixelBytes = isHalf ? sizeof(Imath::half) : sizeof(float);
+      char* rowsStart = reinterpret_cast<char*>(const_cast<float*>(planes[c]));
+      if (isHalf) rowsStart = reinterpret_cast<char*>(halved(names[c], planes[c], count));
+      const size_t rowBytes = pixelBytes * static_cast<size_t>(width);
+      buffer_.insert(names[c], Imf::Slice(isHalf ? Imf::HALF : Imf::FLOAT,
+                                          rowsStart - static_cast<ptrdiff_t>(firstRow) * static_cast<ptrdiff_t>(rowBytes),
+                                          pixelBytes, rowBytes));
+    }
+  }
+  const Imf::FrameBuffer& buffer() const { return buffer_; }
+
+ private:
+  Imath::half* halved(const std::string& name, const float* values, size_t count) {
+    std::vector<Imath::half>& converted = halves_.emplace_back(count);
+    for (size_t i = 0; i < count; ++i) {
+      if (!std::isfinite(values[i]) || std::abs(values[i]) > HALF_MAX)
+        throw std::range_error("channel \"" + name + "\" holds " + std::to_string(values[i]) +
+                               ", which a 16-bit float cannot store");
+      converted[i] = Imath::half(values[i]);
+    }
+    return converted.data();
+  }
+
+  std::vector<std::vector<Imath::half>> halves_;
+  Imf::FrameBuffer buffer_;
+};
+
+std::vector<const float*> planesOf(const FrameImage& frame, const std::vector<std::string>& names) {
+  std::vector<const float*> planes;
+  for (const std::string& name : names) planes.push_back(frame.channel(name).data());
+  return planes;
 }
 
 // OpenEXR's output into a string that grows in place, reserved for the frame's raw size up
@@ -82,24 +130,23 @@ class StringIStream : public Imf::IStream {
 
 }  // namespace
 
-std::string encodeExr(const FrameImage& frame, ExrCompression compression) {
+bool fitsHalf(const std::vector<float>& values) {
+  return std::all_of(values.begin(), values.end(), [](float v) { return std::abs(v) <= HALF_MAX; });
+}
+
+std::string encodeExr(const FrameImage& frame, ExrCompression compression, const ChannelFilter& halfChannels) {
   try {
     const Imf::Header header =
-        headerOf(frame.width(), frame.height(), frame.channelNames(), frame.attributes(), compression);
-    Imf::FrameBuffer buffer;
-    for (const std::string& name : frame.channelNames()) {
-      // OpenEXR's Slice takes a non-const pointer but only reads when writing.
-      auto* base = const_cast<float*>(frame.channel(name).data());
-      buffer.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(base), sizeof(float),
-                                     sizeof(float) * static_cast<size_t>(frame.width())));
-    }
+        headerOf(frame.width(), frame.height(), frame.channelNames(), frame.attributes(), compression, halfChannels);
+    const RowsToWrite rows(frame.width(), frame.channelNames(), planesOf(frame, frame.channelNames()), 0,
+                           frame.height(), halfChannels);
     // Room for the raw planes, the line offsets and the header: RLE and ZIP store a block
     // raw where packing would enlarge it.
     StringOStream stream(frame.pixelCount() * frame.channelNames().size() * sizeof(float) +
                          static_cast<size_t>(frame.height()) * 16 + (size_t{1} << 20));
     {
       Imf::OutputFile out(stream, header);  // finishes the file when it goes out of scope
-      out.setFrameBuffer(buffer);
+      out.setFrameBuffer(rows.buffer());
       out.writePixels(frame.height());
     }
     return stream.take();
@@ -420,12 +467,25 @@ std::pair<int, int> readExrStrips(const std::filesystem::path& file, const std::
   });
 }
 
+namespace {
+
+ExrHeader headerRead(Imf::InputFile& in, const ExrBytes&) {
+  const Imath::Box2i window = in.header().dataWindow();
+  ExrHeader header{window.max.x - window.min.x + 1, window.max.y - window.min.y + 1, channelNames(in.header()),
+                   stringAttributes(in.header()), {}};
+  for (auto it = in.header().channels().begin(); it != in.header().channels().end(); ++it)
+    if (it.channel().type == Imf::HALF) header.halfChannels.emplace_back(it.name());
+  return header;
+}
+
+}  // namespace
+
 ExrHeader readExrHeader(const std::filesystem::path& file, const std::string& label) {
-  return readFile(file, label, [](Imf::InputFile& in, const ExrBytes&) {
-    const Imath::Box2i window = in.header().dataWindow();
-    return ExrHeader{window.max.x - window.min.x + 1, window.max.y - window.min.y + 1, channelNames(in.header()),
-                     stringAttributes(in.header())};
-  });
+  return readFile(file, label, headerRead);
+}
+
+ExrHeader decodeExrHeader(const std::string& bytes, const std::string& label) {
+  return readBytes(bytes, label, headerRead);
 }
 
 FrameImage readExrRows(const std::filesystem::path& file, const std::string& label, int from, int to,
@@ -465,10 +525,11 @@ struct ExrStripWriter::Output {
 
 ExrStripWriter::ExrStripWriter(const std::filesystem::path& file, int width, int height,
                                const std::vector<std::string>& channels,
-                               const std::map<std::string, std::string>& attributes, ExrCompression compression)
-    : file_(file), width_(width), height_(height), channels_(channels) {
+                               const std::map<std::string, std::string>& attributes, ExrCompression compression,
+                               const ChannelFilter& halfChannels)
+    : file_(file), width_(width), height_(height), channels_(channels), half_(halfChannels) {
   try {
-    out_ = std::make_unique<Output>(file, headerOf(width, height, channels, attributes, compression));
+    out_ = std::make_unique<Output>(file, headerOf(width, height, channels, attributes, compression, half_));
   } catch (const std::exception& e) {
     throw ExrError(file.string() + ": cannot write EXR: " + e.what());
   }
@@ -482,14 +543,11 @@ void ExrStripWriter::write(const FrameImage& strip) {
   if (strip.width() != width_ || strip.height() > height_ - rows_)
     refuse("a " + std::to_string(strip.width()) + " x " + std::to_string(strip.height()) + " strip after row " +
            std::to_string(rows_) + " of a " + std::to_string(width_) + " x " + std::to_string(height_) + " frame");
-  std::vector<float*> planes;
-  for (const std::string& name : channels_) {
+  for (const std::string& name : channels_)
     if (!strip.hasChannel(name)) refuse("the strip lacks channel \"" + name + "\"");
-    // OpenEXR's Slice takes a non-const pointer but only reads when writing.
-    planes.push_back(const_cast<float*>(strip.channel(name).data()));
-  }
   try {
-    out_->file.setFrameBuffer(frameBufferOf(Imath::Box2i({0, 0}, {width_ - 1, height_ - 1}), channels_, planes, rows_));
+    const RowsToWrite rows(width_, channels_, planesOf(strip, channels_), rows_, strip.height(), half_);
+    out_->file.setFrameBuffer(rows.buffer());
     out_->file.writePixels(strip.height());
   } catch (const std::exception& e) {
     refuse(e.what());
@@ -517,9 +575,11 @@ FrameImage readExr(const std::filesystem::path& file) {
   return decodeExr(bytes.str(), file.string());
 }
 
-void writeExrInStrips(const std::filesystem::path& file, const FrameImage& frame, ExrCompression compression) {
+void writeExrInStrips(const std::filesystem::path& file, const FrameImage& frame, ExrCompression compression,
+                      const ChannelFilter& halfChannels) {
   constexpr int kStripRows = 64;
-  ExrStripWriter writer(file, frame.width(), frame.height(), frame.channelNames(), frame.attributes(), compression);
+  ExrStripWriter writer(file, frame.width(), frame.height(), frame.channelNames(), frame.attributes(), compression,
+                        halfChannels);
   for (int y = 0; y < frame.height(); y += kStripRows)
     writer.write(frame.crop(0, y, frame.width(), std::min(kStripRows, frame.height() - y)));
   writer.finish();

@@ -1,7 +1,7 @@
 #pragma once
-// Multi-layer OpenEXR frames: every channel of a FrameImage as 32-bit float, ZIP
-// compressed (or RLE, for the farm's intermediate chunks), attributes as string header
-// attributes. The same bytes go to files and
+// Multi-layer OpenEXR frames: every channel of a FrameImage as 32-bit float (or, where the
+// writer asks, 16-bit), ZIP compressed (or RLE, for the farm's intermediate chunks),
+// attributes as string header attributes. The same bytes go to files and
 // over the wire (farm chunks). File writes are atomic (a temporary file, fsynced and
 // renamed into place), so a reader never sees half a frame.
 #include <filesystem>
@@ -27,11 +27,20 @@ class ExrError : public std::runtime_error {
 // to read: about 3x faster to write and 1.7x to read than ZIP, about 2x larger.
 enum class ExrCompression { Small, Fast };
 
-std::string encodeExr(const FrameImage& frame, ExrCompression compression = ExrCompression::Small);
-// `label` names the bytes' origin (a file, a chunk) in error messages.
-FrameImage decodeExr(const std::string& bytes, const std::string& label);
 // Whether a channel, by its name, is wanted.
 using ChannelFilter = std::function<bool(const std::string&)>;
+
+// The channels `halfChannels` accepts are stored as 16-bit floats (OpenEXR's HALF), the
+// others as 32-bit ones; readers get floats back either way. A half keeps 11 significant
+// bits: a value of magnitude 2^-14 (6.1e-5) to 65504 comes back within 2^-11 of itself,
+// relative, a smaller one within 2^-25, absolute. Only what fitsHalf accepts can be
+// stored so: a half channel holding any other value is an ExrError.
+std::string encodeExr(const FrameImage& frame, ExrCompression compression = ExrCompression::Small,
+                      const ChannelFilter& halfChannels = {});
+// Whether every value is finite and at most a half float's largest, 65504, in magnitude.
+bool fitsHalf(const std::vector<float>& values);
+// `label` names the bytes' origin (a file, a chunk) in error messages.
+FrameImage decodeExr(const std::string& bytes, const std::string& label);
 // decodeExr of a file's bytes, read in place: the file is never held in memory besides
 // its frame (a 1080p keyframe chunk is about half a gigabyte). With `keep`, only the
 // channels it accepts are decoded (every attribute is), so a task that reads one layer of
@@ -70,8 +79,11 @@ struct ExrHeader {
   int width = 0, height = 0;
   std::vector<std::string> channels;              // in the file's (alphabetical) order
   std::map<std::string, std::string> attributes;  // its string attributes
+  std::vector<std::string> halfChannels;          // those of `channels` stored as 16-bit floats
 };
 ExrHeader readExrHeader(const std::filesystem::path& file, const std::string& label);
+// The same of an EXR's bytes.
+ExrHeader decodeExrHeader(const std::string& bytes, const std::string& label);
 // Rows from .. to - 1 (from the top) of every channel of a file (of those `keep` accepts,
 // with it), with its attributes, read in place (with scanExrFile's checks): a part of a
 // frame too large to hold.
@@ -86,7 +98,8 @@ class ExrStripWriter {
  public:
   // Throws ExrError when the file cannot be created.
   ExrStripWriter(const std::filesystem::path& file, int width, int height, const std::vector<std::string>& channels,
-                 const std::map<std::string, std::string>& attributes, ExrCompression compression);
+                 const std::map<std::string, std::string>& attributes, ExrCompression compression,
+                 const ChannelFilter& halfChannels = {});
   ~ExrStripWriter();
   // The next strip.height() rows: `strip` has the file's width and all of its channels.
   // Throws ExrError otherwise, or for rows past the frame's height.
@@ -101,10 +114,12 @@ class ExrStripWriter {
   std::filesystem::path file_;
   int width_, height_, rows_ = 0;
   std::vector<std::string> channels_;
+  ChannelFilter half_;
 };
 // Writes a frame held in memory to `file` a strip of rows at a time (ExrStripWriter): the
 // bytes of encodeExr, never held in memory beside the frame.
-void writeExrInStrips(const std::filesystem::path& file, const FrameImage& frame, ExrCompression compression);
+void writeExrInStrips(const std::filesystem::path& file, const FrameImage& frame, ExrCompression compression,
+                      const ChannelFilter& halfChannels = {});
 
 // A missing, truncated or corrupted file throws ExrError naming the file.
 FrameImage readExr(const std::filesystem::path& file);

@@ -29,11 +29,15 @@ std::string labelOf(const ChunkRef& ref) { return "tile chunk " + ref.sha256(); 
 // value wins), with the count of dropped samples summed.
 struct FrameHeader {
   std::set<std::string> channels;
+  std::set<std::string> floatSomewhere;  // channels a tile holds as 32-bit floats
   std::map<std::string, std::string> attributes;
   uint64_t nonFinite = 0;
 
   void add(const ExrHeader& tile, const ChunkRef& ref) {
     channels.insert(tile.channels.begin(), tile.channels.end());
+    for (const std::string& name : tile.channels)
+      if (std::find(tile.halfChannels.begin(), tile.halfChannels.end(), name) == tile.halfChannels.end())
+        floatSomewhere.insert(name);
     for (const auto& [key, value] : tile.attributes) attributes[key] = value;
     const auto count = tile.attributes.find("pathfarm.nonfinite_samples");
     if (count == tile.attributes.end()) throw BadInput(labelOf(ref) + " was not made by a pathfarm renderer");
@@ -85,10 +89,12 @@ void assembleFrame(const Lease& lease, const ChunkFileFetcher& fetch, const std:
                          (lease.params().role() == ROLE_OUTPUT || lease.params().role() == ROLE_UNSPECIFIED);
   const std::vector<std::string> channels(header.channels.begin(), header.channels.end());
   // The tiles are the task's input; the file it writes is this worker's.
+  // A channel every tile holds in half floats is the same values in half floats.
+  const ChannelFilter halfInEveryTile = [&](const std::string& name) { return !header.floatSomewhere.count(name); };
   std::optional<ExrStripWriter> writer;
   writingOutput([&] {
     writer.emplace(file, width, height, channels, header.attributes,
-                   keptFrame ? ExrCompression::Small : ExrCompression::Fast);
+                   keptFrame ? ExrCompression::Small : ExrCompression::Fast, halfInEveryTile);
   });
 
   // Then strip by strip: the rows of every tile the strip crosses, pasted in input order.

@@ -48,6 +48,8 @@ const Buffers kFeatures{{"color", "emission", "depth", "normal", "variance", "re
                         {"", "moving_caustic", "variance"}};
 // What the upsampler reads of the half-resolution denoised keyframe.
 const Buffers kHalfResolution{{"irradiance", "coverage"}, {}};
+// What a chunk may store as 16-bit floats (halfPrecisionChannels).
+const Buffers kHalfPrecision{{"color", "emission", "irradiance", "reflectance", "normal", "coverage"}, {""}};
 
 Buffers buffersOf(ChunkContent content, FilteringStages stages) {
   Buffers kept;
@@ -103,6 +105,13 @@ bool readsMotion(ChunkContent content, FilteringStages stages) {
 void keepReadChannels(ChunkContent content, FilteringStages stages, FrameImage& frame) {
   const Buffers kept = buffersOf(content, stages);
   frame.removeChannels([&](const std::string& name) { return !kept.keeps(name); });
+}
+
+ChannelFilter halfPrecisionChannels(const FrameImage& frame) {
+  std::set<std::string> half;
+  for (const std::string& name : frame.channelNames())
+    if (kHalfPrecision.keeps(name) && fitsHalf(frame.channel(name))) half.insert(name);
+  return [half = std::move(half)](const std::string& name) { return half.count(name) > 0; };
 }
 
 }  // namespace pathfarm::farm

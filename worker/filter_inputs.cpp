@@ -1,6 +1,8 @@
 #include "worker/filter_inputs.h"
 
 #include <algorithm>
+#include <map>
+#include <set>
 #include <memory>
 #include <stdexcept>
 #include <utility>
@@ -44,6 +46,17 @@ FrameImage partOf(const FrameImage& frame, const InputPart& wanted) {
   }
   kept.attributes() = frame.attributes();
   return kept;
+}
+
+ChannelFilter halfInEvery(const std::vector<TaskInput*>& inputs) {
+  std::map<std::string, size_t> inputsHolding;
+  for (const TaskInput* input : inputs)
+    if (input->halfChannels)
+      for (const std::string& name : input->halfChannels()) ++inputsHolding[name];
+  std::set<std::string> half;
+  for (const auto& [name, count] : inputsHolding)
+    if (count == inputs.size()) half.insert(name);
+  return [half = std::move(half)](const std::string& name) { return half.count(name) > 0; };
 }
 
 FrameImage TaskInput::take() {
@@ -150,6 +163,8 @@ JoinedWindows joinRowWindows(const Lease& lease, std::vector<TaskInput>& inputs,
   }
   if (covered != height) throw BadInput(refused + " do not cover the frame's rows once each, in place");
   output.joinedHeight = height;
+  // The windows' values as they hold them: half floats where every window has them so.
+  output.halfChannels = halfInEvery(windows);
   auto channels = std::make_shared<std::vector<std::string>>();
   for (TaskInput* window : windows)
     output.rowWindows.push_back([window, channels, check, refused] {

@@ -35,6 +35,10 @@ bool isFrameWideChannel(const std::string& name);
 // are BadInput.
 FrameImage partOf(const FrameImage& frame, const InputPart& wanted);
 
+// The channels every one of `inputs` stores as 16-bit floats (TaskInput::halfChannels):
+// those a frame joined from them can store so and still hold their values.
+ChannelFilter halfInEvery(const std::vector<TaskInput*>& inputs);
+
 // A render (`input`, of width x height) without its directly seen light
 // (takeDirectEmission), box-downsampled by `factor` (boxDownsample), read a strip of rows
 // at a time: a 1080p keyframe's render is more than a gigabyte whole. Both steps are per

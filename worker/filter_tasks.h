@@ -39,6 +39,9 @@ struct TaskInput {
   mutable std::function<std::shared_ptr<FrameImage>()> decode = {};
   // Makes a part of the frame; empty: parts are taken from image().
   std::function<FrameImage(const InputPart&)> decodePart = {};
+  // The channels its chunk stores as 16-bit floats (image/exr_io.h), from the chunk's
+  // header; empty: none.
+  std::function<std::vector<std::string>()> halfChannels = {};
 
   const FrameImage& image() const;
   // A part of the frame: copied from it when it is decoded already, else decoded alone
@@ -64,8 +67,10 @@ struct TaskOutput {
   std::vector<std::function<FrameImage()>> rowWindows;
   int joinedHeight = 0;
   // How `frame` or `rowWindows` is written: RLE for an intermediate chunk, ZIP for a frame
-  // the shot keeps.
+  // the shot keeps. An intermediate `frame` stores what halfPrecisionChannels
+  // (worker/chunk_channels.h) allows as 16-bit floats; `rowWindows` store `halfChannels` so.
   ExrCompression compression = ExrCompression::Fast;
+  ChannelFilter halfChannels = {};
   std::vector<TaskParams> followUps;      // render tiles to add to the shot
   std::map<std::string, double> metrics;  // figures for the shot's report
 };

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "image/exr_io.h"
+#include "worker/chunk_channels.h"
 #include "worker/filter_tasks.h"
 
 namespace pathfarm::farm {
@@ -19,7 +20,11 @@ void writingOutput(const std::function<void()>& step) {
 
 void writeOutputFrame(TaskOutput& output, const std::filesystem::path& file) {
   if (output.frame) {
-    writingOutput([&] { writeExrInStrips(file, *output.frame, output.compression); });
+    const bool intermediate = output.compression == ExrCompression::Fast;
+    writingOutput([&] {
+      writeExrInStrips(file, *output.frame, output.compression,
+                       intermediate ? halfPrecisionChannels(*output.frame) : ChannelFilter{});
+    });
     output.frame.reset();
     return;
   }
@@ -30,7 +35,7 @@ void writeOutputFrame(TaskOutput& output, const std::filesystem::path& file) {
     writingOutput([&] {
       if (!writer)
         writer.emplace(file, rows.width(), output.joinedHeight, rows.channelNames(), rows.attributes(),
-                       output.compression);
+                       output.compression, output.halfChannels);
       writer->write(rows);
     });
   }

@@ -179,10 +179,10 @@ TaskOutput TaskRunner::renderTile(const Lease& lease, const ChunkFetcher& fetch,
   RenderStats stats;
   FrameImage tile = renderer.renderWindow(params.frame(), {w.x0(), w.y0(), w.x1(), w.y1()},
                                           abandonable(progress, abandon), &stats, only.empty() ? nullptr : &only);
-  if (settings.decomposition && content && filtering)
-    keepReadChannels(*content, stagesOf(lease.spec().pipeline()), tile);
+  const bool intermediate = settings.decomposition && content && filtering;
+  if (intermediate) keepReadChannels(*content, stagesOf(lease.spec().pipeline()), tile);
   TaskOutput output;
-  output.chunk = encodeExr(tile, ExrCompression::Fast);
+  output.chunk = encodeExr(tile, ExrCompression::Fast, intermediate ? halfPrecisionChannels(tile) : ChannelFilter{});
   output.metrics["samples"] = static_cast<double>(stats.samples);
   return output;
 }
@@ -280,8 +280,10 @@ std::vector<TaskInput> TaskRunner::inputsOf(const Lease& lease, const ChunkFetch
       input.decodePart = [this, ref, label, file, whole = input.decode](const InputPart& wanted) {
         return decodedPart(ref, label, file, whole, wanted);
       };
+      input.halfChannels = [label, file] { return readExrHeader(file, label).halfChannels; };
     } else {
       input.decode = [this, ref, label, fetch] { return decodedInput(ref, [&] { return decodeExr(fetch(ref), label); }); };
+      input.halfChannels = [ref, label, fetch] { return decodeExrHeader(fetch(ref), label).halfChannels; };
     }
     // Fetching the inputs is the first half of a filter task's work, as far as anyone can tell.
     progress = 0.5 * static_cast<double>(i + 1) / static_cast<double>(lease.inputs_size());

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -440,8 +441,65 @@ TEST(ExrIo, EveryBitPatternSurvivesEachCompressionAndEachReader) {
   }
 }
 
-// Another tool's files, which image/exr_core_rows.h leaves to Imf::InputFile: half floats
-// (ZIP), and floats packed by PIZ. Each value is read as the float it was.
+// The farm's intermediate chunks store some channels as 16-bit floats (exr_io.h). Every
+// reader gives back the nearest half of each value (Imath's rounding, an independent
+// conversion), which is within the precision exr_io.h promises; the other channels keep
+// their bits.
+TEST(ExrIo, HalfChannelsComeBackAsTheNearestHalfFromEveryReader) {
+  FrameImage frame(29, 41);
+  std::mt19937 random(17);
+  std::uniform_real_distribution<float> exponent(-30.0f, 15.9f);
+  for (const char* name : {"R", "G", "B", "residual.normal.X", "variance.B"})
+    for (float& v : frame.addChannel(name)) v = (random() % 2 ? -1.0f : 1.0f) * std::exp2(exponent(random));
+  frame.channel("G")[7] = 0.0f;
+  frame.channel("G")[8] = 65504.0f;
+  const ChannelFilter half = [](const std::string& name) { return name != "variance.B"; };
+  const auto checkValues = [&](const FrameImage& read, int firstRow, const std::string& reader) {
+    for (const std::string& name : read.channelNames()) {
+      const std::vector<float>& wrote = frame.channel(name);
+      for (size_t i = 0; i < read.pixelCount(); ++i) {
+        const float v = wrote[static_cast<size_t>(firstRow) * 29 + i], got = read.channel(name)[i];
+        if (!half(name)) {
+          ASSERT_EQ(std::memcmp(&v, &got, sizeof v), 0) << reader << ": " << name << " at " << i;
+          continue;
+        }
+        ASSERT_EQ(got, static_cast<float>(::half(v))) << reader << ": " << name << " at " << i;
+        const float bound = std::abs(v) >= std::exp2(-14.0f) ? std::exp2(-11.0f) * std::abs(v) : std::exp2(-25.0f);
+        ASSERT_LE(std::abs(got - v), bound) << reader << ": " << name << " at " << i;
+      }
+    }
+  };
+  for (const ExrCompression compression : {ExrCompression::Fast, ExrCompression::Small}) {
+    const std::string bytes = encodeExr(frame, compression, half);
+    EXPECT_LT(bytes.size(), encodeExr(frame, compression).size());
+    const std::filesystem::path file = temporaryFile("halves.exr"), strips = temporaryFile("halves_in_strips.exr");
+    std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
+    writeExrInStrips(strips, frame, compression, half);
+    std::ifstream in(strips, std::ios::binary);
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), bytes);
+    checkValues(decodeExr(bytes, "halves"), 0, "decodeExr");
+    checkValues(decodeExrFile(file, "halves"), 0, "decodeExrFile");
+    checkValues(readExrRows(file, "halves", 5, 33), 5, "readExrRows");
+    const ExrHeader header = readExrHeader(file, "halves");
+    EXPECT_EQ(header.halfChannels, (std::vector<std::string>{"B", "G", "R", "residual.normal.X"}));
+  }
+}
+
+TEST(ExrIo, AValueAHalfCannotHoldIsRefusedNotWrittenAsInfinity) {
+  for (const float bad : {65520.0f, -1e9f, std::numeric_limits<float>::infinity(), std::nanf("")}) {
+    FrameImage frame(4, 3);
+    frame.addChannel("R")[5] = bad;
+    EXPECT_FALSE(fitsHalf(frame.channel("R"))) << bad;
+    const ChannelFilter half = [](const std::string&) { return true; };
+    EXPECT_THROW(encodeExr(frame, ExrCompression::Fast, half), ExrError) << bad;
+    EXPECT_THROW(writeExrInStrips(temporaryFile("refused.exr"), frame, ExrCompression::Fast, half), ExrError) << bad;
+  }
+  EXPECT_TRUE(fitsHalf({0.0f, -65504.0f, 65504.0f, 1e-30f}));
+}
+
+// Another tool's files: half floats (ZIP), which OpenEXRCore unpacks into floats, and
+// floats packed by PIZ, which image/exr_core_rows.h leaves to Imf::InputFile. Each value
+// is read as the float it was.
 TEST(ExrIo, HalfFloatsAndPizFilesAreReadAsWritten) {
   const int width = 5, height = 37;
   const auto valueAt = [](int index) { return 0.25f * static_cast<float>(index) - 3.0f; };  // exact in half

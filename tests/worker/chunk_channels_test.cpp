@@ -195,5 +195,28 @@ TEST(ChunkChannels, OnlyChunksThatKeepMotionMeasureIt) {
   }
 }
 
+// Half floats hold the radiance and the bounded features, each where all of its values
+// fit; the variance, motion, depth and ids keep 32 bits.
+TEST(ChunkChannels, HalfFloatsHoldTheRadianceAndBoundedFeaturesThatFit) {
+  const FrameImage keyframe = render(kBefore, 4);
+  const ChannelFilter half = halfPrecisionChannels(keyframe);
+  for (const char* name : {"R", "diffuse_direct.color.G", "diffuse_direct.emission.R", "diffuse_direct.irradiance.B",
+                           "diffuse_direct.reflectance.R", "diffuse_direct.normal.Z", "diffuse_direct.coverage.Y"}) {
+    ASSERT_TRUE(keyframe.hasChannel(name)) << name;
+    EXPECT_TRUE(half(name)) << name;
+  }
+  for (const char* name : {"variance.R", "diffuse_direct.variance.G", "diffuse_direct.motion.X", "motion.X",
+                           "depth.Z", "diffuse_direct.objectid.Y"}) {
+    ASSERT_TRUE(keyframe.hasChannel(name)) << name;
+    EXPECT_FALSE(half(name)) << name;
+  }
+  // One value beyond a half's range keeps that channel, and that channel alone, in floats.
+  FrameImage bright = keyframe;
+  bright.channel("diffuse_direct.color.G")[3] = 70000.0f;
+  const ChannelFilter brightHalf = halfPrecisionChannels(bright);
+  EXPECT_FALSE(brightHalf("diffuse_direct.color.G"));
+  EXPECT_TRUE(brightHalf("diffuse_direct.color.R"));
+}
+
 }  // namespace chunk_channels_test
 }  // namespace pathfarm::farm

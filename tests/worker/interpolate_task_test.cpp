@@ -199,7 +199,7 @@ TEST(InterpolateTask, KeyframesReadAComponentAtATimeGiveTheWholeFramesInterpolat
   const FrameImage alone = decodeExr(outputBytes(outputs[0]), "alone");
   const FrameImage fromWhole = decodeExr(outputBytes(outputs[1]), "from whole");
   const InterpolationResult whole = wholeInterpolation(in, true);
-  const FrameImage& expected = whole.frame;
+  const FrameImage expected = asIntermediateChunk(whole.frame);
   // The interpolation's own re-render causes (the task adds its checks' as other causes).
   for (const TaskOutput& output : outputs) {
     EXPECT_EQ(output.metrics.at("rerender_holes"), static_cast<double>(whole.holePixels));
@@ -234,8 +234,10 @@ TEST(InterpolateTask, KeyframesReadAComponentAtATimeGiveTheWholeFramesInterpolat
 
 // Features with fewer samples than the keyframes leave the keyframes' reflectance: their
 // noise would cost more than the texture edges gain.
-// The task's frame is `expected`'s, channel by channel (its re-render mask aside).
-void expectSameFrame(const FrameImage& result, const FrameImage& expected) {
+// The task's frame is `computed`'s as its chunk stores it, channel by channel (its re-render
+// mask aside).
+void expectSameFrame(const FrameImage& result, const FrameImage& computed) {
+  const FrameImage expected = asIntermediateChunk(computed);
   for (const std::string& name : expected.channelNames())
     if (name != "rerender.Y") EXPECT_TRUE(result.channel(name) == expected.channel(name)) << name;
 }

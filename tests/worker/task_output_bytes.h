@@ -1,7 +1,8 @@
 #pragma once
 // The bytes of a filter task's output chunk, however the task gave them (TaskOutput: the
 // bytes, a file holding them, or a frame or windows of rows the worker writes to a file,
-// written here as the worker writes them); and a filter task's lease for a window of rows.
+// written here as the worker writes them); a frame as an intermediate chunk holds it; and a
+// filter task's lease for a window of rows.
 #include <unistd.h>
 
 #include <filesystem>
@@ -12,6 +13,7 @@
 
 #include "contract/pipeline.h"
 #include "image/exr_io.h"
+#include "worker/chunk_channels.h"
 #include "worker/filter_tasks.h"
 
 namespace pathfarm::farm {
@@ -27,6 +29,12 @@ inline std::string outputBytes(TaskOutput output) {
   std::ostringstream bytes;
   bytes << file.rdbuf();
   return bytes.str();
+}
+
+// `frame` as an intermediate chunk holds it: what halfPrecisionChannels allows rounded to
+// the nearest half float (image/exr_io.h), the rest as it is.
+inline FrameImage asIntermediateChunk(const FrameImage& frame) {
+  return decodeExr(encodeExr(frame, ExrCompression::Fast, halfPrecisionChannels(frame)), "an intermediate chunk");
 }
 
 // `lease` (of no window, with no inputs) for rows [first, end) of its frame, whole rows.
