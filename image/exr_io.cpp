@@ -40,6 +40,9 @@ Imf::Header headerOf(int width, int height, const std::vector<std::string>& chan
   return header;
 }
 
+// Whether a half float holds `value` (to within its precision): NaNs and infinities fail.
+bool halfHolds(float value) { return std::abs(value) <= HALF_MAX; }
+
 // What OpenEXR writes rows firstRow .. firstRow + rows - 1 of a frame `width` wide from:
 // a float channel's plane (holding those rows from its start) itself, a half channel's
 // rows converted into a buffer of their own, kept here until the rows are written.
@@ -67,7 +70,7 @@ class RowsToWrite {
   Imath::half* halved(const std::string& name, const float* values, size_t count) {
     std::vector<Imath::half>& converted = halves_.emplace_back(count);
     for (size_t i = 0; i < count; ++i) {
-      if (!std::isfinite(values[i]) || std::abs(values[i]) > HALF_MAX)
+      if (!halfHolds(values[i]))
         throw std::range_error("channel \"" + name + "\" holds " + std::to_string(values[i]) +
                                ", which a 16-bit float cannot store");
       converted[i] = Imath::half(values[i]);
@@ -131,7 +134,7 @@ class StringIStream : public Imf::IStream {
 }  // namespace
 
 bool fitsHalf(const std::vector<float>& values) {
-  return std::all_of(values.begin(), values.end(), [](float v) { return std::abs(v) <= HALF_MAX; });
+  return std::all_of(values.begin(), values.end(), halfHolds);
 }
 
 std::string encodeExr(const FrameImage& frame, ExrCompression compression, const ChannelFilter& halfChannels) {

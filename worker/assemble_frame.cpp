@@ -88,9 +88,9 @@ void assembleFrame(const Lease& lease, const ChunkFileFetcher& fetch, const std:
   const bool keptFrame = !lease.params().has_window() &&
                          (lease.params().role() == ROLE_OUTPUT || lease.params().role() == ROLE_UNSPECIFIED);
   const std::vector<std::string> channels(header.channels.begin(), header.channels.end());
-  // The tiles are the task's input; the file it writes is this worker's.
-  // A channel every tile holds in half floats is the same values in half floats.
+  // A channel every tile holds in half floats keeps its values in half floats.
   const ChannelFilter halfInEveryTile = [&](const std::string& name) { return !header.floatSomewhere.count(name); };
+  // The tiles are the task's input; the file it writes is this worker's.
   std::optional<ExrStripWriter> writer;
   writingOutput([&] {
     writer.emplace(file, width, height, channels, header.attributes,

@@ -43,8 +43,8 @@ void keepReadChannels(ChunkContent content, FilteringStages stages, FrameImage& 
 // The channels of an intermediate chunk written as 16-bit floats (image/exr_io.h): the
 // radiance (the beauty, a component's color, emission and irradiance) and the bounded
 // features (reflectance, normal, coverage), each where all of its values in `frame` fit a
-// half. A half errs by at most 2^-11 of a value, a hundredth or less of the noise a
-// filtered frame keeps at any spp the farm renders (docs/performance.md, "Intermediate
+// half. A half errs by at most 2^-11 (0.05 %) of a value, where a filtered frame at any
+// spp the farm renders errs by a percent or more (docs/performance.md, "Intermediate
 // chunks in half floats"). The variance keeps 32 bits (the denoiser divides by it, and a
 // dark pixel's lies below a half's normal range), and so do motion, depth and ids.
 ChannelFilter halfPrecisionChannels(const FrameImage& frame);
