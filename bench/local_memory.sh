@@ -12,22 +12,13 @@
 #   e.g. bench/local_memory.sh scenes/walkthrough/shot.json -- --res 1920x1080 --spp 16 --frames 0:4 --pipeline dui
 set -euo pipefail
 cd "$(dirname "$0")/.."
-build=build workers=2 label="" shot=""
-while (($#)); do
-  case "$1" in
-    --build) build=$2; shift 2 ;;
-    --workers) workers=$2; shift 2 ;;
-    --label) label=$2; shift 2 ;;
-    --) shift; break ;;
-    *) shot=$1; shift ;;
-  esac
-done
-[ -n "$shot" ] || { echo "usage: bench/local_memory.sh [--build DIR] [--workers N] [--label TEXT] SHOT [-- ARGS...]" >&2; exit 2; }
+source bench/local_shot_args.sh
+parse_local_shot_args "bench/local_memory.sh [--build DIR] [--workers N] [--label TEXT] SHOT [-- ARGS...]" "$@"
 work=$(mktemp -d)
 trap 'kill "$pid" 2> /dev/null || true; rm -rf "$work"' EXIT
 
 start=$SECONDS
-"$build/bin/pathfarm" local "$shot" --workers "$workers" --out "$work/frames" --keep-farm "$@" > "$work/local.log" 2>&1 &
+"$build/bin/pathfarm" local "$shot" --workers "$workers" --out "$work/frames" --keep-farm "${local_args[@]}" > "$work/local.log" 2>&1 &
 pid=$!
 declare -A peak  # pid -> peak resident KiB
 store_peak=0 tick=0

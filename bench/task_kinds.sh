@@ -6,26 +6,19 @@
 # two builds, run it for each in turn, more than once: on this 2-core machine the
 # core-seconds of the same shot move by about 5 % between runs.
 #
-#   bench/task_kinds.sh [--build DIR] [--workers 2] SHOT [-- LOCAL-ARGS...]
+#   bench/task_kinds.sh [--build DIR] [--workers 2] [--label TEXT] SHOT [-- LOCAL-ARGS...]
 #   e.g. bench/task_kinds.sh scenes/dolly/shot.json -- --res 640x360 --spp 256 --frames 8:10 --pipeline d \
 #          --set 'evaluation_frames=[]'
 set -euo pipefail
 cd "$(dirname "$0")/.."
-build=build workers=2 shot=""
-while (($#)); do
-  case "$1" in
-    --build) build=$2; shift 2 ;;
-    --workers) workers=$2; shift 2 ;;
-    --) shift; break ;;
-    *) shot=$1; shift ;;
-  esac
-done
-[ -n "$shot" ] || { echo "usage: bench/task_kinds.sh [--build DIR] [--workers N] SHOT [-- ARGS...]" >&2; exit 2; }
+source bench/local_shot_args.sh
+parse_local_shot_args "bench/task_kinds.sh [--build DIR] [--workers N] [--label TEXT] SHOT [-- ARGS...]" "$@"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 start=$SECONDS
-"$build/bin/pathfarm" local "$shot" --workers "$workers" --out "$work/frames" --keep-farm --keep-intermediates "$@" \
+"$build/bin/pathfarm" local "$shot" --workers "$workers" --out "$work/frames" --keep-farm --keep-intermediates "${local_args[@]}" \
   > "$work/local.log" 2>&1 || { tail "$work/local.log" >&2; exit 1; }
+[ -z "$label" ] || echo "$label"
 echo "| task kind | tasks | core-seconds | output MB |"
 echo "| --- | ---: | ---: | ---: |"
 # Task kinds by number: proto/pathfarm/shot.proto's TaskKind.
