@@ -51,7 +51,7 @@ JSON
   wait "$farm" 2> /dev/null || true
   echo "== $scene, $res, $spp spp"
   grep -q 'auto chose' "$out/log" || { echo "auto_probe: no choice within 30 minutes; $out/log:" >&2; tail "$out/log" >&2; exit 1; }
-  grep 'pipeline auto:.*probe:\|auto chose' "$out/log" | sed 's/^.*info //'
+  grep 'pipeline auto:.*probe at\|auto chose' "$out/log" | sed 's/^.*info //'
   sqlite3 "$out/out/farm/farm.db" \
     "select 'probe shots: ' || round(sum(t.core_seconds), 1) || ' core-seconds' from tasks t join shots s on s.id = t.shot_id
      where s.name like '%.probe.%'"

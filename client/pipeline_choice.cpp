@@ -44,6 +44,11 @@ std::string printed(const char* pattern, double value) {
   return text;
 }
 
+// What a second-round probe's name and folder carry after the pipeline's name.
+std::string roundSuffix(ProbeRound round, const char* separator) {
+  return round == ProbeRound::AtShotSpp ? separator + std::string("at_shot_spp") : "";
+}
+
 int evenUp(int edge) { return edge + edge % 2; }
 
 int probeEdge(int shotEdge, int scale) {
@@ -110,7 +115,8 @@ std::pair<int64_t, int64_t> ProbeGeometry::framesOf(const ShotSpec& candidate) c
   return {std::max(frameStart, measuredStart - 1), std::min(frameEnd, measuredEnd + 1)};
 }
 
-double probeSppRatio(const ShotSpec& candidate) {
+double probeSppRatio(const ShotSpec& candidate, ProbeRound round) {
+  if (round == ProbeRound::AtShotSpp) return 1;
   if (candidate.pipeline() == PIPELINE_PT) return static_cast<double>(standInSpp(candidate.spp())) / candidate.spp();
   if (candidate.pipeline() == PIPELINE_TGPT && candidate.spp() / kGradientProbeSppDivisor >= kGradientProbeMinSpp)
     return static_cast<double>(candidate.spp() / kGradientProbeSppDivisor) / candidate.spp();
@@ -118,23 +124,23 @@ double probeSppRatio(const ShotSpec& candidate) {
 }
 
 std::filesystem::path probeOutput(const std::filesystem::path& folder, Pipeline pipeline,
-                                  const ProbeGeometry& geometry, size_t window) {
-  const std::filesystem::path own = folder / std::string(pipelineName(pipeline));
+                                  const ProbeGeometry& geometry, size_t window, ProbeRound round) {
+  const std::filesystem::path own = folder / (std::string(pipelineName(pipeline)) + roundSuffix(round, "_"));
   return geometry.windows.size() > 1 ? own / ("window_" + std::to_string(window)) : own;
 }
 
 ShotSpec probeSpecOf(const ShotSpec& candidate, const ProbeGeometry& geometry, size_t window,
-                     const std::filesystem::path& folder) {
+                     const std::filesystem::path& folder, ProbeRound round) {
   ShotSpec probe = candidate;
   const std::string name(pipelineName(candidate.pipeline()));
   const std::string windowName = geometry.windows.size() > 1 ? ".window_" + std::to_string(window) : "";
-  probe.set_name(candidate.name() + ".probe." + name + windowName);
+  probe.set_name(candidate.name() + ".probe." + name + roundSuffix(round, ".") + windowName);
   const auto [first, last] = geometry.framesOf(candidate);
   probe.set_frame_start(first);
   probe.set_frame_end(last);
   probe.set_width(geometry.width);
   probe.set_height(geometry.height);
-  probe.set_output(probeOutput(folder, candidate.pipeline(), geometry, window).string());
+  probe.set_output(probeOutput(folder, candidate.pipeline(), geometry, window, round).string());
   probe.set_reference_spp(0);
   probe.clear_evaluation_frames();
   probe.clear_baseline_core_seconds();
@@ -148,7 +154,7 @@ ShotSpec probeSpecOf(const ShotSpec& candidate, const ProbeGeometry& geometry, s
   if (candidate.pipeline() == PIPELINE_PT) {
     probe.set_first_sample(kIndependentFirstSample);
   }
-  probe.set_spp(static_cast<int>(std::lround(candidate.spp() * probeSppRatio(candidate))));
+  probe.set_spp(static_cast<int>(std::lround(candidate.spp() * probeSppRatio(candidate, round))));
   return probe;
 }
 
@@ -177,6 +183,7 @@ PipelineChoice decidePipeline(const std::vector<CandidateMeasure>& measures, con
     table += name + " " + printed("%.2f", cost) + (m.relMse < floor ? " (its error within the probe's noise)" : "");
     if (choice.pipeline != PIPELINE_UNSPECIFIED && cost >= best) continue;
     best = cost;
+    choice.costAtEqualError = cost;
     choice.pipeline = m.pipeline;
     choice.predictedRelMse = error;
     choice.predictedCoreSecondsPerFrame = m.coreSecondsPerFrame * pixelRatio;
@@ -191,6 +198,32 @@ PipelineChoice decidePipeline(const std::vector<CandidateMeasure>& measures, con
                             " spp, " + printed("%.1f", choice.probeCoreSeconds) + " core-seconds";
   choice.reason = "auto chose " + std::string(pipelineName(choice.pipeline)) + ", the lowest predicted cost at equal error against plain pt: " +
                   table + " (" + probe + ")";
+  return choice;
+}
+
+PipelineChoice choosePipelineFromProbes(std::vector<CandidateMeasure> measures, const ProbeGeometry& geometry,
+                                        const ShotSpec& shot,
+                                        const std::function<CandidateMeasure(Pipeline)>& probeAtShotSpp) {
+  PipelineChoice choice = decidePipeline(measures, geometry, shot);
+  std::string firstRounds;
+  const auto winnerOf = [&] {
+    return std::find_if(measures.begin(), measures.end(),
+                        [&](const CandidateMeasure& m) { return m.pipeline == choice.pipeline; });
+  };
+  // Each pass measures one more candidate at the shot's spp, so there are at most as many
+  // passes as candidates.
+  for (auto winner = winnerOf(); winner->sppRatio < 1; winner = winnerOf()) {
+    const std::string name(pipelineName(winner->pipeline));
+    firstRounds += "; " + name + " won at " + printed("%.0f", winner->sppRatio * shot.spp()) + " spp (" +
+                   printed("%.2f", choice.costAtEqualError) + ") and was probed again at the shot's " +
+                   std::to_string(shot.spp());
+    CandidateMeasure again = probeAtShotSpp(winner->pipeline);
+    if (again.sppRatio < 1) throw std::logic_error("a probe again at the shot's spp rendered fewer samples");
+    again.probeCoreSeconds += winner->probeCoreSeconds;
+    *winner = std::move(again);
+    choice = decidePipeline(measures, geometry, shot);
+  }
+  choice.reason += firstRounds;
   return choice;
 }
 

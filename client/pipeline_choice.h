@@ -11,6 +11,7 @@
 // core-seconds over pt's, times its error over pt's (pt's error falls as 1/spp). This file
 // holds the arithmetic; pipeline_probe.h runs the probe on a farm.
 #include <filesystem>
+#include <functional>
 #include <utility>
 #include <string>
 #include <vector>
@@ -81,31 +82,41 @@ inline constexpr int kStandInSppFactor = 2;
 inline constexpr int kStandInMaxSppFactor = 4;
 inline constexpr int kStandInFloorSpp = 256;
 int standInSpp(int shotSpp);
-// tgpt's probe renders a kGradientProbeSppDivisor-th of the shot's spp where that leaves
-// at least kGradientProbeMinSpp: it is the costliest candidate by far (5 to 6 times plain
-// pt's per sample). Its error and its render's cost at the shot's spp are taken to follow
-// 1/spp as pt's do (the screened Poisson reconstruction is nearly linear in its noisy
-// inputs; the reconstruction's own cost does not change). On the dolly's centre at
-// 640x360 (frame 11, against 16384 spp) tgpt at 64 spp erred 3.2 times what it did at
-// 256, so the quarter predicts its error about 20 % low there. Below the floor a render
-// task's fixed costs would weigh too much in its cost to scale it.
+// tgpt's first probe renders a kGradientProbeSppDivisor-th of the shot's spp where that
+// leaves at least kGradientProbeMinSpp: it is the costliest candidate by far (5 to 6 times
+// plain pt's per sample). Its error and its render's cost at the shot's spp are taken to
+// follow 1/spp as pt's do (the screened Poisson reconstruction is nearly linear in its
+// noisy inputs; the reconstruction's own cost does not change). That holds roughly on the
+// dolly's centre at 640x360 (frame 11, against 16384 spp: tgpt at 64 spp erred 3.2 times
+// what it did at 256, so the quarter reads its error about 20 % low), and not on the
+// creature, whose rare caustic paths a quarter of the samples mostly misses: there the
+// quarter read tgpt's error 4.75 times lower than a probe at the shot's spp, and auto chose
+// tgpt where d cost a quarter as much. So a winner probed at fewer samples is probed again
+// at the shot's spp before it is chosen (ProbeRound::AtShotSpp, choosePipelineFromProbes):
+// a quarter-spp reading that loses was already the optimistic one. Below the floor a
+// render task's fixed costs would weigh too much in its cost to scale it.
 inline constexpr int kGradientProbeSppDivisor = 4;
 inline constexpr int kGradientProbeMinSpp = 16;
 
+// A candidate's probes: the first, which every candidate has, and a second at the shot's
+// own spp for a first-round winner whose first probe rendered fewer samples.
+enum class ProbeRound { First, AtShotSpp };
+
 // The probe's spp over the shot's for a candidate: what its probe's render cost is divided
 // by and its error multiplied by to give them at the shot's spp.
-double probeSppRatio(const ShotSpec& candidate);
+double probeSppRatio(const ShotSpec& candidate, ProbeRound round = ProbeRound::First);
 
 // A candidate's probe of one crop (an index into geometry.windows): its spec over the
 // probe's frames and that crop, without measurements, writing into folder/<pipeline>
 // (folder/<pipeline>/window_<i> with several crops). pt's samples start at
 // kIndependentFirstSample, so that it can stand in for the truth: it shares no sample with
 // the other candidates.
+// The second round's probe is named and kept apart from the first's (folder/<pipeline>_at_shot_spp).
 ShotSpec probeSpecOf(const ShotSpec& candidate, const ProbeGeometry& geometry, size_t window,
-                     const std::filesystem::path& folder);
+                     const std::filesystem::path& folder, ProbeRound round = ProbeRound::First);
 // Where that probe writes its frames.
 std::filesystem::path probeOutput(const std::filesystem::path& folder, Pipeline pipeline,
-                                  const ProbeGeometry& geometry, size_t window);
+                                  const ProbeGeometry& geometry, size_t window, ProbeRound round = ProbeRound::First);
 
 // What the probe measured of one candidate.
 struct CandidateMeasure {
@@ -114,6 +125,7 @@ struct CandidateMeasure {
   double probeCoreSeconds = 0;  // what the probe shot cost (plain pt's renders more samples)
   double relMse = 0;       // against the truth, estimated; pt's: the stand-in's own noise
   double relMseStandardError = 0;  // of that estimate
+  double sppRatio = 1;     // the probe's spp over the shot's (probeSppRatio)
   std::string failure;     // non-empty: the probe shot failed, and this is why
 };
 
@@ -122,6 +134,7 @@ struct PipelineChoice {
   std::string reason;  // the table of predictions behind it, for the report
   double predictedCoreSecondsPerFrame = 0;
   double predictedRelMse = 0;
+  double costAtEqualError = 0;  // predicted, against plain pt's
   double probeCoreSeconds = 0;  // every probe shot's, the stand-in's too
 };
 
@@ -129,5 +142,13 @@ struct PipelineChoice {
 // without it, or when it failed.
 PipelineChoice decidePipeline(const std::vector<CandidateMeasure>& measures, const ProbeGeometry& geometry,
                               const ShotSpec& shot);
+
+// decidePipeline, except that a winner whose probe rendered fewer samples than the shot
+// is measured again by `probeAtShotSpp` (its probe at ProbeRound::AtShotSpp) and the
+// choice made again with that measure in place of the first; the reason says so, and the
+// probe's cost counts both.
+PipelineChoice choosePipelineFromProbes(std::vector<CandidateMeasure> measures, const ProbeGeometry& geometry,
+                                        const ShotSpec& shot,
+                                        const std::function<CandidateMeasure(Pipeline)>& probeAtShotSpp);
 
 }  // namespace pathfarm::farm

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include "image/exr_io.h"
@@ -57,44 +58,46 @@ MeanEstimate estimatedRelMse(const std::map<std::string, FrameImage>& frames,
   return estimate;
 }
 
-// Submits every candidate's probe shots, one per crop; returns their ids, in the
-// candidates' order and then the crops'.
+// Submits every candidate's probe shots of `round`, one per crop; returns their ids, in
+// the candidates' order and then the crops'.
 std::vector<std::vector<int64_t>> submitProbes(FarmClient& client, const std::vector<ShotSpec>& candidates,
-                                               const ProbeGeometry& geometry,
-                                               const std::filesystem::path& probeFolder, const std::string& submitKey) {
+                                               const ProbeGeometry& geometry, const std::filesystem::path& probeFolder,
+                                               const std::string& submitKey, ProbeRound round) {
   std::vector<std::vector<int64_t>> ids;
   std::string names;
   for (const ShotSpec& candidate : candidates) {
     const std::string name(pipelineName(candidate.pipeline()));
     ids.emplace_back();
     for (size_t window = 0; window < geometry.windows.size(); ++window) {
-      const ShotSpec probe = probeSpecOf(candidate, geometry, window, probeFolder);
+      const ShotSpec probe = probeSpecOf(candidate, geometry, window, probeFolder, round);
       // The probe's name extends the shot's, so it keys the resubmission alike.
       const std::string key = submitKey.empty() ? "" : submitKey + probe.name().substr(candidate.name().size());
       ids.back().push_back(client.submit(probe, key));
     }
     names += (names.empty() ? "" : ", ") + name;
   }
-  spdlog::info("pipeline auto: probing {} on frames {}..{}, {} crop{} of {}x{} pixels, {} spp (shots {}..{})", names,
+  spdlog::info("pipeline auto: probing {} on frames {}..{}, {} crop{} of {}x{} pixels, {} spp{} (shots {}..{})", names,
                geometry.frameStart, geometry.frameEnd, geometry.windows.size(),
                geometry.windows.size() > 1 ? "s" : "", geometry.width, geometry.height, candidates.front().spp(),
-               ids.front().front(), ids.back().back());
+               round == ProbeRound::AtShotSpp ? ", again at the shot's own spp" : "", ids.front().front(),
+               ids.back().back());
   return ids;
 }
 
 // What the probe shots `ids` of `candidate` (one per crop) cost and erred at the shot's
-// spp, once they end; they rendered probeSppRatio(candidate) times its spp.
+// spp, once they end; they rendered probeSppRatio(candidate, round) times its spp.
 // pt's probe comes first: its frames become `truthStandIn`, which the others are measured
 // against.
 CandidateMeasure measureProbe(FarmClient& client, const std::vector<int64_t>& ids, const ShotSpec& candidate,
                               const ProbeGeometry& geometry, const std::filesystem::path& probeFolder,
-                              const std::function<void(const ShotSummary&)>& progress,
+                              ProbeRound round, const std::function<void(const ShotSummary&)>& progress,
                               std::map<std::string, FrameImage>& truthStandIn) {
   const Pipeline pipeline = candidate.pipeline();
-  const double sppScale = probeSppRatio(candidate);
+  const double sppScale = probeSppRatio(candidate, round);
   const std::string name(pipelineName(pipeline));
   CandidateMeasure measure;
   measure.pipeline = pipeline;
+  measure.sppRatio = sppScale;
   std::map<std::string, FrameImage> frames;
   for (size_t window = 0; window < ids.size(); ++window) {
     const int64_t id = ids[window];
@@ -108,7 +111,7 @@ CandidateMeasure measureProbe(FarmClient& client, const std::vector<int64_t>& id
       spdlog::warn("pipeline auto: the {} probe did not finish ({}); it is left out", name, measure.failure);
       return measure;
     }
-    fetchFrames(client, id, window, probeOutput(probeFolder, pipeline, geometry, window), frames);
+    fetchFrames(client, id, window, probeOutput(probeFolder, pipeline, geometry, window, round), frames);
     const ShotReport report = client.report(id);
     measure.probeCoreSeconds += report.core_seconds();
     // Plain pt's probe renders more samples than the shot, tgpt's fewer: at the shot's
@@ -122,8 +125,9 @@ CandidateMeasure measureProbe(FarmClient& client, const std::vector<int64_t>& id
   const MeanEstimate error = estimatedRelMse(frames, truthStandIn, pipeline == PIPELINE_PT);
   measure.relMse = error.mean() * sppScale;
   measure.relMseStandardError = error.standardError() * sppScale;
-  spdlog::info("pipeline auto: {} probe: {:.2f} core-seconds a frame, estimated relMSE {:.5f} ± {:.5f}", name,
-               measure.coreSecondsPerFrame, measure.relMse, measure.relMseStandardError);
+  spdlog::info("pipeline auto: {} probe at {} spp: {:.2f} core-seconds a frame, estimated relMSE {:.5f} ± {:.5f}",
+               name, std::lround(candidate.spp() * sppScale), measure.coreSecondsPerFrame, measure.relMse,
+               measure.relMseStandardError);
   return measure;
 }
 
@@ -136,22 +140,31 @@ ShotSpec choosePipeline(FarmClient& client, const ShotFile& file, const ShotSpec
   int longestInterval = 1;
   for (const ShotSpec& c : candidates) longestInterval = std::max(longestInterval, c.keyframe_interval());
   const ProbeGeometry geometry = probeGeometry(autoSpec, longestInterval);
-  const std::vector<std::vector<int64_t>> ids = submitProbes(client, candidates, geometry, probeFolder, submitKey);
+  const std::vector<std::vector<int64_t>> ids =
+      submitProbes(client, candidates, geometry, probeFolder, submitKey, ProbeRound::First);
   std::vector<CandidateMeasure> measures;
   std::map<std::string, FrameImage> truthStandIn;
   for (size_t i = 0; i < candidates.size(); ++i)
-    measures.push_back(measureProbe(client, ids[i], candidates[i], geometry, probeFolder, progress, truthStandIn));
+    measures.push_back(measureProbe(client, ids[i], candidates[i], geometry, probeFolder, ProbeRound::First, progress,
+                                    truthStandIn));
+  const auto candidateOf = [&](Pipeline pipeline) {
+    return *std::find_if(candidates.begin(), candidates.end(), [&](const ShotSpec& c) { return c.pipeline() == pipeline; });
+  };
+  const auto probeAtShotSpp = [&](Pipeline pipeline) {
+    const ShotSpec candidate = candidateOf(pipeline);
+    const auto againIds = submitProbes(client, {candidate}, geometry, probeFolder, submitKey, ProbeRound::AtShotSpp);
+    return measureProbe(client, againIds.front(), candidate, geometry, probeFolder, ProbeRound::AtShotSpp, progress,
+                        truthStandIn);
+  };
 
   PipelineChoice choice;
   try {
-    choice = decidePipeline(measures, geometry, autoSpec);
+    choice = choosePipelineFromProbes(measures, geometry, autoSpec, probeAtShotSpp);
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(std::string("pipeline auto: ") + e.what());
   }
   spdlog::info("{}", choice.reason);
-  const auto winner = std::find_if(candidates.begin(), candidates.end(),
-                                   [&](const ShotSpec& c) { return c.pipeline() == choice.pipeline; });
-  ShotSpec spec = *winner;
+  ShotSpec spec = candidateOf(choice.pipeline);
   spec.set_pipeline_reason(choice.reason + (spec.pipeline_reason().empty() ? "" : "; " + spec.pipeline_reason()));
   spec.set_predicted_core_seconds_per_frame(choice.predictedCoreSecondsPerFrame);
   spec.set_predicted_relmse(choice.predictedRelMse);

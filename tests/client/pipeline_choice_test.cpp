@@ -212,6 +212,87 @@ TEST(PipelineChoice, TgptsProbeRendersFewerSamplesOnlyWhereSamplesOutweighATasks
   }
 }
 
+TEST(PipelineChoice, ASecondRoundProbeRendersTheShotsSppUnderItsOwnNameAndFolder) {
+  const ShotSpec tgpt = candidateSpec("tgpt", 1);
+  const ProbeGeometry g = probeGeometry(probedShot(24, 320, 180), 4);
+  const ShotSpec first = probeSpecOf(tgpt, g, 0, "/tmp/probes");
+  const ShotSpec again = probeSpecOf(tgpt, g, 0, "/tmp/probes", ProbeRound::AtShotSpp);
+  EXPECT_EQ(first.spp(), 64 / kGradientProbeSppDivisor);
+  EXPECT_EQ(again.spp(), 64);
+  EXPECT_DOUBLE_EQ(probeSppRatio(tgpt, ProbeRound::AtShotSpp), 1);
+  EXPECT_EQ(again.output(), "/tmp/probes/tgpt_at_shot_spp");
+  EXPECT_EQ(again.output(), probeOutput("/tmp/probes", PIPELINE_TGPT, g, 0, ProbeRound::AtShotSpp).string());
+  // A name of its own, so that a keyed resubmission cannot mistake it for the first round's.
+  EXPECT_NE(again.name(), first.name());
+  EXPECT_EQ(again.frame_start(), first.frame_start());
+  EXPECT_EQ(again.frame_end(), first.frame_end());
+  EXPECT_NO_THROW(planShot(again));
+}
+
+// tgpt's first probe renders a quarter of the samples (sppRatio 0.25); the callback stands
+// in for its second probe at the shot's spp.
+CandidateMeasure atQuarterSpp(CandidateMeasure m) {
+  m.sppRatio = 0.25;
+  return m;
+}
+
+TEST(PipelineChoice, AWinnerProbedAtFewerSamplesIsProbedAgainAtTheShotsAndMayLose) {
+  const ShotSpec shot = probedShot(24, 320, 180);
+  const ProbeGeometry g = probeGeometry(shot, 4);
+  // pt 10 at 0.01; d 11 at 0.002: 0.22 of pt; tgpt at a quarter of the spp 60 at 0.0002:
+  // 0.12, the winner. At the shot's spp its error reads 5 times higher: 0.6, and d wins.
+  std::vector<Pipeline> probedAgain;
+  const PipelineChoice choice = choosePipelineFromProbes(
+      {measured("pt", 10, 0.01), measured("d", 11, 0.002), atQuarterSpp(measured("tgpt", 60, 0.0002))}, g, shot,
+      [&](Pipeline pipeline) {
+        probedAgain.push_back(pipeline);
+        return measured("tgpt", 60, 0.001);
+      });
+  EXPECT_EQ(probedAgain, std::vector<Pipeline>{PIPELINE_TGPT});
+  EXPECT_EQ(pipelineName(choice.pipeline), "d");
+  EXPECT_DOUBLE_EQ(choice.costAtEqualError, 1.1 * 0.2);
+  EXPECT_DOUBLE_EQ(choice.probeCoreSeconds, 10 + 11 + 60 + 60) << "both of tgpt's probes count";
+  EXPECT_NE(choice.reason.find("tgpt 0.60"), std::string::npos) << choice.reason;
+  EXPECT_NE(choice.reason.find("tgpt won at 16 spp (0.12) and was probed again at the shot's 64"), std::string::npos)
+      << choice.reason;
+}
+
+TEST(PipelineChoice, AWinnerConfirmedAtTheShotsSppIsChosenWithTheSecondMeasure) {
+  const ShotSpec shot = probedShot(24, 320, 180);
+  const ProbeGeometry g = probeGeometry(shot, 4);
+  const PipelineChoice choice = choosePipelineFromProbes(
+      {measured("pt", 10, 0.01), measured("d", 11, 0.002), atQuarterSpp(measured("tgpt", 60, 0.0002))}, g, shot,
+      [](Pipeline) { return measured("tgpt", 64, 0.00025); });
+  EXPECT_EQ(pipelineName(choice.pipeline), "tgpt");
+  EXPECT_DOUBLE_EQ(choice.predictedRelMse, 0.00025);
+  EXPECT_DOUBLE_EQ(choice.costAtEqualError, 6.4 * 0.025);
+}
+
+TEST(PipelineChoice, ALoserAtFewerSamplesIsNotProbedAgainNorIsAFailedSecondProbeChosen) {
+  const ShotSpec shot = probedShot(24, 320, 180);
+  const ProbeGeometry g = probeGeometry(shot, 4);
+  // Read low, as a quarter of the samples reads it, tgpt still loses: no second probe.
+  const auto never = [](Pipeline) -> CandidateMeasure {
+    ADD_FAILURE() << "a loser was probed again";
+    return {};
+  };
+  EXPECT_EQ(choosePipelineFromProbes({measured("pt", 10, 0.01), measured("d", 11, 0.002),
+                                      atQuarterSpp(measured("tgpt", 60, 0.0005))},
+                                     g, shot, never)
+                .pipeline,
+            PIPELINE_D);  // tgpt 0.30 against d's 0.22
+  // A second probe that fails leaves tgpt out, as a failed first one would.
+  const PipelineChoice choice = choosePipelineFromProbes(
+      {measured("pt", 10, 0.01), measured("d", 11, 0.002), atQuarterSpp(measured("tgpt", 60, 0.0002))}, g, shot,
+      [](Pipeline) {
+        CandidateMeasure failed = measured("tgpt", 0, 0);
+        failed.failure = "shot 9 SHOT_CANCELLED";
+        return failed;
+      });
+  EXPECT_EQ(pipelineName(choice.pipeline), "d");
+  EXPECT_NE(choice.reason.find("tgpt failed (shot 9 SHOT_CANCELLED)"), std::string::npos) << choice.reason;
+}
+
 TEST(PipelineChoice, TheLowestCostAtEqualErrorWins) {
   const ShotSpec shot = probedShot(24, 320, 180);
   const ProbeGeometry g = probeGeometry(shot, 4);

@@ -210,7 +210,9 @@ TEST(ShotFile, FilterWindowsCoverTheFrameWithBordersOnEvenRows) {
       for (const RowWindow& window : windows) {
         ASSERT_EQ(window.first, covered) << height << " rows in windows of " << rows;
         ASSERT_GT(window.end, window.first) << height << " rows in windows of " << rows;
-        if (window.end != height) ASSERT_EQ(window.end % 2, 0) << height << " rows in windows of " << rows;
+        if (window.end != height) {
+          ASSERT_EQ(window.end % 2, 0) << height << " rows in windows of " << rows;
+        }
         ASSERT_LE(window.end - window.first, rows + 1) << height << " rows in windows of " << rows;
         shortest = std::min(shortest, window.end - window.first);
         tallest = std::max(tallest, window.end - window.first);

@@ -3,6 +3,8 @@
 // reports the choice, the probe's predictions and the probe's cost.
 #include <nlohmann/json.hpp>
 
+#include <map>
+
 #include "farm/farm_fixture.h"
 #include "image/exr_io.h"
 #include "renderer/integrators/frame_renderer.h"
@@ -77,6 +79,39 @@ TEST_F(FarmTest, AutoSubmittedAgainWithItsKeyReusesItsProbes) {
     for (size_t b = a + 1; b < crops.size(); ++b) EXPECT_NE(crops[a], crops[b]) << "crops " << a << " and " << b;
   EXPECT_EQ(submit(), first);
   EXPECT_EQ(client().shots().size(), shots) << "the second submit probed again";
+}
+
+TEST_F(FarmTest, AutoProbesAWinnerAtAQuarterOfTheSamplesAgainAtTheShotsSpp) {
+  const std::string scheduler = startScheduler();
+  startWorker("one");
+  startWorker("two");
+  // The glass egg at 64 spp: tgpt's probe at 16 spp reads its error about 11 times under
+  // d's, so it wins the first round by about 2.5 times the next score (measured when this
+  // was written: tgpt 0.26, d 0.66, plain pt 1), and must be probed again at 64 spp.
+  const fs::path shot = dir() / "egg.shot.json";
+  const fs::path out = dir() / "egg";
+  writeFile(shot, R"({"name": "egg", "scene": ")" + (fs::path(PATHFARM_SOURCE_DIR) / "scenes/glass_egg/scene.json").string() +
+                      R"(", "frames": {"start": 0, "end": 5}, "resolution": [64, 64], "spp": 64, "max_depth": 6,
+                      "tile": 32, "output": ")" + out.string() + R"("})");
+  const CommandResult submitted = runPathfarm({"submit", shot.string(), "--scheduler", scheduler}, {}, 120s);
+  ASSERT_EQ(submitted.status, 0) << submitted.output;
+  const farm::ShotReport report = client().report(shotIdFrom(submitted));
+  EXPECT_TRUE(contains(report.pipeline_reason(), "tgpt won at 16 spp (")) << report.pipeline_reason();
+  EXPECT_TRUE(contains(report.pipeline_reason(), "and was probed again at the shot's 64")) << report.pipeline_reason();
+
+  // Both rounds' probe shots ran, each at its spp, and the probe's cost counts them all.
+  double probesCoreSeconds = 0;
+  std::map<std::string, int> sppOf;
+  for (const farm::ShotSummary& summary : client().shots()) {
+    if (!contains(summary.name(), ".probe.")) continue;
+    const farm::ShotReport probe = client().report(summary.id());
+    probesCoreSeconds += probe.core_seconds();
+    sppOf[summary.name().substr(summary.name().find(".probe."))] = probe.spp();
+  }
+  EXPECT_EQ(sppOf[".probe.tgpt"], 16);
+  EXPECT_EQ(sppOf[".probe.tgpt.at_shot_spp"], 64);
+  EXPECT_NEAR(report.probe_core_seconds(), probesCoreSeconds, 1e-6 * probesCoreSeconds);
+  EXPECT_EQ(readExr(out / "probe" / "tgpt_at_shot_spp" / farm::frameFileName(2)).width(), 32);
 }
 
 }  // namespace
